@@ -1,0 +1,34 @@
+#include "core/status.hpp"
+
+#include <array>
+#include <utility>
+
+namespace railtab::status {
+
+std::string describe(StatusBits bits) {
+  static constexpr std::array<std::pair<StatusBits, const char*>, 13> kNames{{
+      {kConverged, "converged"},
+      {kNotConverged, "not_converged"},
+      {kTwoPoint, "two_point"},
+      {kLiftOff, "lift_off"},
+      {kCurvatureClipped, "curvature_clipped"},
+      {kCurvatureShifted, "curvature_shifted"},
+      {kFallbackModel, "fallback_model"},
+      {kFlangeContact, "flange_contact"},
+      {kNonHertzian, "non_hertzian"},
+      {kFullSlip, "full_slip"},
+      {kOutOfRange, "out_of_range"},
+      {kInvalidInput, "invalid_input"},
+      {kProfileEdge, "profile_edge"},
+  }};
+  std::string out;
+  for (const auto& [bit, name] : kNames) {
+    if (bits & bit) {
+      if (!out.empty()) out += ',';
+      out += name;
+    }
+  }
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace railtab::status

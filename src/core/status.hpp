@@ -1,0 +1,31 @@
+// Status flags carried by every result and every table point. Numerical trouble is data:
+// a result is always returned, and these bits say how far to trust it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace railtab {
+
+using StatusBits = std::uint32_t;
+
+namespace status {
+inline constexpr StatusBits kConverged = 1u << 0;         // the solver met its tolerance
+inline constexpr StatusBits kNotConverged = 1u << 1;      // iteration limit hit; best estimate kept
+inline constexpr StatusBits kTwoPoint = 1u << 2;          // more than one contact on this wheel
+inline constexpr StatusBits kLiftOff = 1u << 3;           // no contact at this load/approach
+inline constexpr StatusBits kCurvatureClipped = 1u << 4;  // negative/small B clipped (+ smoothing)
+inline constexpr StatusBits kCurvatureShifted = 1u << 5;  // negative/small B shifted upward
+inline constexpr StatusBits kFallbackModel = 1u << 6;     // the chosen model failed; a simpler one ran
+inline constexpr StatusBits kFlangeContact = 1u << 7;     // contact angle beyond the tread range
+inline constexpr StatusBits kNonHertzian = 1u << 8;       // A or B <= 0 at the point: Hertz invalid
+inline constexpr StatusBits kFullSlip = 1u << 9;          // tangential force saturated at mu*N
+inline constexpr StatusBits kOutOfRange = 1u << 10;       // query clamped to the table edge
+inline constexpr StatusBits kInvalidInput = 1u << 11;     // NaN/inf or otherwise unusable input
+inline constexpr StatusBits kProfileEdge = 1u << 12;      // contact band reached a profile end
+
+// Comma-separated names of the set bits, e.g. "converged,two_point"; "none" for 0.
+std::string describe(StatusBits bits);
+}  // namespace status
+
+}  // namespace railtab

@@ -1,0 +1,99 @@
+// Normal contact: one interface for Hertz, Linder, Kik-Piotrowski and STRIPES (A- and
+// A&B-correction). A model takes the rigid geometry of one wheel (contact points and the gap band
+// along the rail surface) and either the vertical wheel load or the vertical approach, and returns
+// one contact patch per loaded contact point, discretised into lateral strips.
+//
+// All contact patches of one wheel share one rigid vertical approach of the wheel: a point with
+// vertical separation h and contact angle gamma sees the normal penetration (delta_z - h) cos(gamma),
+// so the load splits between tread and flange by the physics.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/material.hpp"
+#include "core/status.hpp"
+#include "geometry/contact_geometry.hpp"
+
+namespace railtab {
+
+enum class NormalModel { hertz, linder, kik_piotrowski, stripes_a, stripes_ab };
+const char* to_string(NormalModel model);                 // "hertz", "kik-piotrowski", "stripes-ab", ...
+NormalModel parse_normal_model(std::string_view name);   // throws railtab::Error naming the value
+
+// How STRIPES treats negative or very small lateral relative curvature B.
+enum class NegativeCurvature {
+  clip_and_smooth,  // classic STRIPES: replace by a small positive value, then smooth across strips
+  shift,            // seed 000: shift the B distribution of the patch upward, no smoothing
+};
+const char* to_string(NegativeCurvature treatment);
+NegativeCurvature parse_negative_curvature(std::string_view name);
+
+// Pressure shape along a strip (rolling direction x).
+enum class StripPressure {
+  semi_elliptic,  // p(x) = p_peak * sqrt(1 - x^2/a^2): Hertz, Kik-Piotrowski, Linder
+  parabolic,      // p(x) = p_peak * (1 - x^2/a^2): STRIPES (Kalker's simplified theory)
+};
+
+struct NormalOptions {
+  NormalModel model = NormalModel::stripes_ab;
+  NegativeCurvature negative_curvature = NegativeCurvature::shift;
+  int strips = 50;                        // lateral strips across each patch [-]
+  double virtual_penetration = 0.55;      // epsilon of Linder and Kik-Piotrowski [-]
+  double tolerance = 1e-8;                // relative tolerance on the normal load [-]
+  int max_iterations = 60;                // load-control iteration limit [-]
+};
+
+// One lateral strip of a contact patch. x is the rolling direction (forward), the strip spans
+// [x_trail, x_lead] at its centre.
+struct Strip {
+  double s;                // band arc length of the strip centre [m]
+  double width;            // strip width along the rail surface [m]
+  double wheel_u;          // wheel-profile coordinate of the strip centre [m]
+  double rail_u;           // rail-profile coordinate of the strip centre [m]
+  double contact_angle;    // local contact angle, track frame (ISO sign) [rad]
+  double rolling_radius;   // wheel radius at the strip centre [m]
+  double x_lead;           // leading edge (+x) [m]
+  double x_trail;          // trailing edge [m]
+  double pressure_peak;    // peak pressure on the strip (at x = (x_lead + x_trail)/2) [Pa]
+  double ellipse_a;        // semi-axes of the strip's local (virtual) ellipse, for FASTSIM [m]
+  double ellipse_b;        //   rolling (a) and lateral (b) [m]
+};
+
+struct ContactPatch {
+  int point_index = -1;            // index into WheelContactGeometry::points
+  NormalModel model = NormalModel::hertz;
+  StripPressure pressure_shape = StripPressure::semi_elliptic;
+  std::vector<Strip> strips;       // ascending s; empty when the point is not loaded
+  double normal_force = 0.0;       // along the contact normal [N]
+  double penetration = 0.0;        // normal approach at the reference point [m]
+  double area = 0.0;               // [m2]
+  double max_pressure = 0.0;       // [Pa]
+  double semi_axis_a = 0.0;        // Hertz/elliptic models: rolling semi-axis [m]; else 0
+  double semi_axis_b = 0.0;        //   lateral semi-axis [m]; else 0
+  double contact_angle = 0.0;      // reference point, track frame [rad]
+  double rolling_radius = 0.0;     // reference point [m]
+  double wheel_u = 0.0;            // reference point, wheel profile [m]
+  double rail_u = 0.0;             // reference point, rail profile [m]
+  StatusBits status = 0;
+};
+
+struct WheelNormalResult {
+  std::vector<ContactPatch> patches;  // one per contact point of the geometry, same order
+  double vertical_approach = 0.0;     // rigid vertical approach of the wheel [m]
+  double vertical_load = 0.0;         // sum of patch normal forces projected on track z [N]
+  int iterations = 0;                 // load-control iterations
+  StatusBits status = 0;              // union of the patch flags plus solver flags
+};
+
+// Load control: the vertical wheel load (track z) is prescribed [N].
+WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
+                                        const Material& material, const NormalOptions& options);
+
+// Displacement control: the rigid vertical approach of the wheel is prescribed [m].
+WheelNormalResult solve_normal_for_approach(const WheelContactGeometry& geometry,
+                                            double vertical_approach, const Material& material,
+                                            const NormalOptions& options);
+
+}  // namespace railtab
