@@ -1,9 +1,10 @@
-// railtab: wheel-rail contact tables. Subcommands are registered in commands.cpp.
+// railtab: wheel-rail contact tables. Each subcommand registers itself (commands.hpp).
 #include <CLI/CLI.hpp>
 
 #include <exception>
 #include <iostream>
 
+#include "commands.hpp"
 #include "version.hpp"
 
 int main(int argc, char** argv) {
@@ -11,6 +12,11 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(railtab::version_string()) + " (" +
                                         railtab::git_commit() + ")");
   app.require_subcommand(1);
+  railtab::add_eval_command(app);
+  railtab::add_generate_command(app);
+  railtab::add_inspect_command(app);
+  railtab::add_merge_command(app);
+  railtab::add_chart_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,71 @@
+// A scene: everything a contact table needs (profiles, track, wheelset, material, models, grids),
+// read from a TOML file in tables/. The file format is documented in docs/scenes.md.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/material.hpp"
+#include "geometry/contact_geometry.hpp"
+#include "normal/normal_model.hpp"
+
+namespace railtab {
+
+struct ProfileSource {
+  std::string name;        // built-in name ("s1002", "uic60") or a file path as written in the scene
+  std::filesystem::path file;  // resolved file path (relative to the scene file); empty for built-ins
+  double smoothing_length = 0.0;  // smoothing of measured profiles, 0 = interpolate [m]
+};
+
+struct TangentialSettings {
+  double friction = 0.3;          // Coulomb coefficient mu [-]
+  int elements_per_strip = 20;    // FASTSIM cells along each strip [-]
+  bool spin_per_strip = true;     // spin follows the local contact angle (STRIPES) [-]
+  double speed = 20.0;            // rolling speed, for slip velocities and wear [m/s]
+};
+
+struct WearSettings {
+  double hardness = 2.75e9;       // H of the wheel material [Pa]
+  double lubrication_factor = 5.5;  // k_dry is divided by this (5.5 natural, 11 lubricated) [-]
+};
+
+// The grids of a table. An axis with one value is not tabulated (fixed); the table records it.
+struct SceneGrids {
+  std::vector<double> y;     // wheelset lateral displacement [m]
+  std::vector<double> roll;  // roll angle [rad]
+  std::vector<double> load;  // vertical wheel load [N]
+  std::vector<double> xi;    // longitudinal creepage [-]
+  std::vector<double> eta;   // lateral creepage [-]
+  std::vector<double> phi;   // spin creepage [rad/m]
+};
+
+struct Scene {
+  std::string name;             // [scene] name
+  std::string description;      // [scene] description
+  std::string text;             // the full TOML text, stored in every table
+  std::filesystem::path path;   // where it was read from (empty when parsed from a string)
+  ProfileSource wheel;
+  ProfileSource rail;
+  TrackGeometry track;
+  WheelsetGeometry wheelset;
+  GeometrySettings geometry;
+  Material material;
+  NormalOptions normal;
+  TangentialSettings tangential;
+  WearSettings wear;
+  bool equilibrium_roll = false;  // roll follows the kinematic equilibrium instead of the roll grid
+  SceneGrids grids;
+};
+
+// Parse a scene file. Unknown keys, missing required keys, wrong types, empty or non-monotonic
+// grids throw railtab::Error naming the file, the key and (where known) the line.
+Scene load_scene(const std::filesystem::path& path);
+Scene parse_scene(std::string_view toml_text, const std::string& source_name,
+                  const std::filesystem::path& base_dir = {});
+
+// Build the profiles and the geometry solver a scene describes.
+ContactGeometrySolver make_geometry_solver(const Scene& scene);
+
+}  // namespace railtab
