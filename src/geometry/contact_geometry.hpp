@@ -11,12 +11,18 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "core/status.hpp"
 #include "profile/profile.hpp"
 
 namespace railtab {
+
+namespace detail {
+class PlacedRail;
+struct WheelSamples;
+}  // namespace detail
 
 enum class Side { left = 0, right = 1 };
 inline constexpr double outward_sign(Side side) { return side == Side::left ? 1.0 : -1.0; }
@@ -124,6 +130,8 @@ class ContactGeometrySolver {
   GeometrySettings settings_;
   std::array<double, 2> rail_offset_q_{};  // side-frame lateral position of each rail origin [m]
   std::array<double, 2> rail_offset_z_{};  // side-frame height of each rail origin [m]
+  std::array<std::shared_ptr<const detail::PlacedRail>, 2> placed_rail_;    // rails placed and tabulated
+  std::array<std::shared_ptr<const detail::WheelSamples>, 2> wheel_nodes_;  // coarse-search wheel nodes
 };
 
 }  // namespace railtab

@@ -1,0 +1,145 @@
+// ContactGeometrySolver: input checks, one wheel's contact points and band, both wheels.
+#include "geometry/contact_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/check.hpp"
+#include "geometry/placement.hpp"
+
+namespace railtab {
+
+const char* to_string(Side side) { return side == Side::left ? "left" : "right"; }
+
+namespace {
+
+void check_profile(const ProfilePtr& p, ProfileKind kind, const char* what) {
+  RAILTAB_CHECK(p != nullptr, "contact geometry: {} profile is missing", what);
+  RAILTAB_CHECK(p->kind() == kind, "contact geometry: {} profile '{}' is not a {} profile", what,
+                p->name(), kind == ProfileKind::wheel ? "wheel" : "rail");
+}
+
+void check_positive(double value, const char* name) {
+  RAILTAB_CHECK(std::isfinite(value) && value > 0.0, "contact geometry: {} = {} must be finite and > 0",
+                name, value);
+}
+
+}  // namespace
+
+ContactGeometrySolver::ContactGeometrySolver(ProfilePtr wheel_left, ProfilePtr rail_left,
+                                             ProfilePtr wheel_right, ProfilePtr rail_right,
+                                             TrackGeometry track, WheelsetGeometry wheelset,
+                                             GeometrySettings settings)
+    : wheel_{std::move(wheel_left), std::move(wheel_right)},
+      rail_{std::move(rail_left), std::move(rail_right)},
+      track_(track),
+      wheelset_(wheelset),
+      settings_(settings) {
+  check_profile(wheel_[0], ProfileKind::wheel, "left wheel");
+  check_profile(wheel_[1], ProfileKind::wheel, "right wheel");
+  check_profile(rail_[0], ProfileKind::rail, "left rail");
+  check_profile(rail_[1], ProfileKind::rail, "right rail");
+  check_positive(track_.gauge, "track.gauge");
+  check_positive(track_.gauge_measuring_depth, "track.gauge_measuring_depth");
+  RAILTAB_CHECK(std::isfinite(track_.rail_inclination) && std::abs(track_.rail_inclination) < 1.0,
+                "contact geometry: track.rail_inclination = {} must be finite with |value| < 1",
+                track_.rail_inclination);
+  check_positive(wheelset_.back_to_back, "wheelset.back_to_back");
+  RAILTAB_CHECK(std::isfinite(wheelset_.flange_back_position),
+                "contact geometry: wheelset.flange_back_position = {} is not finite",
+                wheelset_.flange_back_position);
+  check_positive(wheelset_.nominal_radius, "wheelset.nominal_radius");
+  check_positive(settings_.search_step, "settings.search_step");
+  RAILTAB_CHECK(std::isfinite(settings_.max_separation) && settings_.max_separation >= 0.0,
+                "contact geometry: settings.max_separation = {} must be finite and >= 0",
+                settings_.max_separation);
+  check_positive(settings_.band_step, "settings.band_step");
+  RAILTAB_CHECK(std::isfinite(settings_.band_half_width) && settings_.band_half_width >= 0.0,
+                "contact geometry: settings.band_half_width = {} must be finite and >= 0",
+                settings_.band_half_width);
+  check_positive(settings_.band_max_gap, "settings.band_max_gap");
+  RAILTAB_CHECK(std::isfinite(settings_.flange_angle),
+                "contact geometry: settings.flange_angle = {} is not finite", settings_.flange_angle);
+
+  // The rail table must resolve the coarse search and the band; half their step is plenty for
+  // cubic Hermite interpolation, and a floor keeps absurd settings from exhausting memory.
+  const double table_step = std::max(0.5 * std::min(settings_.search_step, settings_.band_step), 2e-6);
+  for (int i = 0; i < 2; ++i) {
+    const bool shared_rail = i == 1 && rail_[1] == rail_[0];
+    placed_rail_[i] = shared_rail ? placed_rail_[0]
+                                  : std::make_shared<const detail::PlacedRail>(rail_[i], track_, table_step);
+    const bool shared_wheel = i == 1 && wheel_[1] == wheel_[0];
+    wheel_nodes_[i] = shared_wheel ? wheel_nodes_[0]
+                                   : std::make_shared<const detail::WheelSamples>(
+                                         *wheel_[i], std::max(settings_.search_step, 2e-6));
+    rail_offset_q_[i] = placed_rail_[i]->offset_q();
+    rail_offset_z_[i] = placed_rail_[i]->offset_z();
+  }
+}
+
+WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const WheelsetState& state) const {
+  RAILTAB_CHECK(std::isfinite(state.y), "contact geometry: wheelset state y = {} is not finite", state.y);
+  RAILTAB_CHECK(std::isfinite(state.roll), "contact geometry: wheelset state roll = {} is not finite",
+                state.roll);
+  const int i = static_cast<int>(side);
+  const double sigma = outward_sign(side);
+  const detail::PlacedRail& rail = *placed_rail_[i];
+  const Profile& wheel = *wheel_[i];
+  detail::WheelPose pose = detail::make_pose(side, state, wheelset_);
+  const detail::SearchResult found =
+      detail::search_contacts(rail, wheel, *wheel_nodes_[i], pose, settings_.max_separation);
+
+  WheelContactGeometry out;
+  out.side = side;
+  out.wheel_drop = -found.gap_min;  // lower the wheel until the smallest gap closes
+  pose.zc += out.wheel_drop;
+  out.points.reserve(found.minima.size());
+  for (const detail::RawContact& m : found.minima) {
+    const ProfileSample ew = wheel.eval(m.wheel_u);
+    const detail::RailPoint rp = rail.point(m.rail_u);
+    ContactPoint cp{};
+    cp.wheel_u = m.wheel_u;
+    cp.rail_u = m.rail_u;
+    cp.y_track = sigma * rp.p.q;
+    cp.z_track = rp.p.z;
+    cp.contact_angle_side = rp.angle;
+    cp.contact_angle = sigma * rp.angle;
+    cp.rolling_radius = wheelset_.nominal_radius - ew.z;
+    cp.separation = m.gap - found.gap_min;
+    // Meusnier: the circumferential curvature of the wheel is cos(g_w)/r with g_w the normal's
+    // angle to the wheel's own radial plane, i.e. the side-frame angle minus the wheel's roll.
+    cp.curvature_a = 0.5 * std::cos(rp.angle - pose.theta) / cp.rolling_radius;
+    const double slope_term = 1.0 + ew.dz * ew.dz;
+    const double k_wheel = ew.d2z / (slope_term * std::sqrt(slope_term));  // convex: d2z_w > 0
+    cp.curvature_b = 0.5 * (k_wheel + rp.curvature);
+    cp.status = 0;
+    if (cp.contact_angle_side > settings_.flange_angle) cp.status |= status::kFlangeContact;
+    if (!(cp.curvature_a > 0.0) || !(cp.curvature_b > 0.0)) cp.status |= status::kNonHertzian;
+    if (m.edge) cp.status |= status::kProfileEdge;
+    out.points.push_back(cp);
+  }
+  std::stable_sort(out.points.begin(), out.points.end(), [](const ContactPoint& a, const ContactPoint& b) {
+    return a.separation < b.separation;
+  });
+  out.points.front().separation = 0.0;  // exactly: the drop is defined by it
+
+  const bool band_edge = detail::build_band(rail, wheel, pose, settings_, out);
+  if (out.points.size() > 1) out.status |= status::kTwoPoint;
+  const bool point_edge = std::any_of(out.points.begin(), out.points.end(), [](const ContactPoint& p) {
+    return (p.status & status::kProfileEdge) != 0;
+  });
+  if (band_edge || point_edge) out.status |= status::kProfileEdge;
+  return out;
+}
+
+WheelsetContactGeometry ContactGeometrySolver::solve(const WheelsetState& state) const {
+  WheelsetContactGeometry result;
+  result.wheels[0] = solve_wheel(Side::left, state);
+  result.wheels[1] = solve_wheel(Side::right, state);
+  result.rolling_radius_difference = result.wheels[0].points.front().rolling_radius -
+                                     result.wheels[1].points.front().rolling_radius;
+  return result;
+}
+
+}  // namespace railtab

@@ -1,0 +1,222 @@
+// Placement of rail and wheel in the side frame (model in placement.hpp and docs/conventions.md).
+#include "geometry/placement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/check.hpp"
+
+namespace railtab::detail {
+namespace {
+
+// Cubic Hermite interpolation on [x0, x1] with end values y and end derivatives d.
+double hermite(double x0, double x1, double y0, double y1, double d0, double d1, double x) {
+  const double h = x1 - x0;
+  const double t = (x - x0) / h;
+  const double t2 = t * t;
+  const double t3 = t2 * t;
+  return (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * d0 + (-2 * t3 + 3 * t2) * y1 +
+         (t3 - t2) * h * d1;
+}
+
+}  // namespace
+
+PlacedRail::PlacedRail(ProfilePtr profile, const TrackGeometry& track, double table_step)
+    : profile_(std::move(profile)),
+      alpha_(std::atan(track.rail_inclination)),
+      cos_a_(std::cos(alpha_)),
+      sin_a_(std::sin(alpha_)) {
+  const Profile& p = *profile_;
+  const double a = p.u_min();
+  const double b = p.u_max();
+  const int n_scan = std::max(2, static_cast<int>(std::ceil((b - a) / table_step)));
+  const double h_scan = (b - a) / n_scan;
+  auto z_rot = [&](double u) { return sin_a_ * u + cos_a_ * p.eval(u).z; };
+  auto q_rot = [&](double u) { return cos_a_ * u - sin_a_ * p.eval(u).z; };
+
+  auto node = [&](int i) { return i == n_scan ? b : a + h_scan * i; };
+
+  // Highest point of the inclined rail: best node, then Newton on dz_rot/du = 0.
+  int i_top = 0;
+  double z_best = z_rot(a);
+  for (int i = 1; i <= n_scan; ++i) {
+    const double zi = z_rot(node(i));
+    if (zi > z_best) {
+      z_best = zi;
+      i_top = i;
+    }
+  }
+  double u_top = node(i_top);
+  for (int it = 0; it < 30 && i_top > 0 && i_top < n_scan; ++it) {
+    const ProfileSample e = p.eval(u_top);
+    const double f = sin_a_ + cos_a_ * e.dz;
+    const double df = cos_a_ * e.d2z;
+    if (!(df < 0.0)) break;  // not a maximum in the Newton sense: keep the node
+    const double next = std::clamp(u_top - f / df, node(i_top - 1), node(i_top + 1));
+    const bool done = std::abs(next - u_top) < 1e-14;
+    u_top = next;
+    if (done) break;
+  }
+  const double z_top = z_rot(u_top);
+
+  // Upper surface: the branch around the top on which q increases with u. Beyond a fold
+  // (an overhanging face) the surface is hidden from a wheel coming from above.
+  auto dq_du = [&](double u) { return cos_a_ - sin_a_ * p.eval(u).dz; };
+  int i_lo = i_top;
+  while (i_lo > 0 && dq_du(node(i_lo - 1)) > 1e-3) --i_lo;
+  int i_hi = i_top;
+  while (i_hi < n_scan && dq_du(node(i_hi + 1)) > 1e-3) ++i_hi;
+  const double u_lo = node(i_lo);
+  const double u_hi = node(i_hi);
+  RAILTAB_CHECK(u_hi > u_lo, "rail profile '{}': no upper surface after inclination {}", p.name(),
+                track.rail_inclination);
+
+  // Gauge point: first node below the measuring depth walking from the top to the gauge side,
+  // then bisection on the crossing.
+  const double z_gauge = z_top - track.gauge_measuring_depth;
+  double u_in = u_top;
+  double u_out = u_top;
+  bool found = false;
+  for (int i = i_top; i >= i_lo; --i) {
+    if (z_rot(node(i)) < z_gauge) {
+      u_out = node(i);
+      found = true;
+      break;
+    }
+    u_in = node(i);
+  }
+  RAILTAB_CHECK(found,
+                "rail profile '{}' does not reach the gauge measuring depth {} m below its top on "
+                "the gauge side",
+                p.name(), track.gauge_measuring_depth);
+  for (int it = 0; it < 200 && std::abs(u_in - u_out) > 1e-13; ++it) {
+    const double mid = 0.5 * (u_in + u_out);
+    (z_rot(mid) >= z_gauge ? u_in : u_out) = mid;
+  }
+  const double u_gauge = 0.5 * (u_in + u_out);
+  offset_q_ = 0.5 * track.gauge - q_rot(u_gauge);
+  offset_z_ = -z_top;
+
+  // Tables on the upper branch.
+  const int n = std::max(2, static_cast<int>(std::ceil((u_hi - u_lo) / table_step)));
+  const double h = (u_hi - u_lo) / n;
+  u_.resize(n + 1);
+  q_.resize(n + 1);
+  z_.resize(n + 1);
+  slope_.resize(n + 1);
+  s_.resize(n + 1);
+  ds_.resize(n + 1);
+  // 3-point Gauss-Legendre per interval for the arc length.
+  const double gl_x = std::sqrt(0.6);
+  auto ds_du = [&](double u) {
+    const double d = p.eval(u).dz;
+    return std::sqrt(1.0 + d * d);
+  };
+  for (int i = 0; i <= n; ++i) {
+    const double u = i == n ? u_hi : u_lo + h * i;
+    const RailPoint rp = point(u);
+    u_[i] = u;
+    q_[i] = rp.p.q;
+    z_[i] = rp.p.z;
+    slope_[i] = rp.tangent.z / rp.tangent.q;
+    ds_[i] = ds_du(u);
+    if (i == 0) {
+      s_[i] = 0.0;
+    } else {
+      const double m = 0.5 * (u_[i - 1] + u);
+      const double r = 0.5 * (u - u_[i - 1]);
+      s_[i] = s_[i - 1] + r * (5.0 / 9.0 * ds_du(m - r * gl_x) + 8.0 / 9.0 * ds_du(m) +
+                               5.0 / 9.0 * ds_du(m + r * gl_x));
+    }
+  }
+  for (int i = 1; i <= n; ++i) {
+    RAILTAB_CHECK(q_[i] > q_[i - 1], "rail profile '{}': lateral position not monotone near u = {} m",
+                  p.name(), u_[i]);
+  }
+}
+
+RailPoint PlacedRail::point(double u) const {
+  const ProfileSample e = profile_->eval(u);
+  RailPoint r;
+  r.u = u;
+  r.p = {cos_a_ * u - sin_a_ * e.z + offset_q_, sin_a_ * u + cos_a_ * e.z + offset_z_};
+  r.tangent = {cos_a_ - sin_a_ * e.dz, sin_a_ + cos_a_ * e.dz};
+  r.angle = alpha_ + std::atan(e.dz);
+  const double w = 1.0 + e.dz * e.dz;
+  r.dangle_du = e.d2z / w;
+  r.curvature = -e.d2z / (w * std::sqrt(w));  // the profile counts a convex crown negative
+  return r;
+}
+
+int PlacedRail::interval_of(const std::vector<double>& x, double value) const {
+  const auto it = std::upper_bound(x.begin(), x.end(), value);
+  const int j = static_cast<int>(it - x.begin()) - 1;
+  return std::clamp(j, 0, static_cast<int>(x.size()) - 2);
+}
+
+double PlacedRail::z_at_q_table(double q, int& hint) const {
+  const int last = static_cast<int>(q_.size()) - 2;
+  int j = std::clamp(hint, 0, last);
+  while (j < last && q > q_[j + 1]) ++j;
+  while (j > 0 && q < q_[j]) --j;
+  hint = j;
+  return hermite(q_[j], q_[j + 1], z_[j], z_[j + 1], slope_[j], slope_[j + 1], q);
+}
+
+double PlacedRail::u_at_q(double q) const {
+  const int j = interval_of(q_, q);
+  const double lo = u_[j];
+  const double hi = u_[j + 1];
+  double u = lo + (hi - lo) * (q - q_[j]) / (q_[j + 1] - q_[j]);
+  for (int it = 0; it < 30; ++it) {
+    const ProfileSample e = profile_->eval(u);
+    const double f = cos_a_ * u - sin_a_ * e.z + offset_q_ - q;
+    const double df = cos_a_ - sin_a_ * e.dz;
+    const double next = std::clamp(u - f / df, std::max(u_lo(), lo - (hi - lo)),
+                                   std::min(u_hi(), hi + (hi - lo)));
+    const bool done = std::abs(next - u) < 1e-14;
+    u = next;
+    if (done) break;
+  }
+  return u;
+}
+
+double PlacedRail::s_at_u(double u) const {
+  const int j = interval_of(u_, u);
+  return hermite(u_[j], u_[j + 1], s_[j], s_[j + 1], ds_[j], ds_[j + 1], u);
+}
+
+double PlacedRail::u_at_s(double s) const {
+  const int j = interval_of(s_, s);
+  return hermite(s_[j], s_[j + 1], u_[j], u_[j + 1], 1.0 / ds_[j], 1.0 / ds_[j + 1], s);
+}
+
+WheelSamples::WheelSamples(const Profile& wheel, double step) {
+  const int n = std::max(2, static_cast<int>(std::ceil((wheel.u_max() - wheel.u_min()) / step)));
+  u0 = wheel.u_min();
+  h = (wheel.u_max() - wheel.u_min()) / n;
+  z.resize(n + 1);
+  dz.resize(n + 1);
+  for (int i = 0; i <= n; ++i) {
+    const ProfileSample e = wheel.eval(i == n ? wheel.u_max() : u0 + h * i);
+    u_end = wheel.u_max();
+    z[i] = e.z;
+    dz[i] = e.dz;
+  }
+}
+
+WheelPose make_pose(Side side, const WheelsetState& state, const WheelsetGeometry& wheelset) {
+  const double sigma = outward_sign(side);
+  WheelPose pose;
+  pose.theta = sigma * state.roll;
+  pose.qc = sigma * state.y;
+  pose.zc = wheelset.nominal_radius;
+  pose.cos_t = std::cos(pose.theta);
+  pose.sin_t = std::sin(pose.theta);
+  pose.q0 = 0.5 * wheelset.back_to_back - wheelset.flange_back_position;
+  pose.r0 = wheelset.nominal_radius;
+  return pose;
+}
+
+}  // namespace railtab::detail
