@@ -43,6 +43,12 @@ struct NormalOptions {
   double virtual_penetration = 0.55;      // epsilon of Linder and Kik-Piotrowski [-]
   double tolerance = 1e-8;                // relative tolerance on the normal load [-]
   int max_iterations = 60;                // load-control iteration limit [-]
+  // Negative/small-B treatment of STRIPES (FACTS 2.4.6; seed 000 leaves the constants open):
+  double min_curvature_ratio = 0.02;      // B floor as a fraction of A at the point [-]
+  double curvature_window = 0.1e-3;       // band samples with rigid gap up to this much above the
+                                          //   point's gap count for the treatment (about twice the
+                                          //   virtual penetration at 150 kN) [m]
+  double smoothing_half_width = 0.5e-3;   // clip_and_smooth: moving-average half-width [m]
 };
 
 // One lateral strip of a contact patch. x is the rolling direction (forward), the strip spans
@@ -70,8 +76,9 @@ struct ContactPatch {
   double penetration = 0.0;        // normal approach at the reference point [m]
   double area = 0.0;               // [m2]
   double max_pressure = 0.0;       // [Pa]
-  double semi_axis_a = 0.0;        // Hertz/elliptic models: rolling semi-axis [m]; else 0
-  double semi_axis_b = 0.0;        //   lateral semi-axis [m]; else 0
+  double semi_axis_a = 0.0;        // rolling semi-axis [m]: Hertz ellipse; KP equivalent ellipse
+                                   //   (area and length/width kept); Linder max half-length; STRIPES 0
+  double semi_axis_b = 0.0;        //   lateral semi-axis [m]: Hertz; KP equivalent; Linder half-width
   double contact_angle = 0.0;      // reference point, track frame [rad]
   double rolling_radius = 0.0;     // reference point [m]
   double wheel_u = 0.0;            // reference point, wheel profile [m]

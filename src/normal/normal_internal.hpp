@@ -1,0 +1,103 @@
+// Internal machinery shared by the normal-contact models (not part of the public contract).
+// One solve prepares a PointContext per contact point (geometry-only data: band domain, curvature
+// treatment, reference Hertz coefficients); the load-control loop then evaluates every patch at
+// trial vertical approaches without allocating. Per-band-sample data that needs trigonometry or a
+// local Hertz shape is computed lazily, once per solve, only where a patch actually reaches.
+#pragma once
+
+#include <vector>
+
+#include "core/material.hpp"
+#include "geometry/contact_geometry.hpp"
+#include "normal/hertz.hpp"
+#include "normal/normal_model.hpp"
+
+namespace railtab::detail {
+
+struct PointContext {
+  int point = -1;              // index into WheelContactGeometry::points
+  NormalModel model = NormalModel::hertz;  // model actually run here (after any fallback)
+  double h = 0.0;              // vertical separation at rigid contact [m]
+  double cos_ref = 1.0;        // cos of the reference contact angle [-]
+  double A0 = 0.0;             // relative curvature, rolling direction, at the point [1/m]
+  double B0 = 0.0;             // relative curvature, lateral, at the point (as given) [1/m]
+  double B0t = 0.0;            // B0 after the negative-B treatment (STRIPES) [1/m]
+  double r_ref = 0.0;          // rolling radius at the point [m]
+  int i0 = -1;                 // band sample nearest to the point (-1: no usable band)
+  int lo = 0;                  // first band sample belonging to this point
+  int hi = -1;                 // last band sample belonging to this point
+  double eps = 0.55;           // virtual penetration factor [-]
+  double pmax_coef = 0.0;      // STRIPES: p_max = pmax_coef sqrt(delta0) [Pa/m^0.5]
+  bool hertz_valid = false;    // A0 > 0 and B0 > 0
+  HertzCoefficients hz{};      // Hertz coefficients at (A0, B0) when valid [-]
+  StatusBits flags = 0;        // preparation flags (fallback, curvature treatment, ...)
+};
+
+// Lazily filled per band sample (index = band sample).
+struct SampleData {
+  double cos_angle;  // cos of the sample's contact angle [-]
+  double A;          // longitudinal curvature used for the strip length (corrected for STRIPES) [1/m]
+  double q;          // STRIPES: local Hertz (b/a)^2 of the virtual ellipse [-]
+};
+
+struct Workspace {
+  std::vector<PointContext> points;     // one per contact point
+  std::vector<SampleData> samples;      // band-sized
+  std::vector<unsigned char> ready;     // samples[j] computed for owner point ready[j]-1
+  std::vector<double> B_treated;        // band-sized: lateral curvature after treatment [1/m]
+  std::vector<double> v;                // band-sized: virtual overlap at the current approach [m]
+  std::vector<double> strip_len;        // per-strip scratch: half-lengths [m]
+  std::vector<double> strip_pos;        // per-strip scratch: lateral positions [m]
+};
+
+Workspace& thread_workspace();
+
+// A run of positive virtual overlap around the point's sample.
+struct Run {
+  bool loaded = false;   // false: no overlap at the point (lift-off)
+  double s_lo = 0.0;     // patch edges in band arc length [m]
+  double s_hi = 0.0;
+  double v_max = 0.0;    // largest sample overlap [m]
+  bool at_band_end = false;  // the run was cut by the end of the band
+};
+
+struct PatchSums {
+  double normal = 0.0;    // sum of strip normal forces [N]
+  double vertical = 0.0;  // projection on track z [N]
+};
+
+// Shared preparation and evaluation (normal_model.cpp).
+const SampleData& sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w, int j,
+                         const NormalOptions& o);
+Run find_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
+             const NormalOptions& o);
+double interp_band(const WheelContactGeometry& g, double s, double BandSample::*field);
+// Linear interpolation of the workspace overlap v at arc length s (inside the run).
+double interp_v(const WheelContactGeometry& g, const Workspace& w, double s);
+// Per-sample data (cos, A, q) linearly interpolated at arc length s.
+SampleData interp_sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
+                         double s, const NormalOptions& o);
+// Fills the strip fields that come from the band (position, angle, radius, u's) for strip s.
+Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s, double width,
+                 bool own_angle);
+
+// Model evaluations at vertical approach dz: totals always, strips and patch fields when out.
+PatchSums hertz_patch(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                      PointContext& p, Workspace& w, double dz, ContactPatch* out);
+PatchSums linder_patch(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                       PointContext& p, Workspace& w, double dz, ContactPatch* out);
+PatchSums kik_piotrowski_patch(const WheelContactGeometry& g, const Material& m,
+                               const NormalOptions& o, PointContext& p, Workspace& w, double dz,
+                               ContactPatch* out);
+PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                        PointContext& p, Workspace& w, double dz, ContactPatch* out);
+// STRIPES geometry-only preparation: negative-B treatment, epsilon and the pressure closure.
+void prepare_stripes(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                     PointContext& p, Workspace& w);
+
+// Kik-Piotrowski Boussinesq closure (kik_piotrowski.cpp): for a patch with semi-elliptic strip
+// pressure C sqrt(L_k^2 - x^2) on strips at lateral offsets y_k (from the reference point) of
+// width w, returns I1 = sum int int sqrt(L^2-x^2) and I2 = sum int int sqrt(L^2-x^2)/r.
+void kp_integrals(const double* L, const double* y, int n, double width, double* I1, double* I2);
+
+}  // namespace railtab::detail

@@ -1,0 +1,506 @@
+// Entry points of the normal-contact layer: preparation of the contact points, the shared band
+// machinery of the virtual-interpenetration (VI) models and the load control.
+//
+// Shared rigid approach (docs/conventions.md "Normal contact"): all patches of one wheel move with
+// one vertical approach delta_z; point i (separation h_i, contact angle g_i) is penetrated by
+// delta_i = (delta_z - h_i) cos g_i. Along the gap band the VI overlap of the patch of point i is
+//   STRIPES (patch follows the contact angle):  v(s) = eps delta_z cos g(s) - gap(s) + (1 - eps) h_i cos g(s)
+//   Linder, KP (planar, reference normal):      v(s) = eps (delta_z - h_i) cos g_i - (gap(s) - h_i cos g_i)
+// For the primary point (h = 0) the first line is eps delta_z cos g(s) - gap(s). The h_i terms make a
+// secondary patch appear exactly when delta_z passes h_i (as for Hertz) and not at h_i/eps: the
+// fraction eps scales the penetration of the patch, not the rigid separation (FACTS 2.1).
+#include "normal/normal_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/check.hpp"
+#include "normal/normal_internal.hpp"
+#include "normal/root_find.hpp"
+
+namespace railtab {
+
+const char* to_string(NormalModel model) {
+  switch (model) {
+    case NormalModel::hertz: return "hertz";
+    case NormalModel::linder: return "linder";
+    case NormalModel::kik_piotrowski: return "kik-piotrowski";
+    case NormalModel::stripes_a: return "stripes-a";
+    case NormalModel::stripes_ab: return "stripes-ab";
+  }
+  return "unknown";
+}
+
+NormalModel parse_normal_model(std::string_view name) {
+  for (NormalModel m : {NormalModel::hertz, NormalModel::linder, NormalModel::kik_piotrowski,
+                        NormalModel::stripes_a, NormalModel::stripes_ab}) {
+    if (name == to_string(m)) return m;
+  }
+  throw Error(fmt::format(
+      "unknown normal model '{}' (expected hertz, linder, kik-piotrowski, stripes-a, stripes-ab)",
+      name));
+}
+
+const char* to_string(NegativeCurvature treatment) {
+  return treatment == NegativeCurvature::shift ? "shift" : "clip-and-smooth";
+}
+
+NegativeCurvature parse_negative_curvature(std::string_view name) {
+  if (name == "shift") return NegativeCurvature::shift;
+  if (name == "clip-and-smooth") return NegativeCurvature::clip_and_smooth;
+  throw Error(fmt::format(
+      "unknown negative-curvature treatment '{}' (expected shift, clip-and-smooth)", name));
+}
+
+namespace detail {
+
+Workspace& thread_workspace() {
+  thread_local Workspace workspace;  // per-thread scratch: the hot loop allocates nothing
+  return workspace;
+}
+
+namespace {
+
+bool is_stripes(NormalModel m) {
+  return m == NormalModel::stripes_a || m == NormalModel::stripes_ab;
+}
+
+double band_position(const WheelContactGeometry& g, double s) {
+  return (s - g.band.front().s) / g.band_step;
+}
+
+}  // namespace
+
+const SampleData& sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w, int j,
+                         const NormalOptions& o) {
+  if (w.ready[j]) return w.samples[j];
+  const BandSample& b = g.band[j];
+  SampleData& d = w.samples[j];
+  d.cos_angle = std::cos(b.contact_angle);
+  const double radius = b.rolling_radius > 0.0 ? b.rolling_radius : p.r_ref;
+  const double scale_r = p.r_ref > 0.0 ? p.r_ref / radius : 1.0;
+  if (is_stripes(p.model)) {
+    // Local A from the local radius and contact angle (Meusnier, conventions "Contact frame"),
+    // scaled so that it equals the geometry's A at the point.
+    const double A = p.A0 * scale_r * d.cos_angle / p.cos_ref;
+    const double B = std::max(w.B_treated[j], o.min_curvature_ratio * p.A0);
+    const double ratio = std::min(A, B) / std::max(A, B);
+    const double gr = hertz_axis_ratio_fast(ratio);
+    // (b/a)^2 of the local Hertz ellipse: the long axis lies along the smaller curvature.
+    d.q = A <= B ? gr * gr : 1.0 / (gr * gr);
+    // Seed 000: A-correction A_c = (n/m)^2 B; A&B-correction A_c = (A + B)(n/m)^2 / (1 + (n/m)^2).
+    d.A = p.model == NormalModel::stripes_a ? d.q * B : (A + B) * d.q / (1.0 + d.q);
+  } else {
+    d.A = p.A0 * scale_r;  // planar models: A from the local rolling radius
+    d.q = 0.0;
+  }
+  w.ready[j] = 1;
+  return d;
+}
+
+Run find_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
+             const NormalOptions& o) {
+  Run run;
+  if (p.i0 < 0 || p.hi < p.lo) return run;
+  const bool own_angle = is_stripes(p.model);
+  const double eps = p.eps;
+  auto overlap = [&](int j) {
+    const double gap = g.band[j].gap;
+    double v;
+    if (own_angle) {
+      const double c = sample(g, p, w, j, o).cos_angle;
+      v = eps * dz * c - gap + (1.0 - eps) * p.h * c;
+    } else {
+      v = eps * (dz - p.h) * p.cos_ref - (gap - p.h * p.cos_ref);
+    }
+    w.v[j] = v;
+    return v;
+  };
+  const double v0 = overlap(p.i0);
+  if (!(v0 > 0.0)) return run;
+  run.loaded = true;
+  run.v_max = v0;
+  const double step = g.band_step;
+  int j = p.i0;
+  double vj = v0;
+  for (;;) {
+    if (j == p.lo) {
+      run.s_lo = g.band[j].s;
+      run.at_band_end = run.at_band_end || j == 0;
+      break;
+    }
+    const double vn = overlap(j - 1);
+    if (!(vn > 0.0)) {
+      run.s_lo = g.band[j].s - step * vj / (vj - vn);
+      break;
+    }
+    --j;
+    vj = vn;
+    run.v_max = std::max(run.v_max, vn);
+  }
+  j = p.i0;
+  vj = v0;
+  const int last = static_cast<int>(g.band.size()) - 1;
+  for (;;) {
+    if (j == p.hi) {
+      run.s_hi = g.band[j].s;
+      run.at_band_end = run.at_band_end || j == last;
+      break;
+    }
+    const double vn = overlap(j + 1);
+    if (!(vn > 0.0)) {
+      run.s_hi = g.band[j].s + step * vj / (vj - vn);
+      break;
+    }
+    ++j;
+    vj = vn;
+    run.v_max = std::max(run.v_max, vn);
+  }
+  if (!(run.s_hi > run.s_lo)) run.loaded = false;
+  return run;
+}
+
+namespace {
+
+// Band segment [j, j + 1] and fraction t for arc length s, kept inside [lo, hi].
+void locate(const WheelContactGeometry& g, int lo, int hi, double s, int* j, double* t) {
+  const double pos = band_position(g, s);
+  int i = static_cast<int>(std::floor(pos));
+  const int jmax = std::max(lo, hi - 1);
+  i = std::clamp(i, lo, jmax);
+  *j = i;
+  *t = (i + 1 <= hi) ? std::clamp(pos - i, 0.0, 1.0) : 0.0;
+}
+
+}  // namespace
+
+double interp_band(const WheelContactGeometry& g, double s, double BandSample::*field) {
+  int j;
+  double t;
+  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
+  const double a = g.band[j].*field;
+  if (t == 0.0) return a;
+  return a + t * (g.band[j + 1].*field - a);
+}
+
+double interp_v(const WheelContactGeometry& g, const Workspace& w, double s) {
+  int j;
+  double t;
+  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
+  const double a = w.v[j];
+  const double v = t == 0.0 ? a : a + t * (w.v[j + 1] - a);
+  return std::max(v, 0.0);
+}
+
+SampleData interp_sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
+                         double s, const NormalOptions& o) {
+  int j;
+  double t;
+  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
+  const SampleData a = sample(g, p, w, j, o);
+  if (t == 0.0) return a;
+  const SampleData& b = sample(g, p, w, j + 1, o);
+  return {a.cos_angle + t * (b.cos_angle - a.cos_angle), a.A + t * (b.A - a.A),
+          a.q + t * (b.q - a.q)};
+}
+
+Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s, double width,
+                 bool own_angle) {
+  const ContactPoint& cp = g.points[p.point];
+  Strip st{};
+  st.s = s;
+  st.width = width;
+  if (p.i0 >= 0) {
+    st.wheel_u = interp_band(g, s, &BandSample::wheel_u);
+    st.rail_u = interp_band(g, s, &BandSample::rail_u);
+    st.rolling_radius = interp_band(g, s, &BandSample::rolling_radius);
+    st.contact_angle = own_angle
+                           ? outward_sign(g.side) * interp_band(g, s, &BandSample::contact_angle)
+                           : cp.contact_angle;
+  } else {
+    st.wheel_u = cp.wheel_u + (s - cp.band_s);
+    st.rail_u = cp.rail_u + (s - cp.band_s);
+    st.rolling_radius = cp.rolling_radius;
+    st.contact_angle = cp.contact_angle;
+  }
+  return st;
+}
+
+namespace {
+
+constexpr StatusBits kPointBits =
+    status::kFlangeContact | status::kNonHertzian | status::kProfileEdge;
+
+void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+             Workspace& w) {
+  const int np = static_cast<int>(g.points.size());
+  const int nb = static_cast<int>(g.band.size());
+  w.points.assign(np, PointContext{});
+  const bool band_ok = nb >= 2 && g.band_step > 0.0 && std::isfinite(g.band_step);
+  if (band_ok) {
+    w.samples.resize(nb);
+    w.ready.assign(nb, 0);
+    w.B_treated.resize(nb);
+    w.v.assign(nb, 0.0);
+  }
+  w.strip_len.resize(std::max(o.strips, 1));
+  w.strip_pos.resize(std::max(o.strips, 1));
+
+  for (int i = 0; i < np; ++i) {
+    const ContactPoint& cp = g.points[i];
+    PointContext& p = w.points[i];
+    p.point = i;
+    p.model = o.model;
+    p.h = std::max(cp.separation, 0.0);
+    p.cos_ref = std::cos(cp.contact_angle_side);
+    if (!(p.cos_ref > 1e-6)) p.cos_ref = 1e-6;  // a vertical wall cannot carry vertical load
+    p.A0 = cp.curvature_a;
+    p.B0 = cp.curvature_b;
+    p.B0t = p.B0;
+    p.r_ref = cp.rolling_radius;
+    p.eps = o.virtual_penetration;
+    p.flags = cp.status & kPointBits;
+    if (band_ok) {
+      const double pos = band_position(g, cp.band_s);
+      if (std::isfinite(pos)) p.i0 = std::clamp(static_cast<int>(std::lround(pos)), 0, nb - 1);
+    }
+  }
+  // Band domains: consecutive points (by band position) split at the largest gap between them.
+  if (band_ok) {
+    std::vector<int> order;  // small (<= a few points); allocation outside the load loop
+    order.reserve(np);
+    for (int i = 0; i < np; ++i)
+      if (w.points[i].i0 >= 0) order.push_back(i);
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return w.points[a].i0 < w.points[b].i0; });
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      PointContext& p = w.points[order[k]];
+      p.lo = 0;
+      p.hi = nb - 1;
+      if (k > 0) {
+        const PointContext& q = w.points[order[k - 1]];
+        if (q.i0 == p.i0) {  // the same spot twice: the first point owns it
+          p.lo = 1;
+          p.hi = 0;
+          continue;
+        }
+        int split = q.i0 + 1;
+        for (int j = q.i0 + 1; j < p.i0; ++j)
+          if (g.band[j].gap > g.band[split].gap) split = j;
+        p.lo = std::min(split + 1, p.i0);
+      }
+      if (k + 1 < order.size()) {
+        const PointContext& q = w.points[order[k + 1]];
+        if (q.i0 != p.i0) {
+          int split = p.i0 + 1;
+          for (int j = p.i0 + 1; j < q.i0; ++j)
+            if (g.band[j].gap > g.band[split].gap) split = j;
+          p.hi = std::max(split, p.i0);
+        }
+      }
+    }
+  }
+  for (PointContext& p : w.points) {
+    p.hertz_valid = std::isfinite(p.A0) && std::isfinite(p.B0) && p.A0 > 0.0 && p.B0 > 0.0;
+    if (!p.hertz_valid) p.flags |= status::kNonHertzian;
+    const bool vi = o.model != NormalModel::hertz;
+    if (vi && p.i0 < 0) {
+      // No gap band: the VI models cannot run; Hertz at the point instead.
+      p.model = NormalModel::hertz;
+      p.flags |= status::kFallbackModel;
+    }
+    if (p.model == NormalModel::hertz && !p.hertz_valid) {
+      if (p.i0 >= 0) {
+        // Hertz cannot run with A or B <= 0. Kik-Piotrowski needs no positive curvature (patch from
+        // the real separation, load from the Boussinesq condition, FACTS 2.3): fall back to it.
+        p.model = NormalModel::kik_piotrowski;
+        p.flags |= status::kFallbackModel;
+      } else {
+        // Nothing else available: Hertz with the curvatures clipped to a small positive floor.
+        p.A0 = std::max(p.A0, 1e-3);
+        p.B0 = std::max(p.B0, o.min_curvature_ratio * p.A0);
+        p.B0t = p.B0;
+        p.hertz_valid = true;
+        p.flags |= status::kFallbackModel | status::kCurvatureClipped;
+      }
+    }
+    if (is_stripes(p.model) && !(p.A0 > 0.0)) {
+      p.model = NormalModel::kik_piotrowski;
+      p.flags |= status::kFallbackModel;
+    }
+    if (p.hertz_valid) p.hz = hertz_coefficients(p.A0, p.B0);
+    if (is_stripes(p.model)) prepare_stripes(g, m, o, p, w);
+  }
+}
+
+PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                   PointContext& p, Workspace& w, double dz, ContactPatch* out) {
+  if (out) {
+    const ContactPoint& cp = g.points[p.point];
+    *out = ContactPatch{};
+    out->point_index = p.point;
+    out->model = p.model;
+    out->contact_angle = cp.contact_angle;
+    out->rolling_radius = cp.rolling_radius;
+    out->wheel_u = cp.wheel_u;
+    out->rail_u = cp.rail_u;
+    out->status = p.flags;
+  }
+  PatchSums sums;
+  if (dz > p.h) {
+    switch (p.model) {
+      case NormalModel::hertz: sums = hertz_patch(g, m, o, p, w, dz, out); break;
+      case NormalModel::linder: sums = linder_patch(g, m, o, p, w, dz, out); break;
+      case NormalModel::kik_piotrowski: sums = kik_piotrowski_patch(g, m, o, p, w, dz, out); break;
+      case NormalModel::stripes_a:
+      case NormalModel::stripes_ab: sums = stripes_patch(g, m, o, p, w, dz, out); break;
+    }
+  }
+  if (!(sums.normal > 0.0) || !std::isfinite(sums.normal)) sums = PatchSums{};
+  if (out) {
+    out->penetration = std::max(dz - p.h, 0.0) * p.cos_ref;
+    if (sums.normal <= 0.0) {
+      out->strips.clear();
+      out->normal_force = out->area = out->max_pressure = 0.0;
+      out->semi_axis_a = out->semi_axis_b = 0.0;
+      out->status |= status::kLiftOff;
+    }
+  }
+  return sums;
+}
+
+double vertical_load(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                     Workspace& w, double dz) {
+  double total = 0.0;
+  for (PointContext& p : w.points) total += evaluate(g, m, o, p, w, dz, nullptr).vertical;
+  return total;
+}
+
+WheelNormalResult fill(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                       Workspace& w, double dz) {
+  WheelNormalResult r;
+  r.vertical_approach = dz;
+  r.patches.resize(w.points.size());
+  int loaded = 0;
+  for (std::size_t i = 0; i < w.points.size(); ++i) {
+    const PatchSums s = evaluate(g, m, o, w.points[i], w, dz, &r.patches[i]);
+    r.vertical_load += s.vertical;
+    if (s.normal > 0.0) ++loaded;
+    r.status |= r.patches[i].status & ~status::kLiftOff;
+  }
+  if (loaded == 0) r.status |= status::kLiftOff;
+  if (loaded > 1) r.status |= status::kTwoPoint;
+  return r;
+}
+
+void check_options(const NormalOptions& o) {
+  RAILTAB_CHECK(o.strips >= 1 && o.strips <= 100000, "normal options: strips = {} must be >= 1",
+                o.strips);
+  RAILTAB_CHECK(o.virtual_penetration > 0.0 && o.virtual_penetration <= 1.0,
+                "normal options: virtual_penetration = {} not in (0, 1]", o.virtual_penetration);
+  RAILTAB_CHECK(o.tolerance > 0.0 && o.max_iterations >= 1,
+                "normal options: tolerance = {}, max_iterations = {}", o.tolerance,
+                o.max_iterations);
+  RAILTAB_CHECK(o.min_curvature_ratio > 0.0, "normal options: min_curvature_ratio = {} must be > 0",
+                o.min_curvature_ratio);
+}
+
+WheelNormalResult lift_off(const WheelContactGeometry& g, StatusBits extra) {
+  WheelNormalResult r;
+  r.patches.resize(g.points.size());
+  for (std::size_t i = 0; i < g.points.size(); ++i) {
+    ContactPatch& p = r.patches[i];
+    const ContactPoint& cp = g.points[i];
+    p.point_index = static_cast<int>(i);
+    p.contact_angle = cp.contact_angle;
+    p.rolling_radius = cp.rolling_radius;
+    p.wheel_u = cp.wheel_u;
+    p.rail_u = cp.rail_u;
+    p.status = (cp.status & kPointBits) | status::kLiftOff;
+  }
+  r.status = status::kLiftOff | extra;
+  return r;
+}
+
+}  // namespace
+}  // namespace detail
+
+WheelNormalResult solve_normal_for_approach(const WheelContactGeometry& geometry,
+                                            double vertical_approach, const Material& material,
+                                            const NormalOptions& options) {
+  detail::check_options(options);
+  if (!std::isfinite(vertical_approach))
+    return detail::lift_off(geometry, status::kInvalidInput);
+  if (geometry.points.empty() || vertical_approach <= 0.0) {
+    auto r = detail::lift_off(geometry, status::kConverged);
+    r.vertical_approach = vertical_approach;
+    return r;
+  }
+  detail::Workspace& w = detail::thread_workspace();
+  detail::prepare(geometry, material, options, w);
+  WheelNormalResult r = detail::fill(geometry, material, options, w, vertical_approach);
+  r.status |= status::kConverged;
+  return r;
+}
+
+WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
+                                        const Material& material, const NormalOptions& options) {
+  detail::check_options(options);
+  if (!std::isfinite(vertical_load)) return detail::lift_off(geometry, status::kInvalidInput);
+  if (geometry.points.empty() || vertical_load <= 0.0)
+    return detail::lift_off(geometry, status::kConverged);
+  detail::Workspace& w = detail::thread_workspace();
+  detail::prepare(geometry, material, options, w);
+
+  // Load control in the variable W^(2/3): nearly linear in delta_z (Hertz: W ~ delta^(3/2)), so
+  // Brent's inverse interpolation converges in a few steps; W is monotone in delta_z, which keeps
+  // the bracket valid.
+  const double target = std::cbrt(vertical_load * vertical_load);
+  int evaluations = 0;
+  auto f = [&](double dz) {
+    ++evaluations;
+    const double W = detail::vertical_load(geometry, material, options, w, dz);
+    return std::cbrt(W * W) - target;
+  };
+  double h_min = std::numeric_limits<double>::infinity();
+  for (const auto& p : w.points) h_min = std::min(h_min, p.h);
+  // First guess: Hertz at the primary point (or 0.1 mm of approach).
+  const detail::PointContext& p0 = w.points.front();
+  double delta_n = 1e-4;
+  if (p0.hertz_valid) {
+    const double A = p0.A0, B = p0.B0;
+    const double c = std::cbrt(3.0 * vertical_load / p0.cos_ref /
+                               (4.0 * material.contact_modulus() * (A + B)));
+    delta_n = p0.hz.r * (A + B) * c * c;
+  }
+  double lo = h_min, flo = -target;
+  double hi = p0.h + delta_n / p0.cos_ref;
+  if (!(hi > lo)) hi = lo + 1e-6;
+  double fhi = f(hi);
+  int expansions = 0;
+  while (fhi < 0.0 && expansions < 80) {
+    lo = hi;
+    flo = fhi;
+    hi = h_min + 2.0 * (hi - h_min);
+    fhi = f(hi);
+    ++expansions;
+  }
+  WheelNormalResult r;
+  if (fhi < 0.0) {  // cannot carry the load within any sensible approach
+    r = detail::fill(geometry, material, options, w, hi);
+    r.iterations = evaluations;
+    r.status |= status::kNotConverged;
+    return r;
+  }
+  const double f_tol = (2.0 / 3.0) * options.tolerance * target;
+  const auto root = detail::brent_root(f, lo, hi, flo, fhi, 1e-18, f_tol, options.max_iterations);
+  r = detail::fill(geometry, material, options, w, root.x);
+  r.iterations = evaluations;
+  const bool ok = std::abs(r.vertical_load - vertical_load) <=
+                  2.0 * options.tolerance * vertical_load;
+  r.status |= ok ? status::kConverged : status::kNotConverged;
+  return r;
+}
+
+}  // namespace railtab
