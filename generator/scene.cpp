@@ -1,0 +1,419 @@
+// Scene files: TOML (toml++) into a Scene. Every key is checked against the list of keys its
+// section knows, so a typo is an error, never a silently ignored setting. Errors name the file,
+// the line and the dotted key. File format: docs/scenes.md.
+#include "scene.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "core/check.hpp"
+
+namespace railtab {
+namespace {
+
+constexpr std::size_t kMaxAxisPoints = 1'000'000;  // guards against a range with a tiny step
+
+// Where a key sits in the file, for messages.
+struct Context {
+  std::string file;  // file name as given to the parser
+};
+
+[[noreturn]] void fail(const Context& ctx, const toml::source_region& where, const std::string& key,
+                       const std::string& message) {
+  if (where.begin.line > 0) {
+    throw Error(fmt::format("{}:{}: {}: {}", ctx.file, where.begin.line, key, message));
+  }
+  throw Error(fmt::format("{}: {}: {}", ctx.file, key, message));
+}
+
+const char* type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table: return "table";
+    case toml::node_type::array: return "array";
+    case toml::node_type::string: return "string";
+    case toml::node_type::integer: return "integer";
+    case toml::node_type::floating_point: return "float";
+    case toml::node_type::boolean: return "boolean";
+    default: return "date/time";
+  }
+}
+
+std::string join(const std::vector<std::string>& words) {
+  std::string out;
+  for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
+  return out;
+}
+
+// One TOML table with a fixed list of allowed keys. Accessors record which keys were read;
+// finish() reports the first key that nobody asked for.
+class Section {
+ public:
+  Section(const Context& ctx, std::string name, const toml::table* table,
+          std::vector<std::string> allowed)
+      : ctx_(ctx), name_(std::move(name)), table_(table), allowed_(std::move(allowed)) {
+    if (!table_) return;
+    for (auto&& [key, node] : *table_) {
+      if (std::find(allowed_.begin(), allowed_.end(), key.str()) == allowed_.end()) {
+        fail(ctx_, key.source(), dotted(std::string(key.str())),
+             fmt::format("unknown key (known keys: {})", join(allowed_)));
+      }
+    }
+  }
+
+  bool present() const { return table_ != nullptr; }
+  bool has(const std::string& key) const { return table_ && table_->get(key) != nullptr; }
+  const toml::node* node(const std::string& key) const { return table_ ? table_->get(key) : nullptr; }
+  std::string dotted(const std::string& key) const { return name_ + "." + key; }
+  const Context& context() const { return ctx_; }
+
+  const toml::node& required(const std::string& key) const {
+    const toml::node* n = node(key);
+    if (!n) {
+      fail(ctx_, table_ ? table_->source() : toml::source_region{}, dotted(key),
+           table_ ? "missing required key" : fmt::format("missing required key (no [{}] section)", name_));
+    }
+    return *n;
+  }
+
+  double number(const toml::node& n, const std::string& key) const {
+    double value = 0.0;
+    if (auto i = n.as_integer()) {
+      value = static_cast<double>(i->get());
+    } else if (auto f = n.as_floating_point()) {
+      value = f->get();
+    } else {
+      fail(ctx_, n.source(), dotted(key), fmt::format("expected a number, got {}", type_name(n)));
+    }
+    if (!std::isfinite(value)) fail(ctx_, n.source(), dotted(key), "value is not finite");
+    return value;
+  }
+
+  // Optional number; `check` is a predicate on the value with its description for the message.
+  double number(const std::string& key, double fallback, bool (*check)(double) = nullptr,
+                const char* requirement = "") const {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    double value = number(*n, key);
+    if (check && !check(value)) fail(ctx_, n->source(), dotted(key), fmt::format("must be {}", requirement));
+    return value;
+  }
+
+  int integer(const std::string& key, int fallback, int min_value) const {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    auto i = n->as_integer();
+    if (!i) fail(ctx_, n->source(), dotted(key), fmt::format("expected an integer, got {}", type_name(*n)));
+    if (i->get() < min_value || i->get() > 1'000'000) {
+      fail(ctx_, n->source(), dotted(key), fmt::format("must be an integer >= {}", min_value));
+    }
+    return static_cast<int>(i->get());
+  }
+
+  bool boolean(const std::string& key, bool fallback) const {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    auto b = n->as_boolean();
+    if (!b) fail(ctx_, n->source(), dotted(key), fmt::format("expected true or false, got {}", type_name(*n)));
+    return b->get();
+  }
+
+  std::string string(const toml::node& n, const std::string& key) const {
+    auto s = n.as_string();
+    if (!s) fail(ctx_, n.source(), dotted(key), fmt::format("expected a string, got {}", type_name(n)));
+    return s->get();
+  }
+
+  std::optional<std::string> string(const std::string& key) const {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    return string(*n, key);
+  }
+
+  // Run a parser of a string value (e.g. parse_normal_model), turning its Error into one that
+  // names the file, line and key.
+  template <class Parse>
+  auto parse_string(const std::string& key, Parse parse) const -> std::optional<decltype(parse(""))> {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    std::string text = string(*n, key);
+    try {
+      return parse(text);
+    } catch (const Error& e) {
+      fail(ctx_, n->source(), dotted(key), e.what());
+    }
+  }
+
+ private:
+  const Context& ctx_;
+  std::string name_;
+  const toml::table* table_;
+  std::vector<std::string> allowed_;
+};
+
+bool positive(double v) { return v > 0.0; }
+bool non_negative(double v) { return v >= 0.0; }
+bool fraction(double v) { return v >= 0.0 && v < 0.5; }
+
+Section section(const Context& ctx, const toml::table& root, const std::string& name,
+                std::vector<std::string> allowed) {
+  const toml::node* n = root.get(name);
+  if (n && !n->is_table()) {
+    fail(ctx, n->source(), name, fmt::format("expected a table [{}], got {}", name, type_name(*n)));
+  }
+  return Section(ctx, name, n ? n->as_table() : nullptr, std::move(allowed));
+}
+
+// "1:40" -> 0.025; a number is the tangent itself.
+double parse_inclination(const Section& s, const toml::node& n) {
+  if (!n.is_string()) {
+    double v = s.number(n, "rail_inclination");
+    if (v < 0.0 || v > 0.2) fail(s.context(), n.source(), s.dotted("rail_inclination"), "must be a tangent in [0, 0.2]");
+    return v;
+  }
+  std::string text = s.string(n, "rail_inclination");
+  auto colon = text.find(':');
+  double num = 0.0, den = 0.0;
+  bool ok = colon != std::string::npos;
+  if (ok) {
+    std::istringstream a(text.substr(0, colon)), b(text.substr(colon + 1));
+    ok = static_cast<bool>(a >> num) && static_cast<bool>(b >> den) && (a >> std::ws).eof() &&
+         (b >> std::ws).eof();
+  }
+  if (!ok || !(den > 0.0) || num < 0.0 || !std::isfinite(num / den) || num / den > 0.2) {
+    fail(s.context(), n.source(), s.dotted("rail_inclination"),
+         fmt::format("expected a ratio like \"1:40\" or a tangent, got \"{}\"", text));
+  }
+  return num / den;
+}
+
+// One grid segment: a number, or a range table {start, stop, step} / {start, stop, count}.
+void append_segment(const Section& s, const std::string& key, const toml::node& n,
+                    std::vector<double>& out) {
+  if (!n.is_table()) {
+    out.push_back(s.number(n, key));
+    return;
+  }
+  const toml::table& t = *n.as_table();
+  for (auto&& [k, v] : t) {
+    if (k != "start" && k != "stop" && k != "step" && k != "count") {
+      fail(s.context(), k.source(), s.dotted(key) + "." + std::string(k.str()),
+           "unknown key in a range (known keys: start, stop, step, count)");
+    }
+  }
+  auto get = [&](const char* name) -> double {
+    const toml::node* v = t.get(name);
+    if (!v) fail(s.context(), n.source(), s.dotted(key) + "." + name, "missing required key of a range");
+    return s.number(*v, key + "." + name);
+  };
+  double start = get("start");
+  double stop = get("stop");
+  bool has_step = t.contains("step"), has_count = t.contains("count");
+  if (has_step == has_count) {
+    fail(s.context(), n.source(), s.dotted(key), "a range needs exactly one of step or count");
+  }
+  if (!(stop > start)) fail(s.context(), n.source(), s.dotted(key), "a range needs stop > start");
+  std::size_t count = 0;
+  if (has_step) {
+    double step = get("step");
+    if (!(step > 0.0)) fail(s.context(), t.get("step")->source(), s.dotted(key) + ".step", "must be > 0");
+    double intervals = (stop - start) / step;
+    if (intervals > static_cast<double>(kMaxAxisPoints)) {
+      fail(s.context(), n.source(), s.dotted(key), "range has too many points");
+    }
+    count = static_cast<std::size_t>(std::floor(intervals + 1e-9)) + 1;
+    for (std::size_t i = 0; i < count; ++i) out.push_back(start + static_cast<double>(i) * step);
+    // Snap the end point so that {start, stop, step} with stop on the lattice ends exactly at stop.
+    if (std::abs(out.back() - stop) < 1e-9 * step) out.back() = stop;
+  } else {
+    const toml::node* c = t.get("count");
+    auto i = c->as_integer();
+    if (!i || i->get() < 2 || i->get() > static_cast<std::int64_t>(kMaxAxisPoints)) {
+      fail(s.context(), c->source(), s.dotted(key) + ".count", "must be an integer >= 2");
+    }
+    count = static_cast<std::size_t>(i->get());
+    for (std::size_t j = 0; j < count; ++j) {
+      // Endpoints exact; interior points by linear interpolation.
+      double f = static_cast<double>(j) / static_cast<double>(count - 1);
+      out.push_back(j + 1 == count ? stop : start + f * (stop - start));
+    }
+  }
+}
+
+// A grid axis: number, list of numbers and/or ranges (concatenated, shared end points merged), or
+// one range table. The result is strictly increasing.
+std::vector<double> parse_axis(const Section& s, const std::string& key, const toml::node& n) {
+  std::vector<double> values;
+  if (auto arr = n.as_array()) {
+    if (arr->empty()) fail(s.context(), n.source(), s.dotted(key), "empty grid");
+    for (const toml::node& el : *arr) {
+      std::size_t before = values.size();
+      append_segment(s, key, el, values);
+      // A range that starts where the previous segment ended shares that point.
+      if (before > 0 && el.is_table() && values[before] == values[before - 1]) {
+        values.erase(values.begin() + static_cast<std::ptrdiff_t>(before));
+      }
+    }
+  } else if (n.is_table() || n.is_number()) {
+    append_segment(s, key, n, values);
+  } else {
+    fail(s.context(), n.source(), s.dotted(key),
+         fmt::format("expected a number, a list or a range table, got {}", type_name(n)));
+  }
+  for (std::size_t i = 1; i < values.size(); ++i) {
+    if (!(values[i] > values[i - 1])) {
+      fail(s.context(), n.source(), s.dotted(key),
+           fmt::format("grid is not strictly increasing ({} after {})", values[i], values[i - 1]));
+    }
+  }
+  if (values.size() > kMaxAxisPoints) fail(s.context(), n.source(), s.dotted(key), "grid too large");
+  return values;
+}
+
+ProfileSource parse_profile(const Section& s, const std::string& key, const std::filesystem::path& base_dir,
+                            double smoothing) {
+  const toml::node& n = s.required(key);
+  ProfileSource p;
+  p.name = s.string(n, key);
+  p.smoothing_length = smoothing;
+  if (p.name.empty()) fail(s.context(), n.source(), s.dotted(key), "empty profile name");
+  bool builtin = (key == "wheel" && p.name == "s1002") || (key == "rail" && p.name == "uic60");
+  if (!builtin) {
+    std::filesystem::path file(p.name);
+    p.file = file.is_absolute() ? file : base_dir / file;
+    if (!std::filesystem::exists(p.file)) {
+      fail(s.context(), n.source(), s.dotted(key),
+           fmt::format("not a built-in {} profile ({}) and no such file: {}", key,
+                       key == "wheel" ? "s1002" : "uic60", p.file.string()));
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view toml_text, const std::string& source_name,
+                  const std::filesystem::path& base_dir) {
+  Context ctx{source_name};
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw Error(fmt::format("{}:{}:{}: TOML syntax error: {}", source_name, e.source().begin.line,
+                            e.source().begin.column, e.description()));
+  }
+
+  static const std::vector<std::string> kSections{"scene", "profiles", "track", "wheelset", "geometry",
+                                                  "material", "contact", "wear", "grid"};
+  for (auto&& [key, node] : root) {
+    if (std::find(kSections.begin(), kSections.end(), key.str()) == kSections.end()) {
+      fail(ctx, key.source(), std::string(key.str()),
+           fmt::format("unknown section or key (known sections: {})", join(kSections)));
+    }
+  }
+
+  Scene scene;
+  scene.text = std::string(toml_text);
+
+  Section sc = section(ctx, root, "scene", {"name", "description"});
+  scene.name = sc.string(sc.required("name"), "name");
+  if (scene.name.empty()) fail(ctx, sc.required("name").source(), "scene.name", "must not be empty");
+  scene.description = sc.string("description").value_or("");
+
+  Section pr = section(ctx, root, "profiles", {"wheel", "rail", "smoothing"});
+  double smoothing = pr.number("smoothing", 0.0, non_negative, ">= 0 [m]");
+  scene.wheel = parse_profile(pr, "wheel", base_dir, smoothing);
+  scene.rail = parse_profile(pr, "rail", base_dir, smoothing);
+
+  Section tr = section(ctx, root, "track", {"gauge", "gauge_measuring_depth", "rail_inclination"});
+  scene.track.gauge = tr.number("gauge", scene.track.gauge, positive, "> 0 [m]");
+  scene.track.gauge_measuring_depth =
+      tr.number("gauge_measuring_depth", scene.track.gauge_measuring_depth, non_negative, ">= 0 [m]");
+  if (const toml::node* n = tr.node("rail_inclination")) scene.track.rail_inclination = parse_inclination(tr, *n);
+
+  Section ws = section(ctx, root, "wheelset", {"back_to_back", "flange_back_position", "nominal_radius"});
+  scene.wheelset.back_to_back = ws.number("back_to_back", scene.wheelset.back_to_back, positive, "> 0 [m]");
+  scene.wheelset.flange_back_position =
+      ws.number("flange_back_position", scene.wheelset.flange_back_position);
+  scene.wheelset.nominal_radius =
+      ws.number("nominal_radius", scene.wheelset.nominal_radius, positive, "> 0 [m]");
+
+  Section ge = section(ctx, root, "geometry", {"search_step", "max_separation", "band_step",
+                                               "band_half_width", "band_max_gap", "flange_angle"});
+  GeometrySettings& g = scene.geometry;
+  g.search_step = ge.number("search_step", g.search_step, positive, "> 0 [m]");
+  g.max_separation = ge.number("max_separation", g.max_separation, non_negative, ">= 0 [m]");
+  g.band_step = ge.number("band_step", g.band_step, positive, "> 0 [m]");
+  g.band_half_width = ge.number("band_half_width", g.band_half_width, positive, "> 0 [m]");
+  g.band_max_gap = ge.number("band_max_gap", g.band_max_gap, positive, "> 0 [m]");
+  g.flange_angle = ge.number("flange_angle", g.flange_angle, positive, "> 0 [rad]");
+
+  Section ma = section(ctx, root, "material", {"youngs_modulus", "poisson_ratio"});
+  scene.material.youngs_modulus = ma.number("youngs_modulus", scene.material.youngs_modulus, positive, "> 0 [Pa]");
+  scene.material.poisson_ratio = ma.number("poisson_ratio", scene.material.poisson_ratio, fraction, "in [0, 0.5)");
+
+  Section co = section(ctx, root, "contact",
+                       {"normal_model", "negative_curvature", "strips", "virtual_penetration", "tolerance",
+                        "max_iterations", "friction", "elements_per_strip", "spin_per_strip", "speed"});
+  NormalOptions& no = scene.normal;
+  if (auto m = co.parse_string("normal_model", parse_normal_model)) no.model = *m;
+  if (auto m = co.parse_string("negative_curvature", parse_negative_curvature)) no.negative_curvature = *m;
+  no.strips = co.integer("strips", no.strips, 1);
+  no.virtual_penetration = co.number("virtual_penetration", no.virtual_penetration, positive, "> 0");
+  no.tolerance = co.number("tolerance", no.tolerance, positive, "> 0");
+  no.max_iterations = co.integer("max_iterations", no.max_iterations, 1);
+  TangentialSettings& ts = scene.tangential;
+  ts.friction = co.number("friction", ts.friction, non_negative, ">= 0");
+  ts.elements_per_strip = co.integer("elements_per_strip", ts.elements_per_strip, 1);
+  ts.spin_per_strip = co.boolean("spin_per_strip", ts.spin_per_strip);
+  ts.speed = co.number("speed", ts.speed, positive, "> 0 [m/s]");
+
+  Section we = section(ctx, root, "wear", {"hardness", "lubrication_factor"});
+  scene.wear.hardness = we.number("hardness", scene.wear.hardness, positive, "> 0 [Pa]");
+  scene.wear.lubrication_factor = we.number("lubrication_factor", scene.wear.lubrication_factor, positive, "> 0");
+
+  Section gr = section(ctx, root, "grid", {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll"});
+  SceneGrids& grids = scene.grids;
+  grids.y = parse_axis(gr, "y", gr.required("y"));
+  grids.load = parse_axis(gr, "load", gr.required("load"));
+  for (double load : grids.load) {
+    if (!(load > 0.0)) fail(ctx, gr.node("load")->source(), "grid.load", "loads must be > 0 [N]");
+  }
+  scene.equilibrium_roll = gr.boolean("equilibrium_roll", false);
+  if (const toml::node* n = gr.node("roll")) {
+    if (scene.equilibrium_roll) {
+      fail(ctx, n->source(), "grid.roll", "cannot be given together with equilibrium_roll = true");
+    }
+    grids.roll = parse_axis(gr, "roll", *n);
+  } else {
+    grids.roll = {0.0};
+  }
+  auto optional_axis = [&](const char* key) -> std::vector<double> {
+    const toml::node* n = gr.node(key);
+    return n ? parse_axis(gr, key, *n) : std::vector<double>{0.0};
+  };
+  grids.xi = optional_axis("xi");
+  grids.eta = optional_axis("eta");
+  grids.phi = optional_axis("phi");
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  RAILTAB_CHECK(in.good(), "{}: cannot open scene file", path.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  RAILTAB_CHECK(!in.bad(), "{}: cannot read scene file", path.string());
+  Scene scene = parse_scene(text.str(), path.string(), path.parent_path());
+  scene.path = path;
+  return scene;
+}
+
+}  // namespace railtab

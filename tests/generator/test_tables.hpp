@@ -1,0 +1,68 @@
+// Helpers shared by the generator tests: small tables and scenes, temporary directories, and
+// byte-wise comparison of datasets.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "table.hpp"
+
+namespace railtab::testing {
+
+// A fresh empty directory under the system temp dir, removed by the destructor.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name)
+      : path_(std::filesystem::temp_directory_path() / ("railtab_" + name + "_" + std::to_string(::getpid()))) {
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  // Names of all files in the directory.
+  std::vector<std::string> files() const {
+    std::vector<std::string> out;
+    for (const auto& e : std::filesystem::directory_iterator(path_)) out.push_back(e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Every dataset of `a` exists in `b` with the same shape, axes and identical bytes; same axes.
+inline void expect_same_datasets(const Table& a, const Table& b) {
+  ASSERT_EQ(a.axes.size(), b.axes.size());
+  for (const TableAxis& axis : a.axes) {
+    const TableAxis* other = b.axis(axis.name);
+    ASSERT_TRUE(other) << axis.name;
+    EXPECT_EQ(axis.values, other->values) << axis.name;
+  }
+  ASSERT_EQ(a.groups.size(), b.groups.size());
+  for (const TableGroup& g : a.groups) {
+    const TableGroup* other = b.group(g.path);
+    ASSERT_TRUE(other) << g.path;
+    ASSERT_EQ(g.datasets.size(), other->datasets.size()) << g.path;
+    for (const TableDataset& d : g.datasets) {
+      const TableDataset* o = other->find(d.name);
+      ASSERT_TRUE(o) << g.path << "/" << d.name;
+      EXPECT_EQ(d.shape, o->shape) << g.path << "/" << d.name;
+      EXPECT_EQ(d.axes, o->axes) << g.path << "/" << d.name;
+      ASSERT_EQ(d.values.size(), o->values.size());
+      ASSERT_EQ(d.status.size(), o->status.size());
+      EXPECT_EQ(0, std::memcmp(d.values.data(), o->values.data(), d.values.size() * sizeof(double)))
+          << g.path << "/" << d.name << " differs";
+      EXPECT_EQ(d.status, o->status) << g.path << "/" << d.name;
+    }
+  }
+}
+
+}  // namespace railtab::testing
