@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/check.hpp"
 #include "core/status.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "profile/s1002.hpp"
@@ -121,6 +122,33 @@ TEST_F(S1002Search, JumpIntoFlangeContact) {
   }
   EXPECT_EQ(jumps, 1);
   EXPECT_NEAR(jump_at, 6.65e-3, 1e-9);  // measured: between 6.60 and 6.65 mm
+}
+
+// Far outside the operating range the solver either returns finite results or throws
+// railtab::Error; it never crashes or returns NaN.
+TEST_F(S1002Search, WideSweepFiniteOrError) {
+  int errors = 0;
+  for (int i = 0; i <= 60; ++i) {
+    for (int j = 0; j <= 8; ++j) {
+      const WheelsetState st{-30e-3 + 1e-3 * i, -0.04 + 0.01 * j};
+      for (Side side : {Side::left, Side::right}) {
+        try {
+          const WheelContactGeometry g = solver.solve_wheel(side, st);
+          ASSERT_FALSE(g.points.empty());
+          EXPECT_TRUE(std::isfinite(g.wheel_drop));
+          for (const ContactPoint& p : g.points) {
+            EXPECT_TRUE(std::isfinite(p.contact_angle) && std::isfinite(p.rolling_radius) &&
+                        std::isfinite(p.curvature_a) && std::isfinite(p.curvature_b))
+                << st.y << " " << st.roll;
+          }
+          for (const BandSample& b : g.band) EXPECT_TRUE(std::isfinite(b.gap));
+        } catch (const Error&) {
+          ++errors;
+        }
+      }
+    }
+  }
+  std::printf("wide sweep: %d of %d states rejected with railtab::Error\n", errors, 61 * 9 * 2);
 }
 
 // Rough timing of solve_wheel (printed, loosely bounded: catches order-of-magnitude regressions).
