@@ -494,7 +494,10 @@ WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, do
     return r;
   }
   const double f_tol = (2.0 / 3.0) * options.tolerance * target;
-  const auto root = detail::brent_root(f, lo, hi, flo, fhi, 1e-18, f_tol, options.max_iterations);
+  // x tolerance far below what the load tolerance needs, relative to the bracket (approaches
+  // span 1e-13 m at 1 nN to 1e-4 m at 150 kN), so that f_tol decides.
+  const double x_tol = 1e-14 * (hi - h_min);
+  const auto root = detail::brent_root(f, lo, hi, flo, fhi, x_tol, f_tol, options.max_iterations);
   r = detail::fill(geometry, material, options, w, root.x);
   r.iterations = evaluations;
   const bool ok = std::abs(r.vertical_load - vertical_load) <=
