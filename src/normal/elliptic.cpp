@@ -68,18 +68,29 @@ double hertz_curvature_ratio(double g) {
   return g * g * s / d;
 }
 
-HertzShape hertz_shape(double ratio) {
+namespace {
+double fast_log_axis_ratio(double ratio, bool* ok);
+}  // namespace
+
+namespace {
+
+HertzShape hertz_shape_impl(double ratio, bool use_table) {
   RAILTAB_CHECK(ratio > 0.0 && ratio <= 1.0, "hertz_shape: curvature ratio {} not in (0, 1]",
                 ratio);
   ratio = std::max(ratio, 1e-12);
   double g = 1.0;
   if (ratio < 1.0) {
     // Root of ln ratio(g) - ln ratio in u = ln g; ratio(g) increases monotonically from 0 to 1.
-    // Greenwood's start g ~ ratio^(2/3) (FACTS 1.2) is within 20 % down to 1e-2; widen from there.
+    // Start: the interpolation table (error < 1e-9) gives a bracket of +-1e-8 that Brent closes in
+    // two or three evaluations; while the table is built, Greenwood's g ~ ratio^(2/3) (FACTS 1.2,
+    // within 20 % down to 1e-2) with widening.
     const double target = std::log(ratio);
     auto f = [&](double u) { return std::log(hertz_curvature_ratio(std::exp(u))) - target; };
-    const double u0 = (2.0 / 3.0) * target;
-    double lo = u0 - 0.5, hi = std::min(0.0, u0 + 0.5);
+    bool table_ok = false;
+    const double ut = use_table ? fast_log_axis_ratio(ratio, &table_ok) : 0.0;
+    const double u0 = table_ok ? ut : (2.0 / 3.0) * target;
+    const double half = table_ok ? 1e-8 : 0.5;
+    double lo = u0 - half, hi = std::min(0.0, u0 + half);
     double flo = f(lo), fhi = hi < 0.0 ? f(hi) : -target;
     while (flo > 0.0) {
       lo -= 1.0;
@@ -100,6 +111,10 @@ HertzShape hertz_shape(double ratio) {
   return {ratio, g, e, ke.K, ke.E, m, n, r};
 }
 
+}  // namespace
+
+HertzShape hertz_shape(double ratio) { return hertz_shape_impl(ratio, true); }
+
 namespace {
 
 // ln g over x = ln ratio on [x_min, 0], uniform, with slopes dy/dx for cubic Hermite interpolation.
@@ -116,7 +131,7 @@ struct ShapeTable {
         dy[i] = 2.0 / 3.0;  // g = 1: ln ratio ~ -3k^2/4, ln g ~ -k^2/2
         continue;
       }
-      const double u = std::log(hertz_shape(std::exp(x)).g);
+      const double u = std::log(hertz_shape_impl(std::exp(x), false).g);
       y[i] = u;
       // d ln ratio / d ln g by a central difference of the exact ratio (step 1e-5: error ~1e-10).
       const double du = 1e-5;
@@ -134,13 +149,13 @@ const ShapeTable& shape_table() {
   return table;
 }
 
-}  // namespace
-
-double hertz_axis_ratio_fast(double ratio) {
-  if (!(ratio > 0.0) || ratio >= 1.0) return ratio >= 1.0 ? 1.0 : hertz_shape(ratio).g;
+double fast_log_axis_ratio(double ratio, bool* ok) {
+  *ok = false;
+  if (!(ratio > 0.0) || ratio >= 1.0) return 0.0;
   const ShapeTable& t = shape_table();
   const double x = std::log(ratio);
-  if (x < ShapeTable::kXMin) return hertz_shape(ratio).g;
+  if (x < ShapeTable::kXMin) return 0.0;
+  *ok = true;
   const double pos = (x - ShapeTable::kXMin) / t.h;
   int i = static_cast<int>(pos);
   if (i >= ShapeTable::kNodes - 1) i = ShapeTable::kNodes - 2;
@@ -148,8 +163,16 @@ double hertz_axis_ratio_fast(double ratio) {
   const double s2 = s * s, s3 = s2 * s;
   const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2,
                h11 = s3 - s2;
-  const double y = h00 * t.y[i] + h10 * t.h * t.dy[i] + h01 * t.y[i + 1] + h11 * t.h * t.dy[i + 1];
-  return std::exp(y);
+  return h00 * t.y[i] + h10 * t.h * t.dy[i] + h01 * t.y[i + 1] + h11 * t.h * t.dy[i + 1];
+}
+
+}  // namespace
+
+double hertz_axis_ratio_fast(double ratio) {
+  if (ratio >= 1.0) return 1.0;
+  bool ok = false;
+  const double y = fast_log_axis_ratio(ratio, &ok);
+  return ok ? std::exp(y) : hertz_shape_impl(ratio, false).g;
 }
 
 }  // namespace railtab

@@ -212,12 +212,17 @@ Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s,
   st.s = s;
   st.width = width;
   if (p.i0 >= 0) {
-    st.wheel_u = interp_band(g, s, &BandSample::wheel_u);
-    st.rail_u = interp_band(g, s, &BandSample::rail_u);
-    st.rolling_radius = interp_band(g, s, &BandSample::rolling_radius);
-    st.contact_angle = own_angle
-                           ? outward_sign(g.side) * interp_band(g, s, &BandSample::contact_angle)
-                           : cp.contact_angle;
+    int j;
+    double t;
+    locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
+    const BandSample& a = g.band[j];
+    const BandSample& b = t == 0.0 ? a : g.band[j + 1];
+    auto lerp = [t](double x, double y) { return x + t * (y - x); };
+    st.wheel_u = lerp(a.wheel_u, b.wheel_u);
+    st.rail_u = lerp(a.rail_u, b.rail_u);
+    st.rolling_radius = lerp(a.rolling_radius, b.rolling_radius);
+    st.contact_angle = own_angle ? outward_sign(g.side) * lerp(a.contact_angle, b.contact_angle)
+                                 : cp.contact_angle;
   } else {
     st.wheel_u = cp.wheel_u + (s - cp.band_s);
     st.rail_u = cp.rail_u + (s - cp.band_s);
