@@ -107,7 +107,7 @@ TEST(S1002Uic60, SeedTable2At90kN) {
                   da, dp, status::describe(r.status).c_str());
       csv << c.name << ',' << c.dy << ',' << -c.dy << ',' << to_string(m) << ',' << area << ','
           << pmax << ',' << n << ',' << r.vertical_approach * 1e3 << ','
-          << r.patches[0].contact_angle << ',' << status::describe(r.status) << ',' << ra << ','
+          << r.patches[0].contact_angle << ",\"" << status::describe(r.status) << "\"," << ra << ','
           << rp << ',' << da << ',' << dp << '\n';
       // Sanity bounds only (the 15 % aim for STRIPES is reported, not asserted).
       EXPECT_GT(area, 0.3 * ra);
@@ -136,7 +136,7 @@ TEST(S1002Uic60, Seed000PressureProfilesCsv) {
                   {"linder", NormalModel::linder, NegativeCurvature::shift},
                   {"hertz", NormalModel::hertz, NegativeCurvature::shift}};
   std::ofstream csv(output_dir() / "normal_pressure_seed000.csv");
-  csv << "s_mm,model,pressure_MPa,half_length_mm,rail_u_mm,contact_angle_rad,status\n";
+  csv << "s_mm,model,pressure_MPa,half_length_mm,rail_u_mm,contact_angle_rad,status\n";  // status quoted
   for (const auto& v : variants) {
     NormalOptions o;
     o.model = v.model;
@@ -147,8 +147,8 @@ TEST(S1002Uic60, Seed000PressureProfilesCsv) {
     for (const auto& p : r.patches) {
       for (const auto& s : p.strips) {
         csv << s.s * 1e3 << ',' << v.label << ',' << s.pressure_peak * 1e-6 << ','
-            << s.x_lead * 1e3 << ',' << s.rail_u * 1e3 << ',' << s.contact_angle << ','
-            << status::describe(p.status) << '\n';
+            << s.x_lead * 1e3 << ',' << s.rail_u * 1e3 << ',' << s.contact_angle << ",\""
+            << status::describe(p.status) << "\"\n";
         pmax = std::max(pmax, s.pressure_peak);
       }
     }
