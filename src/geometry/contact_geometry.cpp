@@ -93,6 +93,7 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
   WheelContactGeometry out;
   out.side = side;
   out.wheel_drop = -found.gap_min;  // lower the wheel until the smallest gap closes
+  out.wheel_roll = pose.theta;
   pose.zc += out.wheel_drop;
   out.points.reserve(found.minima.size());
   for (const detail::RawContact& m : found.minima) {

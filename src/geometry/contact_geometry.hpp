@@ -91,6 +91,7 @@ struct WheelContactGeometry {
   std::vector<BandSample> band;      // uniform in s, ascending s
   double band_step = 0.0;            // s spacing of band [m]
   double wheel_drop = 0.0;           // vertical position of the wheel at rigid contact [m]
+  double wheel_roll = 0.0;           // roll of the wheel in its side frame, sigma*roll [rad]
   StatusBits status = 0;             // kTwoPoint when more than one point, kProfileEdge
 };
 
