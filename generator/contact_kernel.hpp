@@ -1,0 +1,24 @@
+// The wheel-rail contact kernel of the table sweep: per (y, roll) column and wheel, the rigid
+// geometry once (ContactGeometrySolver::solve_wheel), the normal contact once per load on top of
+// it, and (once the tangential and wear layers land) creep forces and wear per creepage on top of
+// each normal result. Outputs are declared in descriptor tables in contact_kernel.cpp: adding an
+// output is one line there.
+#pragma once
+
+#include "scene.hpp"
+#include "sweep.hpp"
+
+namespace railtab {
+
+// Contacts go to slots by ContactPoint::status & kFlangeContact (slot 1 flange, slot 0 tread); two
+// contacts in one slot keep the lower-separation one and set kTwoPoint on that slot.
+struct SlotAssignment {
+  int point[kSlots] = {-1, -1};    // index into WheelContactGeometry::points, -1 = empty slot
+  StatusBits extra[kSlots] = {0, 0};  // kTwoPoint when a contact was dropped from the slot
+};
+SlotAssignment assign_slots(const WheelContactGeometry& geometry);
+
+// Builds the profiles and solver of the scene (throws railtab::Error for bad profiles/geometry).
+SweepKernel make_contact_kernel(const Scene& scene);
+
+}  // namespace railtab
