@@ -39,14 +39,6 @@ void check_inputs(const Creepage& c, double mu, double speed, const Material& ma
                 "fastsim: elements per strip {} must be in [1, 100000]", elements_per_strip);
 }
 
-// Pressure shape along a strip, relative to its peak, at x.
-inline double shape(const FastsimStrip& s, double x) {
-  const double h = 0.5 * (s.x_lead - s.x_trail);
-  const double u = (x - 0.5 * (s.x_lead + s.x_trail)) / h;
-  const double f = std::max(0.0, 1.0 - u * u);
-  return s.parabolic ? f : std::sqrt(f);
-}
-
 void resize_elements(FastsimWorkspace& ws, int n) {
   const auto un = static_cast<std::size_t>(n);
   ws.x.resize(un);
@@ -82,15 +74,25 @@ FastsimResult solve(FastsimWorkspace& ws, double normal_force, const Reference& 
   ws.strip_begin[static_cast<std::size_t>(m)] = total;
   resize_elements(ws, total);
 
+  // Element centres sit at the same relative position u = 1 - (2k+1)/n on every strip, so the
+  // pressure shape is tabulated once: [0, n) parabolic 1 - u^2, [n, 2n) semi-elliptic sqrt(1 - u^2).
+  ws.shape_scratch.resize(2 * static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const double u = 1.0 - (2.0 * k + 1.0) / n;
+    const double f = std::max(0.0, 1.0 - u * u);
+    ws.shape_scratch[static_cast<std::size_t>(k)] = f;
+    ws.shape_scratch[static_cast<std::size_t>(n + k)] = std::sqrt(f);
+  }
   double n_discrete = 0.0;
   for (int i = 0; i < m; ++i) {
     const FastsimStrip& s = ws.strip[static_cast<std::size_t>(i)];
     const int e0 = ws.strip_begin[static_cast<std::size_t>(i)];
     const int e1 = ws.strip_begin[static_cast<std::size_t>(i) + 1];
+    const double* shape = ws.shape_scratch.data() + (s.parabolic ? 0 : n);
     double sum = 0.0;
     for (int e = e0; e < e1; ++e) {
       const double x = s.x_lead - (e - e0 + 0.5) * s.dx;  // element centre
-      const double p = s.pressure_peak * shape(s, x);
+      const double p = s.pressure_peak * shape[e - e0];
       ws.x[static_cast<std::size_t>(e)] = x;
       ws.pressure[static_cast<std::size_t>(e)] = p;
       sum += p;
@@ -191,7 +193,7 @@ FastsimResult solve(FastsimWorkspace& ws, double normal_force, const Reference& 
       // Work and wear pair the slip of a step with the mean traction and pressure over the step
       // (the discrete form of the continuum identity int p.s dx = F.w - L [p^2/2]).
       work -= (0.5 * (px + qx) * ux + 0.5 * (py + qy) * uy) * width;
-      const double umag = std::sqrt(ux * ux + uy * uy);
+      const double umag = ux == 0.0 && uy == 0.0 ? 0.0 : std::sqrt(ux * ux + uy * uy);
       ws.traction_x[ue] = qx;
       ws.traction_y[ue] = qy;
       ws.slip_x[ue] = ux / dx;

@@ -143,6 +143,7 @@ struct FastsimWorkspace {
   std::vector<double> slip_velocity;    // |slip| * V [m/s]
   std::vector<double> slip_distance;    // sliding distance of a material point in the element [m]
   std::vector<double> wear_pressure;    // mean normal pressure while that sliding happens [Pa]
+  std::vector<double> shape_scratch;    // pressure shape at the element centres (scratch) [-]
   double speed = 0.0;                   // rolling speed V of the last solve [m/s]
   double reference_radius = 0.0;        // rolling radius at the reference point (distance per
                                         //   wheel revolution / 2 pi) of the last solve [m]

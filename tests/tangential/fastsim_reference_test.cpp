@@ -62,7 +62,7 @@ TEST(FastsimReference, BlockDHertzianCreepCases) {
 }
 
 // Block C: the sign mapping of docs/conventions.md on the wheel-rail cases (right wheel):
-// xi = -cksi, eta = +ceta, phi = +cphi; fx = -fx_N, fy = +fs_N. Elliptic patch with the
+// xi = -cksi, eta = +ceta, phi = +cphi; fx = -fx_N, fy = +fs_N (and mz = +mz_Nm). Elliptic patch with the
 // reference's area, approach and normal force (Hertz relation delta = p0 b K(e)/E*), major axis
 // lateral (tread contact). The non-Hertzian CONTACT patch is not an ellipse: magnitudes are
 // reported, signs must match.
@@ -90,6 +90,11 @@ TEST(FastsimReference, BlockCSignMapping) {
                 " FASTSIM fx %7.0f fy %7.0f | dominant ratio %.3f\n",
                 dy, set.c_str(), el.minor / el.major, fx_ref, fy_ref, r.fx, r.fy, mine / ref);
     EXPECT_EQ(std::signbit(mine), std::signbit(ref)) << set << " dy " << dy;
+    // Spin moment: rotating CONTACT's frame by pi about x flips n, and the moment acts on the
+    // other body: mz = +mz_Nm. Lateral creepage and spin give clear moments (17 and -5 N m).
+    if (!longitudinal) {
+      EXPECT_EQ(std::signbit(r.mz), std::signbit(num(row, "mz_Nm"))) << set << " dy " << dy;
+    }
     if (longitudinal) {
       EXPECT_GT(r.fx, 0.0);  // xi = -0.001: wheel surface faster than the rail, traction
     }
