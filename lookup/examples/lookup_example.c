@@ -1,0 +1,48 @@
+/* Loads a railtab table and queries the left wheel along a lateral sweep, from C.
+ * Usage: railtab_lookup_example TABLE.h5          (exit status 0 on success) */
+#include <stdio.h>
+
+#include "railtab_lookup.h"
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    fprintf(stderr, "usage: %s TABLE.h5\n", argv[0]);
+    return 2;
+  }
+  railtab_lookup_table* table = NULL;
+  if (railtab_lookup_open(argv[1], RAILTAB_LOOKUP_LINEAR, &table) != RAILTAB_LOOKUP_OK) {
+    fprintf(stderr, "%s\n", railtab_lookup_last_error());
+    return 1;
+  }
+  /* Untabulated variables (e.g. roll, load) must sit at the table's fixed values. */
+  railtab_lookup_state state;
+  railtab_lookup_default_state(table, &state);
+  railtab_lookup_result result;
+  for (int k = 0; k <= 4; ++k) {
+    state.y = -0.004 + 0.002 * k; /* m */
+    state.xi = 0.001;
+    if (railtab_lookup_query(table, RAILTAB_LOOKUP_LEFT, &state, &result) != RAILTAB_LOOKUP_OK) {
+      fprintf(stderr, "%s\n", railtab_lookup_last_error());
+      railtab_lookup_close(table);
+      return 1;
+    }
+    const railtab_lookup_contact* tread = &result.contact[0];
+    printf("y = %+.4f m  fx = %12.4f N  contact_angle = %+.5f rad  status = 0x%x%s\n", state.y,
+           tread->value[RAILTAB_LOOKUP_FX], tread->value[RAILTAB_LOOKUP_CONTACT_ANGLE],
+           (unsigned)tread->status,
+           (result.status & RAILTAB_LOOKUP_OUT_OF_RANGE) ? " (clamped)" : "");
+  }
+  /* Both wheels in one call. */
+  int wheels[2] = {RAILTAB_LOOKUP_LEFT, RAILTAB_LOOKUP_RIGHT};
+  railtab_lookup_state states[2] = {state, state};
+  railtab_lookup_result results[2];
+  if (railtab_lookup_query_batch(table, 2, wheels, states, results) != RAILTAB_LOOKUP_OK) {
+    fprintf(stderr, "%s\n", railtab_lookup_last_error());
+    railtab_lookup_close(table);
+    return 1;
+  }
+  printf("batch: left fx = %.4f N, right fx = %.4f N\n", results[0].contact[0].value[RAILTAB_LOOKUP_FX],
+         results[1].contact[0].value[RAILTAB_LOOKUP_FX]);
+  railtab_lookup_close(table);
+  return 0;
+}

@@ -1,0 +1,191 @@
+// railtab::lookup: load a wheel-rail contact table (docs/table-format.md) once, then interpolate
+// it from any number of threads inside a simulation's time-stepping loop.
+//
+// Self-contained on purpose: a simulation links only this library, so this header pulls in
+// neither Eigen, oneTBB nor HDF5, and nothing from railtab's core library.
+//
+//   auto table = railtab::lookup::Table::load("default.h5");          // throws LoadError
+//   railtab::lookup::State s = table.default_state();                  // fixed axes filled in
+//   s.y = 0.003; s.xi = 1e-3;
+//   railtab::lookup::Result r;
+//   table.query(railtab::lookup::Wheel::kLeft, s, r);                  // never throws, no locks
+//   double fx = r.contact[0].value[railtab::lookup::kFx];
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace railtab::lookup {
+
+using StatusBits = std::uint32_t;
+
+// Status bits. The values MATCH src/core/status.hpp (railtab::status), mirrored here because the
+// lookup must not depend on the core library; tests/lookup/status_bits_test.cpp checks them.
+namespace status {
+inline constexpr StatusBits kConverged = 1u << 0;         // solver met its tolerance (all corners)
+inline constexpr StatusBits kNotConverged = 1u << 1;      // iteration limit hit at some node
+inline constexpr StatusBits kTwoPoint = 1u << 2;          // more than one contact on this wheel
+inline constexpr StatusBits kLiftOff = 1u << 3;           // no contact at this load/approach
+inline constexpr StatusBits kCurvatureClipped = 1u << 4;  // negative/small B clipped
+inline constexpr StatusBits kCurvatureShifted = 1u << 5;  // negative/small B shifted upward
+inline constexpr StatusBits kFallbackModel = 1u << 6;     // the chosen model failed; a simpler ran
+inline constexpr StatusBits kFlangeContact = 1u << 7;     // contact angle beyond the tread range
+inline constexpr StatusBits kNonHertzian = 1u << 8;       // A or B <= 0: Hertz invalid
+inline constexpr StatusBits kFullSlip = 1u << 9;          // tangential force saturated at mu*N
+inline constexpr StatusBits kOutOfRange = 1u << 10;       // query clamped to the table edge, or a
+                                                          // fixed axis queried off its value
+inline constexpr StatusBits kInvalidInput = 1u << 11;     // NaN/inf in the query: outputs are 0
+inline constexpr StatusBits kProfileEdge = 1u << 12;      // contact band reached a profile end
+}  // namespace status
+
+// Contact slot limit. Format 1.0 writes 2 slots (0 = tread, 1 = flange); a table with more than
+// kMaxSlots slots is rejected at load.
+inline constexpr int kMaxSlots = 4;
+
+// Wheels: index 0 = left, 1 = right (docs/conventions.md).
+enum class Wheel : int { kLeft = 0, kRight = 1 };
+
+// Parts of a table (docs/table-format.md), in file order.
+enum Part : int { kGeometry = 0, kNormal = 1, kCreep = 2, kWear = 3, kNumParts = 4 };
+
+// Every output of every part, as indices into Contact::value. The order and names are those of
+// docs/table-format.md; the C API uses the same numbers (RAILTAB_LOOKUP_*).
+enum Output : int {
+  kContactAngle = 0,   // [rad] geometry
+  kRollingRadius = 1,  // [m]
+  kWheelY = 2,         // [m] contact's u in the wheel profile frame
+  kRailY = 3,          // [m] contact's u in the rail profile frame
+  kSeparation = 4,     // [m]
+  kCurvatureA = 5,     // [1/m]
+  kCurvatureB = 6,     // [1/m]
+  kNormalForce = 7,    // [N] normal
+  kApproach = 8,       // [m]
+  kArea = 9,           // [m2]
+  kMaxPressure = 10,   // [Pa]
+  kSemiAxisA = 11,     // [m] dataset `a`
+  kSemiAxisB = 12,     // [m] dataset `b`
+  kFx = 13,            // [N] creep, on the wheel
+  kFy = 14,            // [N]
+  kMz = 15,            // [N m]
+  kSlipFraction = 16,  // [1]
+  kWearRate = 17,      // [m2/m] wear
+  kNumOutputs = 18
+};
+
+// Dataset name of an output in the table file ("contact_angle", ..., "wear_rate").
+const char* output_name(Output output);
+// Part of an output, and the part's group name in the file ("geometry", ...).
+Part output_part(Output output);
+const char* part_name(Part part);
+
+// The state of one wheel-rail pair. A table tabulates some of these (its axes) and fixes the
+// others (root attribute fixed_axes); a fixed variable must be queried at its fixed value, else
+// the result is flagged kOutOfRange. Table::default_state() fills in the fixed values.
+struct State {
+  double y = 0.0;     // [m] wheelset lateral displacement, track frame, + left
+  double roll = 0.0;  // [rad] wheelset roll relative to track
+  double load = 0.0;  // [N] vertical wheel load
+  double xi = 0.0;    // [1] longitudinal creepage
+  double eta = 0.0;   // [1] lateral creepage
+  double phi = 0.0;   // [rad/m] spin creepage
+};
+
+// Interpolated outputs of one contact slot.
+struct Contact {
+  double value[kNumOutputs] = {};            // outputs indexed by Output; 0 for absent parts
+  StatusBits part_status[kNumParts] = {};    // per part: corner statuses combined (see Result)
+  StatusBits status = 0;                     // all present parts combined, plus query bits
+  std::uint32_t reserved = 0;                // explicit padding (same layout as the C struct)
+};
+
+// One query's answer. Status is not interpolated: for each part and slot, the trouble bits are
+// the OR over the 2^D corner nodes of the interpolation cell, and kConverged is set only if it is
+// set at every corner (an AND). Conservative on purpose: an interpolated value is only as good
+// as the worst node it is built from, and a cell half in lift-off must not look like a clean
+// contact. Jumps (tread -> flange) live in separate slots and in status, they are not smoothed.
+struct Result {
+  Contact contact[kMaxSlots];  // slots 0 .. n_slots-1 (0 = tread, 1 = flange); others untouched
+  int n_slots = 0;             // number of contact slots in the table
+  StatusBits status = 0;       // query bits only: kOutOfRange, kInvalidInput
+};
+
+// One item of a batch query (e.g. both wheels of every wheelset).
+struct Query {
+  Wheel wheel = Wheel::kLeft;  // which wheel-rail pair
+  State state;                 // its state
+};
+
+// Interpolation method, chosen once at load.
+enum class Method : int {
+  kLinear = 0,          // multilinear (default): C0, exact for affine functions, 2^D corners
+  kCubic = 1,           // tensor-product cubic Hermite, 3-point slopes: C1, exact for
+                        // quadratics, 4^D nodes (~20x the cost of linear in 4-D)
+  kMonotoneCubic = 2,   // as kCubic with Fritsch-Carlson limited slopes: C1, no overshoot
+                        // where the data are monotone along an axis
+};
+
+struct LoadOptions {
+  Method method = Method::kLinear;  // interpolation method for every part
+};
+
+// Any problem while loading a table: missing/truncated/corrupt file, unknown major version,
+// missing dataset or attribute, wrong shape or type. what() names the file and the problem.
+class LoadError : public std::runtime_error {
+ public:
+  LoadError(std::string path, const std::string& problem);
+  const std::string& path() const noexcept { return path_; }  // the file being loaded
+
+ private:
+  std::string path_;
+};
+
+// One tabulated axis (a dimension scale under /axes).
+struct AxisInfo {
+  std::string name;            // "y", "roll", "load", "xi", "eta" or "phi"
+  std::vector<double> nodes;   // strictly increasing grid nodes, SI units
+};
+
+namespace detail {
+struct TableData;  // internal, immutable after load (lookup/src/table_data.hpp)
+}
+
+// A loaded table. Immutable: every const member is safe to call from any number of threads at
+// once without locks. Cheap to copy (shares the data).
+class Table {
+ public:
+  // Reads the whole file into memory, laid out for the query path. Throws LoadError.
+  static Table load(const std::string& path, const LoadOptions& options = {});
+
+  // Interpolates every output of every slot of `wheel` at `state`. Never throws, allocates
+  // nothing, never extrapolates: out-of-range variables are clamped to the table edge and flagged
+  // kOutOfRange; a NaN/inf in a variable the table uses gives zeros and kInvalidInput.
+  void query(Wheel wheel, const State& state, Result& result) const noexcept;
+  Result query(Wheel wheel, const State& state) const noexcept;
+
+  // Batch: results[k] = query(queries[k]); results.size() must be >= queries.size()
+  // (extra results untouched).
+  void query(std::span<const Query> queries, std::span<Result> results) const noexcept;
+
+  const std::string& path() const;            // file it was loaded from
+  Method method() const;                      // interpolation method
+  int n_slots() const;                        // contact slots in the table
+  bool has_part(Part part) const;             // whether the table holds this part
+  const std::vector<AxisInfo>& axes() const;  // tabulated axes, in file order
+  // Untabulated state variables and their fixed values, e.g. {"roll",0.0}, {"load",78500.0}.
+  const std::vector<std::pair<std::string, double>>& fixed_axes() const;
+  State default_state() const;                // fixed values filled in, tabulated ones at 0
+  const std::string& format_version() const;  // e.g. "1.0"
+  const std::string& scene_name() const;      // root attribute scene_name ("" if absent)
+  std::size_t memory_bytes() const;           // size of the interpolation data
+
+ private:
+  explicit Table(std::shared_ptr<const detail::TableData> data);
+  std::shared_ptr<const detail::TableData> data_;  // shared, never modified after load
+};
+
+}  // namespace railtab::lookup

@@ -1,0 +1,252 @@
+#include "table_load.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "flat_json.hpp"
+#include "hdf5_file.hpp"
+#include "part_spec.hpp"
+
+namespace railtab::lookup::detail {
+namespace {
+
+constexpr int kKnownMajor = 1;  // format major version this reader understands
+
+std::string shape_text(const std::vector<hsize_t>& dims) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < dims.size(); ++i) {
+    if (i) s += ',';
+    s += std::to_string(static_cast<unsigned long long>(dims[i]));
+  }
+  s += ']';
+  return s;
+}
+
+std::string without_spaces(const std::string& s) {
+  std::string out;
+  for (char c : s)
+    if (c != ' ') out += c;
+  return out;
+}
+
+void read_version(const Hdf5File& f, TableData& d) {
+  const auto v = f.string_attribute("/", "format_version");
+  if (!v) f.fail("missing root attribute format_version (not a railtab table?)");
+  d.format_version = *v;
+  const std::size_t dot = v->find('.');
+  int major = -1;
+  try {
+    std::size_t used = 0;
+    major = std::stoi(v->substr(0, dot), &used);
+    if (used != v->substr(0, dot).size() || dot == std::string::npos) major = -1;
+  } catch (const std::exception&) {
+    major = -1;
+  }
+  if (major < 0) f.fail("format_version '" + *v + "' is not of the form MAJOR.MINOR");
+  if (major != kKnownMajor)
+    f.fail("unsupported format_version '" + *v + "': this reader knows major version " +
+           std::to_string(kKnownMajor) + " (a newer railtab may read it)");
+}
+
+void read_axes(const Hdf5File& f, TableData& d) {
+  if (!f.exists("/axes")) f.fail("missing group /axes");
+  for (int var = 0; var < kNumVars; ++var) {
+    const std::string name = std::string("/axes/") + var_name(var);
+    if (!f.exists(name)) continue;
+    auto a = f.read_doubles(name, H5T_FLOAT);
+    if (a.dims.size() != 1) f.fail("axis " + name + " is not 1-D, shape " + shape_text(a.dims));
+    if (a.values.size() < 2) f.fail("axis " + name + " has fewer than 2 nodes");
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+      if (!std::isfinite(a.values[i])) f.fail("axis " + name + " holds a non-finite node");
+      if (i > 0 && !(a.values[i] > a.values[i - 1]))
+        f.fail("axis " + name + " is not strictly increasing at index " + std::to_string(i));
+    }
+    d.tabulated[var] = true;
+    d.axes_info.push_back({var_name(var), a.values});
+    d.axis[var] = Axis(std::move(a.values));
+  }
+  const auto slot = f.read_int32("/axes/slot");
+  if (slot.dims.size() != 1 || slot.values.empty())
+    f.fail("axis /axes/slot must be 1-D and non-empty, shape " + shape_text(slot.dims));
+  for (std::size_t i = 0; i < slot.values.size(); ++i)
+    if (slot.values[i] != static_cast<std::int32_t>(i))
+      f.fail("axis /axes/slot must hold 0..n-1, index " + std::to_string(i) + " holds " +
+             std::to_string(slot.values[i]));
+  if (slot.values.size() > static_cast<std::size_t>(kMaxSlots))
+    f.fail("table has " + std::to_string(slot.values.size()) + " contact slots, the lookup " +
+           "supports at most " + std::to_string(kMaxSlots));
+  d.n_slots = static_cast<int>(slot.values.size());
+}
+
+void read_fixed_axes(const Hdf5File& f, TableData& d) {
+  const auto text = f.string_attribute("/", "fixed_axes");
+  if (!text) f.fail("missing root attribute fixed_axes");
+  std::vector<std::pair<std::string, double>> pairs;
+  try {
+    pairs = parse_flat_json_numbers(*text);
+  } catch (const std::runtime_error& e) {
+    f.fail(std::string("root attribute fixed_axes is not a JSON object of numbers: ") + e.what());
+  }
+  for (const auto& [key, value] : pairs) {
+    for (int var = 0; var < kNumVars; ++var) {
+      if (key != var_name(var)) continue;  // other keys: a later minor version's business
+      if (d.tabulated[var]) f.fail("'" + key + "' is both an axis and in fixed_axes");
+      if (!std::isfinite(value)) f.fail("fixed_axes value of '" + key + "' is not finite");
+      d.fixed[var] = true;
+      d.fixed_value[var] = value;
+      d.fixed_list.emplace_back(key, value);
+    }
+  }
+}
+
+// One part of one wheel as read from the file, checked.
+struct PartArrays {
+  std::vector<int> vars;                     // its tabulated axes (Var), file order
+  std::vector<hsize_t> dims;                 // their sizes
+  std::size_t nodes = 1;                     // grid nodes (product of dims)
+  std::vector<std::vector<double>> outputs;  // [output][node * n_slots + slot]
+  std::vector<std::uint32_t> status;         // [node * n_slots + slot]
+};
+
+PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& group,
+                     const PartSpec& spec) {
+  PartArrays p;
+  std::string axes_attr;
+  for (int var = 0; var < kNumVars; ++var) {
+    if (!spec.uses[var] || !d.tabulated[var]) continue;
+    p.vars.push_back(var);
+    p.dims.push_back(static_cast<hsize_t>(d.axis[var].size()));
+    p.nodes *= static_cast<std::size_t>(d.axis[var].size());
+    axes_attr += std::string(var_name(var)) + ",";
+  }
+  std::vector<hsize_t> expected = p.dims;
+  expected.push_back(static_cast<hsize_t>(d.n_slots));
+  axes_attr += "slot";
+
+  auto check_shape = [&](const std::string& ds, const std::vector<hsize_t>& dims) {
+    if (dims != expected)
+      f.fail("dataset " + ds + " has shape " + shape_text(dims) + ", but the table's axes (" +
+             axes_attr + ") need " + shape_text(expected));
+    const auto attr = f.string_attribute(ds, "axes");
+    if (!attr) f.fail("dataset " + ds + " has no 'axes' attribute");
+    if (without_spaces(*attr) != axes_attr)
+      f.fail("dataset " + ds + " has axes='" + *attr + "', expected '" + axes_attr + "'");
+  };
+  for (int k = 0; k < spec.n_out; ++k) {
+    const std::string ds = group + "/" + output_name(static_cast<Output>(spec.first_output + k));
+    auto v = f.read_doubles(ds, H5T_FLOAT);
+    check_shape(ds, v.dims);
+    for (std::size_t i = 0; i < v.values.size(); ++i)
+      if (!std::isfinite(v.values[i]))
+        f.fail("dataset " + ds + " holds a non-finite value at flat index " + std::to_string(i) +
+               " (format 1.0: a cell without contact holds 0)");
+    p.outputs.push_back(std::move(v.values));
+  }
+  const std::string ds = group + "/status";
+  auto st = f.read_uint32(ds);
+  check_shape(ds, st.dims);
+  p.status = std::move(st.values);
+  return p;
+}
+
+// Interleaves the parts that share one grid into a block (layout in table_data.hpp).
+Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& arrays,
+                 int n_slots) {
+  Block b;
+  const PartArrays& first = arrays[parts[0]];
+  b.n_dims = static_cast<int>(first.vars.size());
+  for (int k = 0; k < b.n_dims; ++k) b.var[k] = first.vars[k];
+  b.n_parts = static_cast<int>(parts.size());
+  for (int k = 0; k < b.n_parts; ++k) {
+    b.part[k] = parts[k];
+    b.n_values += n_slots * kPartSpecs[parts[k]].n_out;
+  }
+  b.values_padded = (b.n_values + kValueChunk - 1) / kValueChunk * kValueChunk;
+  b.n_status = b.n_parts * n_slots;
+  const int status_chunks = (b.n_status + kStatusChunk - 1) / kStatusChunk;
+  const int status_doubles = status_chunks * kStatusChunk * static_cast<int>(sizeof(StatusBits)) /
+                             static_cast<int>(sizeof(double));
+  b.record = b.values_padded + status_doubles;
+  std::size_t stride = static_cast<std::size_t>(b.record);
+  for (int k = b.n_dims - 1; k >= 0; --k) {
+    b.stride[k] = stride;
+    stride *= static_cast<std::size_t>(first.dims[k]);
+  }
+  const std::size_t ns = static_cast<std::size_t>(n_slots);
+  b.data.assign(first.nodes * static_cast<std::size_t>(b.record), 0.0);
+  for (std::size_t node = 0; node < first.nodes; ++node) {
+    double* rec = b.data.data() + node * static_cast<std::size_t>(b.record);
+    auto* status = reinterpret_cast<unsigned char*>(rec + b.values_padded);
+    int k = 0, j = 0;
+    for (int part : parts) {
+      const PartArrays& a = arrays[part];
+      for (std::size_t s = 0; s < ns; ++s)
+        for (const auto& out : a.outputs) rec[k++] = out[node * ns + s];
+    }
+    for (int part : parts)
+      for (std::size_t s = 0; s < ns; ++s, ++j)
+        std::memcpy(status + j * sizeof(StatusBits), &arrays[part].status[node * ns + s],
+                    sizeof(StatusBits));
+  }
+  return b;
+}
+
+}  // namespace
+
+std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOptions& options) {
+  if (options.method != Method::kLinear && options.method != Method::kCubic &&
+      options.method != Method::kMonotoneCubic)
+    throw LoadError(path, "unknown interpolation method " +
+                              std::to_string(static_cast<int>(options.method)));
+  Hdf5ErrorsSilenced quiet;
+  Hdf5File f(path);
+  auto d = std::make_shared<TableData>();
+  d->path = path;
+  d->method = options.method;
+  read_version(f, *d);
+  d->scene_name = f.string_attribute("/", "scene_name").value_or("");
+  read_axes(f, *d);
+  read_fixed_axes(f, *d);
+
+  static const char* const wheels[2] = {"/left", "/right"};
+  for (int p = 0; p < kNumParts; ++p) {
+    const std::string left = std::string(wheels[0]) + "/" + kPartSpecs[p].name;
+    const std::string right = std::string(wheels[1]) + "/" + kPartSpecs[p].name;
+    const bool has_left = f.exists(left), has_right = f.exists(right);
+    if (has_left != has_right)
+      f.fail("part " + std::string(kPartSpecs[p].name) + " present for one wheel only (" +
+             (has_left ? left : right) + " exists, " + (has_left ? right : left) + " does not)");
+    d->has_part[p] = has_left;
+  }
+  // Parts over the same axes share a block; the grouping is the same for both wheels.
+  std::vector<std::vector<int>> groups;
+  for (int p = 0; p < kNumParts; ++p) {
+    if (!d->has_part[p]) continue;
+    auto same_axes = [&](int q) {
+      for (int var = 0; var < kNumVars; ++var)
+        if (d->tabulated[var] && kPartSpecs[p].uses[var] != kPartSpecs[q].uses[var]) return false;
+      return true;
+    };
+    auto g = std::find_if(groups.begin(), groups.end(),
+                          [&](const std::vector<int>& group) { return same_axes(group[0]); });
+    if (g == groups.end()) groups.push_back({p});
+    else g->push_back(p);
+  }
+  if (groups.empty())
+    f.fail("no part found: expected groups /left/<part> and /right/<part> with part one of "
+           "geometry, normal, creep, wear");
+  d->n_blocks = static_cast<int>(groups.size());
+  for (int w = 0; w < 2; ++w) {
+    std::vector<PartArrays> arrays(kNumParts);
+    for (int p = 0; p < kNumParts; ++p)
+      if (d->has_part[p])
+        arrays[p] = read_part(f, *d, std::string(wheels[w]) + "/" + kPartSpecs[p].name,
+                              kPartSpecs[p]);
+    for (int b = 0; b < d->n_blocks; ++b) d->block[w][b] = make_block(groups[b], arrays, d->n_slots);
+  }
+  return d;
+}
+
+}  // namespace railtab::lookup::detail

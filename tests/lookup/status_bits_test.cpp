@@ -1,0 +1,34 @@
+// The lookup mirrors the core's status bits (it must not link the core): the values must match.
+#include <gtest/gtest.h>
+
+#include "core/status.hpp"
+#include "railtab/lookup.hpp"
+#include "railtab_lookup.h"
+
+namespace railtab::lookup {
+namespace {
+
+TEST(StatusBits, MatchTheCore) {
+  EXPECT_EQ(status::kConverged, railtab::status::kConverged);
+  EXPECT_EQ(status::kNotConverged, railtab::status::kNotConverged);
+  EXPECT_EQ(status::kTwoPoint, railtab::status::kTwoPoint);
+  EXPECT_EQ(status::kLiftOff, railtab::status::kLiftOff);
+  EXPECT_EQ(status::kCurvatureClipped, railtab::status::kCurvatureClipped);
+  EXPECT_EQ(status::kCurvatureShifted, railtab::status::kCurvatureShifted);
+  EXPECT_EQ(status::kFallbackModel, railtab::status::kFallbackModel);
+  EXPECT_EQ(status::kFlangeContact, railtab::status::kFlangeContact);
+  EXPECT_EQ(status::kNonHertzian, railtab::status::kNonHertzian);
+  EXPECT_EQ(status::kFullSlip, railtab::status::kFullSlip);
+  EXPECT_EQ(status::kOutOfRange, railtab::status::kOutOfRange);
+  EXPECT_EQ(status::kInvalidInput, railtab::status::kInvalidInput);
+  EXPECT_EQ(status::kProfileEdge, railtab::status::kProfileEdge);
+  EXPECT_EQ(RAILTAB_LOOKUP_CONVERGED, railtab::status::kConverged);
+  EXPECT_EQ(RAILTAB_LOOKUP_LIFT_OFF, railtab::status::kLiftOff);
+  EXPECT_EQ(RAILTAB_LOOKUP_FLANGE_CONTACT, railtab::status::kFlangeContact);
+  EXPECT_EQ(RAILTAB_LOOKUP_FULL_SLIP, railtab::status::kFullSlip);
+  EXPECT_EQ(RAILTAB_LOOKUP_OUT_OF_RANGE, railtab::status::kOutOfRange);
+  EXPECT_EQ(RAILTAB_LOOKUP_INVALID_INPUT, railtab::status::kInvalidInput);
+}
+
+}  // namespace
+}  // namespace railtab::lookup

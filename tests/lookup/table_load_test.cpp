@@ -1,0 +1,167 @@
+// Loading: every bad file is an error at load, of type LoadError, naming the file and the problem.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "lookup/lookup_test_util.hpp"
+#include "lookup/table_fixture.hpp"
+#include "railtab/lookup.hpp"
+
+namespace railtab::lookup {
+namespace {
+
+using testing::FixtureSpec;
+using testing::linspace;
+using testing::TempFile;
+
+FixtureSpec tiny_spec() {
+  FixtureSpec spec;
+  spec.axes = {{0, linspace(-0.01, 0.01, 5)}, {5, linspace(-1.0, 1.0, 3)}};
+  spec.fixed = {{1, 0.0}, {2, 78500.0}, {3, 0.0}, {4, 0.0}};
+  spec.value = [](int, int, int, int, const double* x) { return x[0] + x[5]; };
+  return spec;
+}
+
+// Loads `path` expecting a LoadError whose message names the file and contains `problem`.
+void expect_load_error(const std::string& path, const std::string& problem) {
+  try {
+    Table::load(path);
+    ADD_FAILURE() << "loaded " << path << " without error, expected: " << problem;
+  } catch (const LoadError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find(problem), std::string::npos) << what;
+    EXPECT_EQ(e.path(), path);
+  }
+}
+
+TEST(TableLoad, GoodTableLoadsWithEitherStringKind) {
+  for (bool fixed_length : {false, true}) {
+    TempFile file("good");
+    FixtureSpec spec = tiny_spec();
+    spec.fixed_length_strings = fixed_length;
+    testing::write_fixture(file.path, spec);
+    const Table t = Table::load(file.path);
+    EXPECT_EQ(t.format_version(), "1.0");
+    EXPECT_EQ(t.fixed_axes().size(), 4u);
+  }
+}
+
+TEST(TableLoad, MissingFile) {
+  expect_load_error(testing::temp_table("does_not_exist"), "no such file");
+}
+
+TEST(TableLoad, NotAnHdf5File) {
+  TempFile file("text");
+  std::ofstream(file.path) << "y,fx\n0,1\n";
+  expect_load_error(file.path, "not an HDF5 file");
+}
+
+TEST(TableLoad, TruncatedFile) {
+  TempFile file("truncated");
+  testing::write_fixture(file.path, testing::default_scene_spec());  // chunked, ~1 MB
+  const auto size = std::filesystem::file_size(file.path);
+  for (double keep : {0.5, 0.95}) {
+    std::filesystem::resize_file(file.path, static_cast<std::uintmax_t>(size * keep));
+    expect_load_error(file.path, "");
+  }
+}
+
+TEST(TableLoad, MissingDataset) {
+  TempFile file("missing");
+  FixtureSpec spec = tiny_spec();
+  spec.omit_dataset = "/right/creep/fy";
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "missing dataset /right/creep/fy");
+}
+
+TEST(TableLoad, MissingStatus) {
+  TempFile file("missing_status");
+  FixtureSpec spec = tiny_spec();
+  spec.omit_dataset = "/left/geometry/status";
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "missing dataset /left/geometry/status");
+}
+
+TEST(TableLoad, UnknownMajorVersion) {
+  TempFile file("v2");
+  FixtureSpec spec = tiny_spec();
+  spec.format_version = "2.0";
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "unsupported format_version '2.0'");
+}
+
+TEST(TableLoad, NewerMinorVersionLoads) {
+  TempFile file("v1_7");
+  FixtureSpec spec = tiny_spec();
+  spec.format_version = "1.7";
+  testing::write_fixture(file.path, spec);
+  EXPECT_EQ(Table::load(file.path).format_version(), "1.7");
+}
+
+TEST(TableLoad, MalformedVersion) {
+  TempFile file("vx");
+  FixtureSpec spec = tiny_spec();
+  spec.format_version = "one";
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "not of the form MAJOR.MINOR");
+}
+
+TEST(TableLoad, WrongAxesAttribute) {
+  TempFile file("axes_attr");
+  FixtureSpec spec = tiny_spec();
+  spec.wrong_axes_dataset = "/left/normal/area";
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "/left/normal/area has axes='slot,y', expected 'y,slot'");
+}
+
+TEST(TableLoad, WrongShape) {
+  // Replace /axes/phi by a 4-node axis: creep and wear datasets (3 phi nodes) no longer fit.
+  TempFile file("shape");
+  testing::write_fixture(file.path, tiny_spec());
+  {
+    const hid_t f = H5Fopen(file.path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    ASSERT_GE(H5Ldelete(f, "/axes/phi", H5P_DEFAULT), 0);
+    const hsize_t n = 4;
+    const double phi[4] = {-1, 0, 0.5, 1};
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t d = H5Dcreate2(f, "/axes/phi", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                               H5P_DEFAULT);
+    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, phi);
+    H5Dclose(d);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  expect_load_error(file.path, "/left/creep/fx has shape [5,3,2], but the table's axes (y,phi,slot) need [5,4,2]");
+}
+
+TEST(TableLoad, FixedAxesMustParse) {
+  TempFile file("fixed");
+  FixtureSpec spec = tiny_spec();
+  spec.fixed = {{5, 0.0}};  // phi is also an axis
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "'phi' is both an axis and in fixed_axes");
+}
+
+TEST(TableLoad, NoPartsIsAnError) {
+  TempFile file("no_parts");
+  FixtureSpec spec = tiny_spec();
+  spec.parts = {};
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "no part found");
+}
+
+TEST(TableLoad, NonFiniteValuesAreRejected) {
+  TempFile file("nan");
+  FixtureSpec spec = tiny_spec();
+  spec.value = [](int wheel, int part, int, int, const double* x) {
+    return (wheel == 1 && part == 3 && x[0] > 0.0) ? std::nan("") : 1.0;
+  };
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "/right/wear/wear_rate holds a non-finite value");
+}
+
+}  // namespace
+}  // namespace railtab::lookup
