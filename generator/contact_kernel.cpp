@@ -7,6 +7,8 @@
 
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
+#include "tangential/fastsim.hpp"
+#include "wear/archard.hpp"
 
 namespace railtab {
 namespace {
@@ -47,11 +49,19 @@ const Output<ContactPatch> kNormalOutputs[] = {
      [](const ContactPatch& c) { return c.semi_axis_b; }},
 };
 
-// HOOK(creep, wear): the tangential (src/tangential/fastsim.hpp) and wear (src/wear/) layers are
-// being written. When they land: add kCreepOutputs (fx, fy, mz, slip_fraction from FastsimResult)
-// and kWearOutputs (wear_rate from WearResult) tables like the two above, a PartSpec each with
-// inner axes {load, xi, eta, phi} in make_contact_kernel, and in solve_wheel_column one loop over
-// the creepages per loaded patch after the normal part. Until then no creep/wear part is written.
+// Creep part, per loaded patch and creepage (axes y, roll, load, xi, eta, phi, slot).
+const Output<FastsimResult> kCreepOutputs[] = {
+    {"fx", "N", "longitudinal creep force on the wheel (contact frame x)", [](const FastsimResult& r) { return r.fx; }},
+    {"fy", "N", "lateral creep force on the wheel (contact frame s)", [](const FastsimResult& r) { return r.fy; }},
+    {"mz", "N m", "spin moment on the wheel about the contact normal", [](const FastsimResult& r) { return r.mz; }},
+    {"slip_fraction", "1", "slipping share of the contact area", [](const FastsimResult& r) { return r.slip_fraction; }},
+};
+
+// Wear part, same grid as creep.
+const Output<WearResult> kWearOutputs[] = {
+    {"wear_rate", "m2/m", "worn wheel-profile cross-section per rolled distance (Archard, KTH map)",
+     [](const WearResult& r) { return r.wear_rate; }},
+};
 
 template <class Result, std::size_t N>
 PartSpec part_spec(const char* name, std::vector<std::string> inner_axes, const Output<Result> (&outputs)[N]) {
@@ -68,6 +78,8 @@ void store(const Output<Result> (&outputs)[N], const Result& result, const Colum
 
 constexpr std::size_t kGeometryPart = 0;
 constexpr std::size_t kNormalPart = 1;
+constexpr std::size_t kCreepPart = 2;
+constexpr std::size_t kWearPart = 3;
 
 // A point where the core threw: no values (zeros), and a status without kConverged.
 StatusBits failure_status(const ColumnState& state) {
@@ -77,22 +89,66 @@ StatusBits failure_status(const ColumnState& state) {
 
 struct KernelData {
   ContactGeometrySolver solver;
-  std::vector<double> loads;  // [N]
+  SceneGrids grids;           // load [N] and creepage grids
   Material material;
   NormalOptions normal;
+  TangentialSettings tangential;
+  FastsimOptions fastsim;
+  WearOptions wear;
+  std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
+
+// Creep forces and wear of one loaded patch over the creepage grid, into the cells of load il.
+void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, const ContactPatch& patch,
+                 const ColumnState& state, std::size_t wheel, std::size_t il, std::size_t slot, StatusBits extra,
+                 ColumnOutput& out) {
+  FastsimWorkspace& workspace = thread_fastsim_workspace();
+  thread_local WearDistribution distribution;
+  const PatchPlacement placement = placement_of(geometry, patch);
+  std::size_t c = il * k.creepages();
+  for (double xi : k.grids.xi) {
+    for (double eta : k.grids.eta) {
+      for (double phi : k.grids.phi) {
+        const std::size_t cell = c++ * kSlots + slot;
+        try {
+          FastsimResult creep = fastsim_patch(patch, placement, Creepage{xi, eta, phi}, k.tangential.friction,
+                                              k.tangential.speed, k.material, k.fastsim, workspace);
+          store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
+          out.status(wheel, kCreepPart)[cell] = creep.status | extra;
+          WearResult wear = archard_wear(workspace, k.wear, distribution);
+          store(kWearOutputs, wear, out, wheel, kWearPart, cell);
+          out.status(wheel, kWearPart)[cell] = wear.status | extra;
+        } catch (const std::exception& e) {
+          out.failure(fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
+                                  to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi, e.what()));
+          out.status(wheel, kCreepPart)[cell] = failure_status(state);
+          out.status(wheel, kWearPart)[cell] = failure_status(state);
+        }
+      }
+    }
+  }
+}
+
+// Every cell of a part for load il (or all loads) gets the failure status.
+void fail_cells(ColumnOutput& out, std::size_t wheel, std::size_t part, std::size_t begin, std::size_t end,
+                StatusBits bits) {
+  for (std::size_t c = begin; c < end; ++c) out.status(wheel, part)[c] = bits;
+}
 
 void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size_t wheel, ColumnOutput& out) {
   const Side side = wheel == 0 ? Side::left : Side::right;
-  const std::size_t nload = k.loads.size();
+  const std::size_t nload = k.grids.load.size();
+  const std::size_t ncreep = nload * k.creepages() * kSlots;  // creep/wear cells of the column
   WheelContactGeometry geometry;
   try {
     geometry = k.solver.solve_wheel(side, WheelsetState{state.y, state.roll});
   } catch (const std::exception& e) {
     out.failure(fmt::format("geometry, {} wheel, y = {} m, roll = {} rad: {}", to_string(side), state.y,
                             state.roll, e.what()));
-    for (std::size_t s = 0; s < kSlots; ++s) out.status(wheel, kGeometryPart)[s] = failure_status(state);
-    for (std::size_t c = 0; c < nload * kSlots; ++c) out.status(wheel, kNormalPart)[c] = failure_status(state);
+    fail_cells(out, wheel, kGeometryPart, 0, kSlots, failure_status(state));
+    fail_cells(out, wheel, kNormalPart, 0, nload * kSlots, failure_status(state));
+    fail_cells(out, wheel, kCreepPart, 0, ncreep, failure_status(state));
+    fail_cells(out, wheel, kWearPart, 0, ncreep, failure_status(state));
     return;
   }
   const SlotAssignment slots = assign_slots(geometry);
@@ -107,11 +163,14 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
   for (std::size_t il = 0; il < nload; ++il) {
     WheelNormalResult normal;
     try {
-      normal = solve_normal_for_load(geometry, k.loads[il], k.material, k.normal);
+      normal = solve_normal_for_load(geometry, k.grids.load[il], k.material, k.normal);
     } catch (const std::exception& e) {
       out.failure(fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N: {}", to_string(side),
-                              state.y, state.roll, k.loads[il], e.what()));
-      for (std::size_t s = 0; s < kSlots; ++s) out.status(wheel, kNormalPart)[il * kSlots + s] = failure_status(state);
+                              state.y, state.roll, k.grids.load[il], e.what()));
+      fail_cells(out, wheel, kNormalPart, il * kSlots, (il + 1) * kSlots, failure_status(state));
+      const std::size_t per_load = k.creepages() * kSlots;
+      fail_cells(out, wheel, kCreepPart, il * per_load, (il + 1) * per_load, failure_status(state));
+      fail_cells(out, wheel, kWearPart, il * per_load, (il + 1) * per_load, failure_status(state));
       continue;
     }
     const StatusBits solver_bits = normal.status & (status::kConverged | status::kNotConverged);
@@ -121,8 +180,17 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
       const ContactPatch& patch = normal.patches[index];
       store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
       out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | slots.extra[s];
+      // Creep and wear on top of this normal result; an unloaded patch has none (zeros, lift_off).
+      if (patch.strips.empty() || !(patch.normal_force > 0.0)) {
+        const std::size_t per_load = k.creepages();
+        for (std::size_t c = il * per_load; c < (il + 1) * per_load; ++c) {
+          out.status(wheel, kCreepPart)[c * kSlots + s] = status::kConverged | status::kLiftOff | slots.extra[s];
+          out.status(wheel, kWearPart)[c * kSlots + s] = status::kConverged | status::kLiftOff | slots.extra[s];
+        }
+        continue;
+      }
+      solve_creep(k, geometry, patch, state, wheel, il, s, slots.extra[s], out);
     }
-    // HOOK(creep, wear): creepage loop over the loaded patches goes here.
   }
 }
 
@@ -145,12 +213,23 @@ SlotAssignment assign_slots(const WheelContactGeometry& geometry) {
 }
 
 SweepKernel make_contact_kernel(const Scene& scene) {
-  auto data = std::make_shared<const KernelData>(
-      KernelData{make_geometry_solver(scene), scene.grids.load, scene.material, scene.normal});
+  FastsimOptions fastsim;
+  fastsim.elements_per_strip = scene.tangential.elements_per_strip;
+  fastsim.spin = scene.tangential.spin_per_strip ? SpinVariation::per_strip : SpinVariation::patch_constant;
+  WearOptions wear;
+  wear.map.hardness = scene.wear.hardness;
+  // The scene gives the divisor of k_dry directly (5.5 natural contamination, 11 lubricated).
+  wear.map.factor_natural = scene.wear.lubrication_factor;
+  wear.lubrication = Lubrication::natural;
+  validate(wear.map);
+  auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
+                                                            scene.normal, scene.tangential, fastsim, wear});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));
-  kernel.points_per_column = scene.grids.load.size();
+  kernel.parts.push_back(part_spec("creep", {"load", "xi", "eta", "phi"}, kCreepOutputs));
+  kernel.parts.push_back(part_spec("wear", {"load", "xi", "eta", "phi"}, kWearOutputs));
+  kernel.points_per_column = scene.grids.load.size() * data->creepages();
   const NormalOptions& n = scene.normal;
   kernel.models = {
       {"normal", to_string(n.model)},
@@ -161,6 +240,14 @@ SweepKernel make_contact_kernel(const Scene& scene) {
       {"flange_angle", scene.geometry.flange_angle},
       {"youngs_modulus", scene.material.youngs_modulus},
       {"poisson_ratio", scene.material.poisson_ratio},
+      {"tangential", "fastsim-strips"},
+      {"spin", to_string(fastsim.spin)},
+      {"elements_per_strip", fastsim.elements_per_strip},
+      {"friction", scene.tangential.friction},
+      {"speed", scene.tangential.speed},
+      {"wear", "archard-kth"},
+      {"hardness", scene.wear.hardness},
+      {"lubrication_factor", scene.wear.lubrication_factor},
   };
   kernel.equilibrium_roll = [data](double y) { return data->solver.equilibrium_roll(y); };
   kernel.compute = [data](const ColumnState& state, ColumnOutput& out) {

@@ -1,8 +1,7 @@
 // The wheel-rail contact kernel of the table sweep: per (y, roll) column and wheel, the rigid
 // geometry once (ContactGeometrySolver::solve_wheel), the normal contact once per load on top of
-// it, and (once the tangential and wear layers land) creep forces and wear per creepage on top of
-// each normal result. Outputs are declared in descriptor tables in contact_kernel.cpp: adding an
-// output is one line there.
+// it, and FASTSIM creep forces and Archard wear per creepage on top of each loaded patch. Outputs
+// are declared in descriptor tables in contact_kernel.cpp: adding an output is one line there.
 #pragma once
 
 #include "scene.hpp"
