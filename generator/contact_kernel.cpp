@@ -81,10 +81,10 @@ constexpr std::size_t kNormalPart = 1;
 constexpr std::size_t kCreepPart = 2;
 constexpr std::size_t kWearPart = 3;
 
-// A point where the core threw: no values (zeros), and a status without kConverged.
+// A point where the core threw: no values (zeros), and kFailed instead of kConverged.
 StatusBits failure_status(const ColumnState& state) {
   bool bad_input = !std::isfinite(state.y) || !std::isfinite(state.roll);
-  return status::kNotConverged | (bad_input ? status::kInvalidInput : 0u);
+  return status::kFailed | (bad_input ? status::kInvalidInput : 0u);
 }
 
 struct KernelData {

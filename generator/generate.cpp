@@ -66,7 +66,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
                         s.points_computed, s.seconds, s.threads, s.threads == 1 ? "" : "s", rate, 1e3 * per_point);
     if (s.points_resumed > 0) *log << fmt::format("resumed {} points from the checkpoint\n", s.points_resumed);
     if (s.failures > 0) {
-      *log << fmt::format("{} point(s) failed and are flagged not_converged; first: {}\n", s.failures,
+      *log << fmt::format("{} point(s) failed and are flagged failed; first: {}\n", s.failures,
                           s.first_failure);
     }
     *log << fmt::format("wrote {} ({:.1f} KiB){}\n", options.output.string(),

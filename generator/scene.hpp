@@ -22,7 +22,7 @@ struct ProfileSource {
 struct TangentialSettings {
   double friction = 0.3;          // Coulomb coefficient mu [-]
   int elements_per_strip = 20;    // FASTSIM cells along each strip [-]
-  bool spin_per_strip = true;     // spin follows the local contact angle (STRIPES) [-]
+  bool spin_per_strip = false;    // spin follows the local contact angle (STRIPES) [-]
   double speed = 20.0;            // rolling speed, for slip velocities and wear [m/s]
 };
 

@@ -6,7 +6,7 @@
 namespace railtab::status {
 
 std::string describe(StatusBits bits) {
-  static constexpr std::array<std::pair<StatusBits, const char*>, 13> kNames{{
+  static constexpr std::array<std::pair<StatusBits, const char*>, 14> kNames{{
       {kConverged, "converged"},
       {kNotConverged, "not_converged"},
       {kTwoPoint, "two_point"},
@@ -20,6 +20,7 @@ std::string describe(StatusBits bits) {
       {kOutOfRange, "out_of_range"},
       {kInvalidInput, "invalid_input"},
       {kProfileEdge, "profile_edge"},
+      {kFailed, "failed"},
   }};
   std::string out;
   for (const auto& [bit, name] : kNames) {

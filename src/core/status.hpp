@@ -23,6 +23,7 @@ inline constexpr StatusBits kFullSlip = 1u << 9;          // tangential force sa
 inline constexpr StatusBits kOutOfRange = 1u << 10;       // query clamped to the table edge
 inline constexpr StatusBits kInvalidInput = 1u << 11;     // NaN/inf or otherwise unusable input
 inline constexpr StatusBits kProfileEdge = 1u << 12;      // contact band reached a profile end
+inline constexpr StatusBits kFailed = 1u << 13;           // the core threw here: outputs are zero
 
 // Comma-separated names of the set bits, e.g. "converged,two_point"; "none" for 0.
 std::string describe(StatusBits bits);
