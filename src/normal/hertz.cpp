@@ -93,6 +93,7 @@ PatchSums hertz_patch(const WheelContactGeometry& g, const Material& m, const No
   out->max_pressure = p0;
   out->semi_axis_a = a;
   out->semi_axis_b = b;
+  if (!o.hertz_strips) return sums;
   const int n = o.strips;
   const double width = 2.0 * b / n;
   const double s0 = g.points[p.point].band_s;

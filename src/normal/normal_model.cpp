@@ -14,10 +14,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "core/check.hpp"
 #include "normal/normal_internal.hpp"
 #include "normal/root_find.hpp"
+#include "geometry/overlap_reference.hpp"
 
 namespace railtab {
 
@@ -346,6 +348,7 @@ PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const Norma
     *out = ContactPatch{};
     out->point_index = p.point;
     out->model = p.model;
+    out->band_s = cp.band_s;
     out->contact_angle = cp.contact_angle;
     out->rolling_radius = cp.rolling_radius;
     out->wheel_u = cp.wheel_u;
@@ -382,20 +385,276 @@ double vertical_load(const WheelContactGeometry& g, const Material& m, const Nor
   return total;
 }
 
+// cos for the band angles (|x| <= pi/2 covers tread and flange): Taylor series to x^20 in
+// Horner form, absolute error < 3e-15 there, several times cheaper than std::cos.
+inline double band_cos(double x) {
+  const double x2 = x * x;
+  if (x2 > 2.4674011002723395) return std::cos(x);  // |x| > pi/2: not a band angle, be exact
+  double r = 1.0 / 2432902008176640000.0;            // 1/20!
+  r = r * x2 - 1.0 / 6402373705728000.0;             // 1/18!
+  r = r * x2 + 1.0 / 20922789888000.0;               // 1/16!
+  r = r * x2 - 1.0 / 87178291200.0;                  // 1/14!
+  r = r * x2 + 1.0 / 479001600.0;                    // 1/12!
+  r = r * x2 - 1.0 / 3628800.0;                      // 1/10!
+  r = r * x2 + 1.0 / 40320.0;                        // 1/8!
+  r = r * x2 - 1.0 / 720.0;                          // 1/6!
+  r = r * x2 + 1.0 / 24.0;
+  r = r * x2 - 0.5;
+  return r * x2 + 1.0;
+}
+
+// Reference of one rigid-overlap run (geometry/overlap_reference.cpp, default options: squared
+// weighting; the constant factor of the weight cancels), found by expanding from a seed sample.
+struct RunReference {
+  int a = 0, b = -1;                 // first and last band sample of the run
+  double s_start = 0.0, s_end = 0.0;
+  double band_s = 0.0, rail_u = 0.0, wheel_u = 0.0, angle_side = 0.0, radius = 0.0;
+  bool clipped = false;
+};
+
+bool rigid_run(const WheelContactGeometry& g, double dz, int seed, RunReference* out) {
+  const std::vector<BandSample>& band = g.band;
+  const int n = static_cast<int>(band.size());
+  auto overlap = [&](int i) { return dz * band_cos(band[i].contact_angle) - band[i].gap; };
+  if (seed < 0 || seed >= n || !(overlap(seed) > 0.0)) return false;
+  int a = seed, b = seed;
+  while (a > 0 && overlap(a - 1) > 0.0) --a;
+  while (b + 1 < n && overlap(b + 1) > 0.0) ++b;
+  // weight per unit s: p^(5/2) cos g with p = d / cos g
+  auto weight = [](double d, double c) {
+    const double p = d / c;
+    return p * p * std::sqrt(p) * c;
+  };
+  double sum_w = 0.0, sum_wq = 0.0, sum_wa = 0.0;
+  double w_prev = weight(overlap(a), band_cos(band[a].contact_angle));
+  for (int j = a; j < b; ++j) {
+    const BandSample& p = band[j];
+    const BandSample& r = band[j + 1];
+    const double w1 = weight(overlap(j + 1), band_cos(r.contact_angle));
+    const double half = 0.5 * (r.s - p.s);
+    sum_w += half * (w_prev + w1);
+    sum_wq += half * (w_prev * p.q + w1 * r.q);
+    sum_wa += half * (w_prev * p.contact_angle + w1 * r.contact_angle);
+    w_prev = w1;
+  }
+  constexpr double e = 2.5;
+  auto end_cell = [&](int k, int m) {
+    const double dk = overlap(k), dm = overlap(m);
+    const double h = band[m].s - band[k].s;
+    const double len = h * dk / (dk - dm);
+    const double part = weight(dk, band_cos(band[k].contact_angle)) * std::abs(len) / (e + 1.0);
+    const double t = len / (e + 2.0) / h;
+    sum_w += part;
+    sum_wq += part * (band[k].q + t * (band[m].q - band[k].q));
+    sum_wa += part * (band[k].contact_angle + t * (band[m].contact_angle - band[k].contact_angle));
+    return band[k].s + len;
+  };
+  RunReference& r = *out;
+  r = RunReference{};
+  r.a = a;
+  r.b = b;
+  if (a > 0) {
+    r.s_start = end_cell(a, a - 1);
+  } else {
+    r.s_start = band[a].s;
+    r.clipped = true;
+  }
+  if (b + 1 < n) {
+    r.s_end = end_cell(b, b + 1);
+  } else {
+    r.s_end = band[b].s;
+    r.clipped = true;
+  }
+  double q = band[a].q;
+  r.angle_side = band[a].contact_angle;
+  if (sum_w > 0.0) {
+    q = sum_wq / sum_w;
+    r.angle_side = sum_wa / sum_w;
+  }
+  // Band point at the weighted q (q grows with s along the band).
+  int j = a;
+  if (q <= band.front().q) {
+    j = 0;
+  } else if (q >= band.back().q) {
+    j = n - 1;
+  } else {
+    const auto it = std::partition_point(band.begin(), band.end(),
+                                         [q](const BandSample& x) { return x.q <= q; });
+    j = static_cast<int>(it - band.begin()) - 1;
+  }
+  const BandSample& lo = band[j];
+  const BandSample& hi = band[std::min(j + 1, n - 1)];
+  const double t = (j + 1 < n && hi.q > lo.q) ? std::clamp((q - lo.q) / (hi.q - lo.q), 0.0, 1.0) : 0.0;
+  auto mix = [t](double x, double y) { return x + t * (y - x); };
+  r.band_s = mix(lo.s, hi.s);
+  r.rail_u = mix(lo.rail_u, hi.rail_u);
+  r.wheel_u = mix(lo.wheel_u, hi.wheel_u);
+  r.radius = mix(lo.rolling_radius, hi.rolling_radius);
+  return true;
+}
+
+// Merges the contributions parts[k] (k in members, ascending band s) into one patch.
+ContactPatch merge_parts(const WheelContactGeometry& g, std::vector<ContactPatch>& parts,
+                         const std::vector<int>& members) {
+  if (members.size() == 1) return std::move(parts[members.front()]);
+  ContactPatch out;
+  double length = 0.0;
+  std::size_t nstrips = 0;
+  for (int k : members) nstrips += parts[k].strips.size();
+  out.strips.reserve(nstrips);
+  for (int k : members) {
+    ContactPatch& p = parts[k];
+    out.normal_force += p.normal_force;
+    out.area += p.area;
+    out.max_pressure = std::max(out.max_pressure, p.max_pressure);
+    out.status |= p.status;
+    out.strips.insert(out.strips.end(), p.strips.begin(), p.strips.end());
+    if (p.strips.empty()) {
+      length = std::max(length, 2.0 * p.semi_axis_a);
+    } else {
+      for (const Strip& st : p.strips) length = std::max(length, st.x_lead - st.x_trail);
+    }
+  }
+  std::sort(out.strips.begin(), out.strips.end(),
+            [](const Strip& x, const Strip& y) { return x.s < y.s; });
+  const ContactPatch& first = parts[members.front()];
+  out.model = first.model;
+  out.pressure_shape = first.pressure_shape;
+  out.status &= ~status::kLiftOff;
+  (void)g;
+  // Equivalent ellipse of the merged patch (area and length/width kept, as Kik-Piotrowski's).
+  double s_lo = std::numeric_limits<double>::infinity(), s_hi = -s_lo;
+  for (int k : members) {
+    const ContactPatch& p = parts[k];
+    if (!p.strips.empty()) {
+      s_lo = std::min(s_lo, p.strips.front().s - 0.5 * p.strips.front().width);
+      s_hi = std::max(s_hi, p.strips.back().s + 0.5 * p.strips.back().width);
+    } else {
+      s_lo = std::min(s_lo, p.band_s - p.semi_axis_b);
+      s_hi = std::max(s_hi, p.band_s + p.semi_axis_b);
+    }
+  }
+  const double width = s_hi - s_lo;
+  if (out.area > 0.0 && length > 0.0 && width > 0.0) {
+    out.semi_axis_a = std::sqrt(out.area / std::numbers::pi) * std::sqrt(length / width);
+    out.semi_axis_b = std::sqrt(out.area / std::numbers::pi) * std::sqrt(width / length);
+  }
+  return out;
+}
+
 WheelNormalResult fill(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                        Workspace& w, double dz) {
   WheelNormalResult r;
   r.vertical_approach = dz;
-  r.patches.resize(w.points.size());
-  int loaded = 0;
-  for (std::size_t i = 0; i < w.points.size(); ++i) {
-    const PatchSums s = evaluate(g, m, o, w.points[i], w, dz, &r.patches[i]);
+  const int np = static_cast<int>(w.points.size());
+  r.point_patch.assign(np, -1);
+  std::vector<ContactPatch> parts(np);
+  std::vector<int> loaded_points;
+  for (int i = 0; i < np; ++i) {
+    const PatchSums s = evaluate(g, m, o, w.points[i], w, dz, &parts[i]);
     r.vertical_load += s.vertical;
-    if (s.normal > 0.0) ++loaded;
-    r.status |= r.patches[i].status & ~status::kLiftOff;
+    if (s.normal > 0.0) loaded_points.push_back(i);
+    r.status |= parts[i].status & ~status::kLiftOff;
   }
-  if (loaded == 0) r.status |= status::kLiftOff;
-  if (loaded > 1) r.status |= status::kTwoPoint;
+  if (loaded_points.empty()) {
+    r.status |= status::kLiftOff;
+    return r;
+  }
+  // Rigid overlap runs holding the loaded points.
+  struct Group {
+    RunReference ref;
+    bool has_ref = false;
+    std::vector<int> members;  // loaded contributions
+  };
+  std::vector<Group> groups;
+  const double half_step = 0.5 * g.band_step;
+  auto contains = [&](const Group& gr, double s) {
+    return gr.has_ref && s >= gr.ref.s_start - half_step && s <= gr.ref.s_end + half_step;
+  };
+  if (o.combine_patches && g.band.size() >= 2) {
+    for (const OverlapReference& ref : overlap_references(g, dz, contact_patch_rules())) {
+      Group gr;
+      gr.has_ref = true;
+      gr.ref.s_start = ref.s_start;
+      gr.ref.s_end = ref.s_end;
+      gr.ref.band_s = ref.band_s;
+      gr.ref.rail_u = ref.rail_u;
+      gr.ref.wheel_u = ref.wheel_u;
+      gr.ref.angle_side = ref.contact_angle_side;
+      gr.ref.radius = ref.rolling_radius;
+      gr.ref.clipped = ref.clipped;
+      groups.push_back(std::move(gr));
+    }
+  }
+  for (int i : loaded_points) {
+    const double s = g.points[i].band_s;
+    Group* home = nullptr;
+    for (Group& gr : groups)
+      if (contains(gr, s)) home = &gr;
+    if (!home) {
+      Group gr;
+      gr.has_ref = !o.combine_patches && rigid_run(g, dz, w.points[i].i0, &gr.ref);
+      groups.push_back(std::move(gr));
+      home = &groups.back();
+    }
+    home->members.push_back(i);
+  }
+  std::erase_if(groups, [](const Group& gr) { return gr.members.empty(); });
+  auto group_s = [&](const Group& gr) {
+    return gr.has_ref ? gr.ref.band_s : g.points[gr.members.front()].band_s;
+  };
+  std::sort(groups.begin(), groups.end(),
+            [&](const Group& x, const Group& y) { return group_s(x) < group_s(y); });
+  const double sigma = outward_sign(g.side);
+  r.patches.reserve(groups.size());
+  for (const Group& gr : groups) {
+    const int pi = static_cast<int>(r.patches.size());
+    // Points inside the run: the loaded members and any unloaded point within the extent.
+    int best = gr.members.front();
+    for (int i = 0; i < np; ++i) {
+      const bool member = std::find(gr.members.begin(), gr.members.end(), i) != gr.members.end();
+      if (!member && !contains(gr, g.points[i].band_s)) continue;
+      if (member) r.point_patch[i] = pi;
+      if (g.points[i].separation < g.points[best].separation) best = i;
+    }
+    std::vector<int> members = gr.members;
+    std::sort(members.begin(), members.end(),
+              [&](int x, int y) { return g.points[x].band_s < g.points[y].band_s; });
+    // The patch takes model, pressure shape and penetration from its least separated member.
+    int lead = members.front();
+    for (int k : members)
+      if (g.points[k].separation < g.points[lead].separation) lead = k;
+    const double penetration = parts[lead].penetration;
+    const NormalModel model = parts[lead].model;
+    ContactPatch patch = merge_parts(g, parts, members);
+    patch.model = model;
+    patch.penetration = penetration;
+    patch.points = static_cast<int>(members.size());
+    patch.point_index = best;
+    if (gr.has_ref) {
+      patch.band_s = gr.ref.band_s;
+      patch.contact_angle = sigma * gr.ref.angle_side;
+      patch.rolling_radius = gr.ref.radius;
+      patch.wheel_u = gr.ref.wheel_u;
+      patch.rail_u = gr.ref.rail_u;
+      patch.s_start = gr.ref.s_start;
+      patch.s_end = gr.ref.s_end;
+      if (gr.ref.clipped) patch.status |= status::kProfileEdge;
+    } else {  // no sampled overlap run: the geometric point is the reference
+      const ContactPoint& cp = g.points[lead];
+      patch.band_s = cp.band_s;
+      patch.contact_angle = cp.contact_angle;
+      patch.rolling_radius = cp.rolling_radius;
+      patch.wheel_u = cp.wheel_u;
+      patch.rail_u = cp.rail_u;
+      patch.s_start = patch.strips.empty() ? cp.band_s - patch.semi_axis_b
+                                           : patch.strips.front().s - 0.5 * patch.strips.front().width;
+      patch.s_end = patch.strips.empty() ? cp.band_s + patch.semi_axis_b
+                                         : patch.strips.back().s + 0.5 * patch.strips.back().width;
+    }
+    r.patches.push_back(std::move(patch));
+  }
+  if (r.patches.size() > 1) r.status |= status::kTwoPoint;
   return r;
 }
 
@@ -413,17 +672,7 @@ void check_options(const NormalOptions& o) {
 
 WheelNormalResult lift_off(const WheelContactGeometry& g, StatusBits extra) {
   WheelNormalResult r;
-  r.patches.resize(g.points.size());
-  for (std::size_t i = 0; i < g.points.size(); ++i) {
-    ContactPatch& p = r.patches[i];
-    const ContactPoint& cp = g.points[i];
-    p.point_index = static_cast<int>(i);
-    p.contact_angle = cp.contact_angle;
-    p.rolling_radius = cp.rolling_radius;
-    p.wheel_u = cp.wheel_u;
-    p.rail_u = cp.rail_u;
-    p.status = (cp.status & kPointBits) | status::kLiftOff;
-  }
+  r.point_patch.assign(g.points.size(), -1);
   r.status = status::kLiftOff | extra;
   return r;
 }

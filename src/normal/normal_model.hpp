@@ -1,11 +1,28 @@
 // Normal contact: one interface for Hertz, Linder, Kik-Piotrowski and STRIPES (A- and
 // A&B-correction). A model takes the rigid geometry of one wheel (contact points and the gap band
 // along the rail surface) and either the vertical wheel load or the vertical approach, and returns
-// one contact patch per loaded contact point, discretised into lateral strips.
+// the loaded contact patches, discretised into lateral strips.
 //
-// All contact patches of one wheel share one rigid vertical approach of the wheel: a point with
-// vertical separation h and contact angle gamma sees the normal penetration (delta_z - h) cos(gamma),
-// so the load splits between tread and flange by the physics.
+// Load: every geometric contact point carries a contribution evaluated by the model at that point
+// (its curvatures, its separation). All contributions of one wheel share one rigid vertical
+// approach delta_z: a point with vertical separation h and contact angle gamma sees the normal
+// penetration (delta_z - h) cos(gamma), so the load splits between tread and flange by the physics.
+//
+// Patches (what the result reports): a patch is one run of positive RIGID overlap
+// d(s) = delta_z cos g(s) - gap(s) along the gap band at the solved approach, as CONTACT's contact
+// search sees it (geometry/overlap_reference.hpp). The contributions of all points that lie in the
+// same run are merged into one patch (forces and areas add, strips are united): two rigid minima
+// inside one continuous overlap region give ONE patch; physically separate tread and flange
+// contacts (separate runs) stay separate patches. With NormalOptions::combine_patches CONTACT's
+// combination rule (contact_patch_rules(): runs within 8 mm merged) is applied on top.
+// The reference point of a patch (band_s, contact_angle, rolling_radius, wheel_u, rail_u) is the
+// run's overlap reference (interpenetration^2-weighted centre and angle; the same numbers as
+// overlap_references with default options). Patches are ordered by band_s ascending (band s grows
+// towards the field side: a flange patch comes before a tread patch). Only loaded patches are
+// listed.
+// Pairing with the geometry: WheelNormalResult::point_patch[i] is the index of the patch that
+// contains geometry.points[i] (-1: that point carries no load); several points may share a patch.
+// ContactPatch::point_index is the point with the smallest separation inside the patch.
 #pragma once
 
 #include <string>
@@ -49,6 +66,13 @@ struct NormalOptions {
                                           //   point's gap count for the treatment (about twice the
                                           //   virtual penetration at 150 kN) [m]
   double smoothing_half_width = 0.5e-3;   // clip_and_smooth: moving-average half-width [m]
+  // Patch grouping: also merge separate overlap runs by CONTACT's rule (contact_patch_rules():
+  // facing ends within 8 mm). Off by default: tread and flange contacts stay separate patches.
+  bool combine_patches = false;
+  // Hertz: fill ContactPatch::strips (the semi-ellipsoid cut into `strips` lateral strips). Off by
+  // default: a Hertz patch is fully described by semi_axis_a/b, normal_force and max_pressure, and
+  // the tangential layer solves it with fastsim_ellipse. Needed only for fastsim_patch on Hertz.
+  bool hertz_strips = false;
 };
 
 // One lateral strip of a contact patch. x is the rolling direction (forward), the strip spans
@@ -68,30 +92,40 @@ struct Strip {
 };
 
 struct ContactPatch {
-  int point_index = -1;            // index into WheelContactGeometry::points
+  int point_index = -1;            // geometric point with the smallest separation inside the patch
+                                   //   (index into WheelContactGeometry::points; -1: none)
+  int points = 0;                  // geometric points whose load contributions form this patch
   NormalModel model = NormalModel::hertz;
   StripPressure pressure_shape = StripPressure::semi_elliptic;
-  std::vector<Strip> strips;       // ascending s; empty when the point is not loaded
+  std::vector<Strip> strips;       // ascending s; empty for Hertz unless NormalOptions::hertz_strips
   double normal_force = 0.0;       // along the contact normal [N]
-  double penetration = 0.0;        // normal approach at the reference point [m]
+  double penetration = 0.0;        // normal approach (delta_z - h) cos(gamma) of point_index [m]
   double area = 0.0;               // [m2]
   double max_pressure = 0.0;       // [Pa]
   double semi_axis_a = 0.0;        // rolling semi-axis [m]: Hertz ellipse; KP equivalent ellipse
                                    //   (area and length/width kept); Linder max half-length; STRIPES 0
   double semi_axis_b = 0.0;        //   lateral semi-axis [m]: Hertz; KP equivalent; Linder half-width
-  double contact_angle = 0.0;      // reference point, track frame [rad]
-  double rolling_radius = 0.0;     // reference point [m]
+  // Reference point: the overlap reference of the run (see the top of this file); a contribution
+  // whose point lies in no sampled overlap run (below the band resolution, or no band) keeps its
+  // geometric point as reference.
+  double band_s = 0.0;             // reference point, band arc length [m] (FASTSIM's placement)
+  double contact_angle = 0.0;      // reference point, track frame (weighted, as CONTACT) [rad]
+  double rolling_radius = 0.0;     // reference point, undeformed wheel radius [m]
   double wheel_u = 0.0;            // reference point, wheel profile [m]
   double rail_u = 0.0;             // reference point, rail profile [m]
+  double s_start = 0.0;            // extent of the rigid overlap run in band s [m]
+  double s_end = 0.0;              // [m]
   StatusBits status = 0;
 };
 
 struct WheelNormalResult {
-  std::vector<ContactPatch> patches;  // one per contact point of the geometry, same order
+  std::vector<ContactPatch> patches;  // loaded patches (overlap runs), ascending band_s
+  std::vector<int> point_patch;       // per geometry point: index into patches, -1 when unloaded
   double vertical_approach = 0.0;     // rigid vertical approach of the wheel [m]
   double vertical_load = 0.0;         // sum of patch normal forces projected on track z [N]
   int iterations = 0;                 // load-control iterations
-  StatusBits status = 0;              // union of the patch flags plus solver flags
+  StatusBits status = 0;              // union of the patch flags plus solver flags; kTwoPoint
+                                      //   when more than one patch is loaded, kLiftOff when none
 };
 
 // Load control: the vertical wheel load (track z) is prescribed [N].

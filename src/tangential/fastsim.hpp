@@ -49,6 +49,7 @@
 //    (all gamma_i equal, r_i = r_ref - y_i sin(gamma)) both variants coincide exactly.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -86,8 +87,8 @@ inline PatchPlacement placement_of(const WheelContactGeometry& geometry,
                                    const ContactPatch& patch) {
   PatchPlacement p;
   p.lateral_sign = outward_sign(geometry.side);
-  if (patch.point_index >= 0 && patch.point_index < static_cast<int>(geometry.points.size()))
-    p.s_reference = geometry.points[static_cast<std::size_t>(patch.point_index)].band_s;
+  // The patch's own reference point (the overlap reference of its run, normal_model.hpp).
+  if (std::isfinite(patch.band_s)) p.s_reference = patch.band_s;
   return p;
 }
 

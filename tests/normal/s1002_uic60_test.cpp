@@ -103,8 +103,13 @@ TEST(S1002Uic60, SeedTable2At90kN) {
       const double ra = have_ref ? ref.at(c.dy).first : c.paper[1];
       const double rp = have_ref ? ref.at(c.dy).second : c.paper[4];
       const double da = 100.0 * (area / ra - 1.0), dp = 100.0 * (pmax / rp - 1.0);
-      std::printf("%-12s %-15s %9.1f %9.0f %+8.1f %+8.1f  %s\n", c.name, to_string(m), area, pmax,
-                  da, dp, status::describe(r.status).c_str());
+      std::printf("%-12s %-15s %9.1f %9.0f %+8.1f %+8.1f %2d patch(es) angle %+.4f  %s\n", c.name,
+                  to_string(m), area, pmax, da, dp, n, r.patches.at(0).contact_angle,
+                  status::describe(r.status).c_str());
+      // Block B: CONTACT finds one patch in all three cases (the two rigid minima at dy = 0 and
+      // +5 mm lie inside one overlap region).
+      EXPECT_EQ(r.patches.size(), 1u) << c.name << " " << to_string(m);
+      EXPECT_EQ(r.point_patch.size(), g.points.size());
       csv << c.name << ',' << c.dy << ',' << -c.dy << ',' << to_string(m) << ',' << area << ','
           << pmax << ',' << n << ',' << r.vertical_approach * 1e3 << ','
           << r.patches[0].contact_angle << ",\"" << status::describe(r.status) << "\"," << ra << ','
@@ -141,6 +146,7 @@ TEST(S1002Uic60, Seed000PressureProfilesCsv) {
     NormalOptions o;
     o.model = v.model;
     o.negative_curvature = v.treatment;
+    o.hertz_strips = true;
     const WheelNormalResult r = solve_normal_for_load(g, 78.5e3, steel, o);
     ASSERT_TRUE(r.status & status::kConverged) << v.label;
     double pmax = 0.0;

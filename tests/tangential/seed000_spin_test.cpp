@@ -32,6 +32,7 @@ TEST(Seed000PureSpin, PatchConstantVersusPerStrip) {
   for (NormalModel model : models) {
     NormalOptions o;
     o.model = model;
+    o.hertz_strips = true;  // Hertz patches carry strips only on request
     const WheelNormalResult nr = solve_normal_for_load(g, 78.5e3, steel, o);
     ASSERT_FALSE(nr.patches.empty());
     for (const ContactPatch& patch : nr.patches) {
