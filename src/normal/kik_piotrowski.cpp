@@ -44,49 +44,75 @@ struct Gauss {
   }
 };
 
-const Gauss<16>& gauss16() {
-  static const Gauss<16> g;
-  return g;
+// Quadrature rules with the node functions precomputed (they do not depend on the strip).
+struct FarRule {  // x = L sin(theta), theta = (pi/2) t, 8 nodes: weight (pi/2) w cos^2, sin^2
+  std::array<double, 8> w, s2;
+  FarRule() {
+    Gauss<8> g;
+    for (int i = 0; i < 8; ++i) {
+      const double th = 0.5 * std::numbers::pi * g.x[i];
+      const double st = std::sin(th), ct = std::cos(th);
+      w[i] = 0.5 * std::numbers::pi * g.w[i] * ct * ct;
+      s2[i] = st * st;
+    }
+  }
+};
+struct NearRule {  // theta = (pi/2) t^2, 16 nodes: weight pi t w cos^2, sin
+  std::array<double, 16> w, s;
+  NearRule() {
+    Gauss<16> g;
+    for (int i = 0; i < 16; ++i) {
+      const double t = g.x[i];
+      const double th = 0.5 * std::numbers::pi * t * t;
+      w[i] = g.w[i] * std::cos(th) * std::cos(th) * std::numbers::pi * t;
+      s[i] = std::sin(th);
+    }
+  }
+};
+const FarRule& far_rule() {
+  static const FarRule r;
+  return r;
 }
-const Gauss<8>& gauss8() {
-  static const Gauss<8> g;
-  return g;
+const NearRule& near_rule() {
+  static const NearRule r;
+  return r;
+}
+
+// asinh(y2/x) - asinh(y1/x) for x > 0, y1 < y2, as one logarithm: with R = sqrt(x^2 + y^2),
+// asinh(y/x) = ln((y + R)/x); for y < 0, y + R = x^2/(R - y) avoids the cancellation.
+inline double asinh_difference(double x, double y1, double y2) {
+  const double x2 = x * x;
+  const double r1 = std::sqrt(x2 + y1 * y1), r2 = std::sqrt(x2 + y2 * y2);
+  const double u2 = y2 >= 0.0 ? y2 + r2 : x2 / (r2 - y2);
+  const double u1 = y1 >= 0.0 ? y1 + r1 : x2 / (r1 - y1);
+  return std::log(u2 / u1);
 }
 
 }  // namespace
 
 void kp_integrals(const double* L, const double* y, int n, double width, double* I1, double* I2) {
-  const auto& g16 = gauss16();
-  const auto& g8 = gauss8();
+  const FarRule& fr = far_rule();
+  const NearRule& nr = near_rule();
   const double half_pi = 0.5 * std::numbers::pi;
   double s1 = 0.0, s2 = 0.0;
   for (int k = 0; k < n; ++k) {
     const double Lk = L[k];
     if (!(Lk > 0.0)) continue;
-    s1 += half_pi * Lk * Lk * width;
+    const double L2 = Lk * Lk;
+    s1 += half_pi * L2 * width;
     const double y1 = y[k] - 0.5 * width, y2 = y[k] + 0.5 * width;
     if (std::abs(y[k]) >= 6.0 * width) {
       // Far strip: midpoint in y; x = L sin(theta) makes the x integrand smooth.
+      const double yy = y[k] * y[k];
       double acc = 0.0;
-      for (int i = 0; i < 8; ++i) {
-        const double th = half_pi * g8.x[i];
-        const double st = std::sin(th), ct = std::cos(th);
-        acc += g8.w[i] * ct * ct / std::sqrt(Lk * Lk * st * st + y[k] * y[k]);
-      }
-      s2 += width * 2.0 * Lk * Lk * half_pi * acc;
+      for (int i = 0; i < 8; ++i) acc += fr.w[i] / std::sqrt(L2 * fr.s2[i] + yy);
+      s2 += width * 2.0 * L2 * acc;
     } else {
       // Near strip: the y integral in closed form, int dy/sqrt(x^2+y^2) = asinh(y/|x|), leaves a
       // logarithmic singularity at x = 0, tamed by theta = (pi/2) t^2.
       double acc = 0.0;
-      for (int i = 0; i < 16; ++i) {
-        const double t = g16.x[i];
-        const double th = half_pi * t * t;
-        const double st = std::sin(th), ct = std::cos(th);
-        const double xs = Lk * st;
-        const double f = std::asinh(y2 / xs) - std::asinh(y1 / xs);
-        acc += g16.w[i] * ct * ct * f * std::numbers::pi * t;
-      }
-      s2 += 2.0 * Lk * Lk * acc;
+      for (int i = 0; i < 16; ++i) acc += nr.w[i] * asinh_difference(Lk * nr.s[i], y1, y2);
+      s2 += 2.0 * L2 * acc;
     }
   }
   *I1 = s1;

@@ -5,6 +5,9 @@
 // local Hertz shape is computed lazily, once per solve, only where a patch actually reaches.
 #pragma once
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "core/material.hpp"
@@ -43,14 +46,68 @@ struct SampleData {
 struct Workspace {
   std::vector<PointContext> points;     // one per contact point
   std::vector<SampleData> samples;      // band-sized
-  std::vector<unsigned char> ready;     // samples[j] computed for owner point ready[j]-1
+  std::vector<unsigned char> ready;     // bit 0: samples[j].cos_angle set; bit 1: A and q set
   std::vector<double> B_treated;        // band-sized: lateral curvature after treatment [1/m]
   std::vector<double> v;                // band-sized: virtual overlap at the current approach [m]
+  std::vector<double> cosb;             // band-sized scratch: cos of the band angle [-]
+  std::vector<double> weight;           // band-sized scratch: overlap weight of the reference
   std::vector<double> strip_len;        // per-strip scratch: half-lengths [m]
   std::vector<double> strip_pos;        // per-strip scratch: lateral positions [m]
 };
 
 Workspace& thread_workspace();
+
+// cos for the band angles (|x| <= pi/2 covers tread and flange): Taylor series to x^20 in
+// Horner form, absolute error < 3e-15 there, several times cheaper than std::cos.
+inline double band_cos(double x) {
+  const double x2 = x * x;
+  if (x2 < 0.125) {  // |x| < 0.354 (tread): to x^12, error < 3e-15
+    double q = 1.0 / 479001600.0;
+    q = q * x2 - 1.0 / 3628800.0;
+    q = q * x2 + 1.0 / 40320.0;
+    q = q * x2 - 1.0 / 720.0;
+    q = q * x2 + 1.0 / 24.0;
+    q = q * x2 - 0.5;
+    return q * x2 + 1.0;
+  }
+  if (x2 > 2.4674011002723395) return std::cos(x);  // |x| > pi/2: not a band angle, be exact
+  double r = 1.0 / 2432902008176640000.0;            // 1/20!
+  r = r * x2 - 1.0 / 6402373705728000.0;             // 1/18!
+  r = r * x2 + 1.0 / 20922789888000.0;               // 1/16!
+  r = r * x2 - 1.0 / 87178291200.0;                  // 1/14!
+  r = r * x2 + 1.0 / 479001600.0;                    // 1/12!
+  r = r * x2 - 1.0 / 3628800.0;                      // 1/10!
+  r = r * x2 + 1.0 / 40320.0;                        // 1/8!
+  r = r * x2 - 1.0 / 720.0;                          // 1/6!
+  r = r * x2 + 1.0 / 24.0;
+  r = r * x2 - 0.5;
+  return r * x2 + 1.0;
+}
+
+// Natural logarithm for positive normal x: exponent from the bits, mantissa in [sqrt(1/2), sqrt(2))
+// by 2 atanh(u) with u = (m - 1)/(m + 1) to u^17 (error < 3e-16); std::log otherwise.
+inline double fast_log(double x) {
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  if (x <= 0.0 || biased == 0 || biased == 0x7ff) return std::log(x);
+  int e = biased - 1023;
+  double m = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
+  if (m > 1.4142135623730951) {
+    m *= 0.5;
+    ++e;
+  }
+  const double u = (m - 1.0) / (m + 1.0), u2 = u * u;
+  double r = 1.0 / 17.0;
+  r = r * u2 + 1.0 / 15.0;
+  r = r * u2 + 1.0 / 13.0;
+  r = r * u2 + 1.0 / 11.0;
+  r = r * u2 + 1.0 / 9.0;
+  r = r * u2 + 1.0 / 7.0;
+  r = r * u2 + 1.0 / 5.0;
+  r = r * u2 + 1.0 / 3.0;
+  r = r * u2 + 1.0;
+  return e * 0.6931471805599453 + 2.0 * u * r;
+}
 
 // A run of positive virtual overlap around the point's sample.
 struct Run {
@@ -66,7 +123,18 @@ struct PatchSums {
   double vertical = 0.0;  // projection on track z [N]
 };
 
+// Hertz coefficients from the shape table plus one AGM (no root find): the same numbers as
+// hertz_coefficients to ~1e-9 (hertz.cpp).
+HertzCoefficients hertz_coefficients_fast(double A, double B);
+
 // Shared preparation and evaluation (normal_model.cpp).
+inline double sample_cos(const WheelContactGeometry& g, Workspace& w, int j) {
+  if (!(w.ready[j] & 1)) {
+    w.samples[j].cos_angle = band_cos(g.band[j].contact_angle);
+    w.ready[j] |= 1;
+  }
+  return w.samples[j].cos_angle;
+}
 const SampleData& sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w, int j,
                          const NormalOptions& o);
 Run find_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
@@ -77,6 +145,9 @@ double interp_v(const WheelContactGeometry& g, const Workspace& w, double s);
 // Per-sample data (cos, A, q) linearly interpolated at arc length s.
 SampleData interp_sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
                          double s, const NormalOptions& o);
+// Both at once (one band lookup): the sample data, and the overlap v (>= 0) through *v.
+SampleData interp_sample_v(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
+                           double s, const NormalOptions& o, double* v);
 // Fills the strip fields that come from the band (position, angle, radius, u's) for strip s.
 Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s, double width,
                  bool own_angle);

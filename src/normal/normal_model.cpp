@@ -15,6 +15,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/check.hpp"
 #include "normal/normal_internal.hpp"
@@ -76,10 +79,10 @@ double band_position(const WheelContactGeometry& g, double s) {
 
 const SampleData& sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w, int j,
                          const NormalOptions& o) {
-  if (w.ready[j]) return w.samples[j];
+  if (w.ready[j] & 2) return w.samples[j];
   const BandSample& b = g.band[j];
   SampleData& d = w.samples[j];
-  d.cos_angle = std::cos(b.contact_angle);
+  d.cos_angle = sample_cos(g, w, j);
   const double radius = b.rolling_radius > 0.0 ? b.rolling_radius : p.r_ref;
   const double scale_r = p.r_ref > 0.0 ? p.r_ref / radius : 1.0;
   if (is_stripes(p.model)) {
@@ -97,7 +100,7 @@ const SampleData& sample(const WheelContactGeometry& g, const PointContext& p, W
     d.A = p.A0 * scale_r;  // planar models: A from the local rolling radius
     d.q = 0.0;
   }
-  w.ready[j] = 1;
+  w.ready[j] = 3;
   return d;
 }
 
@@ -111,7 +114,7 @@ Run find_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
     const double gap = g.band[j].gap;
     double v;
     if (own_angle) {
-      const double c = sample(g, p, w, j, o).cos_angle;
+      const double c = sample_cos(g, w, j);
       v = eps * dz * c - gap + (1.0 - eps) * p.h * c;
     } else {
       v = eps * (dz - p.h) * p.cos_ref - (gap - p.h * p.cos_ref);
@@ -207,6 +210,22 @@ SampleData interp_sample(const WheelContactGeometry& g, const PointContext& p, W
           a.q + t * (b.q - a.q)};
 }
 
+SampleData interp_sample_v(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
+                           double s, const NormalOptions& o, double* v) {
+  int j;
+  double t;
+  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
+  const SampleData a = sample(g, p, w, j, o);
+  if (t == 0.0) {
+    *v = std::max(w.v[j], 0.0);
+    return a;
+  }
+  *v = std::max(w.v[j] + t * (w.v[j + 1] - w.v[j]), 0.0);
+  const SampleData& b = sample(g, p, w, j + 1, o);
+  return {a.cos_angle + t * (b.cos_angle - a.cos_angle), a.A + t * (b.A - a.A),
+          a.q + t * (b.q - a.q)};
+}
+
 Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s, double width,
                  bool own_angle) {
   const ContactPoint& cp = g.points[p.point];
@@ -247,9 +266,11 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   const bool band_ok = nb >= 2 && g.band_step > 0.0 && std::isfinite(g.band_step);
   if (band_ok) {
     w.samples.resize(nb);
-    w.ready.assign(nb, 0);
+    w.ready.resize(nb);
     w.B_treated.resize(nb);
-    w.v.assign(nb, 0.0);
+    w.v.resize(nb);
+    w.cosb.resize(nb);
+    w.weight.resize(nb);
   }
   w.strip_len.resize(std::max(o.strips, 1));
   w.strip_pos.resize(std::max(o.strips, 1));
@@ -336,8 +357,14 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
       p.model = NormalModel::kik_piotrowski;
       p.flags |= status::kFallbackModel;
     }
-    if (p.hertz_valid) p.hz = hertz_coefficients(p.A0, p.B0);
+    if (p.hertz_valid) p.hz = hertz_coefficients_fast(p.A0, p.B0);
     if (is_stripes(p.model)) prepare_stripes(g, m, o, p, w);
+  }
+  // Band scratch of the virtual-interpenetration models (Hertz needs none).
+  if (band_ok && std::any_of(w.points.begin(), w.points.end(),
+                             [](const PointContext& p) { return p.model != NormalModel::hertz; })) {
+    std::fill(w.ready.begin(), w.ready.end(), 0);
+    std::fill(w.v.begin(), w.v.end(), 0.0);
   }
 }
 
@@ -385,24 +412,6 @@ double vertical_load(const WheelContactGeometry& g, const Material& m, const Nor
   return total;
 }
 
-// cos for the band angles (|x| <= pi/2 covers tread and flange): Taylor series to x^20 in
-// Horner form, absolute error < 3e-15 there, several times cheaper than std::cos.
-inline double band_cos(double x) {
-  const double x2 = x * x;
-  if (x2 > 2.4674011002723395) return std::cos(x);  // |x| > pi/2: not a band angle, be exact
-  double r = 1.0 / 2432902008176640000.0;            // 1/20!
-  r = r * x2 - 1.0 / 6402373705728000.0;             // 1/18!
-  r = r * x2 + 1.0 / 20922789888000.0;               // 1/16!
-  r = r * x2 - 1.0 / 87178291200.0;                  // 1/14!
-  r = r * x2 + 1.0 / 479001600.0;                    // 1/12!
-  r = r * x2 - 1.0 / 3628800.0;                      // 1/10!
-  r = r * x2 + 1.0 / 40320.0;                        // 1/8!
-  r = r * x2 - 1.0 / 720.0;                          // 1/6!
-  r = r * x2 + 1.0 / 24.0;
-  r = r * x2 - 0.5;
-  return r * x2 + 1.0;
-}
-
 // Reference of one rigid-overlap run (geometry/overlap_reference.cpp, default options: squared
 // weighting; the constant factor of the weight cancels), found by expanding from a seed sample.
 struct RunReference {
@@ -412,37 +421,72 @@ struct RunReference {
   bool clipped = false;
 };
 
-bool rigid_run(const WheelContactGeometry& g, double dz, int seed, RunReference* out) {
+bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed,
+               RunReference* out) {
   const std::vector<BandSample>& band = g.band;
   const int n = static_cast<int>(band.size());
-  auto overlap = [&](int i) { return dz * band_cos(band[i].contact_angle) - band[i].gap; };
-  if (seed < 0 || seed >= n || !(overlap(seed) > 0.0)) return false;
-  int a = seed, b = seed;
-  while (a > 0 && overlap(a - 1) > 0.0) --a;
-  while (b + 1 < n && overlap(b + 1) > 0.0) ++b;
-  // weight per unit s: p^(5/2) cos g with p = d / cos g
-  auto weight = [](double d, double c) {
-    const double p = d / c;
-    return p * p * std::sqrt(p) * c;
+  if (seed < 0 || seed >= n) return false;
+  double* d = ws.v.data();      // rigid normal overlap per sample (scratch)
+  double* c = ws.cosb.data();   // cos of the sample's angle (scratch)
+  auto eval = [&](int i) {
+    c[i] = band_cos(band[i].contact_angle);
+    d[i] = dz * c[i] - band[i].gap;
+    return d[i];
   };
+  if (!(eval(seed) > 0.0)) return false;
+  // Expansion: cos g >= 1 - g^2/2 makes dz (1 - g^2/2) - gap > 0 a cheap sufficient test; the
+  // exact overlap is evaluated only where it fails (near the ends of the run).
+  auto inside = [&](int i) {
+    const BandSample& bs = band[i];
+    if (dz * (1.0 - 0.5 * bs.contact_angle * bs.contact_angle) - bs.gap > 0.0) return true;
+    return bs.gap < dz && eval(i) > 0.0;
+  };
+  int a = seed, b = seed;
+  while (a > 0 && inside(a - 1)) --a;
+  while (b + 1 < n && inside(b + 1)) ++b;
+  if (a > 0) eval(a - 1);
+  if (b + 1 < n) eval(b + 1);
+  // Weight per unit s: p^(5/2) cos g with p = d / cos g (the factor of the weight cancels).
+  double* wt = ws.weight.data();
+  for (int j = a; j <= b; ++j) eval(j);
+  int j0 = a;
+#if defined(__SSE2__)
+  // Two samples per step: the scalar loop is bound by the latency of divsd/sqrtsd (std::sqrt must
+  // also keep errno, which stops the compiler from vectorising it).
+  for (; j0 + 1 <= b; j0 += 2) {
+    const __m128d cc = _mm_loadu_pd(c + j0);
+    const __m128d p = _mm_div_pd(_mm_loadu_pd(d + j0), cc);
+    _mm_storeu_pd(wt + j0, _mm_mul_pd(_mm_mul_pd(_mm_mul_pd(p, p), _mm_sqrt_pd(p)), cc));
+  }
+#endif
+  for (int j = j0; j <= b; ++j) {
+    const double p = d[j] / c[j];
+    wt[j] = p * p * std::sqrt(p) * c[j];
+  }
+  // Trapezoids on the uniform band: interior samples full weight, the two ends half.
   double sum_w = 0.0, sum_wq = 0.0, sum_wa = 0.0;
-  double w_prev = weight(overlap(a), band_cos(band[a].contact_angle));
-  for (int j = a; j < b; ++j) {
-    const BandSample& p = band[j];
-    const BandSample& r = band[j + 1];
-    const double w1 = weight(overlap(j + 1), band_cos(r.contact_angle));
-    const double half = 0.5 * (r.s - p.s);
-    sum_w += half * (w_prev + w1);
-    sum_wq += half * (w_prev * p.q + w1 * r.q);
-    sum_wa += half * (w_prev * p.contact_angle + w1 * r.contact_angle);
-    w_prev = w1;
+  if (b > a) {
+    for (int j = a; j <= b; ++j) {
+      const BandSample& p = band[j];
+      sum_w += wt[j];
+      sum_wq += wt[j] * p.q;
+      sum_wa += wt[j] * p.contact_angle;
+    }
+    const double ends[2] = {wt[a], wt[b]};
+    sum_w -= 0.5 * (ends[0] + ends[1]);
+    sum_wq -= 0.5 * (ends[0] * band[a].q + ends[1] * band[b].q);
+    sum_wa -= 0.5 * (ends[0] * band[a].contact_angle + ends[1] * band[b].contact_angle);
+    const double step = g.band_step;
+    sum_w *= step;
+    sum_wq *= step;
+    sum_wa *= step;
   }
   constexpr double e = 2.5;
   auto end_cell = [&](int k, int m) {
-    const double dk = overlap(k), dm = overlap(m);
+    const double dk = d[k], dm = d[m];
     const double h = band[m].s - band[k].s;
     const double len = h * dk / (dk - dm);
-    const double part = weight(dk, band_cos(band[k].contact_angle)) * std::abs(len) / (e + 1.0);
+    const double part = wt[k] * std::abs(len) / (e + 1.0);
     const double t = len / (e + 2.0) / h;
     sum_w += part;
     sum_wq += part * (band[k].q + t * (band[m].q - band[k].q));
@@ -593,7 +637,7 @@ WheelNormalResult fill(const WheelContactGeometry& g, const Material& m, const N
       if (contains(gr, s)) home = &gr;
     if (!home) {
       Group gr;
-      gr.has_ref = !o.combine_patches && rigid_run(g, dz, w.points[i].i0, &gr.ref);
+      gr.has_ref = !o.combine_patches && rigid_run(g, w, dz, w.points[i].i0, &gr.ref);
       groups.push_back(std::move(gr));
       home = &groups.back();
     }

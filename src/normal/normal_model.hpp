@@ -45,6 +45,15 @@ enum class NegativeCurvature {
   shift,            // seed 000: shift the B distribution of the patch upward, no smoothing
 };
 const char* to_string(NegativeCurvature treatment);
+
+// How STRIPES fixes the pressure amplitude for a given approach (stripes.cpp).
+enum class StripesClosure {
+  boussinesq,  // contact condition at the reference point: the Boussinesq displacement of the
+               //   assumed (parabolic) strip pressures equals the true approach, times 32/(9 pi),
+               //   the ratio that makes it exact for a Hertz ellipse (default)
+  hertz_peak,  // p_max = 4/3 of the Hertz peak at the point (FACTS 2.4.5; first version), kept
+               //   to reproduce the FACTS recipe and earlier tables
+};
 NegativeCurvature parse_negative_curvature(std::string_view name);
 
 // Pressure shape along a strip (rolling direction x).
@@ -66,6 +75,7 @@ struct NormalOptions {
                                           //   point's gap count for the treatment (about twice the
                                           //   virtual penetration at 150 kN) [m]
   double smoothing_half_width = 0.5e-3;   // clip_and_smooth: moving-average half-width [m]
+  StripesClosure stripes_closure = StripesClosure::boussinesq;
   // Patch grouping: also merge separate overlap runs by CONTACT's rule (contact_patch_rules():
   // facing ends within 8 mm). Off by default: tread and flange contacts stay separate patches.
   bool combine_patches = false;

@@ -9,8 +9,21 @@
 // (b/a)^2.) The lateral extent always comes from the real separation (FACTS 2.4.2).
 // Pressure: parabolic along each strip (Kalker's simplified theory, seed 001 sec. 1.2), proportional
 // to the local virtual overlap (FACTS 2.4.4): p(x, s) = p_max (v(s) - A_c(s) x^2) / (eps delta0).
-// Closure (FACTS 2.4.5): p_max = (4/3) p0_Hertz(A0, B0, delta0); with the A-correction on a Hertz
-// geometry this reproduces Hertz's load-approach law exactly.
+// Closure (StripesClosure):
+//  - boussinesq (default): the amplitude C of p = C (v(s) - A_c(s) x^2) satisfies the contact
+//    condition at the reference point (the geometric point of the contribution), as Kik-Piotrowski
+//    do for their N: the Boussinesq displacement (1/(pi E*)) int int p/r of the assumed pressure
+//    equals the true approach delta0, corrected by kappa = 32/(9 pi):
+//        C = kappa pi E* delta0 / J,   J = sum_k A_k int int_strip (a_k^2 - x^2) / r dx dy.
+//    kappa is the ratio of the centre displacements of a paraboloidal and a semi-ellipsoidal
+//    pressure with the same force on the same ellipse, for ANY ellipticity: a Hertz ellipse with
+//    the parabolic law displaces its centre by 32/(9 pi) times Hertz's approach; with kappa the
+//    closure is exact on Hertz geometry (A-correction) and no constant depends on the rail case.
+//    J per strip: along x in closed form, int_{-a}^{a} (a^2 - x^2)/sqrt(x^2+y^2) dx
+//    = (2a^2 + y^2) asinh(a/|y|) - a sqrt(a^2 + y^2); for the strips near the reference point
+//    (|y| < 6 widths) also along y, with the antiderivative F below.
+//  - hertz_peak (FACTS 2.4.5): p_max = (4/3) p0_Hertz(A0, B0, delta0); also exact on Hertz
+//    geometry, but on conformal treads B0 at the point says little about the patch.
 //
 // Negative or small B (FACTS 2.4.6): B enters only the local Hertz shapes (n_i/m_i) and the
 // corrections, never the lateral extent. Default NegativeCurvature::shift with stripes_ab, as in
@@ -67,7 +80,7 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
     p.B0t = std::max(p.B0t, floor);
   }
   const double A0 = p.A0, B0 = p.B0t;
-  const HertzCoefficients hz = hertz_coefficients(A0, B0);
+  const HertzCoefficients hz = hertz_coefficients_fast(A0, B0);
   const double m0 = hz.coef_a, n0 = hz.coef_b, r0 = hz.r;
   const double nm2 = (n0 / m0) * (n0 / m0);
   p.eps = p.model == NormalModel::stripes_a ? n0 * n0 * B0 / (r0 * (A0 + B0))
@@ -75,35 +88,76 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
   p.pmax_coef = (4.0 / 3.0) * m.contact_modulus() * std::sqrt((A0 + B0) / (hz.K * hz.E));
 }
 
-PatchSums stripes_patch(const WheelContactGeometry& g, const Material& /*m*/,
+namespace {
+
+// F(y) = int_0^a (a^2 - x^2) asinh(y/x) dx (odd in y): int_{y1}^{y2} int_{-a}^{a} (a^2-x^2)/r
+// = 2 (F(y2) - F(y1)).
+inline double strip_F(double a, double y) {
+  if (y == 0.0) return 0.0;
+  const double ay = std::abs(y);
+  const double r = std::sqrt(a * a + ay * ay);
+  const double asinh_y_a = fast_log((ay + r) / a);   // asinh(|y|/a)
+  const double asinh_a_y = fast_log((a + r) / ay);   // asinh(a/|y|)
+  const double f = (2.0 * a * a * a / 3.0) * asinh_y_a + (a * a * ay + ay * ay * ay / 6.0) * asinh_a_y -
+                   ay * a * r / 6.0;
+  return y > 0.0 ? f : -f;
+}
+
+// int_{y-w/2}^{y+w/2} int_{-a}^{a} (a^2 - x^2) / sqrt(x^2 + y^2) dx dy.
+inline double strip_J(double a, double y, double w) {
+  if (!(a > 0.0)) return 0.0;
+  const double ay = std::abs(y);
+  if (ay < 6.0 * w) return 2.0 * (strip_F(a, y + 0.5 * w) - strip_F(a, y - 0.5 * w));
+  const double r = std::sqrt(a * a + ay * ay);
+  return w * ((2.0 * a * a + ay * ay) * fast_log((a + r) / ay) - a * r);
+}
+
+}  // namespace
+
+PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
                         const NormalOptions& o, PointContext& p, Workspace& w, double dz,
                         ContactPatch* out) {
   const Run run = find_run(g, p, w, dz, o);
   if (!run.loaded) return {};
   const double delta0 = (dz - p.h) * p.cos_ref;
-  const double p_max = p.pmax_coef * std::sqrt(delta0);
-  const double scale = p_max / (p.eps * delta0);  // pressure per unit virtual overlap [Pa/m]
   const int n = o.strips;
   const double width = (run.s_hi - run.s_lo) / n;
-  PatchSums sums;
-  double area = 0.0;
-  if (out) out->strips.reserve(n);
+  const double s_ref = g.points[p.point].band_s;
+  const bool boussinesq = o.stripes_closure == StripesClosure::boussinesq;
+  // Per strip: overlap v, corrected A, half-length a; volume sums for the force.
+  double volume = 0.0, volume_z = 0.0, J = 0.0;  // sum v a w (4/3), ..., Boussinesq integral
   for (int k = 0; k < n; ++k) {
     const double s = run.s_lo + (k + 0.5) * width;
-    const double v = interp_v(g, w, s);
-    const SampleData d = interp_sample(g, p, w, s, o);
+    double v;
+    const SampleData d = interp_sample_v(g, p, w, s, o, &v);
     const double a = d.A > 0.0 ? std::sqrt(v / d.A) : 0.0;
-    const double pk = scale * v;
-    const double Nk = (4.0 / 3.0) * pk * a * width;  // parabola: int p0 (1 - x^2/a^2) = 4/3 p0 a
-    sums.normal += Nk;
-    sums.vertical += Nk * d.cos_angle;
-    if (out) {
+    const double vol = (4.0 / 3.0) * v * a * width;  // parabola: int (1 - x^2/a^2) = 4/3 a
+    volume += vol;
+    volume_z += vol * d.cos_angle;
+    if (boussinesq) J += d.A * strip_J(a, s - s_ref, width);
+    w.strip_len[k] = a;
+    w.strip_pos[k] = d.q;
+  }
+  double scale;  // pressure per unit virtual overlap [Pa/m]
+  if (boussinesq) {
+    constexpr double kappa = 32.0 / (9.0 * std::numbers::pi);
+    scale = J > 0.0 ? kappa * std::numbers::pi * m.contact_modulus() * delta0 / J : 0.0;
+  } else {
+    scale = p.pmax_coef * std::sqrt(delta0) / (p.eps * delta0);
+  }
+  PatchSums sums{scale * volume, scale * volume_z};
+  double area = 0.0;
+  if (out) {
+    out->strips.reserve(n);
+    for (int k = 0; k < n; ++k) {
+      const double s = run.s_lo + (k + 0.5) * width;
+      const double a = w.strip_len[k];
       Strip st = band_strip(g, p, s, width, true);
       st.x_lead = a;
       st.x_trail = -a;
-      st.pressure_peak = pk;
+      st.pressure_peak = scale * interp_v(g, w, s);
       st.ellipse_a = a;
-      st.ellipse_b = a * std::sqrt(d.q);  // local virtual ellipse: b/a = n_i/m_i
+      st.ellipse_b = a * std::sqrt(w.strip_pos[k]);  // local virtual ellipse: b/a = n_i/m_i
       area += 2.0 * a * width;
       out->strips.push_back(st);
     }

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
@@ -85,9 +86,20 @@ TEST(S1002Uic60, SeedTable2At90kN) {
     const WheelContactGeometry g = solver.solve_wheel(Side::right, WheelsetState{y, 0.0});
     ASSERT_FALSE(g.points.empty());
     const bool have_ref = ref.count(c.dy) > 0;
-    for (NormalModel m : kModels) {
+    struct Variant {
+      NormalModel model;
+      StripesClosure closure;
+      const char* label;
+    };
+    std::vector<Variant> variants;
+    for (NormalModel m : kModels) variants.push_back({m, StripesClosure::boussinesq, to_string(m)});
+    variants.push_back({NormalModel::stripes_a, StripesClosure::hertz_peak, "stripes-a/hertz-peak"});
+    variants.push_back({NormalModel::stripes_ab, StripesClosure::hertz_peak, "stripes-ab/hertz-peak"});
+    for (const Variant& var : variants) {
+      const NormalModel m = var.model;
       NormalOptions o;
       o.model = m;
+      o.stripes_closure = var.closure;
       const WheelNormalResult r = solve_normal_for_load(g, 90e3, steel, o);
       EXPECT_TRUE(r.status & status::kConverged) << c.name << " " << to_string(m);
       double area = 0.0, pmax = 0.0;
@@ -103,14 +115,14 @@ TEST(S1002Uic60, SeedTable2At90kN) {
       const double ra = have_ref ? ref.at(c.dy).first : c.paper[1];
       const double rp = have_ref ? ref.at(c.dy).second : c.paper[4];
       const double da = 100.0 * (area / ra - 1.0), dp = 100.0 * (pmax / rp - 1.0);
-      std::printf("%-12s %-15s %9.1f %9.0f %+8.1f %+8.1f %2d patch(es) angle %+.4f  %s\n", c.name,
-                  to_string(m), area, pmax, da, dp, n, r.patches.at(0).contact_angle,
+      std::printf("%-12s %-22s %9.1f %9.0f %+8.1f %+8.1f %2d patch(es) angle %+.4f  %s\n", c.name,
+                  var.label, area, pmax, da, dp, n, r.patches.at(0).contact_angle,
                   status::describe(r.status).c_str());
       // Block B: CONTACT finds one patch in all three cases (the two rigid minima at dy = 0 and
       // +5 mm lie inside one overlap region).
-      EXPECT_EQ(r.patches.size(), 1u) << c.name << " " << to_string(m);
+      EXPECT_EQ(r.patches.size(), 1u) << c.name << " " << var.label;
       EXPECT_EQ(r.point_patch.size(), g.points.size());
-      csv << c.name << ',' << c.dy << ',' << -c.dy << ',' << to_string(m) << ',' << area << ','
+      csv << c.name << ',' << c.dy << ',' << -c.dy << ',' << var.label << ',' << area << ','
           << pmax << ',' << n << ',' << r.vertical_approach * 1e3 << ','
           << r.patches[0].contact_angle << ",\"" << status::describe(r.status) << "\"," << ra << ','
           << rp << ',' << da << ',' << dp << '\n';

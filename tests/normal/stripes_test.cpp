@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 
@@ -38,16 +40,25 @@ TEST(Stripes, ACorrectionReproducesHertzOnTable1Cases) {
   struct Case {
     double B, step;
   } cases[] = {{0.5 * (0.1 + 1.0 / 0.3), 0.02e-3}, {0.5 * (1.0 / 0.03 + 1.0 / 0.013), 0.005e-3}};
-  for (const auto& c : cases) {
+  for (const auto& c : cases)
+  for (StripesClosure closure : {StripesClosure::boussinesq, StripesClosure::hertz_peak}) {
+    SCOPED_TRACE(closure == StripesClosure::boussinesq ? "boussinesq" : "hertz_peak");
     const auto g = test::hertz_band(kA, c.B, c.step);
     const HertzContact h = hertz_for_force(kA, c.B, 78e3, steel);
-    const WheelNormalResult r = solve_normal_for_load(g, 78e3, steel, opts(NormalModel::stripes_a));
+    NormalOptions o = opts(NormalModel::stripes_a);
+    o.stripes_closure = closure;
+    const WheelNormalResult r = solve_normal_for_load(g, 78e3, steel, o);
     ASSERT_TRUE(r.status & status::kConverged) << status::describe(r.status);
     ASSERT_EQ(r.patches.size(), 1u);
     const ContactPatch& p = r.patches[0];
     EXPECT_EQ(p.pressure_shape, StripPressure::parabolic);
     EXPECT_NEAR(r.vertical_load / 78e3, 1.0, 1e-7);
     const Extent e = extent(p);
+    std::printf("[measured] stripes-a %s B = %.4f 1/m: length %+.2f %% width %+.2f %% area %+.2f %% "
+                "peak/(4/3 p0) %+.2f %% approach %+.2f %%\n",
+                closure == StripesClosure::boussinesq ? "boussinesq" : "hertz-peak", c.B,
+                100 * (e.length / h.a - 1), 100 * (e.width / h.b - 1), 100 * (p.area / h.area - 1),
+                100 * (p.max_pressure / (4.0 / 3.0 * h.p0) - 1), 100 * (p.penetration / h.approach - 1));
     EXPECT_NEAR(e.length / h.a, 1.0, 0.02) << "B = " << c.B;
     EXPECT_NEAR(e.width / h.b, 1.0, 0.02) << "B = " << c.B;
     EXPECT_NEAR(p.area / h.area, 1.0, 0.02);
