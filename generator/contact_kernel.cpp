@@ -7,7 +7,7 @@
 
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
-#include "tangential/fastsim.hpp"
+#include "tangential/fastsim_contact.hpp"
 #include "wear/archard.hpp"
 
 namespace railtab {
@@ -93,6 +93,7 @@ struct KernelData {
   Material material;
   NormalOptions normal;
   TangentialSettings tangential;
+  CreepConditions creep;
   FastsimOptions fastsim;
   WearOptions wear;
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
@@ -104,15 +105,14 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
                  ColumnOutput& out) {
   FastsimWorkspace& workspace = thread_fastsim_workspace();
   thread_local WearDistribution distribution;
-  const PatchPlacement placement = placement_of(geometry, patch);
   std::size_t c = il * k.creepages();
   for (double xi : k.grids.xi) {
     for (double eta : k.grids.eta) {
       for (double phi : k.grids.phi) {
         const std::size_t cell = c++ * kSlots + slot;
         try {
-          FastsimResult creep = fastsim_patch(patch, placement, Creepage{xi, eta, phi}, k.tangential.friction,
-                                              k.tangential.speed, k.material, k.fastsim, workspace);
+          FastsimResult creep = fastsim_contact(geometry, patch, Creepage{xi, eta, phi}, k.creep, k.material,
+                                                k.fastsim, workspace);
           store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
           out.status(wheel, kCreepPart)[cell] = creep.status | extra;
           WearResult wear = archard_wear(workspace, k.wear, distribution);
@@ -174,27 +174,46 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
       continue;
     }
     const StatusBits solver_bits = normal.status & (status::kConverged | status::kNotConverged);
+    const PatchSlots patch_slots = assign_patch_slots(normal, side, k.solver.settings().flange_angle);
     for (std::size_t s = 0; s < kSlots; ++s) {
-      auto index = static_cast<std::size_t>(slots.point[s]);
-      if (slots.point[s] < 0 || index >= normal.patches.size()) continue;
-      const ContactPatch& patch = normal.patches[index];
+      if (patch_slots.patch[s] < 0) continue;  // no loaded patch in this slot: zeros, status 0
+      const ContactPatch& patch = normal.patches[static_cast<std::size_t>(patch_slots.patch[s])];
       store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
-      out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | slots.extra[s];
+      out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | patch_slots.extra[s];
       // Creep and wear on top of this normal result; an unloaded patch has none (zeros, lift_off).
-      if (patch.strips.empty() || !(patch.normal_force > 0.0)) {
+      if (!(patch.normal_force > 0.0)) {
         const std::size_t per_load = k.creepages();
         for (std::size_t c = il * per_load; c < (il + 1) * per_load; ++c) {
-          out.status(wheel, kCreepPart)[c * kSlots + s] = status::kConverged | status::kLiftOff | slots.extra[s];
-          out.status(wheel, kWearPart)[c * kSlots + s] = status::kConverged | status::kLiftOff | slots.extra[s];
+          out.status(wheel, kCreepPart)[c * kSlots + s] = status::kConverged | status::kLiftOff | patch_slots.extra[s];
+          out.status(wheel, kWearPart)[c * kSlots + s] = status::kConverged | status::kLiftOff | patch_slots.extra[s];
         }
         continue;
       }
-      solve_creep(k, geometry, patch, state, wheel, il, s, slots.extra[s], out);
+      solve_creep(k, geometry, patch, state, wheel, il, s, patch_slots.extra[s], out);
     }
   }
 }
 
 }  // namespace
+
+PatchSlots assign_patch_slots(const WheelNormalResult& normal, Side side, double flange_angle) {
+  PatchSlots a;
+  for (std::size_t i = 0; i < normal.patches.size(); ++i) {
+    const ContactPatch& patch = normal.patches[i];
+    const double angle_side = outward_sign(side) * patch.contact_angle;
+    const std::size_t slot = angle_side > flange_angle ? 1 : 0;
+    int& current = a.patch[slot];
+    if (current < 0) {
+      current = static_cast<int>(i);
+      continue;
+    }
+    a.extra[slot] |= status::kTwoPoint;
+    if (patch.normal_force > normal.patches[static_cast<std::size_t>(current)].normal_force) {
+      current = static_cast<int>(i);
+    }
+  }
+  return a;
+}
 
 SlotAssignment assign_slots(const WheelContactGeometry& geometry) {
   SlotAssignment a;
@@ -216,6 +235,9 @@ SweepKernel make_contact_kernel(const Scene& scene) {
   FastsimOptions fastsim;
   fastsim.elements_per_strip = scene.tangential.elements_per_strip;
   fastsim.spin = scene.tangential.spin_per_strip ? SpinVariation::per_strip : SpinVariation::patch_constant;
+  CreepConditions creep;
+  creep.friction = scene.tangential.friction;
+  creep.speed = scene.tangential.speed;
   WearOptions wear;
   wear.map.hardness = scene.wear.hardness;
   // The scene gives the divisor of k_dry directly (5.5 natural contamination, 11 lubricated).
@@ -223,7 +245,7 @@ SweepKernel make_contact_kernel(const Scene& scene) {
   wear.lubrication = Lubrication::natural;
   validate(wear.map);
   auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
-                                                            scene.normal, scene.tangential, fastsim, wear});
+                                                            scene.normal, scene.tangential, creep, fastsim, wear});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));

@@ -105,7 +105,7 @@ const SampleData& sample(const WheelContactGeometry& g, const PointContext& p, W
 }
 
 Run find_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
-             const NormalOptions& o) {
+             const NormalOptions& /*options*/) {
   Run run;
   if (p.i0 < 0 || p.hi < p.lo) return run;
   const bool own_angle = is_stripes(p.model);

@@ -1,0 +1,25 @@
+#include "tangential/fastsim_contact.hpp"
+
+namespace railtab {
+
+FastsimResult fastsim_contact(const WheelContactGeometry& geometry, const ContactPatch& patch,
+                              const Creepage& creepage, const CreepConditions& conditions,
+                              const Material& material, const FastsimOptions& options,
+                              FastsimWorkspace& workspace) {
+  if (!(patch.normal_force > 0.0)) {
+    FastsimResult unloaded;
+    unloaded.status = status::kLiftOff;
+    return unloaded;
+  }
+  if (patch.strips.empty() && patch.semi_axis_a > 0.0 && patch.semi_axis_b > 0.0) {
+    // Hertz without strips (NormalOptions::hertz_strips off): Kalker's FASTSIM on the ellipse.
+    const EllipticPatch ellipse{patch.semi_axis_a, patch.semi_axis_b, patch.normal_force,
+                                conditions.ellipse_strips, patch.rolling_radius, patch.wheel_u};
+    return fastsim_ellipse(ellipse, creepage, conditions.friction, conditions.speed, material,
+                           options.elements_per_strip, workspace);
+  }
+  return fastsim_patch(patch, placement_of(geometry, patch), creepage, conditions.friction,
+                       conditions.speed, material, options, workspace);
+}
+
+}  // namespace railtab
