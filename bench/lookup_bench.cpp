@@ -1,6 +1,7 @@
 // Lookup speed on a table shaped like the default scene: y 41 x xi 7 x eta 7 x phi 5 x 2 slots
 // (creep and wear 4-D, geometry and normal on y only). One query = every output of every slot
-// of one wheel. Target: < 100 ns per single query (multilinear).
+// of one wheel; a slot query (`Slot` in the name) = every output of one contact (Table::query_slot).
+// Target: < 100 ns per single query of one contact (multilinear).
 //   ./lookup_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -85,6 +86,24 @@ void run_single(benchmark::State& bench, Method method, bool coherent) {
   bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
 }
 
+// One contact per query (the tread, slot 0): what a simulation reads for a one-point contact.
+void run_slot(benchmark::State& bench, Method method, bool coherent) {
+  const Table& t = table(method);
+  const auto q = coherent ? coherent_queries(t, 1 << 14) : random_queries(t, 1 << 14);
+  railtab::lookup::Contact c;
+  std::size_t k = 0;
+  for (auto _ : bench) {
+    const Query& item = q[k];
+    t.query_slot(item.wheel, item.state, 0, c);
+    benchmark::DoNotOptimize(c);
+    k = (k + 1) & (q.size() - 1);
+  }
+  bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
+}
+
+void BM_LookupSlotLinearRandom(benchmark::State& s) { run_slot(s, Method::kLinear, false); }
+void BM_LookupSlotLinearCoherent(benchmark::State& s) { run_slot(s, Method::kLinear, true); }
+
 void BM_LookupLinearRandom(benchmark::State& s) { run_single(s, Method::kLinear, false); }
 void BM_LookupLinearCoherent(benchmark::State& s) { run_single(s, Method::kLinear, true); }
 void BM_LookupCubicRandom(benchmark::State& s) { run_single(s, Method::kCubic, false); }
@@ -105,6 +124,8 @@ void BM_LookupLinearBatch(benchmark::State& bench) {
   bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations() * n));
 }
 
+BENCHMARK(BM_LookupSlotLinearRandom);
+BENCHMARK(BM_LookupSlotLinearCoherent);
 BENCHMARK(BM_LookupLinearRandom);
 BENCHMARK(BM_LookupLinearCoherent);
 BENCHMARK(BM_LookupCubicRandom);

@@ -102,6 +102,13 @@ int railtab_lookup_open(const char* path, int method, railtab_lookup_table** tab
 int railtab_lookup_query(const railtab_lookup_table* table, int wheel,
                          const railtab_lookup_state* state, railtab_lookup_result* result);
 
+/* One contact slot only (0 = tread, 1 = flange): *contact receives what railtab_lookup_query
+ * would put in result->contact[slot] (query bits included in contact->status), reading only
+ * that slot's data. RAILTAB_LOOKUP_ERROR_ARGUMENT for a slot outside 0 .. n_slots-1. */
+int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
+                              const railtab_lookup_state* state, int slot,
+                              railtab_lookup_contact* contact);
+
 /* n states at once (e.g. both wheels of every wheelset): results[k] for wheels[k], states[k]. */
 int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, const int* wheels,
                                const railtab_lookup_state* states,

@@ -90,6 +90,22 @@ int railtab_lookup_query(const railtab_lookup_table* table, int wheel,
   return RAILTAB_LOOKUP_OK;
 }
 
+int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
+                              const railtab_lookup_state* state, int slot,
+                              railtab_lookup_contact* contact) {
+  if (!table || !state || !contact)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_slot: null argument");
+  if (wheel != RAILTAB_LOOKUP_LEFT && wheel != RAILTAB_LOOKUP_RIGHT)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_slot: wheel must be 0 or 1");
+  if (slot < 0 || slot >= table->table.n_slots())
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT,
+                "railtab_lookup_query_slot: slot outside 0 .. n_slots-1");
+  lk::Contact c;
+  table->table.query_slot(static_cast<lk::Wheel>(wheel), to_state(*state), slot, c);
+  std::memcpy(contact, &c, sizeof(*contact));
+  return RAILTAB_LOOKUP_OK;
+}
+
 int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, const int* wheels,
                                const railtab_lookup_state* states,
                                railtab_lookup_result* results) {

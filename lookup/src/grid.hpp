@@ -2,6 +2,7 @@
 // Kept apart from the interpolators (interpolate.hpp), which only see (cell, fraction) pairs.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -25,7 +26,47 @@ class Axis {
 
   // Places x in its cell; x outside [front, back] is clamped to the edge and the call returns
   // true (the caller flags kOutOfRange). x must be finite. No allocation, no throw.
-  bool locate(double x, AxisLoc& loc) const noexcept;
+  // Inline: it runs once per tabulated axis per query.
+  bool locate(double x, AxisLoc& loc) const noexcept {
+    const int n = size();
+    const double* xs = x_.data();
+    bool clamped = false;
+    if (x < xs[0]) {
+      x = xs[0];
+      clamped = true;
+    } else if (x > xs[n - 1]) {
+      x = xs[n - 1];
+      clamped = true;
+    }
+    int i;
+    if (uniform_) {
+      // x - xs[0] >= 0 here, so the conversion truncates towards the cell start.
+      i = std::min(static_cast<int>((x - xs[0]) * inv_h_), n - 2);
+      if (x < xs[i]) --i;  // rounding put us one cell too far (i > 0 since x >= xs[0])
+      else if (x > xs[i + 1] && i < n - 2) ++i;
+    } else {
+      // First interior node above x; the cell starts one before it.
+      i = static_cast<int>(std::upper_bound(xs + 1, xs + n - 1, x) - xs) - 1;
+    }
+    loc.i = i;
+    loc.t = (x - xs[i]) * inv_width_[i];
+    return clamped;
+  }
+
+  // The query path's variant: the same cell (or, for x within rounding of a node, the
+  // neighbouring cell with t at 0 or 1: the same interpolated value) and t clamped to [0, 1],
+  // but on a uniform axis without any load that depends on the cell index: u = (x - x0) / h,
+  // i = min(floor(u), n - 2), t = u - i (|error| ~ n ulp). Non-uniform axes: as locate().
+  bool locate_fast(double x, AxisLoc& loc) const noexcept {
+    if (!uniform_) return locate(x, loc);
+    const bool clamped = x < front_ || x > back_;
+    double u = (x - front_) * inv_h_;
+    u = std::min(std::max(u, 0.0), last_cell_ + 1.0);  // clamp: maxsd/minsd, no branch
+    const int i = std::min(static_cast<int>(u), last_cell_);
+    loc.i = i;
+    loc.t = u - static_cast<double>(i);
+    return clamped;
+  }
 
   int size() const noexcept { return static_cast<int>(x_.size()); }
   const double* nodes() const noexcept { return x_.data(); }
@@ -36,6 +77,8 @@ class Axis {
   std::vector<double> inv_width_;  // 1 / (x[i+1] - x[i]) (n-1): a multiply instead of a divide
   bool uniform_ = false;           // equal spacing: the cell comes from one multiply, no search
   double inv_h_ = 0.0;             // 1 / spacing when uniform
+  double front_ = 0.0, back_ = 0.0;  // first and last node
+  int last_cell_ = 0;              // n - 2
 };
 
 }  // namespace railtab::lookup::detail

@@ -1,80 +1,132 @@
 #include "interpolate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <utility>
+
+#include "part_spec.hpp"
 
 namespace railtab::lookup::detail {
 namespace {
 
 // Status of a cell: trouble bits from ANY corner, kConverged only if ALL corners converged.
-// Statuses are folded in chunks of 4 uint32 (records pad them so), one 128-bit OR/AND each.
+// A record's statuses are 4 uint32 (padded with 0), folded as two 64-bit words per corner.
 class StatusFold {
  public:
-  explicit StatusFold(int n) : chunks_((n + kStatusChunk - 1) / kStatusChunk) {
-    for (int j = 0; j < chunks_ * kStatusChunk; ++j) any_[j] = 0, all_[j] = ~0u;
-  }
   // `statuses` points at a record's packed uint32 statuses (after the padded values).
   void add(const double* statuses) noexcept {
-    const auto* bytes = reinterpret_cast<const unsigned char*>(statuses);
-    for (int c = 0; c < chunks_; ++c) {
-      StatusBits bits[kStatusChunk];
-      std::memcpy(bits, bytes + c * sizeof bits, sizeof bits);
-      for (int q = 0; q < kStatusChunk; ++q) {
-        any_[c * kStatusChunk + q] |= bits[q];
-        all_[c * kStatusChunk + q] &= bits[q];
-      }
-    }
+    std::uint64_t w[2];
+    std::memcpy(w, statuses, sizeof w);
+    any_[0] |= w[0], any_[1] |= w[1];
+    all_[0] &= w[0], all_[1] &= w[1];
   }
   void write(StatusBits* status) const noexcept {
-    for (int j = 0; j < chunks_ * kStatusChunk; ++j)
-      status[j] = (any_[j] & ~status::kConverged) | (all_[j] & status::kConverged);
+    std::uint64_t out[2];
+    for (int j = 0; j < 2; ++j) out[j] = (any_[j] & ~kConverged2) | (all_[j] & kConverged2);
+    std::memcpy(status, out, sizeof out);
   }
 
  private:
-  int chunks_;                     // chunks of kStatusChunk statuses per record
-  StatusBits any_[kMaxStatuses];   // OR over corners
-  StatusBits all_[kMaxStatuses];   // AND over corners
+  static constexpr std::uint64_t kConverged2 =
+      std::uint64_t{status::kConverged} | (std::uint64_t{status::kConverged} << 32);
+  std::uint64_t any_[2] = {0, 0};     // OR over corners
+  std::uint64_t all_[2] = {~0ull, ~0ull};  // AND over corners
+};
+static_assert(kStatusDoubles * sizeof(double) == 4 * sizeof(StatusBits), "4 statuses per record");
+
+// Copies one slot's values (record order: parts, outputs) and its part statuses into `c`.
+void store_slot(const Block& b, const double* values, const StatusBits* status,
+                Contact& c) noexcept {
+  for (int k = 0; k < b.n_parts; ++k) {
+    const PartSpec& spec = kPartSpecs[b.part[k]];
+    for (int o = 0; o < spec.n_out; ++o) c.value[spec.first_output + o] = values[o];
+    values += spec.n_out;
+    c.part_status[b.part[k]] = status[k];
+  }
+}
+
+// Corner weights and record offsets of the 2^D corners of the cell (bit d of the corner index
+// = upper node along dimension d), and the offset of corner 0.
+template <int D>
+struct Corners {
+  static constexpr int kCount = 1 << D;
+  double w[kCount];
+  std::size_t off[kCount];
+  std::size_t base = 0;
+
+  Corners(const Block& b, const AxisLoc* loc) noexcept {
+    w[0] = 1.0;
+    off[0] = 0;
+#pragma GCC unroll 8
+    for (int d = 0; d < D; ++d) {
+      const AxisLoc& l = loc[b.var[d]];
+      base += static_cast<std::size_t>(l.i) * b.stride[d];
+      const int half = 1 << d;
+#pragma GCC unroll 64
+      for (int c = 0; c < half; ++c) {
+        w[c + half] = w[c] * l.t;
+        off[c + half] = off[c] + b.stride[d];
+        w[c] *= 1.0 - l.t;
+      }
+    }
+  }
 };
 
-// Multilinear over the 2^D corners, D fixed at compile time so the corner loops unroll. Corner
-// weights and offsets first, then the values in chunks of 4 with the sums in registers.
-template <int D>
-void linear_kernel(const Block& b, const AxisLoc* loc, double* values,
-                   StatusBits* status) noexcept {
-  constexpr int kCorners = 1 << D;
-  double w[kCorners];
-  std::size_t off[kCorners];
-  w[0] = 1.0;
-  off[0] = 0;
-  std::size_t base = 0;
-  for (int d = 0; d < D; ++d) {
-    const AxisLoc& l = loc[b.var[d]];
-    base += static_cast<std::size_t>(l.i) * b.stride[d];
-    const int half = 1 << d;
-    for (int c = 0; c < half; ++c) {
-      w[c + half] = w[c] * l.t;
-      off[c + half] = off[c] + b.stride[d];
-      w[c] *= 1.0 - l.t;
-    }
-  }
-  const double* data = b.data.data() + base;
-  for (int k = 0; k < b.values_padded; k += kValueChunk) {
-    double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
-    for (int c = 0; c < kCorners; ++c) {
-      const double* r = data + off[c] + k;
-      a0 += w[c] * r[0];
-      a1 += w[c] * r[1];
-      a2 += w[c] * r[2];
-      a3 += w[c] * r[3];
-    }
-    values[k] = a0, values[k + 1] = a1, values[k + 2] = a2, values[k + 3] = a3;
-  }
-  StatusFold fold(b.n_status);
-  for (int c = 0; c < kCorners; ++c) fold.add(data + off[c] + b.values_padded);
-  fold.write(status);
+// Two doubles in one SSE2 register (GCC/Clang vector extension; x86-64 baseline).
+typedef double V2 __attribute__((vector_size(16)));
+
+inline V2 load2(const double* p) noexcept {
+  V2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
 }
-static_assert(kValueChunk == 4, "linear_kernel accumulates chunks of 4");
+
+// Multilinear over the 2^D corners for records of NVP (even) values, both fixed at compile time
+// so the corner loop unrolls and the NVP/2 sums stay in registers: per corner, NVP/2 packed
+// multiply-adds over one contiguous run of the record, then its 4 statuses folded. Sums are
+// formed corner by corner in index order (split chains or a summation tree measured slower:
+// more registers, spills). Values go straight into the contact's outputs.
+template <int D, int NVP>
+void linear_kernel(const Block& b, const AxisLoc* loc, int slot_begin, int slot_end,
+                   Contact* contact) noexcept {
+  constexpr int kCorners = 1 << D;
+  constexpr int kPairs = NVP / 2;
+  const Corners<D> corners(b, loc);
+  const int nv = b.n_values;  // NVP - 1 or NVP
+  for (int s = slot_begin; s < slot_end; ++s) {
+    const double* data =
+        b.data.data() + static_cast<std::size_t>(s) * b.slot_size + corners.base;
+    V2 acc[kPairs];
+#pragma GCC unroll 16
+    for (int k = 0; k < kPairs; ++k) acc[k] = V2{0.0, 0.0};
+    StatusFold fold;
+#pragma GCC unroll 64
+    for (int c = 0; c < kCorners; ++c) {
+      const double* r = data + corners.off[c];
+      const V2 wc = V2{corners.w[c], corners.w[c]};
+#pragma GCC unroll 16
+      for (int k = 0; k < kPairs; ++k) acc[k] += wc * load2(r + 2 * k);
+      fold.add(r + NVP);
+    }
+    Contact& out_contact = contact[s - slot_begin];
+    double tmp[NVP];
+    std::memcpy(tmp, acc, sizeof tmp);
+    StatusBits st[4];
+    fold.write(st);
+    if (b.first_output >= 0) {
+      double* out = out_contact.value + b.first_output;
+#pragma GCC unroll 16
+      for (int k = 0; k < NVP - 1; ++k) out[k] = tmp[k];
+      if (nv == NVP) out[NVP - 1] = tmp[NVP - 1];
+      for (int p = 0; p < b.n_parts; ++p) out_contact.part_status[b.part[p]] = st[p];
+    } else {
+      store_slot(b, tmp, st, out_contact);
+    }
+  }
+}
 
 // Derivative at e of the parabola through (p[0], p[1], p[2]), as weights on the three values.
 void parabola_slope(const double p[3], double e, double w[3]) noexcept {
@@ -189,7 +241,7 @@ void cubic_recurse(const CubicContext& c, int d, std::size_t offset, bool inner,
   }
   const CubicAxis& a = c.axes[d];
   const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
-  double sub[4][kMaxValues];
+  double sub[4][kMaxSlotValues];
   for (int j = lo; j <= hi; ++j)
     cubic_recurse(c, d + 1, offset + a.idx[j] * a.stride, inner && (j == 1 || j == 2), sub[j],
                   fold);
@@ -203,29 +255,37 @@ void cubic_recurse(const CubicContext& c, int d, std::size_t offset, bool inner,
 
 }  // namespace
 
-void interpolate_linear(const Block& block, const AxisLoc* loc, double* values,
-                        StatusBits* status) noexcept {
-  switch (block.n_dims) {
-    case 0: return linear_kernel<0>(block, loc, values, status);
-    case 1: return linear_kernel<1>(block, loc, values, status);
-    case 2: return linear_kernel<2>(block, loc, values, status);
-    case 3: return linear_kernel<3>(block, loc, values, status);
-    case 4: return linear_kernel<4>(block, loc, values, status);
-    case 5: return linear_kernel<5>(block, loc, values, status);
-    default: return linear_kernel<6>(block, loc, values, status);
-  }
+// Kernels for every (D, padded value count) pair, looked up once at load.
+template <int D, int... P>
+constexpr std::array<LinearKernel, sizeof...(P)> kernels_for_d(
+    std::integer_sequence<int, P...>) noexcept {
+  return {&linear_kernel<D, 2 * (P + 1)>...};
+}
+template <int... D>
+constexpr std::array<std::array<LinearKernel, kMaxSlotValues / 2>, sizeof...(D)> kernel_table(
+    std::integer_sequence<int, D...>) noexcept {
+  return {kernels_for_d<D>(std::make_integer_sequence<int, kMaxSlotValues / 2>())...};
+}
+constexpr auto kLinearKernels = kernel_table(std::make_integer_sequence<int, kMaxDims + 1>());
+static_assert(kMaxSlotValues % 2 == 0, "the table covers every even padded count");
+
+LinearKernel linear_kernel_for(int n_dims, int values_padded) noexcept {
+  return kLinearKernels[n_dims][values_padded / 2 - 1];
 }
 
 void interpolate_cubic(const Block& block, const Axis* axes, const AxisLoc* loc, bool monotone,
-                       double* values, StatusBits* status) noexcept {
+                       int slot, Contact& contact) noexcept {
   CubicAxis ax[kMaxDims];
   for (int d = 0; d < block.n_dims; ++d)
     ax[d] = make_cubic_axis(axes[block.var[d]], loc[block.var[d]], block.stride[d]);
-  const CubicContext c{block.data.data(), block.n_dims, block.n_values, block.values_padded, ax,
-                       monotone};
-  StatusFold fold(block.n_status);
+  const CubicContext c{block.data.data() + static_cast<std::size_t>(slot) * block.slot_size,
+                       block.n_dims, block.n_values, block.values_padded, ax, monotone};
+  StatusFold fold;
+  double values[kMaxSlotValues];
   cubic_recurse(c, 0, 0, true, values, fold);
-  fold.write(status);
+  StatusBits st[4];
+  fold.write(st);
+  store_slot(block, values, st, contact);
 }
 
 }  // namespace railtab::lookup::detail

@@ -7,18 +7,21 @@
 
 namespace railtab::lookup::detail {
 
-// Interpolates the n_values values of `block` at the cells loc[var] (indexed by state variable)
-// into values[0 .. values_padded-1], and combines the statuses of the cell's 2^D corner nodes
-// into status[0 .. n_status-1]: every bit but kConverged ORed, kConverged ANDed.
-void interpolate_linear(const Block& block, const AxisLoc* loc, double* values,
-                        StatusBits* status) noexcept;
+// The multilinear kernel for a block of `n_dims` tabulated axes (0..kMaxDims) and records of
+// `values_padded` values (even, 2..kMaxSlotValues), chosen once at load. It interpolates the block's values of slots [slot_begin, slot_end) at the cells
+// loc[var] (indexed by state variable) straight into contact[slot - slot_begin].value, and
+// combines the statuses of the cell's 2^D corner nodes into .part_status[part]: every bit but
+// kConverged ORed, kConverged ANDed. The corner weights and offsets are computed once for all
+// slots; both counts are template parameters so the corner loop unrolls and the sums stay in
+// registers.
+LinearKernel linear_kernel_for(int n_dims, int values_padded) noexcept;
 
 // Tensor-product cubic Hermite, 4 nodes per axis (fewer at the table edge), slopes from the
 // parabola through 3 neighbouring nodes (exact for quadratics); with `monotone`, slopes limited
 // per node so that 0 <= slope / secant <= 3 on both sides (Fritsch-Carlson sufficient condition;
 // zero slope at a data extremum), which keeps the result C1 and free of overshoot. Status as in
-// interpolate_linear (corners of the cell only, not the outer stencil nodes).
+// the linear kernel (corners of the cell only, not the outer stencil nodes). One slot.
 void interpolate_cubic(const Block& block, const Axis* axes, const AxisLoc* loc, bool monotone,
-                       double* values, StatusBits* status) noexcept;
+                       int slot, Contact& contact) noexcept;
 
 }  // namespace railtab::lookup::detail

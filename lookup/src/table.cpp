@@ -11,14 +11,11 @@
 namespace railtab::lookup {
 namespace {
 
-// A fixed (untabulated) variable counts as "at its fixed value" within this relative tolerance
-// (absolute below magnitude 1): round-off in the caller's state must not flag kOutOfRange.
-constexpr double kFixedTolerance = 1e-9;
-
 void zero_contact(Contact& c, StatusBits status) noexcept {
   for (double& v : c.value) v = 0.0;
   for (StatusBits& s : c.part_status) s = 0;
   c.status = status;
+  c.reserved = 0;
 }
 
 }  // namespace
@@ -33,23 +30,76 @@ Table Table::load(const std::string& path, const LoadOptions& options) {
   return Table(detail::load_table_data(path, options));
 }
 
-void Table::query(Wheel wheel, const State& state, Result& result) const noexcept {
+namespace {
+
+// Places every tabulated variable of `state` in its cell (loc, indexed by Var) and returns the
+// query bits: kOutOfRange (clamped, or a fixed variable off its value), kInvalidInput (NaN/inf).
+StatusBits locate_state(const detail::TableData& d, const State& state,
+                        detail::AxisLoc* loc) noexcept {
   using namespace detail;
-  const TableData& d = *data_;
   const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi};
-  AxisLoc loc[kNumVars];
-  StatusBits q = 0;  // query bits, ORed into every slot
-  for (int var = 0; var < kNumVars; ++var) {
-    if (d.tabulated[var]) {
-      if (!std::isfinite(v[var])) q |= status::kInvalidInput;
-      else if (d.axis[var].locate(v[var], loc[var])) q |= status::kOutOfRange;
-    } else if (d.fixed[var]) {
-      const double f = d.fixed_value[var];
-      if (!std::isfinite(v[var])) q |= status::kInvalidInput;
-      else if (std::abs(v[var] - f) > kFixedTolerance * std::max(1.0, std::abs(f)))
-        q |= status::kOutOfRange;
-    }  // a variable the table neither tabulates nor fixes does not affect it: ignored
+  // A variable the table neither tabulates nor fixes does not affect it: ignored.
+  bool finite = true, out = false;
+  for (int k = 0; k < d.n_tabulated; ++k) {
+    const int var = d.tabulated_var[k];
+    const double x = v[var];
+    if (!std::isfinite(x)) {
+      finite = false;
+      continue;
+    }
+    out |= d.axis[var].locate_fast(x, loc[var]);
   }
+  for (int k = 0; k < d.n_fixed; ++k) {
+    const int var = d.fixed_var[k];
+    const double x = v[var];
+    const bool ok = std::isfinite(x);
+    finite &= ok;
+    out |= ok && std::abs(x - d.fixed_value[var]) > d.fixed_tolerance[var];
+  }
+  return (finite ? 0u : status::kInvalidInput) | (out ? status::kOutOfRange : 0u);
+}
+// Interpolates slots [slot_begin, slot_end) of wheel w into contact[0 .. slot_end-slot_begin-1]
+// (values, part statuses, combined status | q). The query must be valid.
+void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc* loc,
+                       StatusBits q, int slot_begin, int slot_end, Contact* contact) noexcept {
+  using namespace detail;
+  const int n = slot_end - slot_begin;
+  for (int a = 0; a < d.n_absent; ++a) {
+    const int p = d.absent_part[a];
+    const PartSpec& spec = kPartSpecs[p];
+    for (int s = 0; s < n; ++s) {
+      for (int k = 0; k < spec.n_out; ++k) contact[s].value[spec.first_output + k] = 0.0;
+      contact[s].part_status[p] = 0;
+    }
+  }
+  for (int b = 0; b < d.n_blocks; ++b) {
+    const Block& block = d.block[w][b];
+    if (d.method == Method::kLinear) {
+      block.linear(block, loc, slot_begin, slot_end, contact);
+    } else {
+      for (int s = 0; s < n; ++s)
+        interpolate_cubic(block, d.axis, loc, d.method == Method::kMonotoneCubic, slot_begin + s,
+                          contact[s]);
+    }
+  }
+  for (int s = 0; s < n; ++s) {
+    StatusBits any = 0, all = ~0u;
+    for (int p = 0; p < kNumParts; ++p) {
+      if (!d.has_part[p]) continue;
+      any |= contact[s].part_status[p];
+      all &= contact[s].part_status[p];
+    }
+    contact[s].status = (any & ~status::kConverged) | (all & status::kConverged) | q;
+    contact[s].reserved = 0;
+  }
+}
+
+}  // namespace
+
+void Table::query(Wheel wheel, const State& state, Result& result) const noexcept {
+  const detail::TableData& d = *data_;
+  detail::AxisLoc loc[detail::kNumVars];
+  StatusBits q = locate_state(d, state, loc);
   const int w = static_cast<int>(wheel);
   if (w != 0 && w != 1) q |= status::kInvalidInput;
   const int ns = d.n_slots;
@@ -59,46 +109,26 @@ void Table::query(Wheel wheel, const State& state, Result& result) const noexcep
     for (int s = 0; s < ns; ++s) zero_contact(result.contact[s], status::kInvalidInput);
     return;
   }
+  interpolate_slots(d, w, loc, q, 0, ns, result.contact);
+}
 
-  StatusBits any[kMaxSlots] = {}, all[kMaxSlots] = {~0u, ~0u, ~0u, ~0u};
-  static_assert(kMaxSlots == 4, "initialiser lists kMaxSlots entries");
-  for (int p = 0; p < kNumParts; ++p) {
-    if (d.has_part[p]) continue;
-    const PartSpec& spec = kPartSpecs[p];
-    for (int s = 0; s < ns; ++s) {
-      for (int k = 0; k < spec.n_out; ++k) result.contact[s].value[spec.first_output + k] = 0.0;
-      result.contact[s].part_status[p] = 0;
-    }
+void Table::query_slot(Wheel wheel, const State& state, int slot, Contact& contact) const noexcept {
+  const detail::TableData& d = *data_;
+  detail::AxisLoc loc[detail::kNumVars];
+  StatusBits q = locate_state(d, state, loc);
+  const int w = static_cast<int>(wheel);
+  if ((w != 0 && w != 1) || slot < 0 || slot >= d.n_slots) q |= status::kInvalidInput;
+  if (q & status::kInvalidInput) {
+    zero_contact(contact, status::kInvalidInput);  // as query() does for every slot
+    return;
   }
-  double values[kMaxValues];
-  StatusBits block_status[kMaxStatuses];
-  for (int b = 0; b < d.n_blocks; ++b) {
-    const Block& block = d.block[w][b];
-    if (d.method == Method::kLinear)
-      interpolate_linear(block, loc, values, block_status);
-    else
-      interpolate_cubic(block, d.axis, loc, d.method == Method::kMonotoneCubic, values,
-                        block_status);
-    // Scatter in record order: parts, slots, outputs; then statuses: parts, slots.
-    const double* src = values;
-    const StatusBits* st = block_status;
-    for (int k = 0; k < block.n_parts; ++k) {
-      const int p = block.part[k];
-      const PartSpec& spec = kPartSpecs[p];
-      for (int s = 0; s < ns; ++s, src += spec.n_out) {
-        double* out = result.contact[s].value + spec.first_output;
-        for (int o = 0; o < spec.n_out; ++o) out[o] = src[o];
-      }
-      for (int s = 0; s < ns; ++s, ++st) {
-        result.contact[s].part_status[p] = *st;
-        any[s] |= *st;
-        all[s] &= *st;
-      }
-    }
-  }
-  for (int s = 0; s < ns; ++s)
-    result.contact[s].status =
-        (any[s] & ~status::kConverged) | (all[s] & status::kConverged) | q;
+  interpolate_slots(d, w, loc, q, slot, slot + 1, &contact);
+}
+
+Contact Table::query_slot(Wheel wheel, const State& state, int slot) const noexcept {
+  Contact c;
+  query_slot(wheel, state, slot, c);
+  return c;
 }
 
 Result Table::query(Wheel wheel, const State& state) const noexcept {

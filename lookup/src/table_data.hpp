@@ -2,19 +2,21 @@
 //
 // Parts of one wheel that are tabulated over the same axes (creep and wear always; geometry and
 // normal when load is not swept) share one BLOCK, so a query walks each set of corners once.
-// A block stores its grid nodes in C order (first axis slowest, the file's order without the
-// slot axis), one RECORD of doubles per node:
+// A block is SLOT-MAJOR: one grid per contact slot, one after the other, so a query for one
+// slot (Table::query_slot) touches only that slot's outputs. Each slot grid stores its nodes in
+// C order (first axis slowest, the file's order without the slot axis), one RECORD per node:
 //
-//   record = [ part a: slot 0: out_0 .. out_{n-1} | slot 1: .. | part b: slot 0: .. | ... |
-//              zero padding to a multiple of 4 doubles |
-//              statuses as uint32: part a slot 0, part a slot 1, .., part b slot 0, ..,
-//              padded with 0 to a multiple of 4 uint32 ]
+//   record = [ part a: out_0 .. out_{n-1} | part b: .. | zero padding to an even count |
+//              statuses as uint32: part a, part b, .., padded with 0 to 4 uint32 (2 doubles) ]
 //
-// so one multilinear query reads 2^D records, each with unit stride, values in chunks of 4
-// (register accumulators), statuses in the same cache lines as the values.
+// The default creep + wear block has 5 values + 1 pad + 2 status doubles = 64 bytes: one cache
+// line per node, and the two corners along the fastest axis are two adjacent lines. A
+// multilinear query reads 2^D records per slot, each with unit stride; statuses are folded with
+// two 64-bit OR/AND per corner. The data start on a 64-byte boundary.
 #pragma once
 
 #include <cstddef>
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,11 +27,32 @@
 namespace railtab::lookup::detail {
 
 inline constexpr int kMaxDims = kNumVars;  // a block tabulates at most y, roll, load, xi, eta, phi
-inline constexpr int kMaxValues = kMaxSlots * kNumOutputs;  // values in one record, at most
-inline constexpr int kMaxStatuses = kMaxSlots * kNumParts;  // statuses in one record, at most
-inline constexpr int kValueChunk = 4;   // values are accumulated (and padded) in chunks of this
-inline constexpr int kStatusChunk = 4;  // statuses are folded (and padded) in chunks of this
-static_assert(kMaxStatuses % kStatusChunk == 0, "status arrays hold whole chunks");
+inline constexpr int kMaxSlotValues = kNumOutputs;  // values in one slot record, at most
+inline constexpr int kStatusDoubles = 2;  // 4 uint32 statuses (one per part, at most) per record
+static_assert(kNumParts * sizeof(StatusBits) <= kStatusDoubles * sizeof(double),
+              "every part's status fits in a record");
+
+// std::allocator with 64-byte (cache line) alignment, so records never straddle more lines than
+// their size requires.
+template <class T>
+struct CacheAligned {
+  using value_type = T;
+  static constexpr std::align_val_t kAlign{64};
+  CacheAligned() = default;
+  template <class U>
+  CacheAligned(const CacheAligned<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
+  void deallocate(T* p, std::size_t n) noexcept { ::operator delete(p, n * sizeof(T), kAlign); }
+  template <class U>
+  bool operator==(const CacheAligned<U>&) const noexcept { return true; }
+};
+
+struct Block;
+// Multilinear kernel for one block, chosen at load by the block's dimension count: writes the
+// values and part statuses of slots [slot_begin, slot_end) into contact[slot - slot_begin]
+// (interpolate.hpp).
+using LinearKernel = void (*)(const Block& block, const AxisLoc* loc, int slot_begin,
+                              int slot_end, Contact* contact) noexcept;
 
 struct Block {
   int n_dims = 0;                     // tabulated axes (slot excluded), 0..kMaxDims
@@ -37,11 +60,14 @@ struct Block {
   std::size_t stride[kMaxDims] = {};  // doubles between neighbouring nodes along each dimension
   int n_parts = 0;                    // parts stored in this block
   int part[kNumParts] = {};           // which (Part), in file order
-  int n_values = 0;                   // sum over its parts of n_slots * outputs
-  int values_padded = 0;              // n_values rounded up to a multiple of kValueChunk
-  int n_status = 0;                   // n_parts * n_slots (stored padded to kStatusChunk)
-  int record = 0;                     // doubles per node
-  std::vector<double> data;           // nodes x record, see the layout above
+  int n_values = 0;                   // values per slot record: sum over its parts of outputs
+  int values_padded = 0;              // n_values rounded up to an even count
+  int record = 0;                     // doubles per node: values_padded + kStatusDoubles
+  int first_output = -1;              // Output of value 0 when the parts' outputs are one
+                                      // contiguous run of Contact::value (always in format 1.0)
+  std::size_t slot_size = 0;          // doubles per slot grid (nodes x record)
+  LinearKernel linear = nullptr;      // multilinear kernel for n_dims
+  std::vector<double, CacheAligned<double>> data;  // n_slots grids, see the layout above
 };
 
 struct TableData {
@@ -54,6 +80,13 @@ struct TableData {
   Axis axis[kNumVars];                // its nodes (only where tabulated)
   bool fixed[kNumVars] = {};          // variable is listed in fixed_axes
   double fixed_value[kNumVars] = {};  // its value, SI
+  int n_tabulated = 0;                // tabulated variables, and which (Var), in table order:
+  int tabulated_var[kNumVars] = {};   // the query locates only these
+  int n_fixed = 0;                    // fixed variables, and which (Var)
+  int fixed_var[kNumVars] = {};
+  double fixed_tolerance[kNumVars] = {};  // |query - fixed_value| above this: kOutOfRange
+  int n_absent = 0;                   // parts not in the table, and which (their outputs are 0)
+  int absent_part[kNumParts] = {};
   bool has_part[kNumParts] = {};      // part present (for both wheels)
   int n_blocks = 0;                   // blocks per wheel
   Block block[2][kNumParts];          // [wheel][block], same block structure for both wheels

@@ -7,6 +7,7 @@
 
 #include "flat_json.hpp"
 #include "hdf5_file.hpp"
+#include "interpolate.hpp"
 #include "part_spec.hpp"
 
 namespace railtab::lookup::detail {
@@ -151,7 +152,7 @@ PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& g
   return p;
 }
 
-// Interleaves the parts that share one grid into a block (layout in table_data.hpp).
+// Interleaves the parts that share one grid into a slot-major block (layout in table_data.hpp).
 Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& arrays,
                  int n_slots) {
   Block b;
@@ -159,36 +160,36 @@ Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& a
   b.n_dims = static_cast<int>(first.vars.size());
   for (int k = 0; k < b.n_dims; ++k) b.var[k] = first.vars[k];
   b.n_parts = static_cast<int>(parts.size());
+  b.first_output = kPartSpecs[parts[0]].first_output;
   for (int k = 0; k < b.n_parts; ++k) {
     b.part[k] = parts[k];
-    b.n_values += n_slots * kPartSpecs[parts[k]].n_out;
+    if (kPartSpecs[parts[k]].first_output != b.first_output + b.n_values) b.first_output = -1;
+    b.n_values += kPartSpecs[parts[k]].n_out;
   }
-  b.values_padded = (b.n_values + kValueChunk - 1) / kValueChunk * kValueChunk;
-  b.n_status = b.n_parts * n_slots;
-  const int status_chunks = (b.n_status + kStatusChunk - 1) / kStatusChunk;
-  const int status_doubles = status_chunks * kStatusChunk * static_cast<int>(sizeof(StatusBits)) /
-                             static_cast<int>(sizeof(double));
-  b.record = b.values_padded + status_doubles;
+  b.values_padded = (b.n_values + 1) / 2 * 2;
+  b.record = b.values_padded + kStatusDoubles;
   std::size_t stride = static_cast<std::size_t>(b.record);
   for (int k = b.n_dims - 1; k >= 0; --k) {
     b.stride[k] = stride;
     stride *= static_cast<std::size_t>(first.dims[k]);
   }
+  b.slot_size = stride;  // nodes x record
+  b.linear = linear_kernel_for(b.n_dims, b.values_padded);
   const std::size_t ns = static_cast<std::size_t>(n_slots);
-  b.data.assign(first.nodes * static_cast<std::size_t>(b.record), 0.0);
-  for (std::size_t node = 0; node < first.nodes; ++node) {
-    double* rec = b.data.data() + node * static_cast<std::size_t>(b.record);
-    auto* status = reinterpret_cast<unsigned char*>(rec + b.values_padded);
-    int k = 0, j = 0;
-    for (int part : parts) {
-      const PartArrays& a = arrays[part];
-      for (std::size_t s = 0; s < ns; ++s)
-        for (const auto& out : a.outputs) rec[k++] = out[node * ns + s];
-    }
-    for (int part : parts)
-      for (std::size_t s = 0; s < ns; ++s, ++j)
+  b.data.assign(ns * b.slot_size, 0.0);
+  for (std::size_t s = 0; s < ns; ++s) {
+    for (std::size_t node = 0; node < first.nodes; ++node) {
+      double* rec = b.data.data() + s * b.slot_size + node * static_cast<std::size_t>(b.record);
+      auto* status = reinterpret_cast<unsigned char*>(rec + b.values_padded);
+      int k = 0, j = 0;
+      for (int part : parts)
+        for (const auto& out : arrays[part].outputs) rec[k++] = out[node * ns + s];
+      for (int part : parts) {
         std::memcpy(status + j * sizeof(StatusBits), &arrays[part].status[node * ns + s],
                     sizeof(StatusBits));
+        ++j;
+      }
+    }
   }
   return b;
 }
@@ -209,6 +210,13 @@ std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOp
   d->scene_name = f.string_attribute("/", "scene_name").value_or("");
   read_axes(f, *d);
   read_fixed_axes(f, *d);
+  for (int var = 0; var < kNumVars; ++var) {
+    if (d->tabulated[var]) d->tabulated_var[d->n_tabulated++] = var;
+    if (d->fixed[var]) d->fixed_var[d->n_fixed++] = var;
+    // A fixed variable counts as "at its fixed value" within 1e-9 relative (absolute below
+    // magnitude 1): round-off in the caller's state must not flag kOutOfRange.
+    d->fixed_tolerance[var] = 1e-9 * std::max(1.0, std::abs(d->fixed_value[var]));
+  }
 
   static const char* const wheels[2] = {"/left", "/right"};
   for (int p = 0; p < kNumParts; ++p) {
@@ -219,6 +227,7 @@ std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOp
       f.fail("part " + std::string(kPartSpecs[p].name) + " present for one wheel only (" +
              (has_left ? left : right) + " exists, " + (has_left ? right : left) + " does not)");
     d->has_part[p] = has_left;
+    if (!has_left) d->absent_part[d->n_absent++] = p;
   }
   // Parts over the same axes share a block; the grouping is the same for both wheels.
   std::vector<std::vector<int>> groups;

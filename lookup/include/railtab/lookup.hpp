@@ -10,6 +10,8 @@
 //   railtab::lookup::Result r;
 //   table.query(railtab::lookup::Wheel::kLeft, s, r);                  // never throws, no locks
 //   double fx = r.contact[0].value[railtab::lookup::kFx];
+//   railtab::lookup::Contact tread;                                    // or one slot only:
+//   table.query_slot(railtab::lookup::Wheel::kLeft, s, 0, tread);
 #pragma once
 
 #include <cstddef>
@@ -166,6 +168,14 @@ class Table {
   // kOutOfRange; a NaN/inf in a variable the table uses gives zeros and kInvalidInput.
   void query(Wheel wheel, const State& state, Result& result) const noexcept;
   Result query(Wheel wheel, const State& state) const noexcept;
+
+  // One contact slot only (0 = tread, 1 = flange): `contact` receives exactly what
+  // query(wheel, state).contact[slot] would hold, including the query bits kOutOfRange and
+  // kInvalidInput in contact.status, at about half the cost of query() on a 2-slot table (it
+  // reads only that slot's records). A slot outside 0 .. n_slots()-1 or a bad wheel gives zeros
+  // and kInvalidInput. Never throws, allocates nothing.
+  void query_slot(Wheel wheel, const State& state, int slot, Contact& contact) const noexcept;
+  Contact query_slot(Wheel wheel, const State& state, int slot) const noexcept;
 
   // Batch: results[k] = query(queries[k]); results.size() must be >= queries.size()
   // (extra results untouched).
