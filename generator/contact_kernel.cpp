@@ -232,18 +232,9 @@ SlotAssignment assign_slots(const WheelContactGeometry& geometry) {
 }
 
 SweepKernel make_contact_kernel(const Scene& scene) {
-  FastsimOptions fastsim;
-  fastsim.elements_per_strip = scene.tangential.elements_per_strip;
-  fastsim.spin = scene.tangential.spin_per_strip ? SpinVariation::per_strip : SpinVariation::patch_constant;
-  CreepConditions creep;
-  creep.friction = scene.tangential.friction;
-  creep.speed = scene.tangential.speed;
-  WearOptions wear;
-  wear.map.hardness = scene.wear.hardness;
-  // The scene gives the divisor of k_dry directly (5.5 natural contamination, 11 lubricated).
-  wear.map.factor_natural = scene.wear.lubrication_factor;
-  wear.lubrication = Lubrication::natural;
-  validate(wear.map);
+  const FastsimOptions fastsim = fastsim_options(scene);
+  const CreepConditions creep = creep_conditions(scene);
+  const WearOptions wear = wear_options(scene);
   auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
                                                             scene.normal, scene.tangential, creep, fastsim, wear});
   SweepKernel kernel;

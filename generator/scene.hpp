@@ -10,6 +10,8 @@
 #include "core/material.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
+#include "tangential/fastsim_contact.hpp"
+#include "wear/archard.hpp"
 
 namespace railtab {
 
@@ -67,5 +69,10 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
 
 // Build the profiles and the geometry solver a scene describes.
 ContactGeometrySolver make_geometry_solver(const Scene& scene);
+
+// The tangential and wear model settings a scene describes (one mapping for eval and the sweep).
+FastsimOptions fastsim_options(const Scene& scene);
+CreepConditions creep_conditions(const Scene& scene);
+WearOptions wear_options(const Scene& scene);  // throws railtab::Error for an invalid wear map
 
 }  // namespace railtab

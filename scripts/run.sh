@@ -1,14 +1,19 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the main job on the default scene.
-# Usage: bash scripts/run.sh [scene.toml] [output dir]
+# The main job: sets up, builds, makes the table of a scene and its charts.
+# Usage: bash scripts/run.sh [scene.toml] [output dir]      (default: tables/default.toml, out/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=${1:-tables/default.toml}
 out=${2:-out}
+name=$(basename "$scene" .toml)
 bash scripts/install-deps.sh
 cmake --preset release
 cmake --build --preset release --parallel "$(nproc)" --target railtab
+railtab=./build/release/generator/railtab
 mkdir -p "$out"
-./build/release/generator/railtab eval --scene "$scene" --y 0.003 --roll 0 --load 78500
-./build/release/generator/railtab chart-geometry --scene "$scene" --out "$out"
-echo "run.sh: outputs in $out/"
+"$railtab" generate "$scene" -o "$out/$name.h5"
+"$railtab" inspect "$out/$name.h5"
+"$railtab" chart-geometry --scene "$scene" --out "$out"
+"$railtab" eval --scene "$scene" --y 0.003 --creepage 0.001,0,0 > "$out/eval_y3mm.txt"
+echo "run.sh: table $out/$name.h5, charts and CSV in $out/"
+ls -l "$out"
