@@ -219,7 +219,9 @@ double hermite(const CubicAxis& a, const double f[4], bool monotone) noexcept {
 }
 
 struct CubicContext {
-  const double* data;       // block records
+  const double* data;       // record of node 0 of the first slot's grid
+  int n_slots;              // slots interpolated together, grids slot_size doubles apart
+  std::size_t slot_size;    // doubles per slot grid
   int n_dims;               // D
   int n_values;             // interpolated doubles per record
   int status_offset;        // doubles before the packed statuses in a record
@@ -228,20 +230,23 @@ struct CubicContext {
 };
 
 // Successive 1-D Hermite passes: interpolate the sub-grid of each stencil node along the
-// remaining axes, then combine the (up to) 4 results along this axis. Depth <= 6, at most
+// remaining axes, then combine the (up to) 4 results along this axis. All slots in one walk
+// (out[slot * n_values + k]), so the stencil recursion runs once per query. Depth <= 6, at most
 // 2.3 KB of stack per level; statuses only from nodes inside the cell (j = 1, 2 on every axis).
 void cubic_recurse(const CubicContext& c, int d, std::size_t offset, bool inner, double* out,
-                   StatusFold& fold) noexcept {
-  const int nv = c.n_values;
+                   StatusFold* fold) noexcept {
+  const int nv = c.n_values * c.n_slots;
   if (d == c.n_dims) {
-    const double* rec = c.data + offset;
-    for (int k = 0; k < nv; ++k) out[k] = rec[k];
-    if (inner) fold.add(rec + c.status_offset);
+    for (int s = 0; s < c.n_slots; ++s) {
+      const double* rec = c.data + static_cast<std::size_t>(s) * c.slot_size + offset;
+      for (int k = 0; k < c.n_values; ++k) out[s * c.n_values + k] = rec[k];
+      if (inner) fold[s].add(rec + c.status_offset);
+    }
     return;
   }
   const CubicAxis& a = c.axes[d];
   const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
-  double sub[4][kMaxSlotValues];
+  double sub[4][kMaxSlots * kMaxSlotValues];
   for (int j = lo; j <= hi; ++j)
     cubic_recurse(c, d + 1, offset + a.idx[j] * a.stride, inner && (j == 1 || j == 2), sub[j],
                   fold);
@@ -274,18 +279,22 @@ LinearKernel linear_kernel_for(int n_dims, int values_padded) noexcept {
 }
 
 void interpolate_cubic(const Block& block, const Axis* axes, const AxisLoc* loc, bool monotone,
-                       int slot, Contact& contact) noexcept {
+                       int slot_begin, int slot_end, Contact* contact) noexcept {
   CubicAxis ax[kMaxDims];
   for (int d = 0; d < block.n_dims; ++d)
     ax[d] = make_cubic_axis(axes[block.var[d]], loc[block.var[d]], block.stride[d]);
-  const CubicContext c{block.data.data() + static_cast<std::size_t>(slot) * block.slot_size,
-                       block.n_dims, block.n_values, block.values_padded, ax, monotone};
-  StatusFold fold;
-  double values[kMaxSlotValues];
+  const int n = slot_end - slot_begin;
+  const CubicContext c{block.data.data() + static_cast<std::size_t>(slot_begin) * block.slot_size,
+                       n, block.slot_size, block.n_dims, block.n_values, block.values_padded, ax,
+                       monotone};
+  StatusFold fold[kMaxSlots];
+  double values[kMaxSlots * kMaxSlotValues];
   cubic_recurse(c, 0, 0, true, values, fold);
-  StatusBits st[4];
-  fold.write(st);
-  store_slot(block, values, st, contact);
+  for (int s = 0; s < n; ++s) {
+    StatusBits st[4];
+    fold[s].write(st);
+    store_slot(block, values + s * block.n_values, st, contact[s]);
+  }
 }
 
 }  // namespace railtab::lookup::detail

@@ -20,8 +20,9 @@ LinearKernel linear_kernel_for(int n_dims, int values_padded) noexcept;
 // parabola through 3 neighbouring nodes (exact for quadratics); with `monotone`, slopes limited
 // per node so that 0 <= slope / secant <= 3 on both sides (Fritsch-Carlson sufficient condition;
 // zero slope at a data extremum), which keeps the result C1 and free of overshoot. Status as in
-// the linear kernel (corners of the cell only, not the outer stencil nodes). One slot.
+// the linear kernel (corners of the cell only, not the outer stencil nodes). Slots
+// [slot_begin, slot_end) into contact[slot - slot_begin]; the per-axis stencils once for all.
 void interpolate_cubic(const Block& block, const Axis* axes, const AxisLoc* loc, bool monotone,
-                       int slot, Contact& contact) noexcept;
+                       int slot_begin, int slot_end, Contact* contact) noexcept;
 
 }  // namespace railtab::lookup::detail

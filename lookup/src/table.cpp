@@ -77,9 +77,8 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
     if (d.method == Method::kLinear) {
       block.linear(block, loc, slot_begin, slot_end, contact);
     } else {
-      for (int s = 0; s < n; ++s)
-        interpolate_cubic(block, d.axis, loc, d.method == Method::kMonotoneCubic, slot_begin + s,
-                          contact[s]);
+      interpolate_cubic(block, d.axis, loc, d.method == Method::kMonotoneCubic, slot_begin,
+                        slot_end, contact);
     }
   }
   for (int s = 0; s < n; ++s) {
