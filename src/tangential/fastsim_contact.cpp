@@ -7,6 +7,17 @@ FastsimResult fastsim_contact(const WheelContactGeometry& geometry, const Contac
                               const Material& material, const FastsimOptions& options,
                               FastsimWorkspace& workspace) {
   if (!(patch.normal_force > 0.0)) {
+    // Empty the workspace: archard_wear reads the elements of the LAST solve, and without this an
+    // unloaded patch inherited the previous patch's elements and reported its wear (found by
+    // tests/stability/lift_off_test.cpp, UnloadedPatchHasNoCreepOrWear).
+    workspace.strip.clear();
+    workspace.strip_begin.assign(1, 0);
+    for (auto* v : {&workspace.x, &workspace.pressure, &workspace.traction_x, &workspace.traction_y,
+                    &workspace.slip_x, &workspace.slip_y, &workspace.slip_velocity,
+                    &workspace.slip_distance, &workspace.wear_pressure})
+      v->clear();
+    workspace.speed = conditions.speed;
+    workspace.reference_radius = patch.rolling_radius;
     FastsimResult unloaded;
     unloaded.status = status::kLiftOff;
     return unloaded;
