@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/check.hpp"
+#include "normal/normal_internal.hpp"
 #include "normal/root_find.hpp"
 
 namespace railtab {
@@ -153,7 +154,7 @@ double fast_log_axis_ratio(double ratio, bool* ok) {
   *ok = false;
   if (!(ratio > 0.0) || ratio >= 1.0) return 0.0;
   const ShapeTable& t = shape_table();
-  const double x = std::log(ratio);
+  const double x = detail::fast_log(ratio);  // within an ulp of std::log, without the call
   if (x < ShapeTable::kXMin) return 0.0;
   *ok = true;
   const double pos = (x - ShapeTable::kXMin) / t.h;

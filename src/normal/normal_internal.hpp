@@ -5,10 +5,14 @@
 // local Hertz shape is computed lazily, once per solve, only where a patch actually reaches.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/material.hpp"
 #include "geometry/contact_geometry.hpp"
@@ -34,9 +38,13 @@ struct PointContext {
   bool hertz_valid = false;    // A0 > 0 and B0 > 0
   HertzCoefficients hz{};      // Hertz coefficients at (A0, B0) when valid [-]
   StatusBits flags = 0;        // preparation flags (fallback, curvature treatment, ...)
+  // Band samples of this point whose per-sample data is ready in the Workspace (empty: lo > hi).
+  // The domains [lo, hi] of the points are disjoint, so the points share the band-sized arrays.
+  int cos_lo = 0, cos_hi = -1;  // Workspace::cos_angle ready on [cos_lo, cos_hi]
+  int smp_lo = 0, smp_hi = -1;  // Workspace::A and q ready on [smp_lo, smp_hi]
 };
 
-// Lazily filled per band sample (index = band sample).
+// Per-sample data interpolated at an arc length (interp_sample).
 struct SampleData {
   double cos_angle;  // cos of the sample's contact angle [-]
   double A;          // longitudinal curvature used for the strip length (corrected for STRIPES) [1/m]
@@ -45,14 +53,19 @@ struct SampleData {
 
 struct Workspace {
   std::vector<PointContext> points;     // one per contact point
-  std::vector<SampleData> samples;      // band-sized
-  std::vector<unsigned char> ready;     // bit 0: samples[j].cos_angle set; bit 1: A and q set
+  // Band-sized, filled lazily once per solve on the intervals recorded in each PointContext
+  // (structure of arrays: the strip loops read them without checks):
+  std::vector<double> cos_angle;        // cos of the sample's contact angle [-]
+  std::vector<double> A;                // SampleData::A per sample [1/m]
+  std::vector<double> q;                // SampleData::q per sample [-]
   std::vector<double> B_treated;        // band-sized: lateral curvature after treatment [1/m]
   std::vector<double> v;                // band-sized: virtual overlap at the current approach [m]
   std::vector<double> cosb;             // band-sized scratch: cos of the band angle [-]
   std::vector<double> weight;           // band-sized scratch: overlap weight of the reference
   std::vector<double> strip_len;        // per-strip scratch: half-lengths [m]
   std::vector<double> strip_pos;        // per-strip scratch: lateral positions [m]
+  std::vector<double> log_arg;          // STRIPES Boussinesq integral: logarithm arguments (4 per
+  std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]
 };
 
 Workspace& thread_workspace();
@@ -109,6 +122,43 @@ inline double fast_log(double x) {
   return e * 0.6931471805599453 + 2.0 * u * r;
 }
 
+#if defined(__SSE2__)
+// fast_log on two lanes, bit for bit the same operations; lanes that are not positive normal
+// numbers go through the scalar version.
+inline __m128d fast_log_pd(__m128d x) {
+  const __m128d ok = _mm_and_pd(_mm_cmpge_pd(x, _mm_set1_pd(0x1p-1022)),
+                                _mm_cmple_pd(x, _mm_set1_pd(0x1.fffffffffffffp+1023)));
+  if (_mm_movemask_pd(ok) != 3) {
+    double t[2];
+    _mm_storeu_pd(t, x);
+    return _mm_set_pd(fast_log(t[1]), fast_log(t[0]));
+  }
+  const __m128i bits = _mm_castpd_si128(x);
+  // Biased exponent as a double: 2^52 + e_biased from the bit pattern, minus 2^52 + 1023.
+  const __m128i eb = _mm_or_si128(_mm_srli_epi64(bits, 52), _mm_set1_epi64x(0x4330000000000000LL));
+  __m128d e = _mm_sub_pd(_mm_castsi128_pd(eb), _mm_set1_pd(4503599627370496.0 + 1023.0));
+  __m128d m = _mm_castsi128_pd(_mm_or_si128(_mm_and_si128(bits, _mm_set1_epi64x(0x000fffffffffffffLL)),
+                                            _mm_set1_epi64x(0x3ff0000000000000LL)));
+  const __m128d big = _mm_cmpgt_pd(m, _mm_set1_pd(1.4142135623730951));
+  m = _mm_or_pd(_mm_and_pd(big, _mm_mul_pd(m, _mm_set1_pd(0.5))), _mm_andnot_pd(big, m));
+  e = _mm_add_pd(e, _mm_and_pd(big, _mm_set1_pd(1.0)));
+  const __m128d one = _mm_set1_pd(1.0);
+  const __m128d u = _mm_div_pd(_mm_sub_pd(m, one), _mm_add_pd(m, one));
+  const __m128d u2 = _mm_mul_pd(u, u);
+  __m128d r = _mm_set1_pd(1.0 / 17.0);
+  r = _mm_add_pd(_mm_mul_pd(r, u2), _mm_set1_pd(1.0 / 15.0));
+  r = _mm_add_pd(_mm_mul_pd(r, u2), _mm_set1_pd(1.0 / 13.0));
+  r = _mm_add_pd(_mm_mul_pd(r, u2), _mm_set1_pd(1.0 / 11.0));
+  r = _mm_add_pd(_mm_mul_pd(r, u2), _mm_set1_pd(1.0 / 9.0));
+  r = _mm_add_pd(_mm_mul_pd(r, u2), _mm_set1_pd(1.0 / 7.0));
+  r = _mm_add_pd(_mm_mul_pd(r, u2), _mm_set1_pd(1.0 / 5.0));
+  r = _mm_add_pd(_mm_mul_pd(r, u2), _mm_set1_pd(1.0 / 3.0));
+  r = _mm_add_pd(_mm_mul_pd(r, u2), one);
+  return _mm_add_pd(_mm_mul_pd(e, _mm_set1_pd(0.6931471805599453)),
+                    _mm_mul_pd(_mm_mul_pd(_mm_set1_pd(2.0), u), r));
+}
+#endif
+
 // A run of positive virtual overlap around the point's sample.
 struct Run {
   bool loaded = false;   // false: no overlap at the point (lift-off)
@@ -128,26 +178,56 @@ struct PatchSums {
 HertzCoefficients hertz_coefficients_fast(double A, double B);
 
 // Shared preparation and evaluation (normal_model.cpp).
-inline double sample_cos(const WheelContactGeometry& g, Workspace& w, int j) {
-  if (!(w.ready[j] & 1)) {
-    w.samples[j].cos_angle = band_cos(g.band[j].contact_angle);
-    w.ready[j] |= 1;
-  }
-  return w.samples[j].cos_angle;
+// Per-sample data on [j0, j1] (inside the point's band domain) made ready: cos only, or A and q
+// (and, for STRIPES, the cos they need). The inline checks cost nothing once the range is ready.
+void extend_cos(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0, int j1);
+void extend_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0, int j1,
+                    const NormalOptions& o);
+inline void ensure_cos(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0,
+                       int j1) {
+  if (j0 < p.cos_lo || j1 > p.cos_hi) extend_cos(g, p, w, j0, j1);
 }
-const SampleData& sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w, int j,
-                         const NormalOptions& o);
-Run find_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
+inline void ensure_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0,
+                           int j1, const NormalOptions& o) {
+  if (j0 < p.smp_lo || j1 > p.smp_hi) extend_samples(g, p, w, j0, j1, o);
+}
+Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
              const NormalOptions& o);
 double interp_band(const WheelContactGeometry& g, double s, double BandSample::*field);
+
+// Band segment [j, j + 1] and fraction t for arc length s, kept inside [lo, hi].
+inline void locate(const WheelContactGeometry& g, int lo, int hi, double s, int* j, double* t) {
+  const double pos = (s - g.band.front().s) / g.band_step;
+  int i = static_cast<int>(std::floor(pos));
+  const int jmax = std::max(lo, hi - 1);
+  i = std::clamp(i, lo, jmax);
+  *j = i;
+  *t = (i + 1 <= hi) ? std::clamp(pos - i, 0.0, 1.0) : 0.0;
+}
+inline void locate(const WheelContactGeometry& g, double s, int* j, double* t) {
+  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, j, t);
+}
+// Linear interpolation of a band-sized array at segment j, fraction t (t == 0: sample j only).
+inline double lerp_at(const double* x, int j, double t) {
+  const double a = x[j];
+  return t == 0.0 ? a : a + t * (x[j + 1] - a);
+}
+// Band samples touched by the strip centres s_lo + (k + 1/2) width, k = 0..n-1 (ascending s).
+// The centres lie inside the run, hence inside the point's band domain.
+inline void strip_sample_range(const WheelContactGeometry& g, double s_lo, double width, int n,
+                               int* j0, int* j1) {
+  double t;
+  locate(g, s_lo + 0.5 * width, j0, &t);
+  locate(g, s_lo + (n - 0.5) * width, j1, &t);
+  if (t != 0.0) ++*j1;
+}
 // Linear interpolation of the workspace overlap v at arc length s (inside the run).
-double interp_v(const WheelContactGeometry& g, const Workspace& w, double s);
-// Per-sample data (cos, A, q) linearly interpolated at arc length s.
-SampleData interp_sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
-                         double s, const NormalOptions& o);
-// Both at once (one band lookup): the sample data, and the overlap v (>= 0) through *v.
-SampleData interp_sample_v(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
-                           double s, const NormalOptions& o, double* v);
+inline double interp_v(const WheelContactGeometry& g, const Workspace& w, double s) {
+  int j;
+  double t;
+  locate(g, s, &j, &t);
+  return std::max(lerp_at(w.v.data(), j, t), 0.0);
+}
 // Fills the strip fields that come from the band (position, angle, radius, u's) for strip s.
 Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s, double width,
                  bool own_angle);

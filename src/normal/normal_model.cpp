@@ -77,153 +77,144 @@ double band_position(const WheelContactGeometry& g, double s) {
 
 }  // namespace
 
-const SampleData& sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w, int j,
-                         const NormalOptions& o) {
-  if (w.ready[j] & 2) return w.samples[j];
+
+namespace {
+
+// One sample j of point p: cos (already ready for STRIPES), A and q.
+inline void compute_sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
+                           int j, const NormalOptions& o) {
   const BandSample& b = g.band[j];
-  SampleData& d = w.samples[j];
-  d.cos_angle = sample_cos(g, w, j);
   const double radius = b.rolling_radius > 0.0 ? b.rolling_radius : p.r_ref;
   const double scale_r = p.r_ref > 0.0 ? p.r_ref / radius : 1.0;
   if (is_stripes(p.model)) {
     // Local A from the local radius and contact angle (Meusnier, conventions "Contact frame"),
     // scaled so that it equals the geometry's A at the point.
-    const double A = p.A0 * scale_r * d.cos_angle / p.cos_ref;
+    const double A = p.A0 * scale_r * w.cos_angle[j] / p.cos_ref;
     const double B = std::max(w.B_treated[j], o.min_curvature_ratio * p.A0);
     const double ratio = std::min(A, B) / std::max(A, B);
     const double gr = hertz_axis_ratio_fast(ratio);
     // (b/a)^2 of the local Hertz ellipse: the long axis lies along the smaller curvature.
-    d.q = A <= B ? gr * gr : 1.0 / (gr * gr);
+    const double q = A <= B ? gr * gr : 1.0 / (gr * gr);
+    w.q[j] = q;
     // Seed 000: A-correction A_c = (n/m)^2 B; A&B-correction A_c = (A + B)(n/m)^2 / (1 + (n/m)^2).
-    d.A = p.model == NormalModel::stripes_a ? d.q * B : (A + B) * d.q / (1.0 + d.q);
+    w.A[j] = p.model == NormalModel::stripes_a ? q * B : (A + B) * q / (1.0 + q);
   } else {
-    d.A = p.A0 * scale_r;  // planar models: A from the local rolling radius
-    d.q = 0.0;
+    w.A[j] = p.A0 * scale_r;  // planar models: A from the local rolling radius
+    w.q[j] = 0.0;
   }
-  w.ready[j] = 3;
-  return d;
 }
 
-Run find_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
+// Grows the ready interval [*lo, *hi] to cover [j0, j1] (contiguous: the gap in between too),
+// calling fn(j) for every new sample.
+template <class Fn>
+inline void grow(int* lo, int* hi, int j0, int j1, Fn&& fn) {
+  if (*lo > *hi) {
+    for (int j = j0; j <= j1; ++j) fn(j);
+    *lo = j0;
+    *hi = j1;
+    return;
+  }
+  for (int j = std::min(j0, *lo); j < *lo; ++j) fn(j);
+  for (int j = *hi + 1; j <= std::max(j1, *hi); ++j) fn(j);
+  *lo = std::min(*lo, j0);
+  *hi = std::max(*hi, j1);
+}
+
+}  // namespace
+
+void extend_cos(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0, int j1) {
+  double* c = w.cos_angle.data();
+  const BandSample* band = g.band.data();
+  grow(&p.cos_lo, &p.cos_hi, j0, j1, [&](int j) { c[j] = band_cos(band[j].contact_angle); });
+}
+
+void extend_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0, int j1,
+                    const NormalOptions& o) {
+  if (is_stripes(p.model)) ensure_cos(g, p, w, j0, j1);
+  grow(&p.smp_lo, &p.smp_hi, j0, j1, [&](int j) { compute_sample(g, p, w, j, o); });
+}
+
+Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
              const NormalOptions& /*options*/) {
   Run run;
   if (p.i0 < 0 || p.hi < p.lo) return run;
   const bool own_angle = is_stripes(p.model);
   const double eps = p.eps;
+  const BandSample* band = g.band.data();
+  double* v = w.v.data();
+  const double* c = w.cos_angle.data();
+  // STRIPES: v = eps dz cos g - gap + (1 - eps) h cos g; planar: v = vp - gap, vp fixed.
+  const double edz = eps * dz, eh = (1.0 - eps) * p.h;
+  const double vp = eps * (dz - p.h) * p.cos_ref, hc = p.h * p.cos_ref;
+  int clo = p.cos_lo, chi = p.cos_hi;  // ready cos interval (local: v stores may alias p)
   auto overlap = [&](int j) {
-    const double gap = g.band[j].gap;
-    double v;
+    const double gap = band[j].gap;
+    double vj;
     if (own_angle) {
-      const double c = sample_cos(g, w, j);
-      v = eps * dz * c - gap + (1.0 - eps) * p.h * c;
+      if (j < clo || j > chi) {  // grow in blocks: the run moves little between evaluations
+        extend_cos(g, p, w, std::max(p.lo, j - 16), std::min(p.hi, j + 16));
+        clo = p.cos_lo;
+        chi = p.cos_hi;
+      }
+      vj = edz * c[j] - gap + eh * c[j];
     } else {
-      v = eps * (dz - p.h) * p.cos_ref - (gap - p.h * p.cos_ref);
+      vj = vp - (gap - hc);
     }
-    w.v[j] = v;
-    return v;
+    v[j] = vj;
+    return vj;
   };
   const double v0 = overlap(p.i0);
   if (!(v0 > 0.0)) return run;
   run.loaded = true;
-  run.v_max = v0;
+  double vmax = v0;
   const double step = g.band_step;
   int j = p.i0;
   double vj = v0;
   for (;;) {
     if (j == p.lo) {
-      run.s_lo = g.band[j].s;
-      run.at_band_end = run.at_band_end || j == 0;
+      run.s_lo = band[j].s;
+      run.at_band_end = j == 0;
       break;
     }
     const double vn = overlap(j - 1);
     if (!(vn > 0.0)) {
-      run.s_lo = g.band[j].s - step * vj / (vj - vn);
+      run.s_lo = band[j].s - step * vj / (vj - vn);
       break;
     }
     --j;
     vj = vn;
-    run.v_max = std::max(run.v_max, vn);
+    vmax = std::max(vmax, vn);
   }
   j = p.i0;
   vj = v0;
   const int last = static_cast<int>(g.band.size()) - 1;
   for (;;) {
     if (j == p.hi) {
-      run.s_hi = g.band[j].s;
+      run.s_hi = band[j].s;
       run.at_band_end = run.at_band_end || j == last;
       break;
     }
     const double vn = overlap(j + 1);
     if (!(vn > 0.0)) {
-      run.s_hi = g.band[j].s + step * vj / (vj - vn);
+      run.s_hi = band[j].s + step * vj / (vj - vn);
       break;
     }
     ++j;
     vj = vn;
-    run.v_max = std::max(run.v_max, vn);
+    vmax = std::max(vmax, vn);
   }
+  run.v_max = vmax;
   if (!(run.s_hi > run.s_lo)) run.loaded = false;
   return run;
 }
 
-namespace {
-
-// Band segment [j, j + 1] and fraction t for arc length s, kept inside [lo, hi].
-void locate(const WheelContactGeometry& g, int lo, int hi, double s, int* j, double* t) {
-  const double pos = band_position(g, s);
-  int i = static_cast<int>(std::floor(pos));
-  const int jmax = std::max(lo, hi - 1);
-  i = std::clamp(i, lo, jmax);
-  *j = i;
-  *t = (i + 1 <= hi) ? std::clamp(pos - i, 0.0, 1.0) : 0.0;
-}
-
-}  // namespace
-
 double interp_band(const WheelContactGeometry& g, double s, double BandSample::*field) {
   int j;
   double t;
-  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
+  locate(g, s, &j, &t);
   const double a = g.band[j].*field;
   if (t == 0.0) return a;
   return a + t * (g.band[j + 1].*field - a);
-}
-
-double interp_v(const WheelContactGeometry& g, const Workspace& w, double s) {
-  int j;
-  double t;
-  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
-  const double a = w.v[j];
-  const double v = t == 0.0 ? a : a + t * (w.v[j + 1] - a);
-  return std::max(v, 0.0);
-}
-
-SampleData interp_sample(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
-                         double s, const NormalOptions& o) {
-  int j;
-  double t;
-  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
-  const SampleData a = sample(g, p, w, j, o);
-  if (t == 0.0) return a;
-  const SampleData& b = sample(g, p, w, j + 1, o);
-  return {a.cos_angle + t * (b.cos_angle - a.cos_angle), a.A + t * (b.A - a.A),
-          a.q + t * (b.q - a.q)};
-}
-
-SampleData interp_sample_v(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
-                           double s, const NormalOptions& o, double* v) {
-  int j;
-  double t;
-  locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
-  const SampleData a = sample(g, p, w, j, o);
-  if (t == 0.0) {
-    *v = std::max(w.v[j], 0.0);
-    return a;
-  }
-  *v = std::max(w.v[j] + t * (w.v[j + 1] - w.v[j]), 0.0);
-  const SampleData& b = sample(g, p, w, j + 1, o);
-  return {a.cos_angle + t * (b.cos_angle - a.cos_angle), a.A + t * (b.A - a.A),
-          a.q + t * (b.q - a.q)};
 }
 
 Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s, double width,
@@ -235,7 +226,7 @@ Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s,
   if (p.i0 >= 0) {
     int j;
     double t;
-    locate(g, 0, static_cast<int>(g.band.size()) - 1, s, &j, &t);
+    locate(g, s, &j, &t);
     const BandSample& a = g.band[j];
     const BandSample& b = t == 0.0 ? a : g.band[j + 1];
     auto lerp = [t](double x, double y) { return x + t * (y - x); };
@@ -265,8 +256,9 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   w.points.assign(np, PointContext{});
   const bool band_ok = nb >= 2 && g.band_step > 0.0 && std::isfinite(g.band_step);
   if (band_ok) {
-    w.samples.resize(nb);
-    w.ready.resize(nb);
+    w.cos_angle.resize(nb);
+    w.A.resize(nb);
+    w.q.resize(nb);
     w.B_treated.resize(nb);
     w.v.resize(nb);
     w.cosb.resize(nb);
@@ -274,6 +266,8 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   }
   w.strip_len.resize(std::max(o.strips, 1));
   w.strip_pos.resize(std::max(o.strips, 1));
+  w.log_arg.resize(4 * std::max(o.strips, 1));
+  w.log_coef.resize(4 * std::max(o.strips, 1));
 
   for (int i = 0; i < np; ++i) {
     const ContactPoint& cp = g.points[i];
@@ -360,12 +354,7 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
     if (p.hertz_valid) p.hz = hertz_coefficients_fast(p.A0, p.B0);
     if (is_stripes(p.model)) prepare_stripes(g, m, o, p, w);
   }
-  // Band scratch of the virtual-interpenetration models (Hertz needs none).
-  if (band_ok && std::any_of(w.points.begin(), w.points.end(),
-                             [](const PointContext& p) { return p.model != NormalModel::hertz; })) {
-    std::fill(w.ready.begin(), w.ready.end(), 0);
-    std::fill(w.v.begin(), w.v.end(), 0.0);
-  }
+  // Per-sample data is filled lazily on the intervals of each PointContext (empty after assign).
 }
 
 PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,

@@ -90,27 +90,71 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
 
 namespace {
 
-// F(y) = int_0^a (a^2 - x^2) asinh(y/x) dx (odd in y): int_{y1}^{y2} int_{-a}^{a} (a^2-x^2)/r
-// = 2 (F(y2) - F(y1)).
-inline double strip_F(double a, double y) {
-  if (y == 0.0) return 0.0;
-  const double ay = std::abs(y);
-  const double r = std::sqrt(a * a + ay * ay);
-  const double asinh_y_a = fast_log((ay + r) / a);   // asinh(|y|/a)
-  const double asinh_a_y = fast_log((a + r) / ay);   // asinh(a/|y|)
-  const double f = (2.0 * a * a * a / 3.0) * asinh_y_a + (a * a * ay + ay * ay * ay / 6.0) * asinh_a_y -
-                   ay * a * r / 6.0;
-  return y > 0.0 ? f : -f;
-}
+// Boussinesq integral J = sum_k A_k int int_strip (a_k^2 - x^2) / r dx dy, reference point at y = 0,
+// strip k centred at y_k with width w. Per strip along x in closed form,
+//   int_{-a}^{a} (a^2 - x^2)/sqrt(x^2+y^2) dx = (2a^2 + y^2) asinh(a/|y|) - a sqrt(a^2 + y^2),
+// midpoint rule along y for the far strips (|y| >= 6 w); for the near strips also along y with
+//   F(y) = int_0^a (a^2 - x^2) asinh(y/x) dx
+//        = (2a^3/3) asinh(|y|/a) + (a^2 |y| + |y|^3/6) asinh(a/|y|) - |y| a r / 6   (odd in y),
+//   int_{y1}^{y2} int_{-a}^{a} (a^2-x^2)/r = 2 (F(y2) - F(y1)).
+// The logarithms (asinh(z) = ln(z + sqrt(1 + z^2))) are collected first and evaluated in one
+// vectorised pass: J = sum_i coef_i ln(arg_i) + rest.
+class BoussinesqSum {
+ public:
+  BoussinesqSum(double* arg, double* coef) : arg_(arg), coef_(coef) {}
 
-// int_{y-w/2}^{y+w/2} int_{-a}^{a} (a^2 - x^2) / sqrt(x^2 + y^2) dx dy.
-inline double strip_J(double a, double y, double w) {
-  if (!(a > 0.0)) return 0.0;
-  const double ay = std::abs(y);
-  if (ay < 6.0 * w) return 2.0 * (strip_F(a, y + 0.5 * w) - strip_F(a, y - 0.5 * w));
-  const double r = std::sqrt(a * a + ay * ay);
-  return w * ((2.0 * a * a + ay * ay) * fast_log((a + r) / ay) - a * r);
-}
+  void add(double A, double a, double y, double w) {
+    if (!(a > 0.0)) return;
+    const double ay = std::abs(y);
+    if (ay < 6.0 * w) {
+      edge(2.0 * A, a, y + 0.5 * w);
+      edge(-2.0 * A, a, y - 0.5 * w);
+      return;
+    }
+    const double r = std::sqrt(a * a + ay * ay);
+    push((a + r) / ay, A * w * (2.0 * a * a + ay * ay));
+    rest_ -= A * w * a * r;
+  }
+
+  double total() const {
+    double sum = rest_;
+    int i = 0;
+#if defined(__SSE2__)
+    for (; i + 1 < n_; i += 2) {
+      const __m128d l = fast_log_pd(_mm_loadu_pd(arg_ + i));
+      const __m128d c = _mm_loadu_pd(coef_ + i);
+      double t[2];
+      _mm_storeu_pd(t, _mm_mul_pd(l, c));
+      sum += t[0];
+      sum += t[1];
+    }
+#endif
+    for (; i < n_; ++i) sum += coef_[i] * fast_log(arg_[i]);
+    return sum;
+  }
+
+ private:
+  // factor * F(a, y).
+  void edge(double factor, double a, double y) {
+    if (y == 0.0) return;
+    const double ay = std::abs(y);
+    const double f = y > 0.0 ? factor : -factor;
+    const double r = std::sqrt(a * a + ay * ay);
+    push((ay + r) / a, f * (2.0 * a * a * a / 3.0));           // asinh(|y|/a)
+    push((a + r) / ay, f * (a * a * ay + ay * ay * ay / 6.0));  // asinh(a/|y|)
+    rest_ -= f * (ay * a * r / 6.0);
+  }
+  void push(double arg, double coef) {
+    arg_[n_] = arg;
+    coef_[n_] = coef;
+    ++n_;
+  }
+
+  double* arg_;
+  double* coef_;
+  int n_ = 0;
+  double rest_ = 0.0;
+};
 
 }  // namespace
 
@@ -125,19 +169,31 @@ PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
   const double s_ref = g.points[p.point].band_s;
   const bool boussinesq = o.stripes_closure == StripesClosure::boussinesq;
   // Per strip: overlap v, corrected A, half-length a; volume sums for the force.
-  double volume = 0.0, volume_z = 0.0, J = 0.0;  // sum v a w (4/3), ..., Boussinesq integral
+  int j0, j1;
+  strip_sample_range(g, run.s_lo, width, n, &j0, &j1);
+  ensure_samples(g, p, w, j0, j1, o);
+  const double* v_s = w.v.data();
+  const double* A_s = w.A.data();
+  const double* q_s = w.q.data();
+  const double* c_s = w.cos_angle.data();
+  BoussinesqSum bsum(w.log_arg.data(), w.log_coef.data());
+  double volume = 0.0, volume_z = 0.0;  // sum v a w (4/3), its projection on track z
   for (int k = 0; k < n; ++k) {
     const double s = run.s_lo + (k + 0.5) * width;
-    double v;
-    const SampleData d = interp_sample_v(g, p, w, s, o, &v);
-    const double a = d.A > 0.0 ? std::sqrt(v / d.A) : 0.0;
+    int j;
+    double t;
+    locate(g, s, &j, &t);
+    const double v = std::max(lerp_at(v_s, j, t), 0.0);
+    const double A = lerp_at(A_s, j, t);
+    const double a = A > 0.0 ? std::sqrt(v / A) : 0.0;
     const double vol = (4.0 / 3.0) * v * a * width;  // parabola: int (1 - x^2/a^2) = 4/3 a
     volume += vol;
-    volume_z += vol * d.cos_angle;
-    if (boussinesq) J += d.A * strip_J(a, s - s_ref, width);
+    volume_z += vol * lerp_at(c_s, j, t);
+    if (boussinesq) bsum.add(A, a, s - s_ref, width);
     w.strip_len[k] = a;
-    w.strip_pos[k] = d.q;
+    w.strip_pos[k] = lerp_at(q_s, j, t);
   }
+  const double J = boussinesq ? bsum.total() : 0.0;
   double scale;  // pressure per unit virtual overlap [Pa/m]
   if (boussinesq) {
     constexpr double kappa = 32.0 / (9.0 * std::numbers::pi);
