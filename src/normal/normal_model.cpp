@@ -134,44 +134,22 @@ void extend_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w
   grow(&p.smp_lo, &p.smp_hi, j0, j1, [&](int j) { compute_sample(g, p, w, j, o); });
 }
 
-Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
-             const NormalOptions& /*options*/) {
+namespace {
+
+// Scans the run of positive overlap(j) outward from i0 inside [lo, hi]; overlap stores v[j].
+template <class Overlap>
+inline Run scan_run(const WheelContactGeometry& g, int i0, int lo, int hi, Overlap&& overlap) {
   Run run;
-  if (p.i0 < 0 || p.hi < p.lo) return run;
-  const bool own_angle = is_stripes(p.model);
-  const double eps = p.eps;
-  const BandSample* band = g.band.data();
-  double* v = w.v.data();
-  const double* c = w.cos_angle.data();
-  // STRIPES: v = eps dz cos g - gap + (1 - eps) h cos g; planar: v = vp - gap, vp fixed.
-  const double edz = eps * dz, eh = (1.0 - eps) * p.h;
-  const double vp = eps * (dz - p.h) * p.cos_ref, hc = p.h * p.cos_ref;
-  int clo = p.cos_lo, chi = p.cos_hi;  // ready cos interval (local: v stores may alias p)
-  auto overlap = [&](int j) {
-    const double gap = band[j].gap;
-    double vj;
-    if (own_angle) {
-      if (j < clo || j > chi) {  // grow in blocks: the run moves little between evaluations
-        extend_cos(g, p, w, std::max(p.lo, j - 16), std::min(p.hi, j + 16));
-        clo = p.cos_lo;
-        chi = p.cos_hi;
-      }
-      vj = edz * c[j] - gap + eh * c[j];
-    } else {
-      vj = vp - (gap - hc);
-    }
-    v[j] = vj;
-    return vj;
-  };
-  const double v0 = overlap(p.i0);
+  const double v0 = overlap(i0);
   if (!(v0 > 0.0)) return run;
   run.loaded = true;
   double vmax = v0;
+  const BandSample* band = g.band.data();
   const double step = g.band_step;
-  int j = p.i0;
+  int j = i0;
   double vj = v0;
   for (;;) {
-    if (j == p.lo) {
+    if (j == lo) {
       run.s_lo = band[j].s;
       run.at_band_end = j == 0;
       break;
@@ -185,11 +163,11 @@ Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, doubl
     vj = vn;
     vmax = std::max(vmax, vn);
   }
-  j = p.i0;
+  j = i0;
   vj = v0;
   const int last = static_cast<int>(g.band.size()) - 1;
   for (;;) {
-    if (j == p.hi) {
+    if (j == hi) {
       run.s_hi = band[j].s;
       run.at_band_end = run.at_band_end || j == last;
       break;
@@ -206,6 +184,35 @@ Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, doubl
   run.v_max = vmax;
   if (!(run.s_hi > run.s_lo)) run.loaded = false;
   return run;
+}
+
+}  // namespace
+
+Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
+             const NormalOptions& /*options*/) {
+  if (p.i0 < 0 || p.hi < p.lo) return Run{};
+  const double eps = p.eps;
+  const BandSample* band = g.band.data();
+  double* v = w.v.data();
+  if (!is_stripes(p.model)) {
+    // Planar patch: v = eps (dz - h) cos g_ref - (gap - h cos g_ref).
+    const double vp = eps * (dz - p.h) * p.cos_ref, hc = p.h * p.cos_ref;
+    return scan_run(g, p.i0, p.lo, p.hi, [&](int j) { return v[j] = vp - (band[j].gap - hc); });
+  }
+  // STRIPES (own angle): v = eps dz cos g - gap + (1 - eps) h cos g. cos is ready on a block
+  // around the last run (grown in blocks of 16: the run moves little between evaluations).
+  const double edz = eps * dz, eh = (1.0 - eps) * p.h;
+  const double* c = w.cos_angle.data();
+  ensure_cos(g, p, w, p.i0, p.i0);
+  int clo = p.cos_lo, chi = p.cos_hi;
+  return scan_run(g, p.i0, p.lo, p.hi, [&](int j) {
+    if (j < clo || j > chi) [[unlikely]] {
+      extend_cos(g, p, w, std::max(p.lo, j - 16), std::min(p.hi, j + 16));
+      clo = p.cos_lo;
+      chi = p.cos_hi;
+    }
+    return v[j] = edz * c[j] - band[j].gap + eh * c[j];
+  });
 }
 
 double interp_band(const WheelContactGeometry& g, double s, double BandSample::*field) {
