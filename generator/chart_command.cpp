@@ -1,5 +1,6 @@
 // railtab chart-*: charts made by the project's own commands, each from a CSV it writes first.
 //   chart-geometry: rolling radius difference and contact angles against y (flange jump visible).
+//   chart-stability: which status flags each normal model raises across y (stability_chart.hpp).
 //   chart: speed against accuracy of every contact model setting and of table lookup
 //          (speed_accuracy.hpp; docs/speed-vs-accuracy.md).
 #include <CLI/CLI.hpp>
@@ -19,6 +20,7 @@
 #include "gnuplot.hpp"
 #include "scene.hpp"
 #include "speed_accuracy.hpp"
+#include "stability_chart.hpp"
 
 namespace railtab {
 namespace {
@@ -56,13 +58,13 @@ void run_geometry_chart(const GeometryChartOptions& opt) {
   }
   out.close();
   const std::filesystem::path png = dir / "geometry.png";
-  const std::string script = fmt::format(R"(set terminal pngcairo size 1000,800 font ",11"
+  const std::string script = fmt::format(R"(set terminal pngcairo noenhanced size 1000,800 font ",11"
 set output '{png}'
 set datafile separator ','
 set multiplot layout 2,1 title "{title}: rigid contact geometry, roll {roll}"
 set grid
 set xlabel 'wheelset lateral displacement y [mm] (+ left)'
-set ylabel 'r_{{left}} - r_{{right}} [mm]'
+set ylabel 'r_left - r_right [mm]'
 plot '{csv}' every ::1 using ($1*1e3):($3*1e3) with lines lw 2 title 'rolling radius difference'
 set ylabel 'contact angle [deg]'
 plot '{csv}' every ::1 using ($1*1e3):($4*180/pi) with lines lw 2 title 'left wheel', \
@@ -237,6 +239,24 @@ void add_chart_commands(CLI::App& app) {
   cmd->add_option("--y-max", geo->y_max, "Last lateral displacement [m]")->capture_default_str();
   cmd->add_option("--y-step", geo->y_step, "Step [m]")->capture_default_str();
   cmd->callback([geo] { run_geometry_chart(*geo); });
+
+  struct StabilityChartOptions {
+    std::string scene_path = "tables/default.toml";  // scene file
+    std::string out_dir = "out";                     // output directory
+    StabilityMapOptions map;                         // y range and step [m]
+  };
+  auto st = std::make_shared<StabilityChartOptions>();
+  CLI::App* stab = app.add_subcommand(
+      "chart-stability", "Chart the status flags of every normal model across y (CSV + PNG)");
+  stab->add_option("--scene", st->scene_path, "Scene file (TOML)")->capture_default_str();
+  stab->add_option("--out", st->out_dir, "Output directory")->capture_default_str();
+  stab->add_option("--y-min", st->map.y_min, "First lateral displacement [m]")->capture_default_str();
+  stab->add_option("--y-max", st->map.y_max, "Last lateral displacement [m]")->capture_default_str();
+  stab->add_option("--y-step", st->map.y_step, "Step [m]")->capture_default_str();
+  stab->callback([st] {
+    draw_stability_chart(load_scene(st->scene_path), st->out_dir, st->map);
+    std::cout << fmt::format("chart-stability: wrote {}/stability_map.csv and stability_map.png\n", st->out_dir);
+  });
 
   auto sa = std::make_shared<SpeedChartOptions>();
   CLI::App* chart = app.add_subcommand(
