@@ -1,5 +1,6 @@
 // railtab chart-*: charts made by the project's own commands, each from a CSV it writes first.
 //   chart-geometry: rolling radius difference and contact angles against y (flange jump visible).
+//   chart-pressure: pressure along the strip centre lines of every normal model (seed 000).
 //   chart-stability: which status flags each normal model raises across y (stability_chart.hpp).
 //   chart: speed against accuracy of every contact model setting and of table lookup
 //          (speed_accuracy.hpp; docs/speed-vs-accuracy.md).
@@ -20,6 +21,7 @@
 #include "gnuplot.hpp"
 #include "scene.hpp"
 #include "speed_accuracy.hpp"
+#include "pressure_chart.hpp"
 #include "stability_chart.hpp"
 
 namespace railtab {
@@ -256,6 +258,28 @@ void add_chart_commands(CLI::App& app) {
   stab->callback([st] {
     draw_stability_chart(load_scene(st->scene_path), st->out_dir, st->map);
     std::cout << fmt::format("chart-stability: wrote {}/stability_map.csv and stability_map.png\n", st->out_dir);
+  });
+
+  struct PressureCommandOptions {
+    std::string scene_path = "tables/default.toml";  // scene file
+    std::string out_dir = "out";                     // output directory
+    std::string side = "right";                      // wheel
+    PressureChartOptions chart;
+  };
+  auto pr = std::make_shared<PressureCommandOptions>();
+  CLI::App* pres = app.add_subcommand(
+      "chart-pressure", "Chart the pressure along the strip centre lines of every normal model (CSV + PNG)");
+  pres->add_option("--scene", pr->scene_path, "Scene file (TOML)")->capture_default_str();
+  pres->add_option("--out", pr->out_dir, "Output directory")->capture_default_str();
+  pres->add_option("--y", pr->chart.y, "Wheelset lateral displacement [m]")->capture_default_str();
+  pres->add_option("--load", pr->chart.load, "Vertical wheel load [N]")->capture_default_str();
+  pres->add_option("--wheel", pr->side, "left|right")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
+  pres->add_option("--reference-pmax", pr->chart.reference_max_pressure,
+                   "Half-space maximum pressure to draw as a line [Pa] (e.g. CONTACT block A: 888e6)");
+  pres->callback([pr] {
+    pr->chart.side = pr->side == "left" ? Side::left : Side::right;
+    draw_pressure_chart(load_scene(pr->scene_path), pr->out_dir, pr->chart);
+    std::cout << fmt::format("chart-pressure: wrote {}/pressure.csv and pressure.png\n", pr->out_dir);
   });
 
   auto sa = std::make_shared<SpeedChartOptions>();
