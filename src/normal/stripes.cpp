@@ -52,7 +52,36 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
   int wlo = p.i0, whi = p.i0;
   while (wlo > p.lo && g.band[wlo - 1].gap <= gap0 + o.curvature_window) --wlo;
   while (whi < p.hi && g.band[whi + 1].gap <= gap0 + o.curvature_window) ++whi;
-  auto B_at = [&](int j) { return 0.5 * (g.band[j].curvature_wheel + g.band[j].curvature_rail); };
+  // Lateral relative curvature per band sample, with the rail's curvature taken as the average
+  // over the sample's cell [s - h/2, s + h/2] next to a radius transition of the rail (UIC60:
+  // R300/R80 at |u| = 10.5 mm, R80/R13 at 26 mm). The point value jumped by the whole curvature
+  // step whenever a transition crossed a sample, which made the strip quantities (the
+  // A-correction's A_c ~ B^(1/3) near the floor most of all) jump along a y sweep. The transition
+  // is located inside its cell from the change of the contact angle, -d angle/ds = k_r (s is the
+  // rail arc length): fraction t of the cell [s_j, s_j+1] carries k_j, the rest k_j+1. Away from
+  // transitions (and wherever the angles do not locate one) the sampled curvature is used as is.
+  const int nb = static_cast<int>(g.band.size());
+  auto step_fraction = [&](int j, double* t) {  // cell [j, j + 1] holds a transition at fraction t
+    if (j < 0 || j + 1 >= nb) return false;
+    const double k0 = g.band[j].curvature_rail, k1 = g.band[j + 1].curvature_rail;
+    const double dk = k0 - k1;
+    if (!(std::abs(dk) > std::max(1.0, 0.1 * std::max(std::abs(k0), std::abs(k1))))) return false;
+    const double kbar =
+        -(g.band[j + 1].contact_angle - g.band[j].contact_angle) / g.band_step;
+    const double f = (kbar - k1) / dk;
+    if (!std::isfinite(f)) return false;
+    *t = std::clamp(f, 0.0, 1.0);
+    return true;
+  };
+  auto rail_curvature = [&](int j) {
+    double k = g.band[j].curvature_rail, t;
+    if (step_fraction(j, &t) && t < 0.5)
+      k += (0.5 - t) * (g.band[j + 1].curvature_rail - g.band[j].curvature_rail);
+    if (step_fraction(j - 1, &t) && t > 0.5)
+      k += (t - 0.5) * (g.band[j - 1].curvature_rail - g.band[j].curvature_rail);
+    return k;
+  };
+  auto B_at = [&](int j) { return 0.5 * (g.band[j].curvature_wheel + rail_curvature(j)); };
   double B_min = std::isfinite(p.B0) ? p.B0 : floor;
   for (int j = wlo; j <= whi; ++j) B_min = std::min(B_min, B_at(j));
   if (o.negative_curvature == NegativeCurvature::shift) {

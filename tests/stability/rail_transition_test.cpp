@@ -72,14 +72,11 @@ TEST(RailTransition, ShoulderToGaugeCornerR80R13) {
   check(variants_except({"stripes-a/shift"}), 3.5e-3, 6.0e-3);
 }
 
-// KNOWN FAILURE (src/normal, STRIPES A-correction with the shift treatment): a clean unflagged step
-// at |y| = 3.510 -> 3.515 mm (both wheels; rigid point on the R80 shoulder, rail u = -13.5 mm, one
-// patch, kCurvatureShifted on both sides): area 81.92 -> 83.17 mm2 (+1.5 %), vertical approach
-// 9.7129e-5 -> 9.6935e-5 m, while 5 um steps elsewhere change the area by 0.002 %. Presumably the
-// shift (min B over the treatment window, a set of band samples) changes discretely when a sample
-// with different B enters the window; A_c ~ B^(-1/3) magnifies it. stripes-a/clip, stripes-ab/* do
-// not jump here.
-TEST(RailTransition, DISABLED_ShoulderToGaugeCornerR80R13StripesAShift) {
+// Formerly a known failure (src/normal, STRIPES A-correction with the shift treatment): a step at
+// |y| = 3.510 -> 3.515 mm (area 81.92 -> 83.17 mm2) when the R300/R80 transition of the rail crossed
+// a band sample (the sampled lateral curvature jumped by the whole curvature step). Fixed in
+// stripes.cpp: cell-averaged rail curvature next to a transition.
+TEST(RailTransition, ShoulderToGaugeCornerR80R13StripesAShift) {
   check(variants_named({"stripes-a/shift"}), 3.5e-3, 6.0e-3);
 }
 
