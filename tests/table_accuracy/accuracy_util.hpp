@@ -1,0 +1,346 @@
+// Shared machinery of the table accuracy tests (docs/lookup.md, "Accuracy"): generate a table
+// with the generator API, load it with the lookup, evaluate off-grid states directly with the
+// contact kernel, and classify each (state, wheel, slot, part) as a smooth cell (every corner
+// node of the interpolation cell and the direct evaluation share one status word) or a jump cell.
+//
+// Direct evaluation: the contact kernel itself (make_contact_kernel) on a copy of the scene whose
+// grids are the one state (y, load, xi, eta, phi; roll = the scene's equilibrium roll at y). That
+// is exactly the code path of the sweep (geometry, slot rules, load-controlled normal contact,
+// FASTSIM, Archard, statuses), with no kernel logic repeated here; building a kernel costs
+// ~0.1 ms (profiles and solver), small next to the solve.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "contact_kernel.hpp"
+#include "railtab/lookup.hpp"
+#include "scene.hpp"
+#include "sweep.hpp"
+#include "table_io.hpp"
+
+namespace railtab::accuracy {
+
+namespace lk = railtab::lookup;
+
+// State variables a table of these tests may tabulate (roll follows the equilibrium).
+enum Var : int { kY = 0, kLoad = 1, kXi = 2, kEta = 3, kPhi = 4, kNumVars = 5 };
+inline const char* const kVarNames[kNumVars] = {"y", "load", "xi", "eta", "phi"};
+
+struct Point {
+  double v[kNumVars] = {};  // y [m], load [N], xi [1], eta [1], phi [rad/m]
+};
+
+inline lk::State to_state(const lk::Table& table, const Point& p) {
+  lk::State s = table.default_state();
+  s.y = p.v[kY];
+  s.load = p.v[kLoad];
+  s.xi = p.v[kXi];
+  s.eta = p.v[kEta];
+  s.phi = p.v[kPhi];
+  return s;
+}
+
+// Status bits compared between corner nodes: all but full_slip, which marks saturation
+// |F| = mu N of the creep force, a kink along the creepages (FASTSIM's forces are continuous
+// through it), not a jump.
+inline constexpr StatusBits kCompared = ~status::kFullSlip;
+
+// Fixed-seed uniform numbers, the same on every platform (std::uniform_real_distribution is not).
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : state_(seed) {}
+  double uniform(double lo, double hi) { return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+ private:
+  std::uint64_t next() {  // splitmix64
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  std::uint64_t state_;
+};
+
+// Every output and status of both slots of one wheel, indexed like the lookup (lk::Output, lk::Part).
+struct WheelValues {
+  double value[lk::kNumOutputs][kSlots] = {};
+  StatusBits status[lk::kNumParts][kSlots] = {};
+};
+using Direct = std::array<WheelValues, 2>;  // [wheel] 0 left, 1 right
+
+// The kernel's parts and outputs must be the lookup's, in the same order (docs/table-format.md).
+inline void check_kernel_layout(const SweepKernel& kernel) {
+  ASSERT_EQ(kernel.parts.size(), static_cast<std::size_t>(lk::kNumParts));
+  int o = 0;
+  for (int p = 0; p < lk::kNumParts; ++p) {
+    ASSERT_EQ(kernel.parts[static_cast<std::size_t>(p)].name, lk::part_name(static_cast<lk::Part>(p)));
+    for (const OutputInfo& info : kernel.parts[static_cast<std::size_t>(p)].outputs) {
+      ASSERT_EQ(info.name, lk::output_name(static_cast<lk::Output>(o)));
+      ASSERT_EQ(lk::output_part(static_cast<lk::Output>(o)), p);
+      ++o;
+    }
+  }
+  ASSERT_EQ(o, lk::kNumOutputs);
+}
+
+// The contact kernel at one state (both wheels), as the sweep computes a grid point.
+inline Direct evaluate_direct(const Scene& scene, const Point& p) {
+  Scene one = scene;
+  one.grids.y = {p.v[kY]};
+  one.grids.load = {p.v[kLoad]};
+  one.grids.xi = {p.v[kXi]};
+  one.grids.eta = {p.v[kEta]};
+  one.grids.phi = {p.v[kPhi]};
+  const SweepKernel kernel = make_contact_kernel(one);
+  std::vector<std::size_t> first_output{0};
+  for (const PartSpec& part : kernel.parts) first_output.push_back(first_output.back() + part.outputs.size());
+  const std::size_t total = first_output.back(), parts = kernel.parts.size();
+  std::vector<double> values(2 * total * kSlots, 0.0);
+  std::vector<StatusBits> statuses(2 * parts * kSlots, 0u);  // empty slots keep 0, as in the sweep
+  std::vector<double*> value_ptr;
+  std::vector<StatusBits*> status_ptr;
+  for (std::size_t i = 0; i < 2 * total; ++i) value_ptr.push_back(values.data() + i * kSlots);
+  for (std::size_t i = 0; i < 2 * parts; ++i) status_ptr.push_back(statuses.data() + i * kSlots);
+  ColumnOutput out(value_ptr, status_ptr, first_output, parts);
+  ColumnState state;
+  state.y = p.v[kY];
+  state.roll = scene.equilibrium_roll ? kernel.equilibrium_roll(p.v[kY]) : scene.grids.roll.front();
+  kernel.compute(state, out);
+  Direct d;
+  for (std::size_t w = 0; w < 2; ++w) {
+    for (std::size_t o = 0; o < total; ++o)
+      for (std::size_t s = 0; s < kSlots; ++s) d[w].value[o][s] = values[(w * total + o) * kSlots + s];
+    for (std::size_t q = 0; q < parts; ++q)
+      for (std::size_t s = 0; s < kSlots; ++s) d[w].status[q][s] = statuses[(w * parts + q) * kSlots + s];
+  }
+  return d;
+}
+
+// Many states in parallel (each state independent: the result does not depend on the threads).
+inline std::vector<Direct> evaluate_direct(const Scene& scene, const std::vector<Point>& points) {
+  std::vector<Direct> out(points.size());
+  tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) { out[i] = evaluate_direct(scene, points[i]); });
+  return out;
+}
+
+// The generated table written for the lookup. The sweep writes fixed_axes {"roll":"equilibrium"}
+// for an equilibrium-roll scene (docs/table-format.md), which the lookup's fixed_axes parser
+// (numbers only) rejects at load; the copy handed to the lookup drops that non-numeric entry, so
+// roll is neither tabulated nor fixed and the lookup ignores it (the values at each y were
+// computed at the equilibrium roll of that y, which is what the direct evaluation uses too).
+inline void write_for_lookup(Table table, const std::filesystem::path& path) {
+  if (const std::string* text = table.attribute("fixed_axes")) {
+    nlohmann::json fixed = nlohmann::json::parse(*text);
+    nlohmann::json numbers = nlohmann::json::object();
+    for (auto it = fixed.begin(); it != fixed.end(); ++it)
+      if (it.value().is_number()) numbers[it.key()] = it.value();
+    table.set_attribute("fixed_axes", numbers.dump());
+  }
+  write_table(table, path);
+}
+
+inline std::filesystem::path temp_table_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("railtab_table_accuracy_" + std::to_string(::getpid()) + "_" + name + ".h5");
+}
+
+// The generator's in-memory table seen per (wheel, part): node values and statuses, cell lookup,
+// and second differences along each axis (the curvature estimate of the tolerances).
+class TableView {
+ public:
+  explicit TableView(const Table& table) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      for (int p = 0; p < lk::kNumParts; ++p) {
+        const std::string path = std::string(w == 0 ? "left/" : "right/") + lk::part_name(static_cast<lk::Part>(p));
+        const TableGroup* g = table.group(path);
+        if (!g) throw std::runtime_error("table has no " + path);
+        PartGrid& pg = grid_[w][static_cast<std::size_t>(p)];
+        const TableDataset* st = g->find("status");
+        pg.status = &st->status;
+        for (std::size_t a = 0; a + 1 < st->axes.size(); ++a) {  // the last axis is slot
+          int var = -1;
+          for (int k = 0; k < kNumVars; ++k)
+            if (st->axes[a] == kVarNames[k]) var = k;
+          if (var < 0) throw std::runtime_error("unexpected axis " + st->axes[a]);
+          pg.vars.push_back(var);
+          pg.nodes.push_back(&table.axis(st->axes[a])->values);
+        }
+        pg.stride.assign(pg.vars.size(), 0);
+        std::size_t stride = kSlots;
+        for (std::size_t a = pg.vars.size(); a-- > 0;) {
+          pg.stride[a] = stride;
+          stride *= pg.nodes[a]->size();
+        }
+        for (int o = 0; o < lk::kNumOutputs; ++o)
+          if (lk::output_part(static_cast<lk::Output>(o)) == p)
+            pg.values[o] = &g->find(lk::output_name(static_cast<lk::Output>(o)))->values;
+      }
+    }
+  }
+
+  // The interpolation cell of `p` for a part: lower node index and fraction per axis.
+  struct Cell {
+    std::vector<std::size_t> lower;
+    std::vector<double> t, h;
+  };
+  Cell cell(std::size_t wheel, int part, const Point& p) const {
+    const PartGrid& pg = grid_[wheel][static_cast<std::size_t>(part)];
+    Cell c;
+    for (std::size_t a = 0; a < pg.vars.size(); ++a) {
+      const std::vector<double>& x = *pg.nodes[a];
+      const double v = std::clamp(p.v[pg.vars[a]], x.front(), x.back());
+      std::size_t i = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), v) - x.begin());
+      i = std::clamp<std::size_t>(i, 1, x.size() - 1) - 1;
+      c.lower.push_back(i);
+      c.h.push_back(x[i + 1] - x[i]);
+      c.t.push_back((v - x[i]) / c.h.back());
+    }
+    return c;
+  }
+
+  // Statuses of the 2^D corner nodes of the cell (slot `slot`).
+  std::vector<StatusBits> corner_status(std::size_t wheel, int part, const Cell& c, std::size_t slot) const {
+    const PartGrid& pg = grid_[wheel][static_cast<std::size_t>(part)];
+    std::vector<StatusBits> out;
+    for (std::size_t k = 0; k < (std::size_t{1} << pg.vars.size()); ++k)
+      out.push_back((*pg.status)[corner_index(pg, c, k) + slot]);
+    return out;
+  }
+
+  // Values of an output at the 2^D corner nodes of its part's cell (slot `slot`).
+  std::vector<double> corner_values(std::size_t wheel, int output, const Cell& c, std::size_t slot) const {
+    const PartGrid& pg = grid_[wheel][static_cast<std::size_t>(lk::output_part(static_cast<lk::Output>(output)))];
+    std::vector<double> out;
+    for (std::size_t k = 0; k < (std::size_t{1} << pg.vars.size()); ++k)
+      out.push_back((*pg.values[output])[corner_index(pg, c, k) + slot]);
+    return out;
+  }
+
+  // Multilinear error bound of the cell: sum over axes of h^2/8 |f''| (the cell-wide bound, not
+  // t(1-t)/2 h^2 |f''| at the point: a kink of the core's output next to a node, e.g. where the
+  // contact crosses a joint of the S1002 profile's arcs, makes the error near the node larger
+  // than the t-weighted estimate), |f''| the
+  // largest second divided difference along that axis at the cell's corner nodes (and, at the
+  // table edge, the nearest interior node), using only nodes whose status equals the corner's
+  // (a difference across a jump measures the jump, not the curvature).
+  double error_estimate(std::size_t wheel, int output, const Cell& c, std::size_t slot) const {
+    const int part = lk::output_part(static_cast<lk::Output>(output));
+    const PartGrid& pg = grid_[wheel][static_cast<std::size_t>(part)];
+    const std::vector<double>& f = *pg.values[output];
+    double sum = 0.0;
+    for (std::size_t a = 0; a < pg.vars.size(); ++a) {
+      const std::vector<double>& x = *pg.nodes[a];
+      if (x.size() < 3) continue;  // two nodes: no curvature estimate along this axis
+      double d2max = 0.0;
+      for (std::size_t k = 0; k < (std::size_t{1} << pg.vars.size()); ++k) {
+        const std::size_t base = corner_index(pg, c, k) + slot;
+        const std::size_t i = c.lower[a] + ((k >> (pg.vars.size() - 1 - a)) & 1u);
+        const std::size_t j = std::clamp<std::size_t>(i, 1, x.size() - 2);  // stencil centre
+        const std::ptrdiff_t shift = static_cast<std::ptrdiff_t>(j) - static_cast<std::ptrdiff_t>(i);
+        const std::size_t centre = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(base) +
+                                                            shift * static_cast<std::ptrdiff_t>(pg.stride[a]));
+        const std::size_t lo = centre - pg.stride[a], hi = centre + pg.stride[a];
+        const StatusBits s = (*pg.status)[base] & kCompared;
+        const std::vector<StatusBits>& st = *pg.status;
+        if ((st[lo] & kCompared) != s || (st[centre] & kCompared) != s || (st[hi] & kCompared) != s) continue;
+        const double h0 = x[j] - x[j - 1], h1 = x[j + 1] - x[j];
+        const double d2 = 2.0 * ((f[hi] - f[centre]) / h1 - (f[centre] - f[lo]) / h0) / (h0 + h1);
+        d2max = std::max(d2max, std::abs(d2));
+      }
+      sum += 0.125 * c.h[a] * c.h[a] * d2max;
+    }
+    return sum;
+  }
+
+  // Largest |value| of an output over the table (both wheels, the slot): its scale.
+  double scale(int output, std::size_t slot) const {
+    double m = 0.0;
+    const int part = lk::output_part(static_cast<lk::Output>(output));
+    for (std::size_t w = 0; w < 2; ++w) {
+      const std::vector<double>& f = *grid_[w][static_cast<std::size_t>(part)].values[output];
+      for (std::size_t i = slot; i < f.size(); i += kSlots) m = std::max(m, std::abs(f[i]));
+    }
+    return m;
+  }
+
+ private:
+  struct PartGrid {
+    std::vector<int> vars;                         // tabulated axes of the part (file order)
+    std::vector<const std::vector<double>*> nodes;  // their nodes
+    std::vector<std::size_t> stride;               // C-order strides (slot fastest)
+    const std::vector<StatusBits>* status = nullptr;
+    const std::vector<double>* values[lk::kNumOutputs] = {};  // the part's outputs only
+  };
+  // Flat index (slot 0) of corner k of the cell: bit (D-1-a) of k = upper node along axis a.
+  static std::size_t corner_index(const PartGrid& pg, const Cell& c, std::size_t k) {
+    std::size_t index = 0;
+    for (std::size_t a = 0; a < pg.vars.size(); ++a)
+      index += (c.lower[a] + ((k >> (pg.vars.size() - 1 - a)) & 1u)) * pg.stride[a];
+    return index;
+  }
+  PartGrid grid_[2][lk::kNumParts];
+};
+
+// How a (state, wheel, slot, part) compares:
+//   smooth: every corner node of the interpolation cell and the direct evaluation carry the same
+//     status word (but full_slip, see kCompared), a converged loaded contact, and nothing below it jumps (see classify_point);
+//   jump: anything else with a contact somewhere: the status differs between corners (flange
+//     onset, lift-off, slot occupancy), the slot holds two contacts (two_point: the kept one, the
+//     lower-separation point or the larger patch, can switch inside the cell), or the part it
+//     sits on jumps;
+//   empty: no contact at any corner nor at the state, or lift-off throughout (all zeros).
+enum class CellKind { kSmooth, kJump, kEmpty };
+
+inline CellKind classify(const std::vector<StatusBits>& corners, StatusBits direct) {
+  const bool same = std::all_of(corners.begin(), corners.end(),
+                                [&](StatusBits s) { return (s & kCompared) == (direct & kCompared); });
+  if (same && (direct == 0u || (direct & status::kLiftOff))) return CellKind::kEmpty;
+  if (same && (direct & status::kConverged) && !(direct & (status::kFailed | status::kTwoPoint)))
+    return CellKind::kSmooth;
+  return CellKind::kJump;
+}
+
+// The kinds of every part and slot of one wheel at one state. Parts sit on each other: normal on
+// the geometry, creep and wear on the normal patch; a part whose base jumps jumps too. One model
+// switch carries no status bit: the normal model returns a Hertz (elliptic) patch, semi-axes a, b
+// > 0, where the strip model applies, else a strip patch with a = b = 0 (normal_model.hpp); creep
+// and wear on it switch with it (fastsim_contact dispatches Hertz patches to elliptic FASTSIM). A
+// cell whose corners and state do not all agree on a > 0 is therefore a jump for normal, creep
+// and wear.
+struct PointKinds {
+  CellKind kind[lk::kNumParts][kSlots];
+  TableView::Cell cell[lk::kNumParts];
+};
+
+inline PointKinds classify_point(const TableView& view, std::size_t wheel, const Point& p, const WheelValues& direct) {
+  PointKinds k;
+  for (int part = 0; part < lk::kNumParts; ++part) k.cell[part] = view.cell(wheel, part, p);
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    for (int part = 0; part < lk::kNumParts; ++part)
+      k.kind[part][s] = classify(view.corner_status(wheel, part, k.cell[part], s), direct.status[part][s]);
+    const std::vector<double> a = view.corner_values(wheel, lk::kSemiAxisA, k.cell[lk::kNormal], s);
+    const bool elliptic = direct.value[lk::kSemiAxisA][s] > 0.0;
+    const bool model_switch = std::any_of(a.begin(), a.end(), [&](double v) { return (v > 0.0) != elliptic; });
+    auto inherit = [&](int part, bool base_jumps) {
+      if (base_jumps && k.kind[part][s] == CellKind::kSmooth) k.kind[part][s] = CellKind::kJump;
+    };
+    inherit(lk::kNormal, k.kind[lk::kGeometry][s] == CellKind::kJump || model_switch);
+    inherit(lk::kCreep, k.kind[lk::kNormal][s] == CellKind::kJump);
+    inherit(lk::kWear, k.kind[lk::kNormal][s] == CellKind::kJump);
+  }
+  return k;
+}
+
+}  // namespace railtab::accuracy

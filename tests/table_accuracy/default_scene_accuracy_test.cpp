@@ -1,0 +1,179 @@
+// The multilinear lookup against the core at random off-grid states of the default scene
+// (tables/default.toml, the full grid: it generates in ~1 s on 2 cores), docs/lookup.md
+// "Accuracy". Run: build/<dir>/tests/test_table_accuracy (or ctest -L table_accuracy); the
+// error table is printed on stdout.
+//
+// Tolerance (smooth cells, every state, wheel, slot and output):
+//   |lookup - direct| <= kSafety * e + 1e-4 * scale
+// e is the multilinear interpolation error bound of the cell, sum over the part's axes of
+// h^2/8 |f''| (the second-order error of linear interpolation; bilinear cross terms are
+// interpolated exactly, so mixed derivatives do not enter at this order), with
+// |f''| the largest second divided difference along that axis at the cell's corner nodes, taken
+// from the table itself (TableView::error_estimate). kSafety = 5 because |f''| is sampled at the
+// nodes, two cells wide, while the error follows f'' inside the cell: where the curvature peaks
+// between nodes (the contact moving fast just before a contact jump, the flange root, the creep
+// force curve bending into saturation) the nodes underestimate it; measured error/estimate on
+// this table is <= 2.7. The floor 1e-4 * scale (scale = the output's largest |value| in the table)
+// covers the core's own tolerances (load iteration, strip discretisation noise), far below the
+// interpolation error.
+//
+// Jump cells (status or slot occupancy differs between corners, two_point, a Hertz/strip patch
+// switch, or the part underneath jumps; see classify_point) are counted and their max error
+// reported, not asserted: the lookup carries jumps by slot and status, it does not smooth them.
+#include <chrono>
+#include <cstdio>
+#include <optional>
+
+#include "accuracy_util.hpp"
+
+namespace railtab::accuracy {
+namespace {
+
+constexpr std::uint64_t kSeed = 20240611;
+constexpr std::size_t kPoints = 4000;  // random states, both wheels each
+constexpr double kSafety = 5.0;
+constexpr double kFloor = 1e-4;        // of the output's scale
+
+struct Fixture {
+  Scene scene;
+  Table table;                       // the generator's in-memory table (nodes, statuses)
+  std::optional<lk::Table> lookup;   // the same table through the file and the lookup
+  double generate_seconds = 0.0;
+};
+
+const Fixture& fixture() {
+  static const Fixture f = [] {
+    Fixture x;
+    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+    const auto t0 = std::chrono::steady_clock::now();
+    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
+    x.generate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    x.table = std::move(r.table);
+    const std::filesystem::path path = temp_table_path("default");
+    write_for_lookup(x.table, path);
+    x.lookup.emplace(lk::Table::load(path.string()));
+    std::filesystem::remove(path);
+    return x;
+  }();
+  return f;
+}
+
+const std::vector<double>& grid(const Scene& scene, int var) {
+  const std::vector<double>* grids[kNumVars] = {&scene.grids.y, &scene.grids.load, &scene.grids.xi, &scene.grids.eta,
+                                                &scene.grids.phi};
+  return *grids[var];
+}
+
+std::string output_label(int o) {
+  return std::string(lk::part_name(lk::output_part(static_cast<lk::Output>(o)))) + "/" +
+         lk::output_name(static_cast<lk::Output>(o));
+}
+
+// At grid nodes the lookup returns the table's values, so it must equal the direct evaluation
+// there: proof that the direct path is the sweep's (same models, options, roll, slot rules).
+TEST(TableAccuracy, DirectEvaluationReproducesTheNodes) {
+  const Fixture& f = fixture();
+  check_kernel_layout(make_contact_kernel(f.scene));
+  const TableView view(f.table);
+  Random rng(kSeed + 1);
+  std::vector<Point> points(60);
+  for (Point& p : points) {
+    for (int k = 0; k < kNumVars; ++k) {
+      const std::vector<double>& g = grid(f.scene, k);
+      p.v[k] = g[std::min(g.size() - 1, static_cast<std::size_t>(rng.uniform(0.0, static_cast<double>(g.size()))))];
+    }
+  }
+  const std::vector<Direct> direct = evaluate_direct(f.scene, points);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      const lk::Result r = f.lookup->query(static_cast<lk::Wheel>(w), to_state(*f.lookup, points[i]));
+      for (std::size_t s = 0; s < kSlots; ++s)
+        for (int o = 0; o < lk::kNumOutputs; ++o)
+          EXPECT_NEAR(r.contact[s].value[o], direct[i][w].value[o][s], 1e-9 * view.scale(o, s))
+              << output_label(o) << " slot " << s << " wheel " << w << " y " << points[i].v[kY];
+    }
+  }
+}
+
+struct Stats {
+  std::size_t smooth = 0, jump = 0, over = 0;
+  double sum_sq = 0.0, max_abs = 0.0, max_ratio = 0.0, max_mu_n = 0.0, jump_max = 0.0;
+};
+
+TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
+  const Fixture& f = fixture();
+  const TableView view(f.table);
+  Random rng(kSeed);
+  std::vector<Point> points(kPoints);
+  for (Point& p : points)
+    for (int k = 0; k < kNumVars; ++k) p.v[k] = rng.uniform(grid(f.scene, k).front(), grid(f.scene, k).back());
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<Direct> direct = evaluate_direct(f.scene, points);
+  const double direct_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double mu = f.scene.tangential.friction;
+
+  Stats stats[lk::kNumOutputs][kSlots];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      const lk::Result r = f.lookup->query(static_cast<lk::Wheel>(w), to_state(*f.lookup, points[i]));
+      ASSERT_EQ(r.status & (lk::status::kOutOfRange | lk::status::kInvalidInput), 0u);
+      const PointKinds kinds = classify_point(view, w, points[i], direct[i][w]);
+      for (int o = 0; o < lk::kNumOutputs; ++o) {
+        const int part = lk::output_part(static_cast<lk::Output>(o));
+        for (std::size_t s = 0; s < kSlots; ++s) {
+          const CellKind kind = kinds.kind[part][s];
+          if (kind == CellKind::kEmpty) continue;
+          const double err = std::abs(r.contact[s].value[o] - direct[i][w].value[o][s]);
+          Stats& st = stats[o][s];
+          if (kind == CellKind::kJump) {
+            ++st.jump;
+            st.jump_max = std::max(st.jump_max, err);
+            continue;
+          }
+          ++st.smooth;
+          st.sum_sq += err * err;
+          st.max_abs = std::max(st.max_abs, err);
+          const double tolerance = kSafety * view.error_estimate(w, o, kinds.cell[part], s) + kFloor * view.scale(o, s);
+          st.max_ratio = std::max(st.max_ratio, err / tolerance);
+          if (o == lk::kFx || o == lk::kFy)
+            st.max_mu_n = std::max(st.max_mu_n, err / (mu * direct[i][w].value[lk::kNormalForce][s]));
+          if (err > tolerance) {
+            ++st.over;
+            ADD_FAILURE() << output_label(o) << " slot " << s << " wheel " << w << " at y " << points[i].v[kY]
+                          << " load " << points[i].v[kLoad] << " creepage (" << points[i].v[kXi] << ", "
+                          << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): error " << err << " > tolerance "
+                          << tolerance;
+          }
+        }
+      }
+    }
+  }
+  std::printf("default scene, multilinear: %zu random off-grid states x 2 wheels, seed %llu "
+              "(table %.2f s, direct evaluation %.2f s)\n",
+              points.size(), static_cast<unsigned long long>(kSeed), f.generate_seconds, direct_seconds);
+  std::printf("%-22s %4s | %6s %10s %10s %10s %8s %8s | %6s %10s\n", "output", "slot", "smooth", "rms", "max",
+              "scale", "max/scl", "err/tol", "jump", "max_jump");
+  for (int o = 0; o < lk::kNumOutputs; ++o) {
+    for (std::size_t s = 0; s < kSlots; ++s) {
+      const Stats& st = stats[o][s];
+      const double scale = view.scale(o, s);
+      std::printf("%-22s %4zu | %6zu %10.3e %10.3e %10.3e %8.2e %8.2f | %6zu %10.3e\n", output_label(o).c_str(), s,
+                  st.smooth, st.smooth ? std::sqrt(st.sum_sq / static_cast<double>(st.smooth)) : 0.0, st.max_abs,
+                  scale, scale > 0 ? st.max_abs / scale : 0.0, st.max_ratio, st.jump, st.jump_max);
+    }
+  }
+  for (int o : {lk::kFx, lk::kFy})
+    for (std::size_t s = 0; s < kSlots; ++s)
+      std::printf("smooth cells: max |error of %s| / (mu N), slot %zu: %.3f\n", lk::output_name(static_cast<lk::Output>(o)),
+                  s, stats[o][s].max_mu_n);
+  // The classification found both kinds where the default scene has them: smooth tread and
+  // flange cells, and jumps (tread contact jumps, flange onset, two-point, lift-off).
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    EXPECT_GT(stats[lk::kFx][s].smooth, points.size() / 10) << "slot " << s;
+    EXPECT_GT(stats[lk::kContactAngle][s].jump, 0u) << "slot " << s;
+  }
+}
+
+}  // namespace
+}  // namespace railtab::accuracy
