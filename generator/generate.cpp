@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "adaptive_grid.hpp"
 #include "contact_kernel.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
@@ -24,7 +25,18 @@ std::pair<int, int> parse_shard(const std::string& text) {
 }
 
 SweepSummary generate_table(const GenerateOptions& options) {
-  const Scene scene = load_scene(options.scene);
+  Scene scene = load_scene(options.scene);
+  // [accuracy] scenes: place the adaptive axes' nodes first (docs/adaptive-grids.md); deterministic,
+  // so shards and resumed runs get the same grids.
+  AdaptiveGridSummary adaptive = build_adaptive_grids(scene, options.threads);
+  if (options.log && scene.accuracy.enabled) {
+    for (const AxisRefinement& r : adaptive.axes) {
+      *options.log << fmt::format("adaptive {}: {} nodes, worst midpoint error {:.2f} of target, {} jump(s), "
+                                  "{} unmet, {} evaluations\n",
+                                  r.axis, r.nodes.size(), r.worst_error, r.jumps, r.unmet, r.evaluations);
+    }
+    *options.log << fmt::format("adaptive grids placed in {:.2f} s\n", adaptive.seconds);
+  }
   const SweepKernel kernel = options.make_kernel ? options.make_kernel(scene) : make_contact_kernel(scene);
   std::ostream* log = options.log;
 
@@ -51,6 +63,10 @@ SweepSummary generate_table(const GenerateOptions& options) {
                           : fmt::format("interrupted: nothing written ({} of {} y blocks were done; use --resume "
                                         "to keep finished blocks)",
                                         s.blocks_done, s.blocks_total));
+  }
+  if (scene.accuracy.enabled) {
+    result.table.set_attribute("accuracy_targets", adaptive.targets_json(scene).dump());
+    result.table.set_attribute("accuracy_achieved", adaptive.achieved_json().dump());
   }
   write_table(result.table, options.output, options.interrupt);
   if (options.resume) {

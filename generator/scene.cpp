@@ -203,6 +203,10 @@ void append_segment(const Section& s, const std::string& key, const toml::node& 
   }
   const toml::table& t = *n.as_table();
   for (auto&& [k, v] : t) {
+    if (k == "max_step" || k == "min_step") {
+      fail(s.context(), k.source(), s.dotted(key) + "." + std::string(k.str()),
+           "an adaptive range {start, stop, max_step, min_step} must be the whole axis, not a list element");
+    }
     if (k != "start" && k != "stop" && k != "step" && k != "count") {
       fail(s.context(), k.source(), s.dotted(key) + "." + std::string(k.str()),
            "unknown key in a range (known keys: start, stop, step, count)");
@@ -277,6 +281,51 @@ std::vector<double> parse_axis(const Section& s, const std::string& key, const t
   return values;
 }
 
+bool is_adaptive_range(const toml::node& n) {
+  const toml::table* t = n.as_table();
+  return t && (t->contains("max_step") || t->contains("min_step"));
+}
+
+// An adaptive axis {start, stop, max_step, min_step} ([accuracy] scenes). Returns the spec; the
+// starting grid (uniform, step <= max_step) goes into `values`.
+AdaptiveAxisSpec parse_adaptive_axis(const Section& s, const std::string& key, const toml::node& n,
+                                     bool accuracy_enabled, std::vector<double>& values) {
+  const toml::table& t = *n.as_table();
+  for (auto&& [k, v] : t) {
+    if (k != "start" && k != "stop" && k != "max_step" && k != "min_step") {
+      fail(s.context(), k.source(), s.dotted(key) + "." + std::string(k.str()),
+           "unknown key in an adaptive range (known keys: start, stop, max_step, min_step)");
+    }
+  }
+  if (!accuracy_enabled) {
+    fail(s.context(), n.source(), s.dotted(key),
+         "an adaptive range {start, stop, max_step, min_step} needs an [accuracy] section");
+  }
+  auto get = [&](const char* name) -> double {
+    const toml::node* v = t.get(name);
+    if (!v) fail(s.context(), n.source(), s.dotted(key) + "." + name, "missing required key of an adaptive range");
+    return s.number(*v, key + "." + name);
+  };
+  AdaptiveAxisSpec a{key, get("start"), get("stop"), get("max_step"), get("min_step")};
+  if (!(a.stop > a.start)) fail(s.context(), n.source(), s.dotted(key), "an adaptive range needs stop > start");
+  if (!(a.min_step > 0.0)) fail(s.context(), t.get("min_step")->source(), s.dotted(key) + ".min_step", "must be > 0");
+  if (!(a.max_step >= a.min_step)) {
+    fail(s.context(), t.get("max_step")->source(), s.dotted(key) + ".max_step",
+         fmt::format("must be >= min_step ({})", a.min_step));
+  }
+  if ((a.stop - a.start) / a.min_step > static_cast<double>(kMaxAxisPoints)) {
+    fail(s.context(), t.get("min_step")->source(), s.dotted(key) + ".min_step", "too small: range has too many points");
+  }
+  auto intervals = static_cast<std::size_t>(std::ceil((a.stop - a.start) / a.max_step - 1e-9));
+  intervals = std::max<std::size_t>(intervals, 1);
+  values.clear();
+  for (std::size_t i = 0; i <= intervals; ++i) {
+    double f = static_cast<double>(i) / static_cast<double>(intervals);
+    values.push_back(i == intervals ? a.stop : a.start + f * (a.stop - a.start));
+  }
+  return a;
+}
+
 ProfileSource parse_profile(const Section& s, const std::string& key, const std::filesystem::path& base_dir,
                             double smoothing) {
   const toml::node& n = s.required(key);
@@ -311,7 +360,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   }
 
   static const std::vector<std::string> kSections{"scene", "profiles", "track", "wheelset", "geometry",
-                                                  "material", "contact", "wear", "grid"};
+                                                  "material", "contact", "wear", "grid",
+                                                  "accuracy"};
   for (auto&& [key, node] : root) {
     if (std::find(kSections.begin(), kSections.end(), key.str()) == kSections.end()) {
       fail(ctx, key.source(), std::string(key.str()),
@@ -379,10 +429,30 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   scene.wear.hardness = we.number("hardness", scene.wear.hardness, positive, "> 0 [Pa]");
   scene.wear.lubrication_factor = we.number("lubrication_factor", scene.wear.lubrication_factor, positive, "> 0");
 
+  Section ac = section(ctx, root, "accuracy", {"creep_force", "contact_angle", "rolling_radius", "normal_force"});
+  AccuracyTargets& acc = scene.accuracy;
+  acc.enabled = ac.present();
+  acc.creep_force = ac.number("creep_force", 0.0, positive, "> 0 (relative to mu N)");
+  acc.contact_angle = ac.number("contact_angle", 0.0, positive, "> 0 [rad]");
+  acc.rolling_radius = ac.number("rolling_radius", 0.0, positive, "> 0 [m]");
+  acc.normal_force = ac.number("normal_force", 0.0, positive, "> 0 (relative to N)");
+  if (acc.enabled && acc.creep_force == 0.0 && acc.contact_angle == 0.0 && acc.rolling_radius == 0.0 &&
+      acc.normal_force == 0.0) {
+    fail(ctx, root.get("accuracy")->source(), "accuracy",
+         "needs at least one target (creep_force, contact_angle, rolling_radius, normal_force)");
+  }
+
   Section gr = section(ctx, root, "grid", {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll"});
   SceneGrids& grids = scene.grids;
-  grids.y = parse_axis(gr, "y", gr.required("y"));
-  grids.load = parse_axis(gr, "load", gr.required("load"));
+  // A grid axis, or an adaptive one ([accuracy] scenes) recorded in scene.accuracy.axes.
+  auto grid_axis = [&](const std::string& key, const toml::node& n) -> std::vector<double> {
+    if (!is_adaptive_range(n)) return parse_axis(gr, key, n);
+    std::vector<double> values;
+    acc.axes.push_back(parse_adaptive_axis(gr, key, n, acc.enabled, values));
+    return values;
+  };
+  grids.y = grid_axis("y", gr.required("y"));
+  grids.load = grid_axis("load", gr.required("load"));
   for (double load : grids.load) {
     if (!(load > 0.0)) fail(ctx, gr.node("load")->source(), "grid.load", "loads must be > 0 [N]");
   }
@@ -391,17 +461,22 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
     if (scene.equilibrium_roll) {
       fail(ctx, n->source(), "grid.roll", "cannot be given together with equilibrium_roll = true");
     }
+    if (is_adaptive_range(*n)) fail(ctx, n->source(), "grid.roll", "roll cannot be adaptive (use a list or equilibrium_roll)");
     grids.roll = parse_axis(gr, "roll", *n);
   } else {
     grids.roll = {0.0};
   }
   auto optional_axis = [&](const char* key) -> std::vector<double> {
     const toml::node* n = gr.node(key);
-    return n ? parse_axis(gr, key, *n) : std::vector<double>{0.0};
+    return n ? grid_axis(key, *n) : std::vector<double>{0.0};
   };
   grids.xi = optional_axis("xi");
   grids.eta = optional_axis("eta");
   grids.phi = optional_axis("phi");
+  if (acc.enabled && acc.axes.empty()) {
+    fail(ctx, root.get("accuracy")->source(), "accuracy",
+         "no grid axis is adaptive: give at least one as {start, stop, max_step, min_step}");
+  }
   return scene;
 }
 

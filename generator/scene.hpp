@@ -43,6 +43,27 @@ struct SceneGrids {
   std::vector<double> phi;   // spin creepage [rad/m]
 };
 
+// An axis whose nodes the generator places from accuracy targets (docs/adaptive-grids.md): in the
+// scene `[grid] y = {start, stop, max_step, min_step}`, allowed only with an [accuracy] section.
+struct AdaptiveAxisSpec {
+  std::string axis;        // "y", "load", "xi", "eta" or "phi"
+  double start = 0.0;      // first node [axis units]
+  double stop = 0.0;       // last node [axis units]
+  double max_step = 0.0;   // largest node spacing; the starting grid is uniform at <= max_step [axis units]
+  double min_step = 0.0;   // smallest node spacing; contact jumps are refined to it [axis units]
+};
+
+// The [accuracy] section: interpolation error targets at the midpoints between grid nodes. A
+// target of 0 is not checked.
+struct AccuracyTargets {
+  bool enabled = false;          // the scene has an [accuracy] section
+  double creep_force = 0.0;      // |(fx, fy) error| relative to mu * N of the patch [-]
+  double contact_angle = 0.0;    // absolute [rad]
+  double rolling_radius = 0.0;   // absolute [m]
+  double normal_force = 0.0;     // relative to N of the patch [-]
+  std::vector<AdaptiveAxisSpec> axes;  // adaptive axes in state-axis order (y, load, xi, eta, phi)
+};
+
 struct Scene {
   std::string name;             // [scene] name
   std::string description;      // [scene] description
@@ -58,7 +79,8 @@ struct Scene {
   TangentialSettings tangential;
   WearSettings wear;
   bool equilibrium_roll = false;  // roll follows the kinematic equilibrium instead of the roll grid
-  SceneGrids grids;
+  SceneGrids grids;              // adaptive axes hold their starting grid until build_adaptive_grids
+  AccuracyTargets accuracy;      // [accuracy]; enabled = false without the section
 };
 
 // Parse a scene file. Unknown keys, missing required keys, wrong types, empty or non-monotonic
