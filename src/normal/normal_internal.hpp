@@ -66,6 +66,7 @@ struct Workspace {
   std::vector<double> strip_pos;        // per-strip scratch: lateral positions [m]
   std::vector<double> log_arg;          // STRIPES Boussinesq integral: logarithm arguments (4 per
   std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]
+  std::vector<double> A_int;            // band-sized scratch: running integral of A over s [1]
 };
 
 Workspace& thread_workspace();

@@ -270,6 +270,7 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
     w.v.resize(nb);
     w.cosb.resize(nb);
     w.weight.resize(nb);
+    w.A_int.resize(nb);
   }
   w.strip_len.resize(std::max(o.strips, 1));
   w.strip_pos.resize(std::max(o.strips, 1));

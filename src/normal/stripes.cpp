@@ -81,7 +81,38 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
       k += (t - 0.5) * (g.band[j - 1].curvature_rail - g.band[j].curvature_rail);
     return k;
   };
-  auto B_at = [&](int j) { return 0.5 * (g.band[j].curvature_wheel + rail_curvature(j)); };
+  // The wheel's curvature steps too (S1002: the straight flange flank meets the flange-root arc, the
+  // section joins of the tread). Its transition is located from the gap, whose second derivative
+  // is k_w + k_r (plus a smooth remainder from the finite gap and the inclination): the second
+  // difference D_j at sample j is the hat-weighted mean of it, so with the jump at fraction t of
+  // the cell [j, j + 1] (k_w = a before, b after), D_j + D_j+1 - (a + k_r,j) - (b + k_r,j+1)
+  // = 2 r + (b - a)(1 - 2t)/2; the remainder r is taken from the neighbouring samples, whose
+  // hats do not reach the jump.
+  auto gap_excess = [&](int j) {  // D_j - (k_w + k_r) at sample j (1 <= j <= nb - 2)
+    const double h2 = g.band_step * g.band_step;
+    const double D = (g.band[j + 1].gap - 2.0 * g.band[j].gap + g.band[j - 1].gap) / h2;
+    return D - (g.band[j].curvature_wheel + g.band[j].curvature_rail);
+  };
+  auto wheel_step_fraction = [&](int j, double* t) {
+    if (j < 2 || j + 3 >= nb) return false;
+    const double a = g.band[j].curvature_wheel, b = g.band[j + 1].curvature_wheel;
+    const double dk = b - a;
+    if (!(std::abs(dk) > std::max(1.0, 0.1 * std::max(std::abs(a), std::abs(b))))) return false;
+    const double r = 0.5 * (gap_excess(j - 1) + gap_excess(j + 2));
+    const double f = 0.5 - (gap_excess(j) + gap_excess(j + 1) - 2.0 * r) / dk;
+    if (!std::isfinite(f)) return false;
+    *t = std::clamp(f, 0.0, 1.0);
+    return true;
+  };
+  auto wheel_curvature = [&](int j) {
+    double k = g.band[j].curvature_wheel, t;
+    if (wheel_step_fraction(j, &t) && t < 0.5)
+      k += (0.5 - t) * (g.band[j + 1].curvature_wheel - g.band[j].curvature_wheel);
+    if (wheel_step_fraction(j - 1, &t) && t > 0.5)
+      k += (t - 0.5) * (g.band[j - 1].curvature_wheel - g.band[j].curvature_wheel);
+    return k;
+  };
+  auto B_at = [&](int j) { return 0.5 * (wheel_curvature(j) + rail_curvature(j)); };
   double B_min = std::isfinite(p.B0) ? p.B0 : floor;
   for (int j = wlo; j <= whi; ++j) B_min = std::min(B_min, B_at(j));
   if (o.negative_curvature == NegativeCurvature::shift) {
@@ -200,20 +231,56 @@ PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
   // Per strip: overlap v, corrected A, half-length a; volume sums for the force.
   int j0, j1;
   strip_sample_range(g, run.s_lo, width, n, &j0, &j1);
-  ensure_samples(g, p, w, j0, j1, o);
   const double* v_s = w.v.data();
   const double* A_s = w.A.data();
   const double* q_s = w.q.data();
   const double* c_s = w.cos_angle.data();
   BoussinesqSum bsum(w.log_arg.data(), w.log_coef.data());
+  // Corrected curvature of a strip: the mean of the (linearly interpolated) per-sample A_c over
+  // the strip's width, not its value at the centre. A_c jumps where the lateral curvature of a
+  // profile jumps (radius transitions, the straight flange flank meeting the flange-root arc: the
+  // local Hertz shape changes by a factor of 3 or more across one band cell); taken at the strip
+  // centres, the load then depended on which side of the jump each centre fell, and since the
+  // strips slide with the patch edges, N(delta) had bumps (non-monotone: several approaches carry
+  // the same load, the load control picked different ones from one y to the next). The mean moves
+  // continuously as a jump sweeps through a strip. Running integral of A over the strip samples:
+  // A_int[j] = int_{s_j0}^{s_j} A ds (exact for the piecewise-linear interpolant).
+  // The running integral covers the samples [ja, jb] around the whole run [s_lo, s_hi].
+  int ja, jb;
+  {
+    double t;
+    locate(g, p.lo, p.hi, run.s_lo, &ja, &t);
+    locate(g, p.lo, p.hi, run.s_hi, &jb, &t);
+    if (t != 0.0) ++jb;
+    ja = std::min(ja, j0);
+    jb = std::max(jb, j1);
+  }
+  ensure_samples(g, p, w, ja, jb, o);
+  double* A_int = w.A_int.data();
+  {
+    const double half_h = 0.5 * g.band_step;
+    A_int[ja] = 0.0;
+    for (int j = ja; j < jb; ++j) A_int[j + 1] = A_int[j] + half_h * (A_s[j] + A_s[j + 1]);
+  }
+  auto A_integral = [&](double s) {  // int_{s_ja}^{s} A ds, s inside [s_ja, s_jb]
+    int j;
+    double t;
+    locate(g, ja, jb, s, &j, &t);
+    const double a0 = A_s[j];
+    if (t == 0.0) return A_int[j];
+    return A_int[j] + t * g.band_step * (a0 + 0.5 * t * (A_s[j + 1] - a0));
+  };
   double volume = 0.0, volume_z = 0.0;  // sum v a w (4/3), its projection on track z
+  double F_lo = A_integral(run.s_lo);
   for (int k = 0; k < n; ++k) {
     const double s = run.s_lo + (k + 0.5) * width;
     int j;
     double t;
     locate(g, s, &j, &t);
     const double v = std::max(lerp_at(v_s, j, t), 0.0);
-    const double A = lerp_at(A_s, j, t);
+    const double F_hi = A_integral(run.s_lo + (k + 1) * width);
+    const double A = (F_hi - F_lo) / width;
+    F_lo = F_hi;
     const double a = A > 0.0 ? std::sqrt(v / A) : 0.0;
     const double vol = (4.0 / 3.0) * v * a * width;  // parabola: int (1 - x^2/a^2) = 4/3 a
     volume += vol;
