@@ -677,7 +677,8 @@ StateErrors state_errors(const ContactProbe& probe, const SceneGrids& g, double 
 
 }  // namespace
 
-GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t states, unsigned seed, int threads) {
+GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t states, unsigned seed, int threads,
+                                             const std::vector<std::pair<std::string, SceneGrids>>& others) {
   RAILTAB_CHECK(base.accuracy.enabled, "compare: the scene {} has no [accuracy] section", base.name);
   GridComparison cmp;
   Scene adaptive = base;
@@ -698,10 +699,12 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
       return check_axis(sampler, spec.axis, uniform_nodes(spec.start, spec.stop, n), r.discontinuities).worst_error <=
              r.worst_error;
     };
+    // Like the adaptive grid, the uniform one keeps step <= max_step: n >= n0.
     const std::size_t cap = static_cast<std::size_t>(std::ceil((spec.stop - spec.start) / spec.min_step)) * 2;
-    std::size_t hi = 1;
+    const auto n0 = static_cast<std::size_t>(std::ceil((spec.stop - spec.start) / spec.max_step - 1e-9));
+    std::size_t hi = n0;
     while (hi < cap && !ok(hi)) hi *= 2;
-    std::size_t lo = hi / 2;  // fails (or 0)
+    std::size_t lo = hi == n0 ? n0 - 1 : hi / 2;  // fails (or below n0)
     while (hi - lo > 1) {
       std::size_t m = (lo + hi) / 2;
       (ok(m) ? hi : lo) = m;
@@ -710,7 +713,20 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
     cmp.uniform.worst_midpoint.push_back(check_axis(sampler, spec.axis, nodes, r.discontinuities).worst_error);
     grid_of(cmp.uniform.grids, spec.axis) = nodes;
   }
-  for (GridComparison::Grid* g : {&cmp.adaptive, &cmp.uniform}) {
+  for (const auto& [name, grids] : others) {
+    GridComparison::Grid g;
+    g.name = name;
+    g.grids = grids;
+    for (std::size_t i = 0; i < summary.axes.size(); ++i) {
+      const std::string& axis = base.accuracy.axes[i].axis;
+      AxisSampler sampler = contact_axis_sampler(base, probe, axis, threads);
+      g.worst_midpoint.push_back(check_axis(sampler, axis, grid_of(g.grids, axis), summary.axes[i].discontinuities).worst_error);
+    }
+    cmp.others.push_back(std::move(g));
+  }
+  std::vector<GridComparison::Grid*> all{&cmp.adaptive, &cmp.uniform};
+  for (GridComparison::Grid& g : cmp.others) all.push_back(&g);
+  for (GridComparison::Grid* g : all) {
     g->points = tabulated_points(base, g->grids);
     g->bytes = table_bytes(base, g->grids);
   }
@@ -727,25 +743,26 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
   };
   std::vector<State> drawn(states);
   for (State& s : drawn) s = {draw("y"), draw("load"), {draw("xi"), draw("eta"), draw("phi")}};
-  std::vector<std::array<StateErrors, 2>> errors(states);
+  std::vector<std::vector<StateErrors>> errors(states, std::vector<StateErrors>(all.size()));
   tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, states, [&](std::size_t i) {
       const State& s = drawn[i];
       auto direct = probe.evaluate(s.y, {s.load}, {s.c})[0][0];
-      errors[i][0] = state_errors(probe, cmp.adaptive.grids, s.y, s.load, s.c, direct);
-      errors[i][1] = state_errors(probe, cmp.uniform.grids, s.y, s.load, s.c, direct);
+      for (std::size_t k = 0; k < all.size(); ++k) {
+        errors[i][k] = state_errors(probe, all[k]->grids, s.y, s.load, s.c, direct);
+      }
     });
   });
   cmp.states = states;
-  for (int k = 0; k < 2; ++k) {
-    GridComparison::Grid& g = k == 0 ? cmp.adaptive : cmp.uniform;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    GridComparison::Grid& g = *all[k];
     std::vector<double> creep, normal, angle;
     for (const auto& e : errors) {
       for (int w = 0; w < 2; ++w) {
-        if (e[static_cast<std::size_t>(k)].creep[w] >= 0) creep.push_back(e[static_cast<std::size_t>(k)].creep[w]);
-        if (e[static_cast<std::size_t>(k)].normal[w] >= 0) normal.push_back(e[static_cast<std::size_t>(k)].normal[w]);
-        if (e[static_cast<std::size_t>(k)].angle[w] >= 0) angle.push_back(e[static_cast<std::size_t>(k)].angle[w]);
+        if (e[k].creep[w] >= 0) creep.push_back(e[k].creep[w]);
+        if (e[k].normal[w] >= 0) normal.push_back(e[k].normal[w]);
+        if (e[k].angle[w] >= 0) angle.push_back(e[k].angle[w]);
       }
     }
     g.creep_median = quantile(creep, 0.5);
@@ -762,13 +779,15 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
 
 std::string GridComparison::text() const {
   std::string out = fmt::format("{} random states (both wheels each), errors against direct evaluation\n", states);
-  out += fmt::format("{:<9} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10} | {:>24} | {:>8} {:>8} {:>8} | {:>8} {:>8} {:>8} | {:>9} {:>9}\n",
+  out += fmt::format("{:<12} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10} | {:>24} | {:>8} {:>8} {:>8} | {:>8} {:>8} {:>8} | {:>9} {:>9}\n",
                      "grid", "ny", "nload", "nxi", "neta", "nphi", "points", "MiB", "worst midpoint/target",
                      "F med%", "F p90%", "F max%", "N med%", "N p90%", "N max%", "ang med", "ang max");
-  for (const Grid* g : {&adaptive, &uniform}) {
+  std::vector<const Grid*> all{&adaptive, &uniform};
+  for (const Grid& g : others) all.push_back(&g);
+  for (const Grid* g : all) {
     std::string mids;
     for (double m : g->worst_midpoint) mids += fmt::format("{}{:.2f}", mids.empty() ? "" : " ", m);
-    out += fmt::format("{:<9} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10.2f} | {:>24} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>9.2e} {:>9.2e}\n",
+    out += fmt::format("{:<12} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10.2f} | {:>24} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>9.2e} {:>9.2e}\n",
                        g->name, g->grids.y.size(), g->grids.load.size(), g->grids.xi.size(), g->grids.eta.size(),
                        g->grids.phi.size(), g->points, static_cast<double>(g->bytes) / 1048576.0, mids,
                        100 * g->creep_median, 100 * g->creep_p90, 100 * g->creep_max, 100 * g->normal_median,

@@ -122,9 +122,12 @@ struct GridComparison {
     double angle_median = 0, angle_max = 0;  // tread-slot contact angle error [rad]
   };
   Grid adaptive, uniform;
+  std::vector<Grid> others;                // further grids measured the same way (e.g. default.toml's)
   std::size_t states = 0;                  // random states (with contact on both wheels) [-]
   std::string text() const;                // printable report
 };
-GridComparison compare_adaptive_with_uniform(const Scene& scene, std::size_t states, unsigned seed, int threads = 0);
+// `others`: further grids of the same scene (axes as in the scene's ranges) measured at the same states.
+GridComparison compare_adaptive_with_uniform(const Scene& scene, std::size_t states, unsigned seed, int threads = 0,
+                                             const std::vector<std::pair<std::string, SceneGrids>>& others = {});
 
 }  // namespace railtab
