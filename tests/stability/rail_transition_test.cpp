@@ -62,6 +62,13 @@ TEST(RailTransition, CrownToShoulderR300R80) {
 // approach turns over steeply: 4.95e-5 -> 4.41e-5 m between y = 0.45 and 0.50 mm (neighbouring
 // steps ~1e-6 m), then 1.00e-4 m at 0.55 mm when the point vanishes (that step is flagged by the
 // point count). A small-B point needs a flag (or a floor as STRIPES has) before it blows up.
+// Normal layer follow-up: confirmed. The vanishing point is a fold of the gap (minimum and saddle
+// merge: B ~ sqrt(y_fold - y)); at fixed penetration a Hertz contribution grows like B^(-1/2) as
+// B -> 0, so the point's share of the load rises without bound right before it vanishes. Its
+// prominence (saddle gap - own gap) is 4e-7 m at 0.45 mm, 1.5e-8 m at 0.50 mm, but at neutral (two
+// healthy minima in one run) already only 0.04 of the penetration, so a fade by prominence or by
+// basin width would also change the neutral answer (block B: Hertz -0.9 %). Needs a run-level
+// closure for the point models; still disabled.
 TEST(RailTransition, DISABLED_CrownToShoulderR300R80HertzLinder) {
   check(variants_named({"hertz", "linder"}), -1.5e-3, 1.5e-3);
 }

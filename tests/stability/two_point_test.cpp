@@ -43,6 +43,16 @@ TEST(TwoPoint, FlangeOnsetContinuity) {
 // steps: 6.08e-4, 6.24e-4, 6.39e-4, 6.26e-4, 6.38e-4, 6.25e-4 m at 6.700..6.725 mm,
 // stripes-a/shift); at 0.05 mm steps this shows as an unflagged jump of the approach between 6.65
 // and 6.70 mm (3.98e-4 -> 6.08e-4 m; stripes-a/clip also N 155.8 -> 208.8 kN).
+// Normal layer follow-up (src/normal, commit "STRIPES strip A_c as the mean over the strip"): the
+// zig-zag was a non-monotone N(delta): the strip lengths jumped by 3x where the straight flank meets
+// the flange-root arc (lateral curvature 38 -> 0 1/m across one band cell) and the strips sampled
+// A_c at their centres; fixed (A_c averaged over each strip, profile curvature jumps cell-averaged),
+// the approach is now smooth at 2-5 um steps. What remains is a steep but smooth transition: after
+// the rigid point jumps onto the 70 deg flank at 6.62 mm the rigid wheel lifts at tan(70 deg) per
+// unit y, while the STRIPES patch (own angles) stays partly on the conformal R13-in-R13 root for
+// ~0.1 mm, so the vertical approach (measured from the rigid position) rises 2e-4 -> 6e-4 m and N
+// 113 -> 220 kN within ~0.1 mm. At 0.05 mm steps that follows the exempt jump step and precedes a
+// plateau, so the measure still reports it. Still disabled.
 TEST(TwoPoint, DISABLED_FlangeOnsetContinuityStripes) {
   for (const Variant& v : variants_named({"stripes-a/shift", "stripes-a/clip", "stripes-ab/shift",
                                           "stripes-ab/clip"}))
