@@ -617,6 +617,7 @@ double quantile(std::vector<double> v, double q) {
 
 struct StateErrors {
   double creep[2] = {-1, -1}, normal[2] = {-1, -1}, angle[2] = {-1, -1};  // per wheel; -1 = not measured
+  bool smooth[2] = {true, true};  // every corner of the cell in the direct state's regime (no jump inside)
 };
 
 // Multilinear interpolation of the contact chain on grid g at the state, against direct evaluation.
@@ -635,6 +636,7 @@ StateErrors state_errors(const ContactProbe& probe, const SceneGrids& g, double 
       for (int d = 0; d < 2; ++d) creeps.push_back({node(g.xi, ix, a), node(g.eta, ie, b), node(g.phi, ip, d)});
   ContactProbe::Wheel interp[2]{};
   bool tread_everywhere[2] = {true, true};
+  bool smooth_cell[2] = {true, true};
   for (int ky = 0; ky < 2; ++ky) {
     auto r = probe.evaluate(node(g.y, iy, ky), loads, creeps);
     for (int kl = 0; kl < 2; ++kl) {
@@ -649,6 +651,7 @@ StateErrors state_errors(const ContactProbe& probe, const SceneGrids& g, double 
             interp[wh].slot[s].normal_force += w * n.normal_force;
             interp[wh].slot[s].contact_angle += w * n.contact_angle;
             if (s == 0 && !n.geometry && w > 0) tread_everywhere[wh] = false;
+            if (n.status != direct[wh].slot[s].status) smooth_cell[wh] = false;
           }
         }
       }
@@ -656,6 +659,7 @@ StateErrors state_errors(const ContactProbe& probe, const SceneGrids& g, double 
   }
   StateErrors e;
   for (std::size_t wh = 0; wh < 2; ++wh) {
+    e.smooth[wh] = smooth_cell[wh];
     double n_total = 0.0, df2 = 0.0, dn2 = 0.0;
     for (std::size_t s = 0; s < kSlots; ++s) {
       const ContactProbe::Slot& d = direct[wh].slot[s];
@@ -757,9 +761,10 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
   cmp.states = states;
   for (std::size_t k = 0; k < all.size(); ++k) {
     GridComparison::Grid& g = *all[k];
-    std::vector<double> creep, normal, angle;
+    std::vector<double> creep, normal, angle, creep_smooth;
     for (const auto& e : errors) {
       for (int w = 0; w < 2; ++w) {
+        if (e[k].creep[w] >= 0 && e[k].smooth[w]) creep_smooth.push_back(e[k].creep[w]);
         if (e[k].creep[w] >= 0) creep.push_back(e[k].creep[w]);
         if (e[k].normal[w] >= 0) normal.push_back(e[k].normal[w]);
         if (e[k].angle[w] >= 0) angle.push_back(e[k].angle[w]);
@@ -768,6 +773,9 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
     g.creep_median = quantile(creep, 0.5);
     g.creep_p90 = quantile(creep, 0.9);
     g.creep_max = quantile(creep, 1.0);
+    g.smooth_share = creep.empty() ? 0.0 : static_cast<double>(creep_smooth.size()) / static_cast<double>(creep.size());
+    g.smooth_creep_p90 = quantile(creep_smooth, 0.9);
+    g.smooth_creep_max = quantile(creep_smooth, 1.0);
     g.normal_median = quantile(normal, 0.5);
     g.normal_p90 = quantile(normal, 0.9);
     g.normal_max = quantile(normal, 1.0);
@@ -779,18 +787,19 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
 
 std::string GridComparison::text() const {
   std::string out = fmt::format("{} random states (both wheels each), errors against direct evaluation\n", states);
-  out += fmt::format("{:<12} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10} | {:>24} | {:>8} {:>8} {:>8} | {:>8} {:>8} {:>8} | {:>9} {:>9}\n",
+  out += fmt::format("{:<12} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10} | {:>24} | {:>8} {:>8} {:>8} | {:>6} {:>8} {:>8} | {:>8} {:>8} {:>8} | {:>9} {:>9}\n",
                      "grid", "ny", "nload", "nxi", "neta", "nphi", "points", "MiB", "worst midpoint/target",
-                     "F med%", "F p90%", "F max%", "N med%", "N p90%", "N max%", "ang med", "ang max");
+                     "F med%", "F p90%", "F max%", "smooth", "sF p90%", "sF max%", "N med%", "N p90%", "N max%", "ang med", "ang max");
   std::vector<const Grid*> all{&adaptive, &uniform};
   for (const Grid& g : others) all.push_back(&g);
   for (const Grid* g : all) {
     std::string mids;
     for (double m : g->worst_midpoint) mids += fmt::format("{}{:.2f}", mids.empty() ? "" : " ", m);
-    out += fmt::format("{:<12} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10.2f} | {:>24} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>9.2e} {:>9.2e}\n",
+    out += fmt::format("{:<12} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10.2f} | {:>24} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>5.0f}% {:>8.3f} {:>8.2f} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>9.2e} {:>9.2e}\n",
                        g->name, g->grids.y.size(), g->grids.load.size(), g->grids.xi.size(), g->grids.eta.size(),
                        g->grids.phi.size(), g->points, static_cast<double>(g->bytes) / 1048576.0, mids,
-                       100 * g->creep_median, 100 * g->creep_p90, 100 * g->creep_max, 100 * g->normal_median,
+                       100 * g->creep_median, 100 * g->creep_p90, 100 * g->creep_max, 100 * g->smooth_share,
+                       100 * g->smooth_creep_p90, 100 * g->smooth_creep_max, 100 * g->normal_median,
                        100 * g->normal_p90, 100 * g->normal_max, g->angle_median, g->angle_max);
   }
   return out;

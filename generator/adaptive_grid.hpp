@@ -118,6 +118,8 @@ struct GridComparison {
     std::size_t bytes = 0;                 // in-memory table size (float64 + uint32 status) [B]
     std::vector<double> worst_midpoint;    // per adaptive axis: worst midpoint error / tolerance [-]
     double creep_median = 0, creep_p90 = 0, creep_max = 0;  // |dF| / (mu N) at random states [-]
+    double smooth_share = 0;               // share of wheel-states whose cell has no regime change [-]
+    double smooth_creep_p90 = 0, smooth_creep_max = 0;  // |dF| / (mu N) over those [-]
     double normal_median = 0, normal_p90 = 0, normal_max = 0;  // |dN| / N [-]
     double angle_median = 0, angle_max = 0;  // tread-slot contact angle error [rad]
   };
