@@ -216,6 +216,15 @@ TEST(AdaptiveContact, CreepageAxisRefinedWhereTheCreepCurveBends) {
   EXPECT_LE(achieved["worst_midpoint_error"].get<double>(), 1.0);
 }
 
+TEST(AdaptiveContact, GridsDoNotDependOnThreads) {
+  Scene one = parse_scene(kTread, "tread.toml");
+  Scene two = one;
+  build_adaptive_grids(one, 1);
+  build_adaptive_grids(two, 2);
+  EXPECT_EQ(one.grids.y, two.grids.y);
+  EXPECT_EQ(one.grids.xi, two.grids.xi);
+}
+
 TEST(AdaptiveContact, GenerateUsesAdaptiveGridsAndRecordsTargets) {
   testing::TempDir dir("adaptive_generate");
   std::ofstream(dir / "scene.toml") << kTread;
