@@ -381,18 +381,27 @@ std::vector<double> load_representatives(const Scene& scene) {
   return r.hi > r.lo ? std::vector<double>{r.lo, r.hi} : std::vector<double>{r.lo};
 }
 
-// Creepage probe level of an axis: a quarter of the largest magnitude, or the fixed value.
+// Creepage probe level of an axis: `fraction` of the way from 0 to the end of larger magnitude when
+// the range holds 0, else from its start; the fixed value of an untabulated axis.
 double creep_level(const Scene& scene, const std::string& axis, double fraction) {
   AxisRange r = range_of(scene, axis);
   if (r.hi == r.lo) return r.lo;
-  return fraction * std::max(std::abs(r.lo), std::abs(r.hi));
+  if (r.lo > 0.0 || r.hi < 0.0) return r.lo + fraction * (r.hi - r.lo);
+  return fraction * (std::abs(r.lo) > std::abs(r.hi) ? r.lo : r.hi);
+}
+
+// The creepage "zero" of an axis: 0 clamped into its range.
+double creep_zero(const Scene& scene, const std::string& axis) {
+  AxisRange r = range_of(scene, axis);
+  return std::clamp(0.0, r.lo, r.hi);
 }
 
 // Creepages at which y and load are refined: each creepage alone and combined, at a quarter of range.
 std::vector<std::array<double, 3>> creep_probes(const Scene& scene) {
   const double x = creep_level(scene, "xi", 0.25), e = creep_level(scene, "eta", 0.25),
                p = creep_level(scene, "phi", 0.25);
-  std::vector<std::array<double, 3>> c{{x, 0, 0}, {0, e, 0}, {0, 0, p}, {x, e, p}};
+  const double x0 = creep_zero(scene, "xi"), e0 = creep_zero(scene, "eta"), p0 = creep_zero(scene, "phi");
+  std::vector<std::array<double, 3>> c{{x, e0, p0}, {x0, e, p0}, {x0, e0, p}, {x, e, p}};
   std::sort(c.begin(), c.end());
   c.erase(std::unique(c.begin(), c.end()), c.end());
   return c;
@@ -499,7 +508,7 @@ AxisSampler contact_axis_sampler(const Scene& scene, const ContactProbe& probe, 
     const double level = creep_level(scene, names[j], 0.5);
     std::vector<std::array<double, 3>> next;
     for (auto c : others) {
-      c[j] = range_of(scene, names[j]).lo == range_of(scene, names[j]).hi ? level : 0.0;
+      c[j] = creep_zero(scene, names[j]);
       next.push_back(c);
       if (level != c[j]) {
         c[j] = level;
