@@ -132,6 +132,15 @@ void extend_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w
                     const NormalOptions& o) {
   if (is_stripes(p.model)) ensure_cos(g, p, w, j0, j1);
   grow(&p.smp_lo, &p.smp_hi, j0, j1, [&](int j) { compute_sample(g, p, w, j, o); });
+  if (is_stripes(p.model)) {
+    // Running integral of A over the ready samples (trapezoids, exact for the linear interpolant),
+    // from smp_lo: STRIPES averages A over each strip (stripes.cpp).
+    double* A_int = w.A_int.data();
+    const double* A = w.A.data();
+    const double half_h = 0.5 * g.band_step;
+    A_int[p.smp_lo] = 0.0;
+    for (int j = p.smp_lo; j < p.smp_hi; ++j) A_int[j + 1] = A_int[j] + half_h * (A[j] + A[j + 1]);
+  }
 }
 
 namespace {

@@ -65,21 +65,14 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
     if (j < 0 || j + 1 >= nb) return false;
     const double k0 = g.band[j].curvature_rail, k1 = g.band[j + 1].curvature_rail;
     const double dk = k0 - k1;
-    if (!(std::abs(dk) > std::max(1.0, 0.1 * std::max(std::abs(k0), std::abs(k1))))) return false;
+    if (!(std::abs(dk) > 1.0)) return false;  // (fast rejection: the threshold below is >= 1)
+    if (!(std::abs(dk) > 0.1 * std::max(std::abs(k0), std::abs(k1)))) return false;
     const double kbar =
         -(g.band[j + 1].contact_angle - g.band[j].contact_angle) / g.band_step;
     const double f = (kbar - k1) / dk;
     if (!std::isfinite(f)) return false;
     *t = std::clamp(f, 0.0, 1.0);
     return true;
-  };
-  auto rail_curvature = [&](int j) {
-    double k = g.band[j].curvature_rail, t;
-    if (step_fraction(j, &t) && t < 0.5)
-      k += (0.5 - t) * (g.band[j + 1].curvature_rail - g.band[j].curvature_rail);
-    if (step_fraction(j - 1, &t) && t > 0.5)
-      k += (t - 0.5) * (g.band[j - 1].curvature_rail - g.band[j].curvature_rail);
-    return k;
   };
   // The wheel's curvature steps too (S1002: the straight flange flank meets the flange-root arc, the
   // section joins of the tread). Its transition is located from the gap, whose second derivative
@@ -97,31 +90,52 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
     if (j < 2 || j + 3 >= nb) return false;
     const double a = g.band[j].curvature_wheel, b = g.band[j + 1].curvature_wheel;
     const double dk = b - a;
-    if (!(std::abs(dk) > std::max(1.0, 0.1 * std::max(std::abs(a), std::abs(b))))) return false;
+    if (!(std::abs(dk) > 1.0)) return false;
+    if (!(std::abs(dk) > 0.1 * std::max(std::abs(a), std::abs(b)))) return false;
     const double r = 0.5 * (gap_excess(j - 1) + gap_excess(j + 2));
     const double f = 0.5 - (gap_excess(j) + gap_excess(j + 1) - 2.0 * r) / dk;
     if (!std::isfinite(f)) return false;
     *t = std::clamp(f, 0.0, 1.0);
     return true;
   };
-  auto wheel_curvature = [&](int j) {
-    double k = g.band[j].curvature_wheel, t;
-    if (wheel_step_fraction(j, &t) && t < 0.5)
-      k += (0.5 - t) * (g.band[j + 1].curvature_wheel - g.band[j].curvature_wheel);
-    if (wheel_step_fraction(j - 1, &t) && t > 0.5)
-      k += (t - 0.5) * (g.band[j - 1].curvature_wheel - g.band[j].curvature_wheel);
-    return k;
+  // One pass: sampled B on the domain, then the two samples next to each located transition
+  // corrected towards their cell averages (raw, untreated B in w.B_treated[lo..hi]).
+  double* Bw = w.B_treated.data();
+  for (int j = p.lo; j <= p.hi; ++j)
+    Bw[j] = 0.5 * (g.band[j].curvature_wheel + g.band[j].curvature_rail);
+  auto correct = [&](int j, double t, double BandSample::*field) {  // transition in [j, j + 1]
+    const double dk = g.band[j + 1].*field - g.band[j].*field;
+    if (t < 0.5 && j >= p.lo) Bw[j] += 0.5 * (0.5 - t) * dk;
+    if (t > 0.5 && j + 1 <= p.hi) Bw[j + 1] -= 0.5 * (t - 0.5) * dk;
   };
-  auto B_at = [&](int j) { return 0.5 * (wheel_curvature(j) + rail_curvature(j)); };
+  {
+    const BandSample* band = g.band.data();
+    const int jend = std::min(p.hi, nb - 2);
+    double kr0 = band[std::max(p.lo - 1, 0)].curvature_rail;
+    double kw0 = band[std::max(p.lo - 1, 0)].curvature_wheel;
+    for (int j = std::max(p.lo - 1, 0); j <= jend; ++j) {
+      const double kr1 = band[j + 1].curvature_rail, kw1 = band[j + 1].curvature_wheel;
+      // Cheap pre-test (both thresholds are >= 1 1/m): most cells hold no transition.
+      if (std::abs(kr1 - kr0) > 1.0 || std::abs(kw1 - kw0) > 1.0) [[unlikely]] {
+        double t;
+        if (step_fraction(j, &t)) correct(j, t, &BandSample::curvature_rail);
+        if (wheel_step_fraction(j, &t)) correct(j, t, &BandSample::curvature_wheel);
+      }
+      kr0 = kr1;
+      kw0 = kw1;
+    }
+  }
+  const double B_raw_i0 = Bw[p.i0];
+  auto B_at = [&](int j) { return Bw[j]; };
   double B_min = std::isfinite(p.B0) ? p.B0 : floor;
   for (int j = wlo; j <= whi; ++j) B_min = std::min(B_min, B_at(j));
   if (o.negative_curvature == NegativeCurvature::shift) {
     const double shift = std::max(0.0, floor - B_min);
-    for (int j = p.lo; j <= p.hi; ++j) w.B_treated[j] = B_at(j) + shift;
+    for (int j = p.lo; j <= p.hi; ++j) Bw[j] += shift;
     p.B0t = (std::isfinite(p.B0) ? p.B0 : floor) + shift;
     if (shift > 0.0) p.flags |= status::kCurvatureShifted;
   } else {
-    for (int j = p.lo; j <= p.hi; ++j) w.B_treated[j] = std::max(B_at(j), floor);
+    for (int j = p.lo; j <= p.hi; ++j) Bw[j] = std::max(Bw[j], floor);
     if (B_min < floor) p.flags |= status::kCurvatureClipped;
     // Moving average inside the window (w.v as scratch: it is rewritten by every evaluation).
     const int half = std::max(1, static_cast<int>(std::lround(o.smoothing_half_width / g.band_step)));
@@ -136,7 +150,7 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
     }
     for (int j = wlo; j <= whi; ++j) w.B_treated[j] = w.v[j];
     p.B0t = std::max(std::isfinite(p.B0) ? p.B0 : floor, floor) + (w.B_treated[p.i0] -
-                                                                   std::max(B_at(p.i0), floor));
+                                                                   std::max(B_raw_i0, floor));
     p.B0t = std::max(p.B0t, floor);
   }
   const double A0 = p.A0, B0 = p.B0t;
@@ -243,9 +257,8 @@ PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
   // centres, the load then depended on which side of the jump each centre fell, and since the
   // strips slide with the patch edges, N(delta) had bumps (non-monotone: several approaches carry
   // the same load, the load control picked different ones from one y to the next). The mean moves
-  // continuously as a jump sweeps through a strip. Running integral of A over the strip samples:
-  // A_int[j] = int_{s_j0}^{s_j} A ds (exact for the piecewise-linear interpolant).
-  // The running integral covers the samples [ja, jb] around the whole run [s_lo, s_hi].
+  // continuously as a jump sweeps through a strip. The per-sample data (and the running integral
+  // of A kept with it, extend_samples) must cover the samples [ja, jb] around the whole run.
   int ja, jb;
   {
     double t;
@@ -256,13 +269,8 @@ PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
     jb = std::max(jb, j1);
   }
   ensure_samples(g, p, w, ja, jb, o);
-  double* A_int = w.A_int.data();
-  {
-    const double half_h = 0.5 * g.band_step;
-    A_int[ja] = 0.0;
-    for (int j = ja; j < jb; ++j) A_int[j + 1] = A_int[j] + half_h * (A_s[j] + A_s[j + 1]);
-  }
-  auto A_integral = [&](double s) {  // int_{s_ja}^{s} A ds, s inside [s_ja, s_jb]
+  const double* A_int = w.A_int.data();  // running integral of A on [smp_lo, smp_hi] (extend_samples)
+  auto A_integral = [&](double s) {  // int_{s_smp_lo}^{s} A ds, s inside [s_ja, s_jb]
     int j;
     double t;
     locate(g, ja, jb, s, &j, &t);

@@ -176,5 +176,29 @@ TEST(S1002Uic60, Seed000PressureProfilesCsv) {
   }
 }
 
+// On the flange after the jump onto the 70 deg flank (left wheel, y = 6.72 mm) the STRIPES patch
+// spans the junction of the straight flank and the flange-root arc, where the lateral curvature
+// drops from 38 to 0 1/m within one band cell. The load must still grow with the approach (strip
+// A_c averaged over each strip; with centre values N(delta) had bumps and the load control picked
+// different roots from one y to the next).
+TEST(S1002Uic60, StripesLoadMonotoneOnFlangeRoot) {
+  const ContactGeometrySolver solver = make_solver();
+  const WheelContactGeometry g = solver.solve_wheel(Side::left, WheelsetState{6.72e-3, 0.0});
+  for (NormalModel m : {NormalModel::stripes_a, NormalModel::stripes_ab}) {
+    for (NegativeCurvature c : {NegativeCurvature::shift, NegativeCurvature::clip_and_smooth}) {
+      NormalOptions o;
+      o.model = m;
+      o.negative_curvature = c;
+      o.strips = 20;
+      double previous = 0.0;
+      for (double dz = 5.9e-4; dz <= 6.6e-4; dz += 2.5e-6) {
+        const WheelNormalResult r = solve_normal_for_approach(g, dz, Material{}, o);
+        EXPECT_GT(r.vertical_load, previous) << to_string(m) << " " << to_string(c) << " dz " << dz;
+        previous = r.vertical_load;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace railtab
