@@ -65,19 +65,35 @@ class Cursor {
 
 }  // namespace
 
-std::vector<std::pair<std::string, double>> parse_flat_json_numbers(std::string_view text) {
+std::vector<FlatJsonEntry> parse_flat_json(std::string_view text) {
   Cursor c(text);
-  std::vector<std::pair<std::string, double>> out;
+  std::vector<FlatJsonEntry> out;
   c.expect('{');
   if (!c.peek('}')) {
     do {
-      std::string key = c.string();
+      FlatJsonEntry e;
+      e.key = c.string();
       c.expect(':');
-      out.emplace_back(std::move(key), c.number());
+      if (c.peek('"')) {
+        e.is_text = true;
+        e.text = c.string();
+      } else {
+        e.number = c.number();
+      }
+      out.push_back(std::move(e));
     } while (c.peek(',') && (c.expect(','), true));
   }
   c.expect('}');
   if (!c.at_end()) c.fail("trailing text");
+  return out;
+}
+
+std::vector<std::pair<std::string, double>> parse_flat_json_numbers(std::string_view text) {
+  std::vector<std::pair<std::string, double>> out;
+  for (FlatJsonEntry& e : parse_flat_json(text)) {
+    if (e.is_text) throw std::runtime_error("value of '" + e.key + "' is not a number in '" + std::string(text) + "'");
+    out.emplace_back(std::move(e.key), e.number);
+  }
   return out;
 }
 

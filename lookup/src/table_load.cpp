@@ -84,20 +84,27 @@ void read_axes(const Hdf5File& f, TableData& d) {
 void read_fixed_axes(const Hdf5File& f, TableData& d) {
   const auto text = f.string_attribute("/", "fixed_axes");
   if (!text) f.fail("missing root attribute fixed_axes");
-  std::vector<std::pair<std::string, double>> pairs;
+  std::vector<FlatJsonEntry> entries;
   try {
-    pairs = parse_flat_json_numbers(*text);
+    entries = parse_flat_json(*text);
   } catch (const std::runtime_error& e) {
-    f.fail(std::string("root attribute fixed_axes is not a JSON object of numbers: ") + e.what());
+    f.fail(std::string("root attribute fixed_axes is not a flat JSON object: ") + e.what());
   }
-  for (const auto& [key, value] : pairs) {
+  for (const FlatJsonEntry& e : entries) {
     for (int var = 0; var < kNumVars; ++var) {
-      if (key != var_name(var)) continue;  // other keys: a later minor version's business
-      if (d.tabulated[var]) f.fail("'" + key + "' is both an axis and in fixed_axes");
-      if (!std::isfinite(value)) f.fail("fixed_axes value of '" + key + "' is not finite");
+      if (e.key != var_name(var)) continue;  // other keys: a later minor version's business
+      if (d.tabulated[var]) f.fail("'" + e.key + "' is both an axis and in fixed_axes");
+      if (e.is_text) {
+        // Roll may follow the kinematic equilibrium at each y (root dataset /equilibrium_roll):
+        // then it is neither an axis nor an input, and queries ignore State::roll.
+        if (e.key == "roll" && e.text == "equilibrium") break;
+        f.fail("fixed_axes value of '" + e.key + "' must be a number (or \"equilibrium\" for roll), got \"" +
+               e.text + "\"");
+      }
+      if (!std::isfinite(e.number)) f.fail("fixed_axes value of '" + e.key + "' is not finite");
       d.fixed[var] = true;
-      d.fixed_value[var] = value;
-      d.fixed_list.emplace_back(key, value);
+      d.fixed_value[var] = e.number;
+      d.fixed_list.emplace_back(e.key, e.number);
     }
   }
 }

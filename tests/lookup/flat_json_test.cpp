@@ -25,5 +25,16 @@ TEST(FlatJson, RejectsOtherShapes) {
   EXPECT_THROW(parse_flat_json_numbers(""), std::runtime_error);
 }
 
+TEST(FlatJson, GeneralParserKeepsStrings) {
+  const auto v = parse_flat_json(R"({"eta":0.0,"roll":"equilibrium"})");
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_FALSE(v[0].is_text);
+  EXPECT_EQ(v[0].number, 0.0);
+  EXPECT_TRUE(v[1].is_text);
+  EXPECT_EQ(v[1].key, "roll");
+  EXPECT_EQ(v[1].text, "equilibrium");
+  EXPECT_THROW(parse_flat_json(R"({"roll":["equilibrium"]})"), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace railtab::lookup::detail

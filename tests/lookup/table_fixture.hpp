@@ -60,6 +60,7 @@ struct FixtureSpec {
   std::string omit_dataset;        // e.g. "/right/creep/fy": left out (bad-file tests)
   std::string wrong_axes_dataset;  // this dataset gets a wrong 'axes' attribute
   bool fixed_length_strings = false;  // fixed-length instead of variable-length string attributes
+  std::string fixed_text;          // extra raw "key":value members of fixed_axes, e.g. "\"roll\":\"equilibrium\""
   ValueFn value;                      // required
   StatusFn status = [](int, int, int, const double*) -> std::uint32_t { return 1u; };
 };
@@ -143,6 +144,7 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
     fixed_json += "\":";
     fixed_json += buf;
   }
+  if (!spec.fixed_text.empty()) fixed_json += (spec.fixed.empty() ? "" : ",") + spec.fixed_text;
   fixed_json += "}";
   string_attr(file, "format_version", spec.format_version, fl);
   string_attr(file, "railtab_version", "test-fixture", fl);

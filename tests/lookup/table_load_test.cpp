@@ -145,6 +145,35 @@ TEST(TableLoad, FixedAxesMustParse) {
   expect_load_error(file.path, "'phi' is both an axis and in fixed_axes");
 }
 
+// The generator writes "roll":"equilibrium" when roll follows the kinematic equilibrium at each y
+// (docs/table-format.md): the table loads, roll is neither tabulated nor fixed, queries ignore it.
+TEST(TableLoad, EquilibriumRollLoadsAndIgnoresRoll) {
+  TempFile file("equilibrium_roll");
+  FixtureSpec spec = tiny_spec();
+  spec.fixed = {{2, 78500.0}, {3, 0.0}, {4, 0.0}};  // roll (1) follows the equilibrium instead
+  spec.fixed_text = "\"roll\":\"equilibrium\"";
+  testing::write_fixture(file.path, spec);
+  const Table t = Table::load(file.path);
+  for (const auto& [name, value] : t.fixed_axes()) EXPECT_NE(name, "roll");
+  State s = t.default_state();
+  Result a;
+  Result b;
+  t.query(Wheel::kLeft, s, a);
+  s.roll = 0.01;
+  t.query(Wheel::kLeft, s, b);
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_FALSE(b.status & status::kOutOfRange);
+  EXPECT_EQ(a.contact[0].value[0], b.contact[0].value[0]);
+}
+
+TEST(TableLoad, FixedAxesTextOnlyForEquilibriumRoll) {
+  TempFile file("fixed_text");
+  FixtureSpec spec = tiny_spec();
+  spec.fixed_text = "\"load\":\"heavy\"";
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "fixed_axes value of 'load' must be a number");
+}
+
 TEST(TableLoad, NoPartsIsAnError) {
   TempFile file("no_parts");
   FixtureSpec spec = tiny_spec();

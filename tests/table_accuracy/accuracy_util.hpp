@@ -135,21 +135,10 @@ inline std::vector<Direct> evaluate_direct(const Scene& scene, const std::vector
   return out;
 }
 
-// The generated table written for the lookup. The sweep writes fixed_axes {"roll":"equilibrium"}
-// for an equilibrium-roll scene (docs/table-format.md), which the lookup's fixed_axes parser
-// (numbers only) rejects at load; the copy handed to the lookup drops that non-numeric entry, so
-// roll is neither tabulated nor fixed and the lookup ignores it (the values at each y were
-// computed at the equilibrium roll of that y, which is what the direct evaluation uses too).
-inline void write_for_lookup(Table table, const std::filesystem::path& path) {
-  if (const std::string* text = table.attribute("fixed_axes")) {
-    nlohmann::json fixed = nlohmann::json::parse(*text);
-    nlohmann::json numbers = nlohmann::json::object();
-    for (auto it = fixed.begin(); it != fixed.end(); ++it)
-      if (it.value().is_number()) numbers[it.key()] = it.value();
-    table.set_attribute("fixed_axes", numbers.dump());
-  }
-  write_table(table, path);
-}
+// The generated table written for the lookup exactly as `railtab generate` writes it (fixed_axes
+// {"roll":"equilibrium"} included: the lookup ignores roll then, and every value at y was computed
+// at the equilibrium roll of that y, which is what the direct evaluation uses too).
+inline void write_for_lookup(const Table& table, const std::filesystem::path& path) { write_table(table, path); }
 
 inline std::filesystem::path temp_table_path(const std::string& name) {
   return std::filesystem::temp_directory_path() /
