@@ -39,15 +39,6 @@ ShardId shard_id(const Table& t, const std::string& name) {
   return id;
 }
 
-std::string utc_now() {
-  std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return text;
-}
-
 }  // namespace
 
 Table merge_shards(const std::vector<Table>& shards, const std::vector<std::string>& names) {
@@ -87,7 +78,7 @@ Table merge_shards(const std::vector<Table>& shards, const std::vector<std::stri
 
   Table merged = first;
   for (const char* attr : {"shard", "shard_y_begin", "shard_y_end", "shard_y_total"}) merged.remove_attribute(attr);
-  merged.set_attribute("created", utc_now());
+  merged.set_attribute("created", utc_timestamp());
   for (TableAxis& axis : merged.axes) {
     for (std::size_t k = 1; k < order.size(); ++k) {
       const TableAxis* other = shards[order[k]].axis(axis.name);

@@ -62,15 +62,6 @@ const std::vector<double>& grid_of(const Scene& scene, const std::string& name) 
   throw Error(fmt::format("sweep: unknown state axis '{}'", name));
 }
 
-std::string utc_now() {
-  std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return text;
-}
-
 // Sizes and offsets of one sweep.
 struct Layout {
   std::size_t y_begin = 0, y_end = 0;   // shard's range of the full y grid
@@ -384,7 +375,7 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
   summary.interrupted = summary.blocks_done < summary.blocks_total;
   RAILTAB_CHECK(summary.interrupted || interrupted() || summary.points_computed == points_todo,
                 "sweep: {} of {} points computed", summary.points_computed, points_todo);
-  table.set_attribute("created", utc_now());
+  table.set_attribute("created", utc_timestamp());
   return result;
 }
 

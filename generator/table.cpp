@@ -1,6 +1,7 @@
 #include "table.hpp"
 
 #include <algorithm>
+#include <ctime>
 #include <functional>
 #include <numeric>
 
@@ -67,6 +68,15 @@ const std::vector<std::string>& required_outputs(const std::string& part) {
   if (part == "creep") return kCreep;
   if (part == "wear") return kWear;
   return kNone;
+}
+
+std::string utc_timestamp() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
 }
 
 }  // namespace railtab

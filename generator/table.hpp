@@ -63,4 +63,7 @@ struct Table {
 // Datasets every reader may rely on, per part (format 1.0). Parts "creep" and "wear" are optional.
 const std::vector<std::string>& required_outputs(const std::string& part);
 
+// The current UTC time as ISO 8601 ("2026-11-21T22:37:00Z"), the root attribute `created`.
+std::string utc_timestamp();
+
 }  // namespace railtab
