@@ -44,8 +44,9 @@ TEST(Concave, HertzFallsBackWhenBIsNotPositive) {
       EXPECT_TRUE(r.status & status::kConverged) << v.label << " B0 " << B0;
       EXPECT_NEAR(r.vertical_load, kLoad, 1e-6 * kLoad) << v.label;
       EXPECT_TRUE(r.status & status::kNonHertzian) << v.label << " B0 " << B0;
-      if (v.model == NormalModel::hertz)
+      if (v.model == NormalModel::hertz) {
         EXPECT_TRUE(r.status & status::kFallbackModel) << "B0 " << B0;
+      }
       EXPECT_TRUE(bitwise_equal(r, solve_normal_for_load(g, kLoad, Material{}, options_for(v))));
       for (const ContactPatch& p : r.patches) {
         const CreepWear cw = creep_and_wear(g, p, Creepage{1e-3, 1e-3, 0.5});
@@ -107,9 +108,10 @@ TEST(NearConformal, WornTreadIsFiniteAndFlagged) {
         // STRIPES must treat (and flag) a point whose B is below its floor min_curvature_ratio*A.
         const ContactPoint& p0 = x.geometry.points.front();
         const bool below = p0.curvature_b < NormalOptions{}.min_curvature_ratio * p0.curvature_a;
-        if ((v.model == NormalModel::stripes_a || v.model == NormalModel::stripes_ab) && below)
+        if ((v.model == NormalModel::stripes_a || v.model == NormalModel::stripes_ab) && below) {
           EXPECT_TRUE(x.normal.status & (status::kCurvatureShifted | status::kCurvatureClipped))
               << v.label << " y " << x.y;
+        }
       }
     }
   }

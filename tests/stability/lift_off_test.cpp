@@ -28,7 +28,9 @@ TEST(LiftOff, ZeroTinyAndSmallLoads) {
           EXPECT_NEAR(r.vertical_load, load, 1e-6 * load) << where;
           // A tiny load touches the primary point only: the second contact stays unloaded.
           ASSERT_EQ(r.patches.size(), 1u) << where;
-          if (g.points.size() > 1) EXPECT_EQ(r.point_patch[1], -1) << where;
+          if (g.points.size() > 1) {
+            EXPECT_EQ(r.point_patch[1], -1) << where;
+          }
           for (const ContactPatch& p : r.patches) {
             const CreepWear cw = creep_and_wear(g, p, Creepage{1e-3, 1e-3, 0.5});
             EXPECT_EQ(creep_violation(p, cw, 0.3), "") << where;

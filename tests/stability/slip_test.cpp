@@ -39,7 +39,9 @@ TEST(Slip, SaturatesAtMuNAndNeverExceedsIt) {
               EXPECT_TRUE(cw.creep.status & status::kFullSlip) << at;
               EXPECT_GE(f, 0.99 * mu * p.normal_force) << at;
             }
-            if (cw.creep.slip_fraction >= 1.0) EXPECT_TRUE(cw.creep.status & status::kFullSlip) << at;
+            if (cw.creep.slip_fraction >= 1.0) {
+              EXPECT_TRUE(cw.creep.status & status::kFullSlip) << at;
+            }
           }
         }
       }
