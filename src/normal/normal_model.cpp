@@ -592,6 +592,21 @@ ContactPatch merge_parts(const WheelContactGeometry& g, std::vector<ContactPatch
   return out;
 }
 
+// Reference of a Hertz patch of one point: the ellipse centre, i.e. the rigid contact point; its
+// lateral extent is the ellipse's, band_s -+ b (kProfileEdge when that leaves the band).
+void set_ellipse_reference(const WheelContactGeometry& g, const ContactPoint& cp,
+                           ContactPatch& patch) {
+  patch.band_s = cp.band_s;
+  patch.contact_angle = cp.contact_angle;
+  patch.rolling_radius = cp.rolling_radius;
+  patch.wheel_u = cp.wheel_u;
+  patch.rail_u = cp.rail_u;
+  patch.s_start = cp.band_s - patch.semi_axis_b;
+  patch.s_end = cp.band_s + patch.semi_axis_b;
+  if (g.band.size() >= 2 && (patch.s_start < g.band.front().s || patch.s_end > g.band.back().s))
+    patch.status |= status::kProfileEdge;
+}
+
 WheelNormalResult fill(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                        Workspace& w, double dz) {
   WheelNormalResult r;
@@ -650,8 +665,12 @@ WheelNormalResult fill(const WheelContactGeometry& g, const Material& m, const N
     home->members.push_back(i);
   }
   std::erase_if(groups, [](const Group& gr) { return gr.members.empty(); });
+  // A Hertz patch of one point is its ellipse: the reference is the point (ellipse centre).
+  auto hertz_ellipse = [&](const Group& gr) {
+    return gr.members.size() == 1 && w.points[gr.members.front()].model == NormalModel::hertz;
+  };
   auto group_s = [&](const Group& gr) {
-    return gr.has_ref ? gr.ref.band_s : g.points[gr.members.front()].band_s;
+    return gr.has_ref && !hertz_ellipse(gr) ? gr.ref.band_s : g.points[gr.members.front()].band_s;
   };
   std::sort(groups.begin(), groups.end(),
             [&](const Group& x, const Group& y) { return group_s(x) < group_s(y); });
@@ -681,7 +700,9 @@ WheelNormalResult fill(const WheelContactGeometry& g, const Material& m, const N
     patch.penetration = penetration;
     patch.points = static_cast<int>(members.size());
     patch.point_index = best;
-    if (gr.has_ref) {
+    if (hertz_ellipse(gr)) {
+      set_ellipse_reference(g, g.points[lead], patch);
+    } else if (gr.has_ref) {
       patch.band_s = gr.ref.band_s;
       patch.contact_angle = sigma * gr.ref.angle_side;
       patch.rolling_radius = gr.ref.radius;

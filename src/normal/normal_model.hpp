@@ -17,7 +17,13 @@
 // combination rule (contact_patch_rules(): runs within 8 mm merged) is applied on top.
 // The reference point of a patch (band_s, contact_angle, rolling_radius, wheel_u, rail_u) is the
 // run's overlap reference (interpenetration^2-weighted centre and angle; the same numbers as
-// overlap_references with default options). Patches are ordered by band_s ascending (band s grows
+// overlap_references with default options). Exception, Hertz: a Hertz patch of ONE point is the
+// ellipse centred at its rigid contact point and its forces act there, so its reference is the
+// contact point itself (band_s, contact_angle, rolling_radius, wheel_u, rail_u of the point; FASTSIM
+// is placed at the ellipse centre) and s_start/s_end are the ellipse's lateral extent band_s -+ b
+// (kProfileEdge only when the ellipse leaves the band). A Hertz patch merged from several points
+// (several ellipses in one overlap run, or combine_patches) keeps the run's overlap reference.
+// Patches are ordered by band_s ascending (band s grows
 // towards the field side: a flange patch comes before a tread patch). Only loaded patches are
 // listed.
 // Pairing with the geometry: WheelNormalResult::point_patch[i] is the index of the patch that
@@ -115,7 +121,8 @@ struct ContactPatch {
   double semi_axis_a = 0.0;        // rolling semi-axis [m]: Hertz ellipse; KP equivalent ellipse
                                    //   (area and length/width kept); Linder max half-length; STRIPES 0
   double semi_axis_b = 0.0;        //   lateral semi-axis [m]: Hertz; KP equivalent; Linder half-width
-  // Reference point: the overlap reference of the run (see the top of this file); a contribution
+  // Reference point: the overlap reference of the run (see the top of this file; Hertz of one
+  // point: the contact point, s_start/s_end the ellipse's lateral extent); a contribution
   // whose point lies in no sampled overlap run (below the band resolution, or no band) keeps its
   // geometric point as reference.
   double band_s = 0.0;             // reference point, band arc length [m] (FASTSIM's placement)
@@ -123,7 +130,8 @@ struct ContactPatch {
   double rolling_radius = 0.0;     // reference point, undeformed wheel radius [m]
   double wheel_u = 0.0;            // reference point, wheel profile [m]
   double rail_u = 0.0;             // reference point, rail profile [m]
-  double s_start = 0.0;            // extent of the rigid overlap run in band s [m]
+  double s_start = 0.0;            // extent of the rigid overlap run in band s (Hertz of one
+                                   //   point: of the ellipse) [m]
   double s_end = 0.0;              // [m]
   StatusBits status = 0;
 };
