@@ -53,6 +53,11 @@ struct SampleData {
 
 struct Workspace {
   std::vector<PointContext> points;     // one per contact point
+  struct HertzCache {                   // Hertz coefficients of the last (A, B) per point index
+    double A = -1.0, B = -1.0;
+    HertzCoefficients hz{};
+  };
+  std::vector<HertzCache> hertz_cache;
   // Band-sized, filled lazily once per solve on the intervals recorded in each PointContext
   // (structure of arrays: the strip loops read them without checks):
   std::vector<double> cos_angle;        // cos of the sample's contact angle [-]

@@ -270,6 +270,7 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   const int np = static_cast<int>(g.points.size());
   const int nb = static_cast<int>(g.band.size());
   w.points.assign(np, PointContext{});
+  if (static_cast<int>(w.hertz_cache.size()) < np) w.hertz_cache.resize(np);
   const bool band_ok = nb >= 2 && g.band_step > 0.0 && std::isfinite(g.band_step);
   if (band_ok) {
     w.cos_angle.resize(nb);
@@ -305,8 +306,13 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
       if (std::isfinite(pos)) p.i0 = std::clamp(static_cast<int>(std::lround(pos)), 0, nb - 1);
     }
   }
-  // Band domains: consecutive points (by band position) split at the largest gap between them.
-  if (band_ok) {
+  // Band domains (only the VI models use them; Hertz needs none): consecutive points (by band
+  // position) split at the largest gap between them.
+  bool vi_possible = o.model != NormalModel::hertz;
+  for (const PointContext& p : w.points)
+    vi_possible = vi_possible ||
+                  !(std::isfinite(p.A0) && std::isfinite(p.B0) && p.A0 > 0.0 && p.B0 > 0.0);
+  if (band_ok && vi_possible) {
     std::vector<int> order;  // small (<= a few points); allocation outside the load loop
     order.reserve(np);
     for (int i = 0; i < np; ++i)
@@ -368,7 +374,12 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
       p.model = NormalModel::kik_piotrowski;
       p.flags |= status::kFallbackModel;
     }
-    if (p.hertz_valid) p.hz = hertz_coefficients_fast(p.A0, p.B0);
+    if (p.hertz_valid) {
+      // Cached per point index: repeated solves on one geometry (load sweeps) find the shape once.
+      Workspace::HertzCache& hc = w.hertz_cache[p.point];
+      if (!(hc.A == p.A0 && hc.B == p.B0)) hc = {p.A0, p.B0, hertz_coefficients_fast(p.A0, p.B0)};
+      p.hz = hc.hz;
+    }
     if (is_stripes(p.model)) prepare_stripes(g, m, o, p, w);
   }
   // Per-sample data is filled lazily on the intervals of each PointContext (empty after assign).
@@ -607,8 +618,39 @@ void set_ellipse_reference(const WheelContactGeometry& g, const ContactPoint& cp
     patch.status |= status::kProfileEdge;
 }
 
-WheelNormalResult fill(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
-                       Workspace& w, double dz) {
+// One loaded point running Hertz: its patch is the ellipse at the point whatever the grouping
+// (an unloaded point has a larger separation, so it is never the patch's point_index), so no band
+// scan is needed. Writes r in place (its vectors keep their capacity); false: not that case.
+bool fill_single_hertz(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                       Workspace& w, double dz, WheelNormalResult& r) {
+  const int np = static_cast<int>(w.points.size());
+  int k = -1;
+  for (int i = 0; i < np; ++i) {
+    if (!(dz > w.points[i].h)) continue;
+    if (k >= 0) return false;
+    k = i;
+  }
+  if (k < 0 || w.points[k].model != NormalModel::hertz) return false;
+  r.patches.resize(1);
+  ContactPatch& patch = r.patches.front();
+  const PatchSums sums = evaluate(g, m, o, w.points[k], w, dz, &patch);
+  if (!(sums.normal > 0.0)) return false;
+  r.vertical_approach = dz;
+  r.vertical_load = sums.vertical;
+  r.iterations = 0;
+  r.status = 0;
+  for (const PointContext& p : w.points) r.status |= p.flags;  // as the unloaded parts report
+  r.status = (r.status | patch.status) & ~status::kLiftOff;
+  r.point_patch.assign(np, -1);
+  r.point_patch[k] = 0;
+  patch.points = 1;
+  patch.point_index = k;
+  set_ellipse_reference(g, g.points[k], patch);
+  return true;
+}
+
+WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
+                               const NormalOptions& o, Workspace& w, double dz) {
   WheelNormalResult r;
   r.vertical_approach = dz;
   const int np = static_cast<int>(w.points.size());
@@ -729,6 +771,12 @@ WheelNormalResult fill(const WheelContactGeometry& g, const Material& m, const N
   return r;
 }
 
+void fill(const WheelContactGeometry& g, const Material& m, const NormalOptions& o, Workspace& w,
+          double dz, WheelNormalResult& out) {
+  if (fill_single_hertz(g, m, o, w, dz, out)) return;
+  out = fill_general(g, m, o, w, dz);
+}
+
 void check_options(const NormalOptions& o) {
   RAILTAB_CHECK(o.strips >= 1 && o.strips <= 100000, "normal options: strips = {} must be >= 1",
                 o.strips);
@@ -764,19 +812,61 @@ WheelNormalResult solve_normal_for_approach(const WheelContactGeometry& geometry
   }
   detail::Workspace& w = detail::thread_workspace();
   detail::prepare(geometry, material, options, w);
-  WheelNormalResult r = detail::fill(geometry, material, options, w, vertical_approach);
+  WheelNormalResult r;
+  detail::fill(geometry, material, options, w, vertical_approach, r);
   r.status |= status::kConverged;
   return r;
 }
 
 WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
                                         const Material& material, const NormalOptions& options) {
+  WheelNormalResult r;
+  solve_normal_for_load(geometry, vertical_load, material, options, r);
+  return r;
+}
+
+void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
+                           const Material& material, const NormalOptions& options,
+                           WheelNormalResult& r) {
   detail::check_options(options);
-  if (!std::isfinite(vertical_load)) return detail::lift_off(geometry, status::kInvalidInput);
-  if (geometry.points.empty() || vertical_load <= 0.0)
-    return detail::lift_off(geometry, status::kConverged);
+  if (!std::isfinite(vertical_load)) {
+    r = detail::lift_off(geometry, status::kInvalidInput);
+    return;
+  }
+  if (geometry.points.empty() || vertical_load <= 0.0) {
+    r = detail::lift_off(geometry, status::kConverged);
+    return;
+  }
   detail::Workspace& w = detail::thread_workspace();
   detail::prepare(geometry, material, options, w);
+
+  // Hertz, one loaded point: closed form. N = W / cos(gamma) at the least separated point k;
+  // exact when the resulting approach leaves every other point unloaded (dz <= h_j).
+  {
+    bool all_hertz = true;
+    int k = 0;
+    for (std::size_t i = 0; i < w.points.size(); ++i) {
+      const detail::PointContext& p = w.points[i];
+      all_hertz = all_hertz && p.model == NormalModel::hertz && p.hertz_valid;
+      if (p.h < w.points[k].h) k = static_cast<int>(i);
+    }
+    if (all_hertz) {
+      const detail::PointContext& pk = w.points[k];
+      const double AB = pk.A0 + pk.B0;
+      const double c =
+          std::cbrt(3.0 * vertical_load / pk.cos_ref / (4.0 * material.contact_modulus() * AB));
+      const double dz = pk.h + pk.hz.r * AB * c * c / pk.cos_ref;
+      bool single = dz > pk.h;
+      for (std::size_t i = 0; i < w.points.size(); ++i)
+        single = single && (static_cast<int>(i) == k || dz <= w.points[i].h);
+      if (single && detail::fill_single_hertz(geometry, material, options, w, dz, r) &&
+          std::abs(r.vertical_load - vertical_load) <= 2.0 * options.tolerance * vertical_load) {
+        r.iterations = 1;  // one evaluation, no iteration
+        r.status |= status::kConverged;
+        return;
+      }
+    }
+  }
 
   // Load control in the variable W^(2/3): nearly linear in delta_z (Hertz: W ~ delta^(3/2)), so
   // Brent's inverse interpolation converges in a few steps; W is monotone in delta_z, which keeps
@@ -811,24 +901,22 @@ WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, do
     fhi = f(hi);
     ++expansions;
   }
-  WheelNormalResult r;
   if (fhi < 0.0) {  // cannot carry the load within any sensible approach
-    r = detail::fill(geometry, material, options, w, hi);
+    detail::fill(geometry, material, options, w, hi, r);
     r.iterations = evaluations;
     r.status |= status::kNotConverged;
-    return r;
+    return;
   }
   const double f_tol = (2.0 / 3.0) * options.tolerance * target;
   // x tolerance far below what the load tolerance needs, relative to the bracket (approaches
   // span 1e-13 m at 1 nN to 1e-4 m at 150 kN), so that f_tol decides.
   const double x_tol = 1e-14 * (hi - h_min);
   const auto root = detail::brent_root(f, lo, hi, flo, fhi, x_tol, f_tol, options.max_iterations);
-  r = detail::fill(geometry, material, options, w, root.x);
+  detail::fill(geometry, material, options, w, root.x, r);
   r.iterations = evaluations;
   const bool ok = std::abs(r.vertical_load - vertical_load) <=
                   2.0 * options.tolerance * vertical_load;
   r.status |= ok ? status::kConverged : status::kNotConverged;
-  return r;
 }
 
 }  // namespace railtab

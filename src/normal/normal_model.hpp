@@ -150,6 +150,12 @@ struct WheelNormalResult {
 WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
                                         const Material& material, const NormalOptions& options);
 
+// The same, writing into `out` and reusing the capacity of its vectors (table sweeps: no
+// allocation per solve on the Hertz fast path). Same numbers as the overload above.
+void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
+                           const Material& material, const NormalOptions& options,
+                           WheelNormalResult& out);
+
 // Displacement control: the rigid vertical approach of the wheel is prescribed [m].
 WheelNormalResult solve_normal_for_approach(const WheelContactGeometry& geometry,
                                             double vertical_approach, const Material& material,
