@@ -22,23 +22,9 @@ PatchSums linder_patch(const WheelContactGeometry& g, const Material& m, const N
   const int n = o.strips;
   const double width = (run.s_hi - run.s_lo) / n;
   const double s_ref = g.points[p.point].band_s;
-  int j0, j1;
-  strip_sample_range(g, run.s_lo, width, n, &j0, &j1);
-  ensure_samples(g, p, w, j0, j1, o);
-  double I1 = 0.0, L_max = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const double s = run.s_lo + (k + 0.5) * width;
-    int j;
-    double t;
-    locate(g, s, &j, &t);
-    const double v = std::max(lerp_at(w.v.data(), j, t), 0.0);
-    const double A = lerp_at(w.A.data(), j, t);
-    const double L = A > 0.0 ? std::sqrt(v / A) : 0.0;
-    w.strip_len[k] = L;
-    w.strip_pos[k] = s - s_ref;
-    I1 += 0.5 * std::numbers::pi * L * L * width;
-    L_max = std::max(L_max, L);
-  }
+  const double L_max = planar_strip_lengths(g, p, w, run, n, s_ref, o);
+  double I1 = 0.0;  // semi-elliptic strips: area-weighted sum of pi/2 L^2 per strip
+  for (int k = 0; k < n; ++k) I1 += 0.5 * std::numbers::pi * w.strip_len[k] * w.strip_len[k] * width;
   if (!(I1 > 0.0)) return {};
   const double delta = (dz - p.h) * p.cos_ref;
   double N;

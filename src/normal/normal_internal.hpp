@@ -239,6 +239,12 @@ Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s,
                  bool own_angle);
 
 // Model evaluations at vertical approach dz: totals always, strips and patch fields when out.
+// Strip half-lengths of a planar virtual-interpenetration run (Linder, Kik-Piotrowski): at each of
+// the n strip centres of [run.s_lo, run.s_hi], L = sqrt(v / A) from the overlap v and the curvature
+// A. Fills w.strip_len and w.strip_pos (lateral position from s_ref) and returns the largest L.
+double planar_strip_lengths(const WheelContactGeometry& g, PointContext& p, Workspace& w,
+                            const Run& run, int n, double s_ref, const NormalOptions& o);
+
 PatchSums hertz_patch(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                       PointContext& p, Workspace& w, double dz, ContactPatch* out);
 PatchSums linder_patch(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,

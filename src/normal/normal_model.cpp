@@ -197,6 +197,28 @@ inline Run scan_run(const WheelContactGeometry& g, int i0, int lo, int hi, Overl
 
 }  // namespace
 
+double planar_strip_lengths(const WheelContactGeometry& g, PointContext& p, Workspace& w,
+                            const Run& run, int n, double s_ref, const NormalOptions& o) {
+  const double width = (run.s_hi - run.s_lo) / n;
+  int j0, j1;
+  strip_sample_range(g, run.s_lo, width, n, &j0, &j1);
+  ensure_samples(g, p, w, j0, j1, o);
+  double L_max = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double s = run.s_lo + (k + 0.5) * width;
+    int j;
+    double t;
+    locate(g, s, &j, &t);
+    const double v = std::max(lerp_at(w.v.data(), j, t), 0.0);
+    const double A = lerp_at(w.A.data(), j, t);
+    const double L = A > 0.0 ? std::sqrt(v / A) : 0.0;
+    w.strip_len[k] = L;
+    w.strip_pos[k] = s - s_ref;
+    L_max = std::max(L_max, L);
+  }
+  return L_max;
+}
+
 Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
              const NormalOptions& /*options*/) {
   if (p.i0 < 0 || p.hi < p.lo) return Run{};
