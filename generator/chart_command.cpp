@@ -229,17 +229,27 @@ plot '{csv}' using (strcol(2) eq 'linear' ? $6 : 1/0):10 with points ps 1.4 pt 7
                            mpng.string(), r.seconds);
 }
 
+// The options every chart command shares: the scene and the output directory.
+void add_scene_and_out(CLI::App* cmd, std::string& scene_path, std::string& out_dir) {
+  cmd->add_option("--scene", scene_path, "Scene file (TOML)")->capture_default_str();
+  cmd->add_option("--out", out_dir, "Output directory")->capture_default_str();
+}
+
+// A y sweep: first, last and step [m].
+void add_y_range(CLI::App* cmd, double& y_min, double& y_max, double& y_step) {
+  cmd->add_option("--y-min", y_min, "First lateral displacement [m]")->capture_default_str();
+  cmd->add_option("--y-max", y_max, "Last lateral displacement [m]")->capture_default_str();
+  cmd->add_option("--y-step", y_step, "Step [m]")->capture_default_str();
+}
+
 }  // namespace
 
 void add_chart_commands(CLI::App& app) {
   auto geo = std::make_shared<GeometryChartOptions>();
   CLI::App* cmd = app.add_subcommand(
       "chart-geometry", "Chart rolling radius difference and contact angle against y (CSV + PNG)");
-  cmd->add_option("--scene", geo->scene_path, "Scene file (TOML)")->capture_default_str();
-  cmd->add_option("--out", geo->out_dir, "Output directory")->capture_default_str();
-  cmd->add_option("--y-min", geo->y_min, "First lateral displacement [m]")->capture_default_str();
-  cmd->add_option("--y-max", geo->y_max, "Last lateral displacement [m]")->capture_default_str();
-  cmd->add_option("--y-step", geo->y_step, "Step [m]")->capture_default_str();
+  add_scene_and_out(cmd, geo->scene_path, geo->out_dir);
+  add_y_range(cmd, geo->y_min, geo->y_max, geo->y_step);
   cmd->callback([geo] { run_geometry_chart(*geo); });
 
   struct StabilityChartOptions {
@@ -250,11 +260,8 @@ void add_chart_commands(CLI::App& app) {
   auto st = std::make_shared<StabilityChartOptions>();
   CLI::App* stab = app.add_subcommand(
       "chart-stability", "Chart the status flags of every normal model across y (CSV + PNG)");
-  stab->add_option("--scene", st->scene_path, "Scene file (TOML)")->capture_default_str();
-  stab->add_option("--out", st->out_dir, "Output directory")->capture_default_str();
-  stab->add_option("--y-min", st->map.y_min, "First lateral displacement [m]")->capture_default_str();
-  stab->add_option("--y-max", st->map.y_max, "Last lateral displacement [m]")->capture_default_str();
-  stab->add_option("--y-step", st->map.y_step, "Step [m]")->capture_default_str();
+  add_scene_and_out(stab, st->scene_path, st->out_dir);
+  add_y_range(stab, st->map.y_min, st->map.y_max, st->map.y_step);
   stab->callback([st] {
     draw_stability_chart(load_scene(st->scene_path), st->out_dir, st->map);
     std::cout << fmt::format("chart-stability: wrote {}/stability_map.csv and stability_map.png\n", st->out_dir);
@@ -269,8 +276,7 @@ void add_chart_commands(CLI::App& app) {
   auto pr = std::make_shared<PressureCommandOptions>();
   CLI::App* pres = app.add_subcommand(
       "chart-pressure", "Chart the pressure along the strip centre lines of every normal model (CSV + PNG)");
-  pres->add_option("--scene", pr->scene_path, "Scene file (TOML)")->capture_default_str();
-  pres->add_option("--out", pr->out_dir, "Output directory")->capture_default_str();
+  add_scene_and_out(pres, pr->scene_path, pr->out_dir);
   pres->add_option("--y", pr->chart.y, "Wheelset lateral displacement [m]")->capture_default_str();
   pres->add_option("--load", pr->chart.load, "Vertical wheel load [N]")->capture_default_str();
   pres->add_option("--wheel", pr->side, "left|right")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
@@ -285,8 +291,7 @@ void add_chart_commands(CLI::App& app) {
   auto sa = std::make_shared<SpeedChartOptions>();
   CLI::App* chart = app.add_subcommand(
       "chart", "Speed against accuracy of every contact model and of table lookup (CSV + PNG charts)");
-  chart->add_option("--scene", sa->scene_path, "Scene file (TOML)")->capture_default_str();
-  chart->add_option("--out", sa->out_dir, "Output directory")->capture_default_str();
+  add_scene_and_out(chart, sa->scene_path, sa->out_dir);
   chart->add_option("--reference", sa->reference,
                     "CONTACT block C CSV (default: <source>/../shared/reference/blockC_sweep_integer_dy.csv; "
                     "absent: finest STRIPES as reference)");
