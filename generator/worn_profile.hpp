@@ -1,0 +1,26 @@
+// Profile evolution: a wheel profile worn by a radial depth distribution becomes the next wear
+// step's wheel profile, written as a two-column profile file (docs/profiles.md) that a scene can
+// name, so every step of a run can be reproduced with `railtab generate` and `railtab eval`.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "profile/profile.hpp"
+
+namespace railtab {
+
+// Smooths `depth` (radial depth on the bin centres `u` [m]) with a moving average of
+// `smoothing_length` [m] (0 = none; the worn area is kept), removes it from `wheel` (rolling radius
+// r(u) - depth(u), i.e. z + depth), and writes the profile at `step` spacing over the wheel's
+// range to `file` (lateral and vertical in mm, CONTACT orientation). Written to a temporary name
+// and renamed. Throws railtab::Error naming the file for I/O errors or non-finite input.
+void write_worn_profile(const Profile& wheel, const std::vector<double>& u,
+                        const std::vector<double>& depth, double smoothing_length,
+                        const std::filesystem::path& file, double step = 0.0002);
+
+// The smoothing of write_worn_profile, on its own (for charts and tests).
+std::vector<double> smooth_depth(const std::vector<double>& u, const std::vector<double>& depth,
+                                 double smoothing_length);
+
+}  // namespace railtab
