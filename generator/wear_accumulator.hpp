@@ -6,6 +6,8 @@
 // contact angle, rolling radius and position, so the wear sees the same kinematics as the dynamics.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "scene.hpp"
@@ -29,7 +31,9 @@ class WearAccumulator {
   // relative to the rails `y_relative` [m] (roll at the kinematic equilibrium), vertical wheel
   // loads [N], and the wheelset motion (speed, yaw, rates, curvature, spin speed) for the
   // creepages. Returns the OR of the status bits of every patch solved. A failing solve is
-  // counted (failures()) and adds no wear; it does not throw.
+  // counted (failures(), once per wheel) and adds no wear for that wheel; the returned bits then
+  // carry kFailed. A wheel with zero load adds nothing (kLiftOff). Throws railtab::Error only for
+  // bad arguments: a load or distance that is negative or not finite, a speed that is not > 0.
   std::uint32_t sample(double y_relative, const double (&load)[vehicle::kWheels],
                        const vehicle::WheelsetMotion& motion, double distance);
 
@@ -40,6 +44,33 @@ class WearAccumulator {
   int samples() const;
   int failures() const;
   void scale(double factor);                            // multiply every depth (mileage scaling)
+
+  // Worn area of strips that fell outside the grid and was therefore NOT added [m2]: should be 0;
+  // anything else means the grid is narrower than the contact band.
+  double clipped_area(int wheel) const;
+
+ private:
+  void add_strip(int wheel, double u_centre, double width_u, double depth);
+
+  ContactGeometrySolver solver_;
+  Material material_;
+  NormalOptions normal_;
+  FastsimOptions fastsim_;
+  CreepConditions conditions_;
+  WearOptions wear_;
+  double running_circle_q_;  // q0 of vehicle::contact_lateral_position [m]
+  WearGrid grid_;
+  std::vector<double> u_;
+  std::array<std::vector<double>, vehicle::kWheels> depth_;
+  std::array<double, vehicle::kWheels> clipped_{};
+  double distance_ = 0.0;
+  int samples_ = 0;
+  int failures_ = 0;
+  // Reused between samples (they only grow): one accumulator per running simulation.
+  WheelNormalResult normal_result_;
+  FastsimWorkspace workspace_;
+  WearDistribution distribution_;
+  std::vector<StripWear> pending_;  // one wheel's strips, added only when its whole chain succeeded
 };
 
 }  // namespace railtab

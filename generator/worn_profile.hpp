@@ -10,16 +10,18 @@
 
 namespace railtab {
 
-// Smooths `depth` (radial depth on the bin centres `u` [m]) with a moving average of
-// `smoothing_length` [m] (0 = none; the worn area is kept), removes it from `wheel` (rolling radius
-// r(u) - depth(u), i.e. z + depth), and writes the profile at `step` spacing over the wheel's
+// Smooths `depth` (radial depth on the uniformly spaced bin centres `u` [m]) with smooth_depth,
+// removes it from `wheel` (rolling radius r(u) - depth(u), i.e. z + depth; depth linear between
+// bin centres, 0 beyond the bins), and writes the profile at `step` spacing over the wheel's
 // range to `file` (lateral and vertical in mm, CONTACT orientation). Written to a temporary name
 // and renamed. Throws railtab::Error naming the file for I/O errors or non-finite input.
 void write_worn_profile(const Profile& wheel, const std::vector<double>& u,
                         const std::vector<double>& depth, double smoothing_length,
                         const std::filesystem::path& file, double step = 0.0002);
 
-// The smoothing of write_worn_profile, on its own (for charts and tests).
+// The smoothing of write_worn_profile, on its own (for charts and tests): a triangular kernel of
+// base `smoothing_length` [m] (0, or less than two bins: none), area-conserving also at the grid
+// ends (worn_profile.cpp says why this kernel). `u` must be uniformly spaced.
 std::vector<double> smooth_depth(const std::vector<double>& u, const std::vector<double>& depth,
                                  double smoothing_length);
 
