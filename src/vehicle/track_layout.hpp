@@ -2,6 +2,10 @@
 // along the centreline, each with curvature and cant ramping linearly over its length (a clothoid
 // with a linear cant ramp for transitions), plus a lateral irregularity of both rails.
 // Sign: curvature > 0 for a curve to the LEFT (centre at +y), cant > 0 raises the outer rail.
+// The outer rail of a section is the one outside its curve: the sign of curvature_start +
+// curvature_end decides (right rail for > 0, left rail for < 0). A section with non-zero cant must
+// therefore curve one way: zero curvature sum or a curvature sign change with cant throws (split a
+// reverse transition at the inflexion point).
 #pragma once
 
 #include <vector>
@@ -17,9 +21,11 @@ struct TrackSection {
 };
 
 // Lateral alignment irregularity of both rails (the rails move together): a sum of `components`
-// sinusoids with wavelengths spread log-uniformly over [wavelength_min, wavelength_max], random
-// phases from `seed` (deterministic), scaled so that the largest |y_irr| over the route is
-// `amplitude`. amplitude = 0: perfect track.
+// sinusoids with wavelengths spread log-uniformly over [wavelength_min, wavelength_max] (evenly
+// in log, both ends included), random phases from `seed` (std::mt19937: the same on every
+// platform), amplitudes in proportion to sqrt(wavelength) (a displacement PSD falling as
+// 1/wavenumber^2), then all scaled so that the largest |y_irr| over the route, sampled every
+// 0.25 m, is `amplitude`. amplitude = 0: perfect track.
 struct Irregularity {
   double amplitude = 0.0;          // [m]
   double wavelength_min = 10.0;    // [m]
@@ -31,14 +37,19 @@ struct Irregularity {
 // The track at one position s along the centreline.
 struct TrackPoint {
   double curvature = 0.0;          // kappa [1/m]
-  double cant_angle = 0.0;         // asin(cant / rail_centre_distance) [rad]
+  double cant_angle = 0.0;         // SIGNED: g sin(cant_angle) is gravity along track +y, i.e.
+                                   // +asin(cant / rail_centre_distance) in a left curve (right
+                                   // rail raised), - in a right curve [rad]
   double lateral_irregularity = 0.0;  // lateral shift of both rails, track y [m]
+  double curvature_rate = 0.0;     // dkappa/ds [1/m2] (transitions)
 };
 
 class TrackLayout {
  public:
   // Throws railtab::Error for an empty route, a non-positive or non-finite length, non-finite
-  // curvature or cant, or rail_centre_distance <= 0.
+  // curvature or cant, or rail_centre_distance <= 0; for |cant| >= rail_centre_distance, cant
+  // with no curve direction (see above); for an irregularity with amplitude < 0 or non-finite, or
+  // amplitude > 0 with components < 1 or not 0 < wavelength_min <= wavelength_max.
   TrackLayout(std::vector<TrackSection> sections, Irregularity irregularity,
               double rail_centre_distance = 1.5);
 
@@ -51,6 +62,8 @@ class TrackLayout {
   std::vector<double> section_start_;  // cumulative start of each section [m]
   Irregularity irregularity_;
   std::vector<double> wavenumber_, phase_, weight_;  // irregularity components
+  std::vector<double> cant_sign_;  // +1 / -1 per section: which rail the cant raises
+  double irregularity_at(double s) const;
   double rail_centre_distance_;
   double length_ = 0.0;
 };

@@ -57,7 +57,9 @@ struct ContactSnapshot {
 class WheelsetSimulation {
  public:
   // `track` and `contact` must outlive the simulation. Throws railtab::Error for non-positive or
-  // non-finite speed, time step, masses or inertias.
+  // non-finite speed, time step, masses or inertias (carried_mass may be 0), radius or
+  // running_circle_q, for negative stiffness or damping, and for a non-finite initial state.
+  // Evaluates the contact at the initial state, so snapshot() is valid before the first step.
   WheelsetSimulation(const WheelsetParameters& parameters, const TrackLayout& track,
                      ContactModel& contact, double speed, double time_step,
                      const WheelsetState& initial = {});
@@ -92,6 +94,7 @@ class WheelsetSimulation {
   double speed_;
   double dt_;
   double time_ = 0.0;
+  long long steps_ = 0;  // time = steps * time_step (no accumulated round-off)
   WheelsetState state_;
   ContactSnapshot snapshot_;
 };

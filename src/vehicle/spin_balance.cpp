@@ -1,0 +1,133 @@
+// Torque balance about the axle: a one-dimensional monotone root search in Omega.
+#include "vehicle/spin_balance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/status.hpp"
+
+namespace railtab::vehicle {
+namespace {
+
+constexpr int kMaxCreepCalls = 40;
+
+// One creep evaluation at spin speed `omega`: creepages, forces and the torque they leave.
+struct Trial {
+  double omega = 0.0;
+  double torque = 0.0;
+  SlotCreepage creepage[kWheels][kContactSlots];
+  SlotForces forces[kWheels][kContactSlots];
+};
+
+}  // namespace
+
+SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contacts)[kWheels],
+                             double running_circle_q, double nominal_radius,
+                             double torque_tolerance, WheelsetMotion& motion,
+                             SlotCreepage (&creepage_out)[kWheels][kContactSlots],
+                             SlotForces (&forces_out)[kWheels][kContactSlots]) {
+  SpinBalance result;
+
+  // Linear estimate: fx ~ -w xi with w ~ contact area (creep stiffness G c^2 C11, c^2 = ab), and
+  // xi = a - Omega r / V, so sum r w (a - Omega r / V) = 0 gives Omega directly. Exact for a
+  // linear creep law with stiffness in proportion to the area.
+  double sum_rwa = 0.0, sum_wr2 = 0.0;
+  bool any_loaded = false;
+  for (int w = 0; w < kWheels; ++w) {
+    for (int k = 0; k < kContactSlots; ++k) {
+      const SlotContact& c = contacts[w].slot[k];
+      if (!c.loaded) continue;
+      any_loaded = true;
+      const double weight = c.area > 0.0 ? c.area : 1.0;
+      motion.spin_speed = 0.0;
+      const double a = creepage(motion, w, c, running_circle_q).xi;  // xi at Omega = 0
+      sum_rwa += c.rolling_radius * weight * a;
+      sum_wr2 += weight * c.rolling_radius * c.rolling_radius;
+    }
+  }
+  if (!any_loaded) {
+    motion.spin_speed = motion.speed / nominal_radius;
+    for (int w = 0; w < kWheels; ++w) {
+      for (int k = 0; k < kContactSlots; ++k) {
+        creepage_out[w][k] = {};
+        forces_out[w][k] = {};
+      }
+    }
+    result.spin_speed = motion.spin_speed;
+    result.status = status::kLiftOff;
+    return result;
+  }
+
+  auto evaluate = [&](double omega, Trial& t) {
+    t.omega = omega;
+    motion.spin_speed = omega;
+    for (int w = 0; w < kWheels; ++w) {
+      for (int k = 0; k < kContactSlots; ++k) {
+        const SlotContact& c = contacts[w].slot[k];
+        t.creepage[w][k] = c.loaded ? creepage(motion, w, c, running_circle_q) : SlotCreepage{};
+      }
+    }
+    contact.creep(t.creepage, t.forces);
+    ++result.creep_calls;
+    // Torque of the wheel's contact forces about the axle (+y), up to sign: the longitudinal
+    // force at lever r, and the spin moment's component along the axle (n_y = -sin g).
+    t.torque = 0.0;
+    for (int w = 0; w < kWheels; ++w) {
+      for (int k = 0; k < kContactSlots; ++k) {
+        const SlotContact& c = contacts[w].slot[k];
+        if (!c.loaded) continue;
+        t.torque += c.rolling_radius * t.forces[w][k].fx +
+                    t.forces[w][k].mz * std::sin(c.contact_angle);
+      }
+    }
+  };
+
+  // torque(Omega) increases with Omega (a faster wheel drives: xi falls, fx rises). Secant steps,
+  // kept inside the sign-change bracket once there is one (bisection when a step leaves it).
+  Trial best, last, current;
+  evaluate(motion.speed * sum_rwa / sum_wr2, best);
+  last = best;
+  double low = -INFINITY, high = INFINITY;  // bracket: torque(low) < 0 < torque(high)
+  auto update_bracket = [&](const Trial& t) {
+    if (t.torque < 0.0) low = std::max(low, t.omega);
+    if (t.torque > 0.0) high = std::min(high, t.omega);
+  };
+  update_bracket(best);
+  // First step without a slope: a creepage change of 1e-6 against the sign of the torque.
+  double next = best.omega * (1.0 - std::copysign(1e-6, best.torque));
+  bool converged = std::abs(best.torque) <= torque_tolerance;
+  while (!converged && result.creep_calls < kMaxCreepCalls) {
+    evaluate(next, current);
+    update_bracket(current);
+    if (std::abs(current.torque) < std::abs(best.torque)) best = current;
+    converged = std::abs(best.torque) <= torque_tolerance ||
+                (high - low) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(high);
+    const double slope = (current.torque - last.torque) / (current.omega - last.omega);
+    next = current.omega - current.torque / slope;
+    if (!(slope > 0.0) || !std::isfinite(next)) {
+      // No usable slope (flat, saturated, or noisy): walk downhill with a growing step.
+      const double walk = std::max(4.0 * std::abs(current.omega - last.omega),
+                                   1e-6 * std::abs(current.omega));
+      next = current.omega - std::copysign(walk, current.torque);
+    }
+    if (std::isfinite(low) && std::isfinite(high) && !(next > low && next < high)) {
+      next = 0.5 * (low + high);
+    }
+    last = current;
+  }
+
+  motion.spin_speed = best.omega;
+  for (int w = 0; w < kWheels; ++w) {
+    for (int k = 0; k < kContactSlots; ++k) {
+      creepage_out[w][k] = best.creepage[w][k];
+      forces_out[w][k] = best.forces[w][k];
+    }
+  }
+  result.spin_speed = best.omega;
+  result.torque = best.torque;
+  if (!converged) result.status = status::kNotConverged;
+  return result;
+}
+
+}  // namespace railtab::vehicle
