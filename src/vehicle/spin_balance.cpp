@@ -101,8 +101,10 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
     evaluate(next, current);
     update_bracket(current);
     if (std::abs(current.torque) < std::abs(best.torque)) best = current;
+    const bool bracketed = std::isfinite(low) && std::isfinite(high);
     converged = std::abs(best.torque) <= torque_tolerance ||
-                (high - low) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(high);
+                (bracketed &&
+                 high - low <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(high));
     const double slope = (current.torque - last.torque) / (current.omega - last.omega);
     next = current.omega - current.torque / slope;
     if (!(slope > 0.0) || !std::isfinite(next)) {
@@ -111,7 +113,7 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
                                    1e-6 * std::abs(current.omega));
       next = current.omega - std::copysign(walk, current.torque);
     }
-    if (std::isfinite(low) && std::isfinite(high) && !(next > low && next < high)) {
+    if (bracketed && !(next > low && next < high)) {
       next = 0.5 * (low + high);
     }
     last = current;
