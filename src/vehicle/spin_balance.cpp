@@ -94,8 +94,20 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
     if (t.torque > 0.0) high = std::min(high, t.omega);
   };
   update_bracket(best);
-  // First step without a slope: a creepage change of 1e-6 against the sign of the torque.
-  double next = best.omega * (1.0 - std::copysign(1e-6, best.torque));
+  // First step: Newton with each slot's secant creep stiffness -fx / xi (dxi/dOmega = -r / V).
+  // Without one (all xi = 0), a creepage change of 1e-6 against the sign of the torque.
+  double slope = 0.0;
+  for (int w = 0; w < kWheels; ++w) {
+    for (int k = 0; k < kContactSlots; ++k) {
+      const SlotContact& c = contacts[w].slot[k];
+      const double xi = best.creepage[w][k].xi;
+      if (!c.loaded || std::abs(xi) < 1e-12) continue;
+      const double stiffness = -best.forces[w][k].fx / xi;
+      if (stiffness > 0.0) slope += c.rolling_radius * c.rolling_radius * stiffness / motion.speed;
+    }
+  }
+  double next = slope > 0.0 ? best.omega - best.torque / slope
+                            : best.omega * (1.0 - std::copysign(1e-6, best.torque));
   bool converged = std::abs(best.torque) <= torque_tolerance;
   while (!converged && result.creep_calls < kMaxCreepCalls) {
     evaluate(next, current);
@@ -105,7 +117,7 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
     converged = std::abs(best.torque) <= torque_tolerance ||
                 (bracketed &&
                  high - low <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(high));
-    const double slope = (current.torque - last.torque) / (current.omega - last.omega);
+    slope = (current.torque - last.torque) / (current.omega - last.omega);
     next = current.omega - current.torque / slope;
     if (!(slope > 0.0) || !std::isfinite(next)) {
       // No usable slope (flat, saturated, or noisy): walk downhill with a growing step.
