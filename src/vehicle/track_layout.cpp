@@ -11,21 +11,24 @@
 namespace railtab::vehicle {
 namespace {
 
-// +1 when the section's cant raises the right rail (left curve), -1 for the left rail. Cant on a
-// section without one curve direction has no outer rail, so it is refused.
-double cant_side(const TrackSection& t, std::size_t i) {
-  const bool has_cant = t.cant_start != 0.0 || t.cant_end != 0.0;
-  const double sum = t.curvature_start + t.curvature_end;
-  if (!has_cant) return sum < 0.0 ? -1.0 : 1.0;
-  RAILTAB_CHECK(sum != 0.0,
-                "track section {}: cant {} -> {} m on a section without curvature (curvature "
-                "{} -> {} 1/m): no outer rail to raise",
-                i, t.cant_start, t.cant_end, t.curvature_start, t.curvature_end);
-  RAILTAB_CHECK(t.curvature_start * t.curvature_end >= 0.0,
-                "track section {}: cant {} -> {} m on a section whose curvature changes sign "
-                "({} -> {} 1/m): split it at the inflexion point",
-                i, t.cant_start, t.cant_end, t.curvature_start, t.curvature_end);
-  return sum > 0.0 ? 1.0 : -1.0;
+// Which rail the cant at each end raises: +1 the right rail (left curve), -1 the left rail. An end
+// without curvature takes the other end's side; cant with no curvature at all has no outer rail.
+struct CantSides {
+  double start = 1.0, end = 1.0;
+};
+CantSides cant_sides(const TrackSection& t, std::size_t i) {
+  auto side = [](double curvature) { return curvature > 0.0 ? 1.0 : -1.0; };
+  CantSides sides;
+  if (t.curvature_start == 0.0 && t.curvature_end == 0.0) {
+    RAILTAB_CHECK(t.cant_start == 0.0 && t.cant_end == 0.0,
+                  "track section {}: cant {} -> {} m on a section without curvature: no outer "
+                  "rail to raise",
+                  i, t.cant_start, t.cant_end);
+    return sides;
+  }
+  sides.start = side(t.curvature_start != 0.0 ? t.curvature_start : t.curvature_end);
+  sides.end = side(t.curvature_end != 0.0 ? t.curvature_end : t.curvature_start);
+  return sides;
 }
 
 }  // namespace
@@ -53,7 +56,9 @@ TrackLayout::TrackLayout(std::vector<TrackSection> sections, Irregularity irregu
                   "track section {}: cant {} -> {} m, must be smaller than the rail centre "
                   "distance {} m",
                   i, t.cant_start, t.cant_end, rail_centre_distance_);
-    cant_sign_.push_back(cant_side(t, i));
+    const CantSides sides = cant_sides(t, i);
+    signed_cant_start_.push_back(sides.start * t.cant_start);
+    signed_cant_end_.push_back(sides.end * t.cant_end);
     section_start_.push_back(length_);
     length_ += t.length;
   }
@@ -105,8 +110,8 @@ TrackPoint TrackLayout::at(double s) const {
   TrackPoint p;
   p.curvature = t.curvature_start + f * (t.curvature_end - t.curvature_start);
   p.curvature_rate = (t.curvature_end - t.curvature_start) / t.length;
-  const double cant = t.cant_start + f * (t.cant_end - t.cant_start);
-  p.cant_angle = cant_sign_[i] * std::asin(cant / rail_centre_distance_);
+  const double cant = signed_cant_start_[i] + f * (signed_cant_end_[i] - signed_cant_start_[i]);
+  p.cant_angle = std::asin(cant / rail_centre_distance_);
   p.lateral_irregularity = irregularity_at(s);
   return p;
 }

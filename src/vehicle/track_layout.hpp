@@ -2,10 +2,11 @@
 // along the centreline, each with curvature and cant ramping linearly over its length (a clothoid
 // with a linear cant ramp for transitions), plus a lateral irregularity of both rails.
 // Sign: curvature > 0 for a curve to the LEFT (centre at +y), cant > 0 raises the outer rail.
-// The outer rail of a section is the one outside its curve: the sign of curvature_start +
-// curvature_end decides (right rail for > 0, left rail for < 0). A section with non-zero cant must
-// therefore curve one way: zero curvature sum or a curvature sign change with cant throws (split a
-// reverse transition at the inflexion point).
+// The outer rail at each end of a section is the one outside the curve there: the sign of that
+// end's curvature decides (right rail for > 0, left rail for < 0; an end with zero curvature takes
+// the other end's side). The signed cant (+ right rail up) then ramps linearly between the ends,
+// so a reverse transition (left curve into right curve) passes through zero cant. Cant on a
+// section with zero curvature at both ends has no outer rail and throws.
 #pragma once
 
 #include <vector>
@@ -62,7 +63,7 @@ class TrackLayout {
   std::vector<double> section_start_;  // cumulative start of each section [m]
   Irregularity irregularity_;
   std::vector<double> wavenumber_, phase_, weight_;  // irregularity components
-  std::vector<double> cant_sign_;  // +1 / -1 per section: which rail the cant raises
+  std::vector<double> signed_cant_start_, signed_cant_end_;  // per section, + right rail up [m]
   double irregularity_at(double s) const;
   double rail_centre_distance_;
   double length_ = 0.0;
