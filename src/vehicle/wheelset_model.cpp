@@ -229,13 +229,31 @@ double WheelsetSimulation::stable_time_step_estimate() {
       yaw_damping += y_c * y_c * std::abs(f_plus[w][k].fx - f_minus[w][k].fx) / (2 * h) / v;
     }
   }
+  // Lateral stiffness of the normal forces (gravitational stiffness; large in flange contact),
+  // d(sum -N sin g)/dy at the same loads. Last, so the creep() calls above saw the base normal().
+  auto normal_lateral_force = [&](double y) {
+    WheelContacts contacts[kWheels];
+    contact_->normal(y, base.load, contacts);
+    double f = 0.0;
+    for (const WheelContacts& wheel : contacts) {
+      for (const SlotContact& c : wheel.slot) {
+        if (c.loaded) f -= c.normal_force * std::sin(c.contact_angle);
+      }
+    }
+    return f;
+  };
+  constexpr double dy = 1e-6;  // [m]
+  const double contact_stiffness =
+      (normal_lateral_force(base.y_relative - dy) - normal_lateral_force(base.y_relative + dy)) /
+      (2 * dy);
   const double yaw_stiffness = 2.0 * p_.primary_longitudinal_stiffness *
                                p_.axlebox_semi_spacing * p_.axlebox_semi_spacing;
   // RK4 is stable for h lambda in [-2.785, 0] on the real axis and |h omega| <= 2.83 on the
-  // imaginary one; the suspension frequencies are included as well, in case they dominate.
-  const double rate = std::max({lateral_damping / p_.mass, yaw_damping / p_.yaw_inertia,
-                                std::sqrt(p_.primary_lateral_stiffness / p_.mass),
-                                std::sqrt(yaw_stiffness / p_.yaw_inertia)});
+  // imaginary one; the stiffness frequencies are included as well, in case they dominate.
+  const double rate = std::max(
+      {lateral_damping / p_.mass, yaw_damping / p_.yaw_inertia,
+       std::sqrt(std::abs(p_.primary_lateral_stiffness + contact_stiffness) / p_.mass),
+       std::sqrt(yaw_stiffness / p_.yaw_inertia)});
   return rate > 0.0 ? 2.78 / rate : INFINITY;
 }
 

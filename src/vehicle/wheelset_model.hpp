@@ -77,7 +77,10 @@ class WheelsetSimulation {
   double time_step() const;
 
   // Largest stable RK4 step estimated from the linear creep damping of the current contact
-  // (2.78 / lambda_max, lambda = creep damping / inertia of the lateral and yaw motion) [s].
+  // (2.78 / lambda_max, lambda = creep damping / inertia of the lateral and yaw motion), or from
+  // the lateral (suspension + normal-force) and yaw stiffness frequencies when those are higher
+  // (docs/vehicle-model.md) [s]. Calls normal() and creep() a few times; the next step() starts
+  // with a fresh normal().
   double stable_time_step_estimate();
 
   // The contact at an arbitrary state and distance, without stepping (for output and the wear

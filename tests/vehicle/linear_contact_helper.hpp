@@ -1,6 +1,7 @@
 // A synthetic contact model with closed-form answers, for the vehicle tests: coned wheels on
 // knife-edge rails. Rolling radius r = r0 + sigma lambda y (the left wheel grows when the wheelset
-// moves left), a constant contact angle +-delta (towards the flange on both wheels), the contact
+// moves left), a contact angle +-delta (towards the flange on both wheels; optionally growing
+// towards the flange the wheelset moves to, for a gravitational stiffness), the contact
 // fixed in the track (wheel_u = -sigma y), N cos(delta) = Q, tread slot only, and a linear creep
 // law fx = -f11 xi, fy = -f22 eta, mz = 0, optionally limited to |(fx, fy)| <= mu N.
 #pragma once
@@ -17,6 +18,7 @@ class LinearContact : public ContactModel {
   double r0 = 0.46;          // [m]
   double conicity = 0.1;     // lambda [-]
   double angle = 0.05;       // delta [rad]
+  double angle_slope = 0.0;  // d(contact angle)/dy of both wheels [rad/m]: gravitational stiffness
   double f11 = 6.0e6;        // longitudinal creep stiffness [N]
   double f22 = 6.0e6;        // lateral creep stiffness [N]
   double mu = 0.0;           // friction limit; 0: unlimited
@@ -30,10 +32,10 @@ class LinearContact : public ContactModel {
       const double sigma = w == 0 ? 1.0 : -1.0;
       SlotContact& c = contacts[w].slot[0];
       c.loaded = load[w] > 0.0;
-      c.contact_angle = sigma * angle;
+      c.contact_angle = sigma * angle + angle_slope * y;
       c.rolling_radius = r0 + sigma * conicity * y;
       c.wheel_u = -sigma * y;
-      c.normal_force = load[w] / std::cos(angle);
+      c.normal_force = load[w] / std::cos(c.contact_angle);
       c.area = area;
       c.status = 0;
       contacts[w].slot[1] = SlotContact{};

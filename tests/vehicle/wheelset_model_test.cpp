@@ -222,6 +222,20 @@ TEST(WheelsetSimulation, StableStepEstimateMatchesCreepDamping) {
   EXPECT_NEAR(sim.stable_time_step_estimate(), 2.78 / std::max(lateral, yaw), 1e-9);
 }
 
+TEST(WheelsetSimulation, StableStepEstimateFollowsAStiffContact) {
+  // A contact angle changing fast with y (as in flange contact): the lateral stiffness
+  // 2 Q epsilon / cos^2(delta) of the normal forces sets the limit, not the creep damping.
+  const TrackLayout track = tangent(100.0);
+  LinearContact contact;
+  contact.angle_slope = 5000.0;  // rad/m
+  const WheelsetParameters p;
+  WheelsetSimulation sim(p, track, contact, 33.0, 1e-3);
+  const double stiffness = p.primary_lateral_stiffness + 2 * p.static_wheel_load() *
+                                                             contact.angle_slope /
+                                                             std::pow(std::cos(contact.angle), 2);
+  EXPECT_NEAR(sim.stable_time_step_estimate() / (2.78 / std::sqrt(stiffness / p.mass)), 1.0, 1e-4);
+}
+
 TEST(WheelsetSimulation, StableStepEstimateIsStableAndTwiceItIsNot) {
   LinearContact contact;
   const TrackLayout track = tangent(400.0);
