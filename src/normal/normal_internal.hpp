@@ -51,6 +51,34 @@ struct SampleData {
   double q;          // STRIPES: local Hertz (b/a)^2 of the virtual ellipse [-]
 };
 
+// Reference of one rigid-overlap run (geometry/overlap_reference.cpp, default options: squared
+// weighting; the constant factor of the weight cancels), found by expanding from a seed sample.
+struct RunReference {
+  int a = 0, b = -1;                 // first and last band sample of the run
+  double s_start = 0.0, s_end = 0.0; // run ends in band arc length [m]
+  double band_s = 0.0, rail_u = 0.0, wheel_u = 0.0, angle_side = 0.0, radius = 0.0;  // reference
+  bool clipped = false;              // the run reaches an end of the band
+};
+
+// One load closure per rigid overlap run for the point models (Hertz, Linder; normal_model.cpp).
+// A run holding several rigid points is ONE Hertz contact: penetration = the largest penetration
+// of its points, A = the least separated point's, B = the curvature of the parabola through that
+// penetration and the run's two ends, B = 4 delta / (s_end - s_start)^2 (for a single parabolic
+// well exactly its B). Every quantity is continuous while points move, swap roles or vanish inside
+// the run, unlike a sum of per-point ellipses (a vanishing point's B -> 0 gives it a share growing
+// like B^-1/2). A run with one point keeps that point's own closure (exact Hertz).
+struct RunClosure {
+  RunReference ref;             // the rigid run and its weighted reference
+  int lead = -1;                // least separated member: reports the patch
+  int members = 0;              // loaded points of this model inside the run (>= 2)
+  double delta = 0.0;           // largest normal penetration of the members [m]
+  double A = 0.0, B = 0.0;      // curvatures of the run's ellipse [1/m]
+  HertzCoefficients hz{};       // Hertz coefficients at (A, B)
+  double c = 0.0;               // Hertz length scale sqrt(delta / (r (A + B))) [m]
+  double normal = 0.0;          // normal force of the run [N]
+  double vertical = 0.0;        // its projection on track z (reference angle) [N]
+};
+
 struct Workspace {
   std::vector<PointContext> points;     // one per contact point
   struct HertzCache {                   // Hertz coefficients of the last (A, B) per point index
@@ -72,6 +100,8 @@ struct Workspace {
   std::vector<double> log_arg;          // STRIPES Boussinesq integral: logarithm arguments (4 per
   std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]
   std::vector<double> A_int;            // band-sized scratch: running integral of A over s [1]
+  std::vector<RunClosure> runs;         // run closures of the current approach (run_closures)
+  std::vector<int> point_run;           // per point: index into runs, -1 own closure
 };
 
 Workspace& thread_workspace();
@@ -199,6 +229,10 @@ inline void ensure_samples(const WheelContactGeometry& g, PointContext& p, Works
 }
 Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
              const NormalOptions& o);
+// Planar (Linder, KP) run of point p's domain with the separation h in the overlap formula (p.h
+// for the point's own patch; the run lead's for a member of a run closure).
+Run find_planar_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
+                    double h);
 double interp_band(const WheelContactGeometry& g, double s, double BandSample::*field);
 
 // Band segment [j, j + 1] and fraction t for arc length s, kept inside [lo, hi].
@@ -249,6 +283,11 @@ PatchSums hertz_patch(const WheelContactGeometry& g, const Material& m, const No
                       PointContext& p, Workspace& w, double dz, ContactPatch* out);
 PatchSums linder_patch(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                        PointContext& p, Workspace& w, double dz, ContactPatch* out);
+// Linder patch of a run closure: the strips of every member's VI run (with the lead's separation),
+// one amplitude C = rc.normal / sum I1 over all of them. `members` ascending band s.
+void linder_run_patch(const WheelContactGeometry& g, const NormalOptions& o, Workspace& w,
+                      const RunClosure& rc, const std::vector<int>& members, double dz,
+                      ContactPatch* out);
 PatchSums kik_piotrowski_patch(const WheelContactGeometry& g, const Material& m,
                                const NormalOptions& o, PointContext& p, Workspace& w, double dz,
                                ContactPatch* out);
