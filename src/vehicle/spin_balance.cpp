@@ -24,7 +24,8 @@ struct Trial {
 
 SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contacts)[kWheels],
                              double running_circle_q, double nominal_radius,
-                             double torque_tolerance, WheelsetMotion& motion,
+                             double torque_tolerance, SpinWarmStart* warm,
+                             WheelsetMotion& motion,
                              SlotCreepage (&creepage_out)[kWheels][kContactSlots],
                              SlotForces (&forces_out)[kWheels][kContactSlots]) {
   SpinBalance result;
@@ -85,8 +86,10 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
 
   // torque(Omega) increases with Omega (a faster wheel drives: xi falls, fx rises). Secant steps,
   // kept inside the sign-change bracket once there is one (bisection when a step leaves it).
+  const double linear_estimate = motion.speed * sum_rwa / sum_wr2;
+  const bool warm_start = warm != nullptr && warm->valid;
   Trial best, last, current;
-  evaluate(motion.speed * sum_rwa / sum_wr2, best);
+  evaluate(linear_estimate + (warm_start ? warm->offset : 0.0), best);
   last = best;
   double low = -INFINITY, high = INFINITY;  // bracket: torque(low) < 0 < torque(high)
   auto update_bracket = [&](const Trial& t) {
@@ -94,10 +97,10 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
     if (t.torque > 0.0) high = std::min(high, t.omega);
   };
   update_bracket(best);
-  // First step: Newton with each slot's secant creep stiffness -fx / xi (dxi/dOmega = -r / V).
-  // Without one (all xi = 0), a creepage change of 1e-6 against the sign of the torque.
-  double slope = 0.0;
-  for (int w = 0; w < kWheels; ++w) {
+  // First step: Newton with the previous slope, else with each slot's secant creep stiffness
+  // -fx / xi (dxi/dOmega = -r / V), else a creepage change of 1e-6 against the torque's sign.
+  double slope = warm_start ? warm->slope : 0.0;
+  for (int w = 0; w < kWheels && !warm_start; ++w) {
     for (int k = 0; k < kContactSlots; ++k) {
       const SlotContact& c = contacts[w].slot[k];
       const double xi = best.creepage[w][k].xi;
@@ -131,6 +134,11 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
     last = current;
   }
 
+  if (warm != nullptr) {
+    warm->valid = true;
+    warm->offset = best.omega - linear_estimate;
+    if (slope > 0.0 && std::isfinite(slope)) warm->slope = slope;
+  }
   motion.spin_speed = best.omega;
   for (int w = 0; w < kWheels; ++w) {
     for (int k = 0; k < kContactSlots; ++k) {

@@ -108,7 +108,8 @@ WheelsetState WheelsetSimulation::derivative(const WheelsetState& x, double s,
   out.motion.curvature = track.curvature;
   const SpinBalance spin =
       solve_spin_speed(*contact_, out.contacts, q0, p_.nominal_radius,
-                       kRelativeTorqueTolerance * q_static * p_.nominal_radius, out.motion,
+                       kRelativeTorqueTolerance * q_static * p_.nominal_radius,
+                       &spin_warm_start_, out.motion,
                        out.creepage, out.forces);
   out.status |= spin.status;
 

@@ -10,6 +10,7 @@
 
 #include "vehicle/contact_model.hpp"
 #include "vehicle/kinematics.hpp"
+#include "vehicle/spin_balance.hpp"
 #include "vehicle/track_layout.hpp"
 
 namespace railtab::vehicle {
@@ -100,6 +101,7 @@ class WheelsetSimulation {
   long long steps_ = 0;  // time = steps * time_step (no accumulated round-off)
   WheelsetState state_;
   ContactSnapshot snapshot_;
+  SpinWarmStart spin_warm_start_;  // the last spin balance, to start the next one close
 };
 
 }  // namespace railtab::vehicle
