@@ -1,0 +1,291 @@
+// Wear post-processing of a simulation (generator/wear_accumulator.hpp) and the profile update
+// (generator/worn_profile.hpp, generator/wear_chart.hpp).
+#include "wear_accumulator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <numeric>
+#include <string>
+
+#include "core/check.hpp"
+#include "profile/profile_io.hpp"
+#include "profile/s1002.hpp"
+#include "wear_chart.hpp"
+#include "worn_profile.hpp"
+
+namespace railtab {
+namespace {
+
+const Scene& default_scene() {
+  static const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables/default.toml");
+  return scene;
+}
+
+// A tread state with creepage on both wheels: 2 mm to the left (rolling radii differ from r0, so
+// xi != 0 at Omega = V/r0) and a yaw of 2 mrad (eta about -0.002).
+constexpr double kY = 0.002;
+constexpr double kLoad[vehicle::kWheels] = {78.5e3, 78.5e3};
+vehicle::WheelsetMotion tread_motion() {
+  vehicle::WheelsetMotion m;
+  m.speed = 20.0;
+  m.yaw = 2e-3;
+  m.spin_speed = m.speed / 0.46;
+  return m;
+}
+
+double area_of(const std::vector<double>& depth, double step) {
+  return step * std::accumulate(depth.begin(), depth.end(), 0.0);
+}
+
+std::filesystem::path temp_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("railtab_wear_" + name + "_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// The chain the accumulator runs, by hand: wear rate [m2/m] and the wheel_u / half-extent of the
+// patches of wheel `w`.
+struct HandWear {
+  double wear_rate = 0.0;
+  std::vector<double> patch_u;
+};
+HandWear wear_by_hand(const Scene& scene, int w) {
+  const ContactGeometrySolver solver = make_geometry_solver(scene);
+  const WheelsetContactGeometry geometry = solver.solve({kY, solver.equilibrium_roll(kY)});
+  const WheelContactGeometry& wheel = geometry.wheels[static_cast<std::size_t>(w)];
+  const WheelNormalResult normal = solve_normal_for_load(wheel, kLoad[w], scene.material, scene.normal);
+  CreepConditions conditions = creep_conditions(scene);
+  const vehicle::WheelsetMotion motion = tread_motion();
+  conditions.speed = motion.speed;
+  const double q0 = scene.wheelset.back_to_back / 2.0 - scene.wheelset.flange_back_position;
+  HandWear out;
+  FastsimWorkspace workspace;
+  WearDistribution distribution;
+  for (const ContactPatch& patch : normal.patches) {
+    vehicle::SlotContact slot;
+    slot.loaded = true;
+    slot.contact_angle = patch.contact_angle;
+    slot.rolling_radius = patch.rolling_radius;
+    slot.wheel_u = patch.wheel_u;
+    const vehicle::SlotCreepage c = vehicle::creepage(motion, w, slot, q0);
+    fastsim_contact(wheel, patch, {c.xi, c.eta, c.phi}, conditions, scene.material, fastsim_options(scene), workspace);
+    out.wear_rate += archard_wear(workspace, wear_options(scene), distribution).wear_rate;
+    out.patch_u.push_back(patch.wheel_u);
+  }
+  return out;
+}
+
+TEST(WearAccumulator, WornAreaIsArchardWearRateTimesDistance) {
+  for (NormalModel model : {NormalModel::stripes_ab, NormalModel::hertz}) {
+    Scene scene = default_scene();
+    scene.normal.model = model;
+    WearAccumulator acc(scene);
+    const double distance = 137.0;
+    acc.sample(kY, kLoad, tread_motion(), distance);
+    EXPECT_EQ(acc.failures(), 0);
+    for (int w = 0; w < vehicle::kWheels; ++w) {
+      const HandWear hand = wear_by_hand(scene, w);
+      ASSERT_EQ(hand.patch_u.size(), 1u) << to_string(model) << " wheel " << w << ": the state is meant to be tread only";
+      ASSERT_GT(hand.wear_rate, 0.0) << to_string(model) << " wheel " << w;
+      EXPECT_NEAR(acc.worn_area(w), hand.wear_rate * distance, 1e-9 * hand.wear_rate * distance)
+          << to_string(model) << " wheel " << w;
+      EXPECT_EQ(acc.clipped_area(w), 0.0);
+      // The depth-weighted centre of the wear lies near the patch reference (a tread patch is
+      // 10-20 mm wide; its wear centre cannot be 5 mm off its reference).
+      const auto& d = acc.depth(w);
+      double moment = 0.0, sum = 0.0;
+      for (std::size_t i = 0; i < d.size(); ++i) {
+        moment += acc.u()[i] * d[i];
+        sum += d[i];
+      }
+      EXPECT_NEAR(moment / sum, hand.patch_u[0], 5e-3) << to_string(model) << " wheel " << w;
+    }
+  }
+}
+
+TEST(WearAccumulator, SamplesAddAndScaleScales) {
+  const Scene& scene = default_scene();
+  WearAccumulator one(scene), two(scene);
+  one.sample(kY, kLoad, tread_motion(), 50.0);
+  two.sample(kY, kLoad, tread_motion(), 50.0);
+  two.sample(kY, kLoad, tread_motion(), 150.0);
+  EXPECT_EQ(two.samples(), 2);
+  EXPECT_DOUBLE_EQ(two.distance(), 200.0);
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    ASSERT_GT(one.worn_area(w), 0.0);
+    EXPECT_NEAR(two.worn_area(w), 4.0 * one.worn_area(w), 1e-12 * two.worn_area(w));
+    for (std::size_t i = 0; i < one.depth(w).size(); ++i) {
+      EXPECT_NEAR(two.depth(w)[i], 4.0 * one.depth(w)[i], 1e-12 * two.depth(w)[i]) << "bin " << i;
+    }
+  }
+  const double before = two.worn_area(0);
+  two.scale(0.25);
+  EXPECT_NEAR(two.worn_area(0), 0.25 * before, 1e-15 * before);
+  EXPECT_DOUBLE_EQ(two.distance(), 200.0);  // scale() multiplies the depth only
+  EXPECT_THROW(two.scale(-1.0), Error);
+}
+
+TEST(WearAccumulator, NoLoadNoWear) {
+  const Scene& scene = default_scene();
+  WearAccumulator acc(scene);
+  const double none[vehicle::kWheels] = {0.0, 0.0};
+  const std::uint32_t bits = acc.sample(kY, none, tread_motion(), 100.0);
+  EXPECT_TRUE(bits & status::kLiftOff);
+  EXPECT_EQ(acc.worn_area(0), 0.0);
+  EXPECT_EQ(acc.worn_area(1), 0.0);
+  EXPECT_EQ(acc.failures(), 0);
+  // One wheel unloaded: only the other one wears.
+  const double left_only[vehicle::kWheels] = {78.5e3, 0.0};
+  acc.sample(kY, left_only, tread_motion(), 100.0);
+  EXPECT_GT(acc.worn_area(0), 0.0);
+  EXPECT_EQ(acc.worn_area(1), 0.0);
+}
+
+TEST(WearAccumulator, FailingSolveIsCountedNotThrown) {
+  WearAccumulator acc(default_scene());
+  std::uint32_t bits = 0;
+  EXPECT_NO_THROW(bits = acc.sample(std::nan(""), kLoad, tread_motion(), 100.0));
+  EXPECT_TRUE(bits & status::kFailed);
+  EXPECT_EQ(acc.failures(), 2);
+  EXPECT_EQ(acc.worn_area(0) + acc.worn_area(1), 0.0);
+  // Bad arguments are the caller's error.
+  EXPECT_THROW(acc.sample(kY, kLoad, tread_motion(), -1.0), Error);
+  vehicle::WheelsetMotion standing = tread_motion();
+  standing.speed = 0.0;
+  EXPECT_THROW(acc.sample(kY, kLoad, standing, 1.0), Error);
+  EXPECT_THROW(WearAccumulator(default_scene(), WearGrid{0.0, 0.001, 0.0003}), Error);  // not whole steps
+}
+
+// A narrow wear peak and a step on a uniform grid.
+struct Synthetic {
+  std::vector<double> u, depth;
+  double step = 0.0002;
+};
+Synthetic synthetic_depth() {
+  Synthetic s;
+  for (int i = 0; i < 646; ++i) {  // centres -69 .. +60 mm: the S1002 profile nodes
+    const double u = -0.069 + i * s.step;
+    s.u.push_back(u);
+    s.depth.push_back(1e-4 * std::exp(-0.5 * std::pow((u - 0.004) / 0.002, 2)) +  // tread: 0.1 mm
+                      (u > -0.032 && u < -0.028 ? 3e-5 : 0.0) +                      // flange root box
+                      (i == 0 ? 2e-5 : 0.0));                                        // at the grid end
+  }
+  return s;
+}
+
+TEST(WornProfile, SmoothingKeepsTheAreaAndLowersThePeak) {
+  const Synthetic s = synthetic_depth();
+  const std::vector<double> smooth = smooth_depth(s.u, s.depth, 0.005);
+  const double area = area_of(s.depth, s.step);
+  EXPECT_NEAR(area_of(smooth, s.step), area, 1e-12 * area);
+  EXPECT_LT(*std::max_element(smooth.begin(), smooth.end()), *std::max_element(s.depth.begin(), s.depth.end()));
+  for (double d : smooth) EXPECT_GE(d, 0.0);
+  // Symmetric kernel: the centre of the tread bump stays where it was.
+  double m0 = 0.0, m1 = 0.0;
+  for (std::size_t i = 0; i < s.u.size(); ++i) {
+    if (s.u[i] > -0.01) {
+      m0 += smooth[i];
+      m1 += smooth[i] * s.u[i];
+    }
+  }
+  EXPECT_NEAR(m1 / m0, 0.004, 1e-6);
+  EXPECT_EQ(smooth_depth(s.u, s.depth, 0.0), s.depth);
+}
+
+TEST(WornProfile, RoundTripThroughTheProfileReader) {
+  const Synthetic s = synthetic_depth();
+  const ProfilePtr wheel = make_s1002_profile();
+  const auto dir = temp_dir("roundtrip");
+  const auto file = dir / "worn.txt";
+  write_worn_profile(*wheel, s.u, s.depth, 0.003, file);
+  EXPECT_FALSE(std::filesystem::exists(file.string() + ".tmp"));
+  const ProfilePtr worn = read_profile(file, ProfileKind::wheel);
+  const std::vector<double> smooth = smooth_depth(s.u, s.depth, 0.003);
+  EXPECT_DOUBLE_EQ(worn->u_min(), wheel->u_min());
+  EXPECT_DOUBLE_EQ(worn->u_max(), wheel->u_max());
+  int checked = 0;
+  for (std::size_t i = 0; i < s.u.size(); ++i) {
+    if (s.u[i] < -0.066 || s.u[i] > 0.057) continue;  // away from the ends
+    EXPECT_NEAR(worn->eval(s.u[i]).z - wheel->eval(s.u[i]).z, smooth[i], 1e-9) << "u = " << s.u[i];
+    ++checked;
+  }
+  EXPECT_GT(checked, 500);
+  std::filesystem::remove_all(dir);
+}
+
+// The message of the Error that `f` throws ("" when it does not throw).
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(WornProfile, BadInputThrowsNamingTheFile) {
+  Synthetic s = synthetic_depth();
+  const ProfilePtr wheel = make_s1002_profile();
+  const auto dir = temp_dir("bad");
+  const auto file = dir / "worn_nan.txt";
+  s.depth[100] = std::nan("");
+  std::string message = error_of([&] { write_worn_profile(*wheel, s.u, s.depth, 0.003, file); });
+  EXPECT_NE(message.find("worn_nan.txt"), std::string::npos) << message;
+  EXPECT_FALSE(std::filesystem::exists(file));
+  s.depth[100] = 0.0;
+  const auto unwritable = dir / "no_such_dir" / "worn.txt";
+  message = error_of([&] { write_worn_profile(*wheel, s.u, s.depth, 0.003, unwritable); });
+  EXPECT_NE(message.find(unwritable.string()), std::string::npos) << message;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(WearChart, DrawsThePng) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
+  const Synthetic s = synthetic_depth();
+  const auto dir = temp_dir("chart");
+  draw_wear_chart({{"raw", s.u, s.depth, false}, {"smoothed", s.u, smooth_depth(s.u, s.depth, 0.003), true}},
+                  dir / "wear.png", "synthetic wear");
+  EXPECT_GT(std::filesystem::file_size(dir / "wear.png"), 1000u);
+  EXPECT_TRUE(std::filesystem::exists(dir / "wear.csv"));
+  EXPECT_THROW(draw_wear_chart({}, dir / "empty.png", "x"), Error);
+  std::filesystem::remove_all(dir);
+}
+
+// Cost of one sample (both wheels), printed, not asserted:
+//   test_generator --gtest_also_run_disabled_tests --gtest_filter='*SampleCost*'
+TEST(WearAccumulator, DISABLED_SampleCost) {
+  const int n = 200;
+  {
+    // The geometry alone (equilibrium roll + both wheels), which every sample pays first.
+    const ContactGeometrySolver solver = make_geometry_solver(default_scene());
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < n; ++i) {
+      const double y = kY * (i % 20) / 20.0;
+      (void)solver.solve({y, solver.equilibrium_roll(y)});
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("%-11s %8.1f us per sample (equilibrium roll + geometry of both wheels)\n", "geometry", 1e6 * s / n);
+  }
+  for (NormalModel model : {NormalModel::hertz, NormalModel::stripes_a, NormalModel::stripes_ab}) {
+    Scene scene = default_scene();
+    scene.normal.model = model;
+    WearAccumulator acc(scene);
+    acc.sample(kY, kLoad, tread_motion(), 1.0);  // warm-up: workspaces grow once
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < n; ++i) acc.sample(kY * (i % 20) / 20.0, kLoad, tread_motion(), 1.0);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("%-11s %8.1f us per sample (both wheels), %d samples, %d failures\n", to_string(model),
+                1e6 * s / n, n, acc.failures());
+  }
+}
+
+}  // namespace
+}  // namespace railtab
