@@ -84,22 +84,18 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
     }
   };
 
-  // torque(Omega) increases with Omega (a faster wheel drives: xi falls, fx rises). Secant steps,
-  // kept inside the sign-change bracket once there is one (bisection when a step leaves it).
+  // torque(Omega) increases with Omega (a faster wheel drives: xi falls, fx rises). Phase 1:
+  // Newton/secant steps (a growing walk across plateaus) until the torque changes sign. Phase 2:
+  // regula falsi with the Anderson-Bjoerck correction inside that bracket (superlinear, never
+  // leaves it).
   const double linear_estimate = motion.speed * sum_rwa / sum_wr2;
   const bool warm_start = warm != nullptr && warm->valid;
-  Trial best, last, current;
+  Trial best, previous, current;
   evaluate(linear_estimate + (warm_start ? warm->offset : 0.0), best);
-  last = best;
-  double low = -INFINITY, high = INFINITY;  // bracket: torque(low) < 0 < torque(high)
-  auto update_bracket = [&](const Trial& t) {
-    if (t.torque < 0.0) low = std::max(low, t.omega);
-    if (t.torque > 0.0) high = std::min(high, t.omega);
-  };
-  update_bracket(best);
+  bool converged = std::abs(best.torque) <= torque_tolerance;
+  double slope = warm_start ? warm->slope : 0.0;  // dT/dOmega of the last two evaluations
   // First step: Newton with the previous slope, else with each slot's secant creep stiffness
   // -fx / xi (dxi/dOmega = -r / V), else a creepage change of 1e-6 against the torque's sign.
-  double slope = warm_start ? warm->slope : 0.0;
   for (int w = 0; w < kWheels && !warm_start; ++w) {
     for (int k = 0; k < kContactSlots; ++k) {
       const SlotContact& c = contacts[w].slot[k];
@@ -111,29 +107,56 @@ SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contac
   }
   double next = slope > 0.0 ? best.omega - best.torque / slope
                             : best.omega * (1.0 - std::copysign(1e-6, best.torque));
-  bool converged = std::abs(best.torque) <= torque_tolerance;
-  while (!converged && result.creep_calls < kMaxCreepCalls) {
-    evaluate(next, current);
-    update_bracket(current);
+  previous = best;
+  auto step_to = [&](double omega) {
+    evaluate(omega, current);
     if (std::abs(current.torque) < std::abs(best.torque)) best = current;
-    const bool bracketed = std::isfinite(low) && std::isfinite(high);
-    converged = std::abs(best.torque) <= torque_tolerance ||
-                (bracketed &&
-                 high - low <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(high));
-    slope = (current.torque - last.torque) / (current.omega - last.omega);
-    next = current.omega - current.torque / slope;
-    if (!(slope > 0.0) || !std::isfinite(next)) {
-      // No usable slope (flat, saturated, or noisy): walk downhill with a growing step.
-      const double walk = std::max(4.0 * std::abs(current.omega - last.omega),
-                                   1e-6 * std::abs(current.omega));
+    converged = std::abs(best.torque) <= torque_tolerance;
+    const double s = (current.torque - previous.torque) / (current.omega - previous.omega);
+    if (s > 0.0 && std::isfinite(s)) slope = s;
+  };
+
+  bool bracketed = false;
+  while (!converged && result.creep_calls < kMaxCreepCalls) {  // phase 1
+    step_to(next);
+    if ((current.torque < 0.0) != (previous.torque < 0.0)) {
+      bracketed = true;
+      break;
+    }
+    const double s = (current.torque - previous.torque) / (current.omega - previous.omega);
+    next = current.omega - current.torque / s;
+    const double walk = std::max(4.0 * std::abs(current.omega - previous.omega),
+                                 1e-6 * std::abs(current.omega));
+    if (!(s > 0.0) || !std::isfinite(next) || std::abs(next - current.omega) > 1e3 * walk) {
+      // No usable slope (flat, saturated, noisy) or a leap: walk downhill with a growing step.
       next = current.omega - std::copysign(walk, current.torque);
     }
-    if (bracketed && !(next > low && next < high)) {
-      next = 0.5 * (low + high);
-    }
-    last = current;
+    previous = current;
   }
-
+  if (bracketed) {  // phase 2: a = previous, b = current, torques of opposite sign
+    double a = previous.omega, t_a = previous.torque;
+    double b = current.omega, t_b = current.torque;
+    while (!converged && result.creep_calls < kMaxCreepCalls) {
+      if (std::abs(b - a) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(b)) {
+        converged = true;  // the root is pinned to round-off (a jump in the creep law)
+        break;
+      }
+      double c = (a * t_b - b * t_a) / (t_b - t_a);
+      if (!(c > std::min(a, b) && c < std::max(a, b))) c = 0.5 * (a + b);
+      previous = current;
+      step_to(c);
+      if ((current.torque < 0.0) != (t_b < 0.0)) {
+        a = b;
+        t_a = t_b;
+      } else {
+        // Anderson-Bjoerck: scale the stale end's torque so it stops holding the estimate back.
+        const double m = 1.0 - current.torque / t_b;
+        t_a *= m > 0.0 ? m : 0.5;
+      }
+      b = c;
+      t_b = current.torque;
+    }
+  }
   if (warm != nullptr) {
     warm->valid = true;
     warm->offset = best.omega - linear_estimate;
