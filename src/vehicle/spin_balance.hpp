@@ -28,8 +28,8 @@ struct SpinWarmStart {
 
 // Finds Omega with sum over loaded slots of (r fx + mz sin g) = 0 (creep torque about the axle),
 // to |torque| <= torque_tolerance or until Omega is bracketed to round-off. `motion` gives
-// everything but the spin speed, which is set to the result. Fills `creepage_out` and `forces_out` at the
-// returned Omega. `contacts` must be those of the contact model's last normal() call. `warm`
+// everything but the spin speed, which is set to the result. Fills `creepage_out` and
+// `forces_out` at the returned Omega. `contacts` must be those of the contact model's last normal() call. `warm`
 // (may be null) is read for the start and updated with this solution.
 SpinBalance solve_spin_speed(ContactModel& contact, const WheelContacts (&contacts)[kWheels],
                              double running_circle_q, double nominal_radius,

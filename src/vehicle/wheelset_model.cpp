@@ -106,11 +106,10 @@ WheelsetState WheelsetSimulation::derivative(const WheelsetState& x, double s,
   out.motion.yaw = x.yaw;
   out.motion.yaw_rate = x.yaw_rate;
   out.motion.curvature = track.curvature;
+  const double torque_tolerance = kRelativeTorqueTolerance * q_static * p_.nominal_radius;
   const SpinBalance spin =
-      solve_spin_speed(*contact_, out.contacts, q0, p_.nominal_radius,
-                       kRelativeTorqueTolerance * q_static * p_.nominal_radius,
-                       &spin_warm_start_, out.motion,
-                       out.creepage, out.forces);
+      solve_spin_speed(*contact_, out.contacts, q0, p_.nominal_radius, torque_tolerance,
+                       &spin_warm_start_, out.motion, out.creepage, out.forces);
   out.status |= spin.status;
 
   // Contact forces on the wheelset in track axes: normal force along n = (0, -sin g, cos g),

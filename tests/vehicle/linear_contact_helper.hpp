@@ -26,7 +26,8 @@ class LinearContact : public ContactModel {
   int normal_calls = 0;
   int creep_calls = 0;
 
-  void normal(double y, const double (&load)[kWheels], WheelContacts (&contacts)[kWheels]) override {
+  void normal(double y, const double (&load)[kWheels],
+              WheelContacts (&contacts)[kWheels]) override {
     ++normal_calls;
     for (int w = 0; w < kWheels; ++w) {
       const double sigma = w == 0 ? 1.0 : -1.0;

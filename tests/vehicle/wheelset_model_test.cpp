@@ -83,7 +83,7 @@ TEST(WheelsetSimulation, FreeWheelsetOscillatesWithKlingelsWavelength) {
       2.0 * (crossings.back() - crossings.front()) / double(crossings.size() - 1);
   const double q0 = p.running_circle_q;
   const double klingel = 2.0 * std::numbers::pi * std::sqrt(contact.r0 * q0 / contact.conicity);
-  std::printf("  Klingel: measured wavelength %.4f m, 2 pi sqrt(r0 q0 / lambda) = %.4f m (%+.2f %%)\n",
+  std::printf("  Klingel: wavelength %.4f m, 2 pi sqrt(r0 q0 / lambda) = %.4f m (%+.2f %%)\n",
               measured, klingel, 100.0 * (measured / klingel - 1.0));
   EXPECT_NEAR(measured / klingel, 1.0, 0.03) << "measured " << measured << " m, Klingel "
                                              << klingel << " m";
