@@ -163,6 +163,67 @@ TEST(WearAccumulator, FailingSolveIsCountedNotThrown) {
   EXPECT_THROW(WearAccumulator(default_scene(), WearGrid{0.0, 0.001, 0.0003}), Error);  // not whole steps
 }
 
+// (y, psi, ...) -> (-y, -psi, ...) mirrors the track about its centreline: the left wheel's wear
+// at one state is the right wheel's at the other, bin by bin. This checks the orientation of
+// wheel u on the right wheel (the elliptic strips run along s, towards -u there) on a flange state
+// whose spin makes the wear inside each patch lopsided.
+TEST(WearAccumulator, MirroredStateSwapsTheWheels) {
+  for (NormalModel model : {NormalModel::hertz, NormalModel::stripes_ab}) {
+    Scene scene = default_scene();
+    scene.normal.model = model;
+    vehicle::WheelsetMotion motion = tread_motion();
+    motion.yaw = 4e-3;
+    motion.curvature = 1.0 / 600.0;
+    motion.lateral_velocity = 0.01;
+    vehicle::WheelsetMotion mirrored = motion;
+    mirrored.yaw = -motion.yaw;
+    mirrored.curvature = -motion.curvature;
+    mirrored.lateral_velocity = -motion.lateral_velocity;
+    const double y = 0.0075, load[vehicle::kWheels] = {90e3, 60e3}, swapped[vehicle::kWheels] = {60e3, 90e3};
+    WearAccumulator a(scene), b(scene);
+    a.sample(y, load, motion, 100.0);
+    b.sample(-y, swapped, mirrored, 100.0);
+    for (int w = 0; w < vehicle::kWheels; ++w) {
+      const auto& da = a.depth(w);
+      const auto& db = b.depth(1 - w);
+      const double peak = *std::max_element(da.begin(), da.end());
+      ASSERT_GT(peak, 0.0);
+      double worst = 0.0;
+      for (std::size_t i = 0; i < da.size(); ++i) worst = std::max(worst, std::abs(da[i] - db[i]));
+      EXPECT_LT(worst, 1e-6 * peak) << to_string(model) << " wheel " << w;
+      std::printf("%-10s wheel %d: peak %.4g m, mirror mismatch %.3g m\n", to_string(model), w, peak, worst);
+    }
+  }
+}
+
+
+// A Hertz flange patch (left wheel, 7.5 mm towards its flange) wears the wheel profile over the
+// ellipse's lateral extent projected on u, 2 b cos(beta), not over 2 b.
+TEST(WearAccumulator, EllipticWearCoversTheProjectedEllipse) {
+  Scene scene = default_scene();
+  scene.normal.model = NormalModel::hertz;
+  const double y = 0.0075, load[vehicle::kWheels] = {90e3, 60e3};
+  const ContactGeometrySolver solver = make_geometry_solver(scene);
+  const WheelsetContactGeometry geometry = solver.solve({y, solver.equilibrium_roll(y)});
+  const WheelNormalResult normal = solve_normal_for_load(geometry.wheels[0], load[0], scene.material, scene.normal);
+  ASSERT_EQ(normal.patches.size(), 1u);
+  const ContactPatch& flange = normal.patches[0];
+  const double beta = flange.contact_angle - geometry.wheels[0].wheel_roll;
+  ASSERT_GT(beta, 0.8) << "meant to be a flange contact";
+
+  WearAccumulator acc(scene);
+  acc.sample(y, load, tread_motion(), 100.0);
+  const WearGrid grid;
+  double covered = 0.0;
+  for (std::size_t i = 0; i < acc.u().size(); ++i) {
+    if (acc.depth(0)[i] > 0.0) covered += grid.step;
+  }
+  std::printf("flange: 2b %.3f mm, beta %.3f rad, 2b cos(beta) %.3f mm, worn width %.3f mm\n", 2e3 * flange.semi_axis_b,
+              beta, 2e3 * flange.semi_axis_b * std::cos(beta), 1e3 * covered);
+  EXPECT_NEAR(covered, 2.0 * flange.semi_axis_b * std::cos(beta), 2.0 * grid.step)
+      << "2b = " << 2.0 * flange.semi_axis_b << " m, beta = " << beta << " rad";
+}
+
 // A narrow wear peak and a step on a uniform grid.
 struct Synthetic {
   std::vector<double> u, depth;
