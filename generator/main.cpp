@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   railtab::add_inspect_command(app);
   railtab::add_merge_command(app);
   railtab::add_chart_commands(app);
+  railtab::add_simulate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,98 @@
+#include "direct_contact_model.hpp"
+
+#include <exception>
+
+#include "contact_kernel.hpp"
+#include "core/check.hpp"
+
+namespace railtab {
+
+DirectContactModel::DirectContactModel(const Scene& scene)
+    : solver_(make_geometry_solver(scene)),
+      material_(scene.material),
+      normal_options_(scene.normal),
+      creep_conditions_(creep_conditions(scene)),
+      fastsim_options_(fastsim_options(scene)) {}
+
+void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels],
+                                vehicle::WheelContacts (&contacts)[vehicle::kWheels]) {
+  double roll = 0.0;
+  bool roll_ok = true;
+  try {
+    roll = solver_.equilibrium_roll(y);  // as the sweep does for equilibrium-roll tables
+  } catch (const std::exception&) {
+    roll_ok = false;
+  }
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    const Side side = w == 0 ? Side::left : Side::right;
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      contacts[w].slot[slot] = {};
+      patch_[w][slot] = -1;
+    }
+    try {
+      if (!roll_ok) throw Error("no equilibrium roll");
+      geometry_[w] = solver_.solve_wheel(side, WheelsetState{y, roll});
+      solve_normal_for_load(geometry_[w], load[w], material_, normal_options_, normal_[w]);
+    } catch (const std::exception&) {
+      ++failures_;
+      for (int slot = 0; slot < vehicle::kContactSlots; ++slot) contacts[w].slot[slot].status = status::kFailed;
+      continue;
+    }
+    const SlotAssignment points = assign_slots(geometry_[w]);
+    const PatchSlots patches = assign_patch_slots(normal_[w], side, solver_.settings().flange_angle);
+    const StatusBits solver_bits = normal_[w].status & (status::kConverged | status::kNotConverged);
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      const int ip = patches.patch[slot];
+      if (ip < 0) continue;
+      const ContactPatch& patch = normal_[w].patches[static_cast<std::size_t>(ip)];
+      vehicle::SlotContact& out = contacts[w].slot[slot];
+      out.normal_force = patch.normal_force;
+      out.area = patch.area;
+      out.loaded = patch.normal_force > 0.0;
+      out.status = patch.status | solver_bits | patches.extra[slot];
+      if (!out.loaded) continue;
+      patch_[w][slot] = ip;
+      // Geometry of the slot's rigid point, as the table's geometry part holds it; a patch whose
+      // point sits in the other slot takes that point (the lookup model does the same).
+      int point = points.point[slot] >= 0 ? points.point[slot] : points.point[1 - slot];
+      if (point >= 0) {
+        const ContactPoint& p = geometry_[w].points[static_cast<std::size_t>(point)];
+        out.contact_angle = p.contact_angle;
+        out.rolling_radius = p.rolling_radius;
+        out.wheel_u = p.wheel_u;
+      } else {
+        out.contact_angle = patch.contact_angle;
+        out.rolling_radius = patch.rolling_radius;
+        out.wheel_u = patch.wheel_u;
+      }
+    }
+  }
+}
+
+void DirectContactModel::creep(const vehicle::SlotCreepage (&creepage)[vehicle::kWheels][vehicle::kContactSlots],
+                               vehicle::SlotForces (&forces)[vehicle::kWheels][vehicle::kContactSlots]) {
+  FastsimWorkspace& workspace = thread_fastsim_workspace();
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      vehicle::SlotForces& f = forces[w][slot];
+      f = {};
+      const int ip = patch_[w][slot];
+      if (ip < 0) continue;
+      const vehicle::SlotCreepage& c = creepage[w][slot];
+      try {
+        const FastsimResult r =
+            fastsim_contact(geometry_[w], normal_[w].patches[static_cast<std::size_t>(ip)], Creepage{c.xi, c.eta, c.phi},
+                            creep_conditions_, material_, fastsim_options_, workspace);
+        f.fx = r.fx;
+        f.fy = r.fy;
+        f.mz = r.mz;
+        f.status = r.status;
+      } catch (const std::exception&) {
+        ++failures_;
+        f.status = status::kFailed;
+      }
+    }
+  }
+}
+
+}  // namespace railtab

@@ -1,0 +1,47 @@
+// A simulation scene for `railtab simulate`: which contact scene and normal models, the vehicle
+// (one wheelset of vehicle::WheelsetParameters), the route (tangent, transition and circular
+// sections, lateral irregularity) and the wear loop (steps, running distance, lubrication,
+// smoothing). TOML, checked key by key like the contact scenes; docs/simulation.md.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vehicle/track_layout.hpp"
+#include "vehicle/wheelset_model.hpp"
+
+namespace railtab {
+
+struct SimulationScene {
+  std::string name;                        // [simulation] name (default: the file's stem)
+  std::string description;                 // [simulation] description
+  std::filesystem::path path;              // where it was read from (empty when parsed from a string)
+  std::filesystem::path contact_scene;     // contact scene (docs/scenes.md), resolved against the file
+  std::vector<std::string> models;         // normal models to compare, checked names ("hertz", ...)
+  std::vector<std::string> positions;      // "leading" and/or "trailing" (semi_wheelbase sign)
+  double speed = 0.0;                      // forward speed [m/s]
+  double time_step = 0.5e-3;               // fixed RK4 step [s]
+  double initial_y = 0.0;                  // wheelset lateral displacement at the start [m]
+  int wear_steps = 1;                      // profile updates over the running distance [-]
+  double running_distance = 0.0;           // total distance the wear stands for [m]
+  double lubrication_factor = 5.5;         // k_dry divisor: 5.5 natural, 11 lubricated [-]
+  double profile_smoothing = 0.0;          // moving-average length of the wear depth [m]
+  double trajectory_interval = 0.5;        // distance between trajectory CSV rows [m]
+  vehicle::WheelsetParameters vehicle;     // [vehicle]
+  std::vector<vehicle::TrackSection> route;  // [[route.section]], transitions resolved
+  vehicle::Irregularity irregularity;      // [route.irregularity]; amplitude 0 = none
+  double rail_centre_distance = 1.5;       // [route] rail_centre_distance, for the cant angle [m]
+
+  double route_length() const;             // sum of section lengths [m]
+};
+
+// Read a simulation scene. Unknown keys, missing required keys, wrong types, non-finite or
+// out-of-range values throw railtab::Error naming the file, the dotted key and (where known) the
+// line. The contact scene is only located here (it must exist), not parsed.
+SimulationScene load_simulation_scene(const std::filesystem::path& path);
+SimulationScene parse_simulation_scene(std::string_view toml_text, const std::string& source_name,
+                                       const std::filesystem::path& base_dir = {});
+
+}  // namespace railtab
