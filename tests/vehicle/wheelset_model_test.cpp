@@ -116,20 +116,17 @@ TEST(WheelsetSimulation, FreeWheelsetInBalancedCurveSettlesAtPureRolling) {
   EXPECT_NEAR(sim.snapshot().load[0], sim.snapshot().load[1], 1e-9 * sim.snapshot().load[1]);
 }
 
-TEST(WheelsetSimulation, SuspendedWheelsetInCurveMeetsStaticEquilibrium) {
-  const double v = 20.0, radius = 300.0, cant = 0.1;
-  const TrackLayout track = curve(radius, cant);
-  LinearContact contact;
-  WheelsetParameters p;
-  p.primary_lateral_damping = 3.0e4;
-  WheelsetSimulation sim(p, track, contact, v, 1e-3);
-  while (sim.time() < 6.0) sim.step();
-
-  // The two static equations of docs/vehicle-model.md, linearised, with this contact model:
-  //   lateral: 2 f22 psi + 2 dQ tan(delta) - k_y (y - y_b) - (m + M) a_u = 0
-  //   yaw:     -2 f11 q0 (lambda y / r0 + kappa q0) - k_psi (psi - psi_b) = 0
-  const double kappa = 1.0 / radius, q0 = p.running_circle_q, a = p.semi_wheelbase;
-  const double a_u = v * v * kappa - p.gravity * cant / 1.5;
+// The two static equations of docs/vehicle-model.md, linearised, with the test contact:
+//   lateral: 2 f22 psi + 2 dQ tan(delta) - k_y (y - y_b) - (m + M) a_u = 0
+//   yaw:     -2 f11 q0 (lambda y / r0 + kappa q0) - k_psi (psi - psi_b) = 0
+// `cant_height` signed like the cant angle (+ right rail up).
+struct StaticCurving {
+  double y = 0.0, psi = 0.0, load_transfer = 0.0;
+};
+StaticCurving linear_static_curving(const WheelsetParameters& p, const LinearContact& contact,
+                                    double v, double kappa, double cant_height) {
+  const double q0 = p.running_circle_q, a = p.semi_wheelbase;
+  const double a_u = v * v * kappa - p.gravity * cant_height / 1.5;
   const double dq = (p.carried_mass * p.cg_height + p.mass * p.nominal_radius) * a_u / (2 * q0);
   const double k_psi = 2 * p.primary_longitudinal_stiffness * std::pow(p.axlebox_semi_spacing, 2);
   const double y_b = -a * a * kappa / 2, psi_b = -a * kappa;
@@ -139,18 +136,51 @@ TEST(WheelsetSimulation, SuspendedWheelsetInCurveMeetsStaticEquilibrium) {
   const double a21 = -2 * contact.f11 * q0 * contact.conicity / contact.r0, a22 = -k_psi;
   const double b2 = 2 * contact.f11 * q0 * q0 * kappa - k_psi * psi_b;
   const double det = a11 * a22 - a12 * a21;
-  const double y = (b1 * a22 - a12 * b2) / det;
-  const double psi = (a11 * b2 - a21 * b1) / det;
+  return {(b1 * a22 - a12 * b2) / det, (a11 * b2 - a21 * b1) / det, dq};
+}
 
+TEST(WheelsetSimulation, SuspendedWheelsetInCurveMeetsStaticEquilibrium) {
+  const double v = 20.0, radius = 300.0, cant = 0.1;
+  const TrackLayout track = curve(radius, cant);
+  LinearContact contact;
+  WheelsetParameters p;
+  p.primary_lateral_damping = 3.0e4;
+  WheelsetSimulation sim(p, track, contact, v, 1e-3);
+  while (sim.time() < 6.0) sim.step();
+
+  const StaticCurving expected = linear_static_curving(p, contact, v, 1.0 / radius, cant);
   std::printf("  curving: y = %.6e m (linear statics %.6e), psi = %.6e rad (%.6e)\n",
-              sim.state().y, y, sim.state().yaw, psi);
-  EXPECT_NEAR(sim.state().y / y, 1.0, 0.01) << "y " << sim.state().y << " expected " << y;
-  EXPECT_NEAR(sim.state().yaw / psi, 1.0, 0.01) << "psi " << sim.state().yaw << " expected "
-                                                << psi;
+              sim.state().y, expected.y, sim.state().yaw, expected.psi);
+  EXPECT_NEAR(sim.state().y / expected.y, 1.0, 0.01);
+  EXPECT_NEAR(sim.state().yaw / expected.psi, 1.0, 0.01);
   // The spin balance's first estimate is exact for a linear creep law with equal areas.
   EXPECT_EQ(contact.creep_calls, contact.normal_calls);
   // The inner (left) wheel is unloaded by the cant deficiency.
-  EXPECT_NEAR(sim.snapshot().load[1] - sim.snapshot().load[0], 2 * dq, 1e-9 * dq);
+  EXPECT_NEAR(sim.snapshot().load[1] - sim.snapshot().load[0], 2 * expected.load_transfer,
+              1e-9 * expected.load_transfer);
+}
+
+TEST(WheelsetSimulation, TrailingWheelsetThroughTransitionIntoRightCurve) {
+  // Tangent, 60 m clothoid with cant ramp, then R 300 m to the right: the mirror image of the
+  // curve above, reached through the transition, for a trailing wheelset (a < 0).
+  const double v = 20.0, kappa = -1.0 / 300.0, cant = 0.1;
+  const TrackLayout track(
+      {{20, 0, 0, 0, 0}, {60, 0, kappa, 0, cant}, {300, kappa, kappa, cant, cant}}, {});
+  LinearContact contact;
+  WheelsetParameters p;
+  p.primary_lateral_damping = 3.0e4;
+  p.semi_wheelbase = -1.25;
+  WheelsetSimulation sim(p, track, contact, v, 1e-3);
+  while (sim.distance() < 300.0) sim.step();
+  const StaticCurving expected = linear_static_curving(p, contact, v, kappa, -cant);
+  std::printf("  right curve, trailing: y = %.6e m (%.6e), psi = %.6e rad (%.6e)\n",
+              sim.state().y, expected.y, sim.state().yaw, expected.psi);
+  // The trailing wheelset, yawed with the bogie, is steered to the inner (right) rail.
+  EXPECT_LT(expected.y, 0.0);
+  EXPECT_NEAR(sim.state().y / expected.y, 1.0, 0.01);
+  EXPECT_NEAR(sim.state().yaw / expected.psi, 1.0, 0.01);
+  // Now the left wheel is the outer one and carries more.
+  EXPECT_GT(sim.snapshot().load[0], sim.snapshot().load[1]);
 }
 
 // y at t = 1 s after an initial offset, on a track with a lateral irregularity (it keeps the
