@@ -283,6 +283,29 @@ TEST(WheelsetSimulation, StableStepEstimateIsStableAndTwiceItIsNot) {
   EXPECT_GT(final_offset(1.5 * h), 1.0);  // diverged (or NaN-free blow-up)
 }
 
+TEST(WheelsetSimulation, SnapshotIsTheContactAtTheStartOfTheStep) {
+  Irregularity irregularity;
+  irregularity.amplitude = 2e-3;
+  const TrackLayout track({{50, 0, 0, 0, 0}, {60, 0, 1.0 / 400, 0, 0.08}}, irregularity);
+  LinearContact contact;
+  WheelsetSimulation sim(WheelsetParameters{}, track, contact, 25.0, 1e-3);
+  for (int i = 0; i < 2500; ++i) sim.step();  // into the transition
+  const WheelsetState before = sim.state();
+  const ContactSnapshot expected = sim.evaluate(before, sim.distance());
+  sim.step();
+  const ContactSnapshot& got = sim.snapshot();
+  EXPECT_EQ(got.y_relative, expected.y_relative);
+  EXPECT_NE(got.y_relative, before.y);  // the irregularity is in it
+  EXPECT_EQ(got.load[0], expected.load[0]);
+  EXPECT_EQ(got.motion.curvature, expected.motion.curvature);
+  EXPECT_GT(got.motion.curvature, 0.0);
+  for (int w = 0; w < kWheels; ++w) {
+    // Equal up to the spin balance's tolerance (its warm start differs between the two calls).
+    EXPECT_NEAR(got.forces[w][0].fx, expected.forces[w][0].fx, 1e-6);
+    EXPECT_NEAR(got.lateral_force[w], expected.lateral_force[w], 1e-6);
+  }
+}
+
 TEST(WheelsetSimulation, BadInputsThrowNamingTheParameter) {
   const TrackLayout track = tangent(100.0);
   LinearContact contact;
