@@ -68,7 +68,7 @@ struct RunReference {
 // the run, unlike a sum of per-point ellipses (a vanishing point's B -> 0 gives it a share growing
 // like B^-1/2). A run with one point keeps that point's own closure (exact Hertz).
 struct RunClosure {
-  RunReference ref;             // the rigid run and its weighted reference
+  RunReference ref;             // the rigid run; reference = its midpoint, the ellipse centre
   int lead = -1;                // least separated member: reports the patch
   int members = 0;              // loaded points of this model inside the run (>= 2)
   double delta = 0.0;           // largest normal penetration of the members [m]
@@ -101,6 +101,12 @@ struct Workspace {
   std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]
   std::vector<double> A_int;            // band-sized scratch: running integral of A over s [1]
   std::vector<RunClosure> runs;         // run closures of the current approach (run_closures)
+  struct ExtentCache {                  // rigid runs found during this solve (run_extent)
+    int seed;                           //   band sample the run was grown from
+    double dz;                          //   vertical approach [m]
+    int a, b;                           //   first and last band sample of the run
+  };
+  std::vector<ExtentCache> extents;
   std::vector<int> point_run;           // per point: index into runs, -1 own closure
 };
 

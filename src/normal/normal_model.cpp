@@ -298,6 +298,7 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   const int np = static_cast<int>(g.points.size());
   const int nb = static_cast<int>(g.band.size());
   w.points.assign(np, PointContext{});
+  w.extents.clear();
   if (static_cast<int>(w.hertz_cache.size()) < np) w.hertz_cache.resize(np);
   const bool band_ok = nb >= 2 && g.band_step > 0.0 && std::isfinite(g.band_step);
   if (band_ok) {
@@ -570,6 +571,66 @@ bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed
   return true;
 }
 
+// Extent of the rigid overlap run around `seed` at approach dz, ends as in rigid_run (linear
+// crossing of the overlap), and the band data at its midpoint (band_s, angle, radius, u's); no
+// weighting. The run at dz contains the run at any smaller approach (the overlap dz cos g - gap
+// grows with dz everywhere), so it is grown from the largest run of this solve found at an
+// approach <= dz: the load control's evaluations scan only the samples they add.
+bool run_extent(const WheelContactGeometry& g, Workspace& ws, double dz, int seed,
+                RunReference* out) {
+  const BandSample* band = g.band.data();
+  const int n = static_cast<int>(g.band.size());
+  if (seed < 0 || seed >= n) return false;
+  auto overlap = [&](int i) { return dz * band_cos(band[i].contact_angle) - band[i].gap; };
+  // cos g >= 1 - g^2/2: a cheap sufficient test, the exact overlap only where it fails.
+  auto inside = [&](int i) {
+    const BandSample& bs = band[i];
+    if (dz * (1.0 - 0.5 * bs.contact_angle * bs.contact_angle) - bs.gap > 0.0) return true;
+    return bs.gap < dz && overlap(i) > 0.0;
+  };
+  if (!(overlap(seed) > 0.0)) return false;
+  int a = seed, b = seed;
+  for (const Workspace::ExtentCache& c : ws.extents)
+    if (c.seed == seed && c.dz <= dz && c.b - c.a > b - a) {
+      a = c.a;
+      b = c.b;
+    }
+  while (a > 0 && inside(a - 1)) --a;
+  while (b + 1 < n && inside(b + 1)) ++b;
+  ws.extents.push_back({seed, dz, a, b});
+  RunReference& r = *out;
+  r = RunReference{};
+  r.a = a;
+  r.b = b;
+  const double step = g.band_step;
+  if (a > 0) {
+    const double da = overlap(a), dm = overlap(a - 1);
+    r.s_start = band[a].s - step * da / (da - dm);
+  } else {
+    r.s_start = band[a].s;
+    r.clipped = true;
+  }
+  if (b + 1 < n) {
+    const double db = overlap(b), dm = overlap(b + 1);
+    r.s_end = band[b].s + step * db / (db - dm);
+  } else {
+    r.s_end = band[b].s;
+    r.clipped = true;
+  }
+  r.band_s = 0.5 * (r.s_start + r.s_end);
+  int j;
+  double t;
+  locate(g, r.band_s, &j, &t);
+  const BandSample& lo = band[j];
+  const BandSample& hi = t == 0.0 ? lo : band[j + 1];
+  auto mix = [t](double x, double y) { return x + t * (y - x); };
+  r.angle_side = mix(lo.contact_angle, hi.contact_angle);
+  r.rail_u = mix(lo.rail_u, hi.rail_u);
+  r.wheel_u = mix(lo.wheel_u, hi.wheel_u);
+  r.radius = mix(lo.rolling_radius, hi.rolling_radius);
+  return true;
+}
+
 // ---- One load closure per rigid overlap run (Hertz, Linder; normal_internal.hpp RunClosure) ----
 
 bool uses_run_closure(const PointContext& p) {
@@ -595,7 +656,7 @@ void run_closures(const WheelContactGeometry& g, const Material& m, Workspace& w
     if (lead < 0) break;
     RunClosure rc;
     rc.lead = lead;
-    if (!rigid_run(g, w, dz, w.points[lead].i0, &rc.ref)) {
+    if (!run_extent(g, w, dz, w.points[lead].i0, &rc.ref)) {
       w.point_run[lead] = kDone;
       continue;
     }
@@ -621,7 +682,7 @@ void run_closures(const WheelContactGeometry& g, const Material& m, Workspace& w
     const double AB = rc.A + rc.B;
     rc.c = std::sqrt(rc.delta / (rc.hz.r * AB));
     rc.normal = 4.0 * m.contact_modulus() * AB * rc.c * rc.c * rc.c / 3.0;
-    rc.vertical = rc.normal * std::cos(rc.ref.angle_side);
+    rc.vertical = rc.normal * band_cos(rc.ref.angle_side);
     w.runs.push_back(rc);
   }
   for (int& k : w.point_run) k = std::max(k, -1);
@@ -857,7 +918,13 @@ WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
       if (contains(gr, s)) home = &gr;
     if (!home) {
       Group gr;
-      gr.has_ref = !o.combine_patches && rigid_run(g, w, dz, w.points[i].i0, &gr.ref);
+      const int k = w.point_run[i];
+      if (k >= 0 && !o.combine_patches && w.points[i].model == NormalModel::hertz) {
+        gr.ref = w.runs[k].ref;  // a Hertz run's patch is its ellipse, centred mid-run
+        gr.has_ref = true;
+      } else {
+        gr.has_ref = !o.combine_patches && rigid_run(g, w, dz, w.points[i].i0, &gr.ref);
+      }
       groups.push_back(std::move(gr));
       home = &groups.back();
     }
