@@ -4,6 +4,9 @@
 // accumulated across the wheel profile on a fixed grid of wheel u (wear smeared around the
 // circumference). The creepages of each patch come from vehicle::creepage with the patch's own
 // contact angle, rolling radius and position, so the wear sees the same kinematics as the dynamics.
+// FASTSIM runs at the simulation's speed (the KTH map depends on the slip velocity), not the
+// scene's. Each strip's radial depth is spread over its extent in u by overlap length, so the worn
+// area equals Archard's wear rate times distance. docs/wear-evolution.md describes the method.
 #pragma once
 
 #include <array>

@@ -224,6 +224,45 @@ TEST(WearAccumulator, EllipticWearCoversTheProjectedEllipse) {
       << "2b = " << 2.0 * flange.semi_axis_b << " m, beta = " << beta << " rad";
 }
 
+// Radial wear across the left wheel after a prescribed sinusoidal run on tangent track (as Knothe
+// and Le-The's comparison in seed 001: y = A sin(2 pi x / L), kinematic yaw psi = dy/dx, wheel
+// speed V / r0), per 1000 km, Hertz+FASTSIM against STRIPES. Printed and drawn, not asserted:
+//   RAILTAB_CHART_DIR=docs/img test_generator --gtest_also_run_disabled_tests
+//     --gtest_filter='*SinusoidalRunChart*'
+TEST(WearAccumulator, DISABLED_SinusoidalRunChart) {
+  const char* env = std::getenv("RAILTAB_CHART_DIR");
+  const std::filesystem::path dir = env ? std::filesystem::path(env) : temp_dir("chart");
+  const double amplitude = 0.003, wavelength = 15.0, speed = 20.0;
+  const int n = 60;  // samples per wavelength
+  std::vector<WearSeries> series;
+  for (NormalModel model : {NormalModel::hertz, NormalModel::stripes_a, NormalModel::stripes_ab}) {
+    Scene scene = default_scene();
+    scene.normal.model = model;
+    WearAccumulator acc(scene);
+    for (int i = 0; i < n; ++i) {
+      const double k = 2.0 * M_PI / wavelength, x = (i + 0.5) * wavelength / n;
+      vehicle::WheelsetMotion m;
+      m.speed = speed;
+      m.spin_speed = speed / scene.wheelset.nominal_radius;
+      m.yaw = amplitude * k * std::cos(k * x);
+      m.lateral_velocity = speed * m.yaw;
+      m.yaw_rate = -speed * amplitude * k * k * std::sin(k * x);
+      acc.sample(amplitude * std::sin(k * x), kLoad, m, wavelength / n);
+    }
+    acc.scale(1e6 / acc.distance());  // per 1000 km
+    const auto& d = acc.depth(0);
+    const auto peak = std::max_element(d.begin(), d.end());
+    std::printf("%-11s left wheel per 1000 km: worn area %.3f mm2, peak depth %.4f mm at u = %.1f mm, failures %d\n",
+                to_string(model), acc.worn_area(0) * 1e6, *peak * 1e3, acc.u()[static_cast<std::size_t>(peak - d.begin())] * 1e3,
+                acc.failures());
+    series.push_back({to_string(model), acc.u(), d, model != NormalModel::hertz});
+  }
+  const auto png = dir / "wear-sinusoidal.png";
+  draw_wear_chart(series, png,
+                  "S1002/UIC60 1:40, sinusoidal run y = 3 mm sin(2 pi x / 15 m), 20 m/s, 78.5 kN: left wheel, per 1000 km");
+  std::printf("chart: %s\n", png.string().c_str());
+}
+
 // A narrow wear peak and a step on a uniform grid.
 struct Synthetic {
   std::vector<double> u, depth;
@@ -278,6 +317,35 @@ TEST(WornProfile, RoundTripThroughTheProfileReader) {
     ++checked;
   }
   EXPECT_GT(checked, 500);
+  std::filesystem::remove_all(dir);
+}
+
+// One step of the profile-evolution loop: wear accumulated on the new wheel, scaled to a
+// visible depth, written as the next wheel profile, and a scene naming that file runs the next
+// step. Its rolling radius at the worn spot is smaller by the smoothed depth.
+TEST(WornProfile, WornWheelFeedsTheNextStep) {
+  Scene scene = default_scene();
+  WearAccumulator acc(scene);
+  acc.sample(kY, kLoad, tread_motion(), 100.0);
+  const auto& d = acc.depth(0);
+  acc.scale(0.3e-3 / *std::max_element(d.begin(), d.end()));  // 0.3 mm peak
+  const auto dir = temp_dir("step");
+  const auto file = dir / "wheel_step1.txt";
+  write_worn_profile(*make_s1002_profile(), acc.u(), acc.depth(0), 0.002, file);
+
+  Scene next = scene;
+  next.wheel.name = file.string();
+  next.wheel.file = file;
+  WearAccumulator step(next);
+  step.sample(kY, kLoad, tread_motion(), 100.0);
+  EXPECT_EQ(step.failures(), 0);
+  EXPECT_GT(step.worn_area(0), 0.0);
+  const ProfilePtr worn = read_profile(file, ProfileKind::wheel);
+  const std::vector<double> smooth = smooth_depth(acc.u(), acc.depth(0), 0.002);
+  const auto peak = static_cast<std::size_t>(std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
+  const double u = acc.u()[peak];
+  EXPECT_GT(smooth[peak], 0.1e-3);
+  EXPECT_NEAR(worn->eval(u).z - make_s1002_profile()->eval(u).z, smooth[peak], 1e-6);  // between nodes: spline
   std::filesystem::remove_all(dir);
 }
 
