@@ -58,8 +58,9 @@ std::vector<double> smooth_depth(const std::vector<double>& u, const std::vector
   if (reach < 1) return depth;  // the kernel covers no neighbour
 
   const auto n = static_cast<std::ptrdiff_t>(u.size());
-  std::vector<double> kernel(static_cast<std::size_t>(reach) + 1);
-  for (std::ptrdiff_t k = 0; k <= reach; ++k) kernel[static_cast<std::size_t>(k)] = 1.0 - static_cast<double>(k) * step / half;
+  const auto kernel = [&](std::ptrdiff_t i, std::ptrdiff_t j) {
+    return 1.0 - static_cast<double>(std::abs(i - j)) * step / half;
+  };
   std::vector<double> out(depth.size(), 0.0);
   for (std::ptrdiff_t j = 0; j < n; ++j) {
     const double d = depth[static_cast<std::size_t>(j)];
@@ -67,9 +68,8 @@ std::vector<double> smooth_depth(const std::vector<double>& u, const std::vector
     const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(0, j - reach);
     const std::ptrdiff_t hi = std::min(n - 1, j + reach);
     double weight = 0.0;
-    for (std::ptrdiff_t i = lo; i <= hi; ++i) weight += kernel[static_cast<std::size_t>(std::abs(i - j))];
-    const double scale = d / weight;
-    for (std::ptrdiff_t i = lo; i <= hi; ++i) out[static_cast<std::size_t>(i)] += scale * kernel[static_cast<std::size_t>(std::abs(i - j))];
+    for (std::ptrdiff_t i = lo; i <= hi; ++i) weight += kernel(i, j);
+    for (std::ptrdiff_t i = lo; i <= hi; ++i) out[static_cast<std::size_t>(i)] += d * kernel(i, j) / weight;
   }
   return out;
 }

@@ -44,8 +44,8 @@ double area_of(const std::vector<double>& depth, double step) {
 }
 
 std::filesystem::path temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("railtab_wear_" + name + "_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+  const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+  const auto dir = std::filesystem::temp_directory_path() / ("railtab_wear_" + name + "_" + std::to_string(stamp));
   std::filesystem::create_directories(dir);
   return dir;
 }
@@ -92,7 +92,7 @@ TEST(WearAccumulator, WornAreaIsArchardWearRateTimesDistance) {
     EXPECT_EQ(acc.failures(), 0);
     for (int w = 0; w < vehicle::kWheels; ++w) {
       const HandWear hand = wear_by_hand(scene, w);
-      ASSERT_EQ(hand.patch_u.size(), 1u) << to_string(model) << " wheel " << w << ": the state is meant to be tread only";
+      ASSERT_EQ(hand.patch_u.size(), 1u) << to_string(model) << " wheel " << w << ": meant to be tread only";
       ASSERT_GT(hand.wear_rate, 0.0) << to_string(model) << " wheel " << w;
       EXPECT_NEAR(acc.worn_area(w), hand.wear_rate * distance, 1e-9 * hand.wear_rate * distance)
           << to_string(model) << " wheel " << w;
@@ -252,14 +252,15 @@ TEST(WearAccumulator, DISABLED_SinusoidalRunChart) {
     acc.scale(1e6 / acc.distance());  // per 1000 km
     const auto& d = acc.depth(0);
     const auto peak = std::max_element(d.begin(), d.end());
+    const double peak_u = acc.u()[static_cast<std::size_t>(peak - d.begin())];
     std::printf("%-11s left wheel per 1000 km: worn area %.3f mm2, peak depth %.4f mm at u = %.1f mm, failures %d\n",
-                to_string(model), acc.worn_area(0) * 1e6, *peak * 1e3, acc.u()[static_cast<std::size_t>(peak - d.begin())] * 1e3,
-                acc.failures());
+                to_string(model), acc.worn_area(0) * 1e6, *peak * 1e3, peak_u * 1e3, acc.failures());
     series.push_back({to_string(model), acc.u(), d, model != NormalModel::hertz});
   }
   const auto png = dir / "wear-sinusoidal.png";
   draw_wear_chart(series, png,
-                  "S1002/UIC60 1:40, sinusoidal run y = 3 mm sin(2 pi x / 15 m), 20 m/s, 78.5 kN: left wheel, per 1000 km");
+                  "S1002/UIC60 1:40, sinusoidal run y = 3 mm sin(2 pi x / 15 m), 20 m/s, 78.5 kN: "
+                  "left wheel, per 1000 km");
   std::printf("chart: %s\n", png.string().c_str());
 }
 
