@@ -97,15 +97,16 @@ TEST(WearAccumulator, WornAreaIsArchardWearRateTimesDistance) {
       EXPECT_NEAR(acc.worn_area(w), hand.wear_rate * distance, 1e-9 * hand.wear_rate * distance)
           << to_string(model) << " wheel " << w;
       EXPECT_EQ(acc.clipped_area(w), 0.0);
-      // The depth-weighted centre of the wear lies near the patch reference (a tread patch is
-      // 10-20 mm wide; its wear centre cannot be 5 mm off its reference).
+      // The depth-weighted centre of the wear lies near the patch reference: a tread patch is
+      // 10-20 mm wide, and wear (weighted by slip) and reference (weighted by interpenetration)
+      // differ by the slip distribution only (measured 0.04-1.05 mm here).
       const auto& d = acc.depth(w);
       double moment = 0.0, sum = 0.0;
       for (std::size_t i = 0; i < d.size(); ++i) {
         moment += acc.u()[i] * d[i];
         sum += d[i];
       }
-      EXPECT_NEAR(moment / sum, hand.patch_u[0], 5e-3) << to_string(model) << " wheel " << w;
+      EXPECT_NEAR(moment / sum, hand.patch_u[0], 2e-3) << to_string(model) << " wheel " << w;
     }
   }
 }
