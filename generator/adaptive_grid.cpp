@@ -9,11 +9,13 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 
 #include "contact_kernel.hpp"
 #include "core/check.hpp"
 #include "geometry/contact_geometry.hpp"
+#include "model_choice.hpp"
 #include "normal/normal_model.hpp"
 #include "tangential/fastsim_contact.hpp"
 
@@ -327,6 +329,9 @@ std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> ContactProbe::evalu
         loaded.slot[s].loaded = true;
         loaded.slot[s].status |= slot_bits::kLoaded;
         loaded.slot[s].normal_force = patch.normal_force;
+        loaded.slot[s].patch_angle = patch.contact_angle;
+        loaded.slot[s].patch_radius = patch.rolling_radius;
+        loaded.slot[s].patch_status = patch.status | (normal.status & (status::kConverged | status::kNotConverged));
       }
       for (std::size_t ic = 0; ic < creepages.size(); ++ic) {
         Wheel w = loaded;
@@ -549,6 +554,13 @@ static std::vector<double>& grid_of(SceneGrids& g, const std::string& axis) {
   return g.phi;
 }
 
+static nlohmann::json model_choice_text(const AccuracyTargets& a) {
+  if (a.models.empty()) return "none (the scene's model everywhere)";
+  nlohmann::json names = nlohmann::json::array();
+  for (NormalModel m : a.models) names.push_back(to_string(m));
+  return {{"models", names}, {"per", "y node"}, {"model_tolerance", a.model_tolerance}, {"dataset", "normal_model_index"}};
+}
+
 nlohmann::json AdaptiveGridSummary::targets_json(const Scene& scene) const {
   const AccuracyTargets& a = scene.accuracy;
   nlohmann::json specs = nlohmann::json::array();
@@ -560,7 +572,7 @@ nlohmann::json AdaptiveGridSummary::targets_json(const Scene& scene) const {
           {"contact_angle", a.contact_angle},     {"rolling_radius", a.rolling_radius},
           {"normal_force", a.normal_force},       {"normal_force_units", "relative to N"},
           {"estimate", "midpoint between neighbouring nodes, linear interpolation"},
-          {"model_choice", "none (the scene's model everywhere)"},
+          {"model_choice", model_choice_text(a)},
           {"axes", specs}};
 }
 
@@ -571,8 +583,10 @@ nlohmann::json AdaptiveGridSummary::achieved_json() const {
     axes_json.push_back(r.to_json());
     worst = std::max(worst, r.worst_error);
   }
-  return {{"worst_midpoint_error", worst}, {"units", "fraction of the target (<= 1: met)"}, {"axes", axes_json},
-          {"seconds", seconds}};
+  nlohmann::json out = {{"worst_midpoint_error", worst}, {"units", "fraction of the target (<= 1: met)"},
+                        {"axes", axes_json}, {"seconds", seconds}};
+  if (!model_choice.is_null()) out["model_choice"] = model_choice;
+  return out;
 }
 
 AdaptiveGridSummary build_adaptive_grids(Scene& scene, int threads) {
@@ -585,6 +599,12 @@ AdaptiveGridSummary build_adaptive_grids(Scene& scene, int threads) {
     summary.axes.push_back(refine_axis(sampler, spec));
   }
   for (const AxisRefinement& r : summary.axes) grid_of(scene.grids, r.axis) = r.nodes;
+  // The model choice runs on the final grids: one model per y node of the table.
+  if (!scene.accuracy.models.empty()) {
+    ModelChoice choice = choose_models(scene, threads);
+    scene.accuracy.model_by_y = choice.by_y;
+    summary.model_choice = choice.to_json();
+  }
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
@@ -630,8 +650,10 @@ struct StateErrors {
 };
 
 // Multilinear interpolation of the contact chain on grid g at the state, against direct evaluation.
-StateErrors state_errors(const ContactProbe& probe, const SceneGrids& g, double y, double load,
-                         const std::array<double, 3>& c, const std::array<ContactProbe::Wheel, 2>& direct) {
+// node_probe: per y node of g, the probe that gives its values (empty: `probe` everywhere).
+StateErrors state_errors(const ContactProbe& probe, const SceneGrids& g, const std::vector<const ContactProbe*>& node_probe,
+                         double y, double load, const std::array<double, 3>& c,
+                         const std::array<ContactProbe::Wheel, 2>& direct) {
   auto [iy, wy] = bracket(g.y, y);
   auto [il, wl] = bracket(g.load, load);
   auto [ix, wx] = bracket(g.xi, c[0]);
@@ -647,7 +669,9 @@ StateErrors state_errors(const ContactProbe& probe, const SceneGrids& g, double 
   bool tread_everywhere[2] = {true, true};
   bool smooth_cell[2] = {true, true};
   for (int ky = 0; ky < 2; ++ky) {
-    auto r = probe.evaluate(node(g.y, iy, ky), loads, creeps);
+    const std::size_t jy = std::min(iy + static_cast<std::size_t>(ky), g.y.size() - 1);
+    const ContactProbe& values = node_probe.empty() ? probe : *node_probe[jy];
+    auto r = values.evaluate(g.y[jy], loads, creeps);
     for (int kl = 0; kl < 2; ++kl) {
       for (std::size_t kc = 0; kc < creeps.size(); ++kc) {
         const int a = static_cast<int>(kc >> 2), b = static_cast<int>((kc >> 1) & 1), d = static_cast<int>(kc & 1);
@@ -737,11 +761,32 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
     }
     cmp.others.push_back(std::move(g));
   }
+  // The per-y model choice on the adaptive grids: node values from each node's model.
+  std::vector<std::unique_ptr<ContactProbe>> model_probes;
+  if (!adaptive.accuracy.model_by_y.empty()) {
+    GridComparison::Grid g;
+    g.name = "adaptive, models";
+    g.grids = adaptive.grids;
+    for (std::size_t i : adaptive.accuracy.model_by_y) g.model_by_y.push_back(adaptive.accuracy.models[i]);
+    g.worst_midpoint = cmp.adaptive.worst_midpoint;  // same grids; the midpoint check uses the reference
+    cmp.others.push_back(std::move(g));
+    for (NormalModel m : adaptive.accuracy.models) {
+      Scene variant = base;
+      variant.normal.model = m;
+      model_probes.push_back(std::make_unique<ContactProbe>(variant));
+    }
+  }
   std::vector<GridComparison::Grid*> all{&cmp.adaptive, &cmp.uniform};
   for (GridComparison::Grid& g : cmp.others) all.push_back(&g);
-  for (GridComparison::Grid* g : all) {
+  std::vector<std::vector<const ContactProbe*>> node_probes(all.size());
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    GridComparison::Grid* g = all[k];
     g->points = tabulated_points(base, g->grids);
     g->bytes = table_bytes(base, g->grids);
+    for (NormalModel m : g->model_by_y) {
+      const auto at = std::find(adaptive.accuracy.models.begin(), adaptive.accuracy.models.end(), m);
+      node_probes[k].push_back(model_probes[static_cast<std::size_t>(at - adaptive.accuracy.models.begin())].get());
+    }
   }
 
   // Random off-grid states over the box of the axes, fixed seed.
@@ -763,7 +808,7 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
       const State& s = drawn[i];
       auto direct = probe.evaluate(s.y, {s.load}, {s.c})[0][0];
       for (std::size_t k = 0; k < all.size(); ++k) {
-        errors[i][k] = state_errors(probe, all[k]->grids, s.y, s.load, s.c, direct);
+        errors[i][k] = state_errors(probe, all[k]->grids, node_probes[k], s.y, s.load, s.c, direct);
       }
     });
   });
@@ -796,7 +841,7 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
 
 std::string GridComparison::text() const {
   std::string out = fmt::format("{} random states (both wheels each), errors against direct evaluation\n", states);
-  out += fmt::format("{:<12} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10} | {:>24} | {:>8} {:>8} {:>8} | {:>6} {:>8} {:>8} | {:>8} {:>8} {:>8} | {:>9} {:>9}\n",
+  out += fmt::format("{:<17} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10} | {:>24} | {:>8} {:>8} {:>8} | {:>6} {:>8} {:>8} | {:>8} {:>8} {:>8} | {:>9} {:>9}\n",
                      "grid", "ny", "nload", "nxi", "neta", "nphi", "points", "MiB", "worst midpoint/target",
                      "F med%", "F p90%", "F max%", "smooth", "sF p90%", "sF max%", "N med%", "N p90%", "N max%", "ang med", "ang max");
   std::vector<const Grid*> all{&adaptive, &uniform};
@@ -804,7 +849,7 @@ std::string GridComparison::text() const {
   for (const Grid* g : all) {
     std::string mids;
     for (double m : g->worst_midpoint) mids += fmt::format("{}{:.2f}", mids.empty() ? "" : " ", m);
-    out += fmt::format("{:<12} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10.2f} | {:>24} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>5.0f}% {:>8.3f} {:>8.2f} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>9.2e} {:>9.2e}\n",
+    out += fmt::format("{:<17} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10} {:>10.2f} | {:>24} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>5.0f}% {:>8.3f} {:>8.2f} | {:>8.3f} {:>8.3f} {:>8.2f} | {:>9.2e} {:>9.2e}\n",
                        g->name, g->grids.y.size(), g->grids.load.size(), g->grids.xi.size(), g->grids.eta.size(),
                        g->grids.phi.size(), g->points, static_cast<double>(g->bytes) / 1048576.0, mids,
                        100 * g->creep_median, 100 * g->creep_p90, 100 * g->creep_max, 100 * g->smooth_share,

@@ -75,6 +75,9 @@ class ContactProbe {
     double rolling_radius = 0.0;  // [m]
     bool loaded = false;          // a loaded patch is in this slot
     double normal_force = 0.0;    // [N]
+    double patch_angle = 0.0;     // contact angle of the loaded patch's reference point [rad]
+    double patch_radius = 0.0;    // rolling radius of the loaded patch's reference point [m]
+    std::uint32_t patch_status = 0;  // status bits of the loaded patch (src/core/status.hpp)
     double fx = 0.0, fy = 0.0;    // creep forces on the wheel [N]
     std::uint32_t status = 0;     // geometry and patch slot bits (kTwoPoint, occupancy)
   };
@@ -96,7 +99,8 @@ class ContactProbe {
 // The adaptive-grid summary of a scene: per adaptive axis, its refinement.
 struct AdaptiveGridSummary {
   std::vector<AxisRefinement> axes;   // in the order of scene.accuracy.axes
-  double seconds = 0.0;               // wall time [s]
+  nlohmann::json model_choice;        // ModelChoice::to_json() with [accuracy] models; null without
+  double seconds = 0.0;               // wall time, grids and model choice [s]
   nlohmann::json targets_json(const Scene& scene) const;   // `accuracy_targets` attribute
   nlohmann::json achieved_json() const;                    // `accuracy_achieved` attribute
 };
@@ -105,15 +109,17 @@ struct AdaptiveGridSummary {
 // representative states of docs/adaptive-grids.md). `grids` gives the other axes' ranges.
 AxisSampler contact_axis_sampler(const Scene& scene, const ContactProbe& probe, const std::string& axis, int threads);
 
-// Refine every adaptive axis of scene.accuracy and write the grids into scene.grids.
+// Refine every adaptive axis of scene.accuracy and write the grids into scene.grids; with
+// [accuracy] models, then choose the model per y node into scene.accuracy.model_by_y (model_choice.hpp).
 AdaptiveGridSummary build_adaptive_grids(Scene& scene, int threads = 0);
 
 // The measurement of docs/adaptive-grids.md: adaptive grids against uniform grids with the same
 // worst midpoint error, and both against direct evaluation at random off-grid states.
 struct GridComparison {
   struct Grid {
-    std::string name;                      // "adaptive" / "uniform"
+    std::string name;                      // "adaptive" / "uniform" / "adaptive, models"
     SceneGrids grids;                      // all axes
+    std::vector<NormalModel> model_by_y;   // normal model of each y node's values; empty = the scene's
     std::size_t points = 0;                // creep points (product of tabulated axes) [-]
     std::size_t bytes = 0;                 // in-memory table size (float64 + uint32 status) [B]
     std::vector<double> worst_midpoint;    // per adaptive axis: worst midpoint error / tolerance [-]
@@ -129,6 +135,8 @@ struct GridComparison {
   std::string text() const;                // printable report
 };
 // `others`: further grids of the same scene (axes as in the scene's ranges) measured at the same states.
+// With [accuracy] models, `others` also gets "adaptive, models": the adaptive grids with each y node's
+// values from its chosen model, against the same direct evaluation with the reference model.
 GridComparison compare_adaptive_with_uniform(const Scene& scene, std::size_t states, unsigned seed, int threads = 0,
                                              const std::vector<std::pair<std::string, SceneGrids>>& others = {});
 

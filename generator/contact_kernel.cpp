@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/check.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
 #include "tangential/fastsim_contact.hpp"
@@ -96,6 +97,7 @@ struct KernelData {
   CreepConditions creep;
   FastsimOptions fastsim;
   WearOptions wear;
+  std::vector<NormalModel> model_by_y;  // per node of the scene's y grid (planned model choice); empty = normal.model
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
 
@@ -160,10 +162,12 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     out.status(wheel, kGeometryPart)[s] = p.status | status::kConverged | wheel_bits | slots.extra[s];
   }
 
+  NormalOptions normal_options = k.normal;
+  if (!k.model_by_y.empty()) normal_options.model = k.model_by_y[state.iy];
   for (std::size_t il = 0; il < nload; ++il) {
     WheelNormalResult normal;
     try {
-      normal = solve_normal_for_load(geometry, k.grids.load[il], k.material, k.normal);
+      normal = solve_normal_for_load(geometry, k.grids.load[il], k.material, normal_options);
     } catch (const std::exception& e) {
       out.failure(fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N: {}", to_string(side),
                               state.y, state.roll, k.grids.load[il], e.what()));
@@ -235,8 +239,21 @@ SweepKernel make_contact_kernel(const Scene& scene) {
   const FastsimOptions fastsim = fastsim_options(scene);
   const CreepConditions creep = creep_conditions(scene);
   const WearOptions wear = wear_options(scene);
+  // [accuracy] models: the normal model chosen per y node (docs/adaptive-grids.md).
+  const AccuracyTargets& accuracy = scene.accuracy;
+  std::vector<NormalModel> model_by_y;
+  if (!accuracy.model_by_y.empty()) {
+    RAILTAB_CHECK(accuracy.model_by_y.size() == scene.grids.y.size(),
+                  "contact kernel: a model choice for {} y nodes but the y grid has {}", accuracy.model_by_y.size(),
+                  scene.grids.y.size());
+    for (std::size_t i : accuracy.model_by_y) {
+      RAILTAB_CHECK(i < accuracy.models.size(), "contact kernel: model index {} of {} models", i, accuracy.models.size());
+      model_by_y.push_back(accuracy.models[i]);
+    }
+  }
   auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
-                                                            scene.normal, scene.tangential, creep, fastsim, wear});
+                                                            scene.normal, scene.tangential, creep, fastsim, wear,
+                                                            model_by_y});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));
@@ -262,6 +279,24 @@ SweepKernel make_contact_kernel(const Scene& scene) {
       {"hardness", scene.wear.hardness},
       {"lubrication_factor", scene.wear.lubrication_factor},
   };
+  if (!model_by_y.empty()) {
+    // The planned choice is data, not status: kFallbackModel stays reserved for failures.
+    nlohmann::json names = nlohmann::json::array();
+    std::string legend;
+    for (std::size_t i = 0; i < accuracy.models.size(); ++i) {
+      names.push_back(to_string(accuracy.models[i]));
+      legend += fmt::format("{}{} = {}", i ? ", " : "", i, to_string(accuracy.models[i]));
+    }
+    kernel.models["normal_models"] = names;
+    kernel.models["normal_model_choice"] = "per y node, root dataset normal_model_index; `normal` is the reference";
+    SweepKernel::PerYOutput index{{"normal_model_index", "1",
+                                   fmt::format("normal model used at this y (planned choice, [accuracy] models): "
+                                               "index into models.normal_models: {}",
+                                               legend)},
+                                  {}};
+    index.values.assign(accuracy.model_by_y.begin(), accuracy.model_by_y.end());
+    kernel.per_y.push_back(std::move(index));
+  }
   kernel.equilibrium_roll = [data](double y) { return data->solver.equilibrium_roll(y); };
   kernel.compute = [data](const ColumnState& state, ColumnOutput& out) {
     for (std::size_t wheel = 0; wheel < 2; ++wheel) solve_wheel_column(*data, state, wheel, out);

@@ -326,6 +326,42 @@ AdaptiveAxisSpec parse_adaptive_axis(const Section& s, const std::string& key, c
   return a;
 }
 
+// [accuracy] models = ["hertz", "kik-piotrowski", ...]: the normal models the generator may use per y
+// region, cheapest first. The reference ([contact] normal_model) is the most accurate by definition,
+// so it may only come last; it is appended when not listed.
+std::vector<NormalModel> parse_model_choice(const Section& s, const toml::node& n, NormalModel reference) {
+  const toml::array* list = n.as_array();
+  if (!list || list->empty()) {
+    fail(s.context(), n.source(), s.dotted("models"),
+         fmt::format("expected a non-empty list of normal model names, cheapest first, got {}",
+                     list ? "an empty list" : type_name(n)));
+  }
+  std::vector<NormalModel> models;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::node& el = *list->get(i);
+    const std::string key = fmt::format("models[{}]", i);
+    if (!el.is_string()) fail(s.context(), el.source(), s.dotted(key), fmt::format("expected a string, got {}", type_name(el)));
+    NormalModel m{};
+    try {
+      m = parse_normal_model(el.as_string()->get());
+    } catch (const Error& e) {
+      fail(s.context(), el.source(), s.dotted(key), e.what());
+    }
+    if (std::find(models.begin(), models.end(), m) != models.end()) {
+      fail(s.context(), el.source(), s.dotted(key), fmt::format("'{}' is listed twice", to_string(m)));
+    }
+    if (m == reference && i + 1 != list->size()) {
+      fail(s.context(), el.source(), s.dotted(key),
+           fmt::format("'{}' is the reference ([contact] normal_model): it may only be the last (most expensive) "
+                       "entry",
+                       to_string(m)));
+    }
+    models.push_back(m);
+  }
+  if (models.back() != reference) models.push_back(reference);
+  return models;
+}
+
 ProfileSource parse_profile(const Section& s, const std::string& key, const std::filesystem::path& base_dir,
                             double smoothing) {
   const toml::node& n = s.required(key);
@@ -429,7 +465,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   scene.wear.hardness = we.number("hardness", scene.wear.hardness, positive, "> 0 [Pa]");
   scene.wear.lubrication_factor = we.number("lubrication_factor", scene.wear.lubrication_factor, positive, "> 0");
 
-  Section ac = section(ctx, root, "accuracy", {"creep_force", "contact_angle", "rolling_radius", "normal_force"});
+  Section ac = section(ctx, root, "accuracy",
+                       {"creep_force", "contact_angle", "rolling_radius", "normal_force", "models", "model_tolerance"});
   AccuracyTargets& acc = scene.accuracy;
   acc.enabled = ac.present();
   acc.creep_force = ac.number("creep_force", 0.0, positive, "> 0 (relative to mu N)");
@@ -440,6 +477,12 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
       acc.normal_force == 0.0) {
     fail(ctx, root.get("accuracy")->source(), "accuracy",
          "needs at least one target (creep_force, contact_angle, rolling_radius, normal_force)");
+  }
+
+  if (const toml::node* n = ac.node("models")) acc.models = parse_model_choice(ac, *n, scene.normal.model);
+  acc.model_tolerance = ac.number("model_tolerance", 1.0, positive, "> 0 (a multiple of the targets)");
+  if (ac.has("model_tolerance") && acc.models.empty()) {
+    fail(ctx, ac.node("model_tolerance")->source(), "accuracy.model_tolerance", "needs accuracy.models");
   }
 
   Section gr = section(ctx, root, "grid", {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll"});

@@ -62,6 +62,15 @@ struct AccuracyTargets {
   double rolling_radius = 0.0;   // absolute [m]
   double normal_force = 0.0;     // relative to N of the patch [-]
   std::vector<AdaptiveAxisSpec> axes;  // adaptive axes in state-axis order (y, load, xi, eta, phi)
+  // Per-region model choice (docs/adaptive-grids.md): the normal models the generator may use,
+  // cheapest first, always ending with the reference [contact] normal_model; empty = the reference
+  // everywhere (no `models` key).
+  std::vector<NormalModel> models;
+  double model_tolerance = 1.0;  // the model choice accepts deviations from the reference up to this
+                                 //   multiple of each target [-]
+  // The choice per node of grids.y: index into `models`, filled by build_adaptive_grids; empty =
+  // the reference everywhere.
+  std::vector<std::size_t> model_by_y;
 };
 
 struct Scene {

@@ -173,8 +173,8 @@ Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const Layout&
       t.groups.push_back(std::move(group));
     }
   }
+  TableGroup root{"", {}};
   if (scene.equilibrium_roll) {
-    TableGroup root{"", {}};
     TableDataset roll{"equilibrium_roll", "rad",
                       "kinematic equilibrium roll at each y, used for every output; NaN where the search failed",
                       {}, {}, {}, {}, false, 0};
@@ -184,8 +184,20 @@ Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const Layout&
     }
     roll.values.assign(l.ny, 0.0);
     root.datasets.push_back(std::move(roll));
-    t.groups.push_back(std::move(root));
   }
+  for (const SweepKernel::PerYOutput& out : kernel.per_y) {
+    RAILTAB_CHECK(out.values.size() == scene.grids.y.size(), "sweep: root dataset {} has {} values for {} y nodes",
+                  out.info.name, out.values.size(), scene.grids.y.size());
+    TableDataset d{out.info.name, out.info.units, out.info.description, {}, {}, {}, {}, false, 0};
+    if (l.y_tabulated) {
+      d.axes = {"y"};
+      d.shape = {l.ny};
+    }
+    d.values.assign(out.values.begin() + static_cast<std::ptrdiff_t>(l.y_begin),
+                    out.values.begin() + static_cast<std::ptrdiff_t>(l.y_end));
+    root.datasets.push_back(std::move(d));
+  }
+  if (!root.datasets.empty()) t.groups.push_back(std::move(root));
   return t;
 }
 
@@ -247,7 +259,8 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
   summary.threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
 
   TableGroup* root = table.group("");
-  double* equilibrium_roll = root ? root->datasets.front().values.data() : nullptr;
+  TableDataset* roll_dataset = root ? root->find("equilibrium_roll") : nullptr;
+  double* equilibrium_roll = roll_dataset ? roll_dataset->values.data() : nullptr;
 
   std::atomic<std::size_t> points_done{0};
   std::vector<std::atomic<std::size_t>> remaining(l.ny);

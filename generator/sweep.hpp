@@ -84,6 +84,13 @@ struct SweepKernel {
   std::size_t points_per_column = 1;           // grid points one column solves (for progress) [-]
   nlohmann::json models;                       // model names and options, the `models` attribute
   std::function<double(double y)> equilibrium_roll;  // needed when the scene asks for it [rad]
+  // Root float64 datasets over y whose values the kernel knows before the sweep (e.g. the normal
+  // model chosen per y node); the table stores each shard's slice, axes (y).
+  struct PerYOutput {
+    OutputInfo info;             // dataset name, units, description
+    std::vector<double> values;  // one per node of the scene's full y grid
+  };
+  std::vector<PerYOutput> per_y;
   std::function<void(const ColumnState&, ColumnOutput&)> compute;
 };
 
