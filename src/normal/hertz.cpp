@@ -92,7 +92,8 @@ namespace railtab::detail {
 PatchSums hertz_patch(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                       PointContext& p, Workspace& /*w*/, double dz, ContactPatch* out) {
   // Coefficients were found once per solve (prepare); here only the closed forms of FACTS 1.3.
-  const double delta = (dz - p.h) * p.cos_ref;
+  double delta = (dz - p.h) * p.cos_ref;
+  if (p.weight != 1.0) delta *= std::cbrt(p.weight * p.weight);  // force scaled by the run weight
   const double AB = p.A0 + p.B0;
   const double c = std::sqrt(delta / (p.hz.r * AB));
   const double N = 4.0 * m.contact_modulus() * AB * c * c * c / 3.0;

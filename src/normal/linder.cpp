@@ -30,7 +30,9 @@ PatchSums linder_patch(const WheelContactGeometry& g, const Material& m, const N
   double N;
   if (p.hertz_valid) {
     const double AB = p.A0 + p.B0;
-    const double c = std::sqrt(delta / (p.hz.r * AB));
+    // Hertz's force scaled by the run weight (normal_internal.hpp, run_weights).
+    const double delta_w = p.weight != 1.0 ? delta * std::cbrt(p.weight * p.weight) : delta;
+    const double c = std::sqrt(delta_w / (p.hz.r * AB));
     N = 4.0 * m.contact_modulus() * AB * c * c * c / 3.0;
   } else {
     double I2 = 0.0;
@@ -63,73 +65,6 @@ PatchSums linder_patch(const WheelContactGeometry& g, const Material& m, const N
   }
   out->area = area;
   return sums;
-}
-
-}  // namespace railtab::detail
-
-namespace railtab::detail {
-
-// Linder on a run closure (normal_internal.hpp): the force is the run's Hertz closure; the VI
-// strips are those of every member's domain, all with the lead's separation in the overlap (one
-// continuous virtual overlap across the run) and one amplitude C, so the pressure does not step
-// where two members' strips meet.
-void linder_run_patch(const WheelContactGeometry& g, const NormalOptions& o, Workspace& w,
-                      const RunClosure& rc, const std::vector<int>& members, double dz,
-                      ContactPatch* out) {
-  const int n = o.strips;
-  const double h = w.points[rc.lead].h;
-  // Pass 1: every member's run (the domains are disjoint, so w.v keeps all of them) and sum I1.
-  double I1 = 0.0, L_max = 0.0, s_lo = 0.0, s_hi = 0.0;
-  bool any = false, band_end = false;
-  for (int k : members) {
-    PointContext& p = w.points[k];
-    const Run run = find_planar_run(g, p, w, dz, h);
-    if (!run.loaded) continue;
-    const double width = (run.s_hi - run.s_lo) / n;
-    L_max = std::max(L_max, planar_strip_lengths(g, p, w, run, n, run.s_lo, o));
-    for (int j = 0; j < n; ++j) I1 += 0.5 * std::numbers::pi * w.strip_len[j] * w.strip_len[j] * width;
-    s_lo = any ? std::min(s_lo, run.s_lo) : run.s_lo;
-    s_hi = any ? std::max(s_hi, run.s_hi) : run.s_hi;
-    band_end = band_end || run.at_band_end;
-    any = true;
-  }
-  out->pressure_shape = StripPressure::semi_elliptic;
-  out->normal_force = rc.normal;
-  if (!any || !(I1 > 0.0)) {  // no virtual overlap: the force stays, without strips
-    out->area = std::numbers::pi * rc.hz.coef_a * rc.hz.coef_b * rc.c * rc.c;
-    out->max_pressure = 1.5 * rc.normal / out->area;
-    out->semi_axis_a = rc.hz.coef_a * rc.c;
-    out->semi_axis_b = rc.hz.coef_b * rc.c;
-    return;
-  }
-  const double C = rc.normal / I1;
-  const double half_width = 0.5 * (s_hi - s_lo);
-  out->max_pressure = C * L_max;
-  out->semi_axis_a = L_max;
-  out->semi_axis_b = half_width;
-  if (band_end) out->status |= status::kProfileEdge;
-  out->strips.reserve(static_cast<std::size_t>(n) * members.size());
-  double area = 0.0;
-  // Pass 2: the strips (the run scan again: planar_strip_lengths reuses one scratch array).
-  for (int k : members) {
-    PointContext& p = w.points[k];
-    const Run run = find_planar_run(g, p, w, dz, h);
-    if (!run.loaded) continue;
-    const double width = (run.s_hi - run.s_lo) / n;
-    planar_strip_lengths(g, p, w, run, n, run.s_lo, o);
-    for (int j = 0; j < n; ++j) {
-      const double L = w.strip_len[j];
-      Strip st = band_strip(g, p, run.s_lo + (j + 0.5) * width, width, false);
-      st.x_lead = L;
-      st.x_trail = -L;
-      st.pressure_peak = C * L;
-      st.ellipse_a = L;
-      st.ellipse_b = half_width;
-      area += 2.0 * L * width;
-      out->strips.push_back(st);
-    }
-  }
-  out->area = area;
 }
 
 }  // namespace railtab::detail

@@ -38,6 +38,8 @@ struct PointContext {
   bool hertz_valid = false;    // A0 > 0 and B0 > 0
   HertzCoefficients hz{};      // Hertz coefficients at (A0, B0) when valid [-]
   StatusBits flags = 0;        // preparation flags (fallback, curvature treatment, ...)
+  double weight = 1.0;         // Hertz, Linder: share of its own closure the point carries when
+                               //   it shares an overlap run with others (run_weights) [-]
   // Band samples of this point whose per-sample data is ready in the Workspace (empty: lo > hi).
   // The domains [lo, hi] of the points are disjoint, so the points share the band-sized arrays.
   int cos_lo = 0, cos_hi = -1;  // Workspace::cos_angle ready on [cos_lo, cos_hi]
@@ -49,34 +51,6 @@ struct SampleData {
   double cos_angle;  // cos of the sample's contact angle [-]
   double A;          // longitudinal curvature used for the strip length (corrected for STRIPES) [1/m]
   double q;          // STRIPES: local Hertz (b/a)^2 of the virtual ellipse [-]
-};
-
-// Reference of one rigid-overlap run (geometry/overlap_reference.cpp, default options: squared
-// weighting; the constant factor of the weight cancels), found by expanding from a seed sample.
-struct RunReference {
-  int a = 0, b = -1;                 // first and last band sample of the run
-  double s_start = 0.0, s_end = 0.0; // run ends in band arc length [m]
-  double band_s = 0.0, rail_u = 0.0, wheel_u = 0.0, angle_side = 0.0, radius = 0.0;  // reference
-  bool clipped = false;              // the run reaches an end of the band
-};
-
-// One load closure per rigid overlap run for the point models (Hertz, Linder; normal_model.cpp).
-// A run holding several rigid points is ONE Hertz contact: penetration = the largest penetration
-// of its points, A = the least separated point's, B = the curvature of the parabola through that
-// penetration and the run's two ends, B = 4 delta / (s_end - s_start)^2 (for a single parabolic
-// well exactly its B). Every quantity is continuous while points move, swap roles or vanish inside
-// the run, unlike a sum of per-point ellipses (a vanishing point's B -> 0 gives it a share growing
-// like B^-1/2). A run with one point keeps that point's own closure (exact Hertz).
-struct RunClosure {
-  RunReference ref;             // the rigid run; reference = its midpoint, the ellipse centre
-  int lead = -1;                // least separated member: reports the patch
-  int members = 0;              // loaded points of this model inside the run (>= 2)
-  double delta = 0.0;           // largest normal penetration of the members [m]
-  double A = 0.0, B = 0.0;      // curvatures of the run's ellipse [1/m]
-  HertzCoefficients hz{};       // Hertz coefficients at (A, B)
-  double c = 0.0;               // Hertz length scale sqrt(delta / (r (A + B))) [m]
-  double normal = 0.0;          // normal force of the run [N]
-  double vertical = 0.0;        // its projection on track z (reference angle) [N]
 };
 
 struct Workspace {
@@ -100,14 +74,8 @@ struct Workspace {
   std::vector<double> log_arg;          // STRIPES Boussinesq integral: logarithm arguments (4 per
   std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]
   std::vector<double> A_int;            // band-sized scratch: running integral of A over s [1]
-  std::vector<RunClosure> runs;         // run closures of the current approach (run_closures)
-  struct ExtentCache {                  // rigid runs found during this solve (run_extent)
-    int seed;                           //   band sample the run was grown from
-    double dz;                          //   vertical approach [m]
-    int a, b;                           //   first and last band sample of the run
-  };
-  std::vector<ExtentCache> extents;
-  std::vector<int> point_run;           // per point: index into runs, -1 own closure
+  std::vector<int> order;               // points with a band sample, ascending band position
+  std::vector<int> saddle;              // order[k]..order[k+1]: sample of the largest gap between
 };
 
 Workspace& thread_workspace();
@@ -215,6 +183,17 @@ struct PatchSums {
   double vertical = 0.0;  // projection on track z [N]
 };
 
+// Overlap-run weights of the point models (normal_model.cpp, run_weights). Hertz and Linder close
+// the load per rigid point; where several points lie in one run of rigid overlap, point k carries
+//   w_k = t_k + (1 - t_k) p_k / sum p,   t_k = p_k / d_k,
+// of its own closure (its penetration scaled by w_k^(2/3): the force by w_k), with d_k its normal
+// penetration and p_k = d_k - d_s its prominence above the highest saddle d_s (the overlap at the
+// largest gap) joining it to a neighbour of the same run. Separate wells (d_s <= 0: t = 1) count
+// fully; a ripple or a vanishing minimum (p -> 0) not at all; two equal minima share symmetrically.
+// w is continuous when points appear, vanish, swap depth order or runs merge, so the load is
+// continuous in the approach and in y (per-point closures alone: a vanishing point's share grows
+// like B^-1/2).
+
 // Hertz coefficients from the shape table plus one AGM (no root find): the same numbers as
 // hertz_coefficients to ~1e-9 (hertz.cpp).
 HertzCoefficients hertz_coefficients_fast(double A, double B);
@@ -235,10 +214,6 @@ inline void ensure_samples(const WheelContactGeometry& g, PointContext& p, Works
 }
 Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
              const NormalOptions& o);
-// Planar (Linder, KP) run of point p's domain with the separation h in the overlap formula (p.h
-// for the point's own patch; the run lead's for a member of a run closure).
-Run find_planar_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
-                    double h);
 double interp_band(const WheelContactGeometry& g, double s, double BandSample::*field);
 
 // Band segment [j, j + 1] and fraction t for arc length s, kept inside [lo, hi].
@@ -289,11 +264,6 @@ PatchSums hertz_patch(const WheelContactGeometry& g, const Material& m, const No
                       PointContext& p, Workspace& w, double dz, ContactPatch* out);
 PatchSums linder_patch(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                        PointContext& p, Workspace& w, double dz, ContactPatch* out);
-// Linder patch of a run closure: the strips of every member's VI run (with the lead's separation),
-// one amplitude C = rc.normal / sum I1 over all of them. `members` ascending band s.
-void linder_run_patch(const WheelContactGeometry& g, const NormalOptions& o, Workspace& w,
-                      const RunClosure& rc, const std::vector<int>& members, double dz,
-                      ContactPatch* out);
 PatchSums kik_piotrowski_patch(const WheelContactGeometry& g, const Material& m,
                                const NormalOptions& o, PointContext& p, Workspace& w, double dz,
                                ContactPatch* out);

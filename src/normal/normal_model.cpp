@@ -219,23 +219,19 @@ double planar_strip_lengths(const WheelContactGeometry& g, PointContext& p, Work
   return L_max;
 }
 
-Run find_planar_run(const WheelContactGeometry& g, const PointContext& p, Workspace& w, double dz,
-                    double h) {
-  if (p.i0 < 0 || p.hi < p.lo) return Run{};
-  // Planar patch: v = eps (dz - h) cos g_ref - (gap - h cos g_ref).
-  const BandSample* band = g.band.data();
-  double* v = w.v.data();
-  const double vp = p.eps * (dz - h) * p.cos_ref, hc = h * p.cos_ref;
-  return scan_run(g, p.i0, p.lo, p.hi, [&](int j) { return v[j] = vp - (band[j].gap - hc); });
-}
-
 Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
              const NormalOptions& /*options*/) {
   if (p.i0 < 0 || p.hi < p.lo) return Run{};
   const double eps = p.eps;
   const BandSample* band = g.band.data();
   double* v = w.v.data();
-  if (!is_stripes(p.model)) return find_planar_run(g, p, w, dz, p.h);
+  if (!is_stripes(p.model)) {
+    // Planar patch: v = eps (dz - h) cos g_ref - (gap - h cos g_ref); Linder's penetration scaled
+    // like its force by the run weight (w^(2/3), normal_internal.hpp), so the patch matches it.
+    const double wscale = p.weight != 1.0 ? std::cbrt(p.weight * p.weight) : 1.0;
+    const double vp = eps * (dz - p.h) * p.cos_ref * wscale, hc = p.h * p.cos_ref;
+    return scan_run(g, p.i0, p.lo, p.hi, [&](int j) { return v[j] = vp - (band[j].gap - hc); });
+  }
   // STRIPES (own angle): v = eps dz cos g - gap + (1 - eps) h cos g. cos is ready on a block
   // around the last run (grown in blocks of 16: the run moves little between evaluations).
   const double edz = eps * dz, eh = (1.0 - eps) * p.h;
@@ -298,7 +294,6 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   const int np = static_cast<int>(g.points.size());
   const int nb = static_cast<int>(g.band.size());
   w.points.assign(np, PointContext{});
-  w.extents.clear();
   if (static_cast<int>(w.hertz_cache.size()) < np) w.hertz_cache.resize(np);
   const bool band_ok = nb >= 2 && g.band_step > 0.0 && std::isfinite(g.band_step);
   if (band_ok) {
@@ -412,25 +407,90 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
     if (is_stripes(p.model)) prepare_stripes(g, m, o, p, w);
   }
   // Per-sample data is filled lazily on the intervals of each PointContext (empty after assign).
+  // Run weights (run_weights): neighbouring points by band position and the sample of the largest
+  // rigid gap between each pair (geometry only, where their overlap runs join last).
+  w.order.clear();
+  w.saddle.clear();
+  if (band_ok && np >= 2) {
+    for (int i = 0; i < np; ++i)
+      if (w.points[i].i0 >= 0) w.order.push_back(i);
+    std::sort(w.order.begin(), w.order.end(), [&](int a, int b) {
+      return w.points[a].i0 < w.points[b].i0 || (w.points[a].i0 == w.points[b].i0 && a < b);
+    });
+    for (std::size_t k = 0; k + 1 < w.order.size(); ++k) {
+      const int j0 = w.points[w.order[k]].i0, j1 = w.points[w.order[k + 1]].i0;
+      int split = j0;
+      for (int j = j0; j <= j1; ++j)
+        if (g.band[j].gap > g.band[split].gap) split = j;
+      w.saddle.push_back(split);
+    }
+  }
 }
 
-// A patch of point p's own before any load: its point as reference, its preparation flags.
-void init_patch(const WheelContactGeometry& g, const PointContext& p, ContactPatch* out) {
-  const ContactPoint& cp = g.points[p.point];
-  *out = ContactPatch{};
-  out->point_index = p.point;
-  out->model = p.model;
-  out->band_s = cp.band_s;
-  out->contact_angle = cp.contact_angle;
-  out->rolling_radius = cp.rolling_radius;
-  out->wheel_u = cp.wheel_u;
-  out->rail_u = cp.rail_u;
-  out->status = p.flags;
+bool uses_run_weight(const PointContext& p) {
+  return (p.model == NormalModel::hertz || p.model == NormalModel::linder) && p.hertz_valid;
+}
+
+// Sets PointContext::weight of every point for approach dz (normal_internal.hpp, run weights).
+void run_weights(const WheelContactGeometry& g, Workspace& w, double dz) {
+  for (PointContext& p : w.points) p.weight = 1.0;
+  const int n = static_cast<int>(w.order.size());
+  int k0 = 0;
+  while (k0 < n) {
+    // Component [k0, k1]: consecutive weighted, loaded points joined by positive saddle overlap.
+    int k1 = k0;
+    auto penetration = [&](int k) {
+      const PointContext& p = w.points[w.order[k]];
+      return (dz - p.h) * p.cos_ref;
+    };
+    auto saddle_overlap = [&](int k) {  // between order[k] and order[k + 1]
+      const BandSample& b = g.band[w.saddle[k]];
+      return dz * band_cos(b.contact_angle) - b.gap;
+    };
+    auto joinable = [&](int k) {
+      const PointContext& p = w.points[w.order[k]];
+      return uses_run_weight(p) && dz > p.h;
+    };
+    if (joinable(k0))
+      while (k1 + 1 < n && joinable(k1 + 1) && saddle_overlap(k1) > 0.0) ++k1;
+    if (k1 > k0) {
+      double prominence_sum = 0.0;
+      for (int k = k0; k <= k1; ++k) {
+        double ds = 0.0;
+        if (k > k0) ds = std::max(ds, saddle_overlap(k - 1));
+        if (k < k1) ds = std::max(ds, saddle_overlap(k));
+        const double d = penetration(k);
+        PointContext& p = w.points[w.order[k]];
+        p.weight = std::max(d - ds, 0.0);  // prominence for now
+        prominence_sum += p.weight;
+      }
+      const double m = k1 - k0 + 1;
+      for (int k = k0; k <= k1; ++k) {
+        PointContext& p = w.points[w.order[k]];
+        const double prominence = p.weight, d = penetration(k);
+        const double t = std::clamp(prominence / d, 0.0, 1.0);
+        const double share = prominence_sum > 0.0 ? prominence / prominence_sum : 1.0 / m;
+        p.weight = std::clamp(t + (1.0 - t) * share, 0.0, 1.0);
+      }
+    }
+    k0 = k1 + 1;
+  }
 }
 
 PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                    PointContext& p, Workspace& w, double dz, ContactPatch* out) {
-  if (out) init_patch(g, p, out);
+  if (out) {
+    const ContactPoint& cp = g.points[p.point];
+    *out = ContactPatch{};
+    out->point_index = p.point;
+    out->model = p.model;
+    out->band_s = cp.band_s;
+    out->contact_angle = cp.contact_angle;
+    out->rolling_radius = cp.rolling_radius;
+    out->wheel_u = cp.wheel_u;
+    out->rail_u = cp.rail_u;
+    out->status = p.flags;
+  }
   PatchSums sums;
   if (dz > p.h) {
     switch (p.model) {
@@ -454,7 +514,23 @@ PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const Norma
   return sums;
 }
 
-// Rigid overlap run around a seed sample and its weighted reference (RunReference).
+double vertical_load(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                     Workspace& w, double dz) {
+  run_weights(g, w, dz);
+  double total = 0.0;
+  for (PointContext& p : w.points) total += evaluate(g, m, o, p, w, dz, nullptr).vertical;
+  return total;
+}
+
+// Reference of one rigid-overlap run (geometry/overlap_reference.cpp, default options: squared
+// weighting; the constant factor of the weight cancels), found by expanding from a seed sample.
+struct RunReference {
+  int a = 0, b = -1;                 // first and last band sample of the run
+  double s_start = 0.0, s_end = 0.0;
+  double band_s = 0.0, rail_u = 0.0, wheel_u = 0.0, angle_side = 0.0, radius = 0.0;
+  bool clipped = false;
+};
+
 bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed,
                RunReference* out) {
   const std::vector<BandSample>& band = g.band;
@@ -571,190 +647,10 @@ bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed
   return true;
 }
 
-// Extent of the rigid overlap run around `seed` at approach dz, ends as in rigid_run (linear
-// crossing of the overlap), and the band data at its midpoint (band_s, angle, radius, u's); no
-// weighting. The run at dz contains the run at any smaller approach (the overlap dz cos g - gap
-// grows with dz everywhere), so it is grown from the largest run of this solve found at an
-// approach <= dz: the load control's evaluations scan only the samples they add.
-bool run_extent(const WheelContactGeometry& g, Workspace& ws, double dz, int seed,
-                RunReference* out) {
-  const BandSample* band = g.band.data();
-  const int n = static_cast<int>(g.band.size());
-  if (seed < 0 || seed >= n) return false;
-  auto overlap = [&](int i) { return dz * band_cos(band[i].contact_angle) - band[i].gap; };
-  // cos g >= 1 - g^2/2: a cheap sufficient test, the exact overlap only where it fails.
-  auto inside = [&](int i) {
-    const BandSample& bs = band[i];
-    if (dz * (1.0 - 0.5 * bs.contact_angle * bs.contact_angle) - bs.gap > 0.0) return true;
-    return bs.gap < dz && overlap(i) > 0.0;
-  };
-  if (!(overlap(seed) > 0.0)) return false;
-  int a = seed, b = seed;
-  for (const Workspace::ExtentCache& c : ws.extents)
-    if (c.seed == seed && c.dz <= dz && c.b - c.a > b - a) {
-      a = c.a;
-      b = c.b;
-    }
-  while (a > 0 && inside(a - 1)) --a;
-  while (b + 1 < n && inside(b + 1)) ++b;
-  ws.extents.push_back({seed, dz, a, b});
-  RunReference& r = *out;
-  r = RunReference{};
-  r.a = a;
-  r.b = b;
-  const double step = g.band_step;
-  if (a > 0) {
-    const double da = overlap(a), dm = overlap(a - 1);
-    r.s_start = band[a].s - step * da / (da - dm);
-  } else {
-    r.s_start = band[a].s;
-    r.clipped = true;
-  }
-  if (b + 1 < n) {
-    const double db = overlap(b), dm = overlap(b + 1);
-    r.s_end = band[b].s + step * db / (db - dm);
-  } else {
-    r.s_end = band[b].s;
-    r.clipped = true;
-  }
-  r.band_s = 0.5 * (r.s_start + r.s_end);
-  int j;
-  double t;
-  locate(g, r.band_s, &j, &t);
-  const BandSample& lo = band[j];
-  const BandSample& hi = t == 0.0 ? lo : band[j + 1];
-  auto mix = [t](double x, double y) { return x + t * (y - x); };
-  r.angle_side = mix(lo.contact_angle, hi.contact_angle);
-  r.rail_u = mix(lo.rail_u, hi.rail_u);
-  r.wheel_u = mix(lo.wheel_u, hi.wheel_u);
-  r.radius = mix(lo.rolling_radius, hi.rolling_radius);
-  return true;
-}
-
-// ---- One load closure per rigid overlap run (Hertz, Linder; normal_internal.hpp RunClosure) ----
-
-bool uses_run_closure(const PointContext& p) {
-  return (p.model == NormalModel::hertz || p.model == NormalModel::linder) && p.hertz_valid &&
-         p.i0 >= 0;
-}
-
-// Fills w.runs and w.point_run for approach dz: the loaded points of the run-closure models are
-// grouped by rigid overlap run (least separated first); runs with two or more of them get one
-// closure. Geometry-only apart from dz, so the load control sees one continuous N(dz) per run.
-void run_closures(const WheelContactGeometry& g, const Material& m, Workspace& w, double dz) {
-  const int np = static_cast<int>(w.points.size());
-  w.point_run.assign(np, -1);
-  w.runs.clear();
-  constexpr int kDone = -2;  // point handled (own closure) in this pass
-  for (;;) {
-    int lead = -1;
-    for (int i = 0; i < np; ++i) {
-      const PointContext& p = w.points[i];
-      if (w.point_run[i] != -1 || !uses_run_closure(p) || !(dz > p.h)) continue;
-      if (lead < 0 || p.h < w.points[lead].h) lead = i;
-    }
-    if (lead < 0) break;
-    RunClosure rc;
-    rc.lead = lead;
-    if (!run_extent(g, w, dz, w.points[lead].i0, &rc.ref)) {
-      w.point_run[lead] = kDone;
-      continue;
-    }
-    const int index = static_cast<int>(w.runs.size());
-    for (int i = 0; i < np; ++i) {
-      const PointContext& p = w.points[i];
-      if (w.point_run[i] != -1 || !uses_run_closure(p) || !(dz > p.h) ||
-          p.model != w.points[lead].model || p.i0 < rc.ref.a || p.i0 > rc.ref.b)
-        continue;
-      w.point_run[i] = index;
-      ++rc.members;
-      rc.delta = std::max(rc.delta, (dz - p.h) * p.cos_ref);
-    }
-    const double width = rc.ref.s_end - rc.ref.s_start;
-    rc.A = w.points[lead].A0;
-    rc.B = 4.0 * rc.delta / (width * width);
-    if (rc.members < 2 || !(rc.B > 0.0) || !std::isfinite(rc.B)) {
-      for (int i = 0; i < np; ++i)
-        if (w.point_run[i] == index) w.point_run[i] = kDone;  // own closures
-      continue;
-    }
-    rc.hz = hertz_coefficients_fast(rc.A, rc.B);
-    const double AB = rc.A + rc.B;
-    rc.c = std::sqrt(rc.delta / (rc.hz.r * AB));
-    rc.normal = 4.0 * m.contact_modulus() * AB * rc.c * rc.c * rc.c / 3.0;
-    rc.vertical = rc.normal * band_cos(rc.ref.angle_side);
-    w.runs.push_back(rc);
-  }
-  for (int& k : w.point_run) k = std::max(k, -1);
-}
-
-double vertical_load(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
-                     Workspace& w, double dz) {
-  run_closures(g, m, w, dz);
-  double total = 0.0;
-  for (const RunClosure& rc : w.runs) total += rc.vertical;
-  for (PointContext& p : w.points)
-    if (w.point_run[p.point] < 0) total += evaluate(g, m, o, p, w, dz, nullptr).vertical;
-  return total;
-}
-
-// The patch of run closure rc, written as the contribution of its lead (the other members
-// contribute nothing of their own); `members` ascending band s.
-void run_patch(const WheelContactGeometry& g, const NormalOptions& o, Workspace& w,
-               const RunClosure& rc, const std::vector<int>& members, double dz,
-               ContactPatch* out) {
-  const PointContext& lead = w.points[rc.lead];
-  init_patch(g, lead, out);
-  for (int k : members) out->status |= w.points[k].flags;
-  out->penetration = rc.delta;
-  if (lead.model == NormalModel::linder) {
-    linder_run_patch(g, o, w, rc, members, dz, out);
-    return;
-  }
-  const double a = rc.hz.coef_a * rc.c, b = rc.hz.coef_b * rc.c;
-  out->pressure_shape = StripPressure::semi_elliptic;
-  out->normal_force = rc.normal;
-  out->area = std::numbers::pi * a * b;
-  out->max_pressure = 1.5 * rc.normal / out->area;
-  out->semi_axis_a = a;
-  out->semi_axis_b = b;
-  if (!o.hertz_strips) return;
-  // The run's ellipse, centred at the run's reference (where the patch is reported).
-  const int n = o.strips;
-  const double width = 2.0 * b / n;
-  out->strips.reserve(n);
-  for (int k = 0; k < n; ++k) {
-    const double y = -b + (k + 0.5) * width;
-    const double f = std::sqrt(std::max(0.0, 1.0 - (y / b) * (y / b)));
-    Strip st = band_strip(g, lead, rc.ref.band_s + y, width, false);
-    st.x_lead = a * f;
-    st.x_trail = -a * f;
-    st.pressure_peak = out->max_pressure * f;
-    st.ellipse_a = a;
-    st.ellipse_b = b;
-    out->strips.push_back(st);
-  }
-}
-
 // Merges the contributions parts[k] (k in members, ascending band s) into one patch.
 ContactPatch merge_parts(const WheelContactGeometry& g, std::vector<ContactPatch>& parts,
-                         const std::vector<int>& all_members) {
-  // Members without load of their own (inside a run closure) add only their flags.
-  std::vector<int> members;
-  StatusBits others = 0;
-  for (int k : all_members) {
-    if (parts[k].normal_force > 0.0) {
-      members.push_back(k);
-    } else {
-      others |= parts[k].status & ~status::kLiftOff;
-    }
-  }
-  if (members.empty()) members.push_back(all_members.front());
-  if (members.size() == 1) {
-    ContactPatch out = std::move(parts[members.front()]);
-    out.status |= others;
-    return out;
-  }
+                         const std::vector<int>& members) {
+  if (members.size() == 1) return std::move(parts[members.front()]);
   ContactPatch out;
   double length = 0.0;
   std::size_t nstrips = 0;
@@ -773,7 +669,6 @@ ContactPatch merge_parts(const WheelContactGeometry& g, std::vector<ContactPatch
       for (const Strip& st : p.strips) length = std::max(length, st.x_lead - st.x_trail);
     }
   }
-  out.status |= others;
   std::sort(out.strips.begin(), out.strips.end(),
             [](const Strip& x, const Strip& y) { return x.s < y.s; });
   const ContactPatch& first = parts[members.front()];
@@ -855,27 +750,7 @@ WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
   r.point_patch.assign(np, -1);
   std::vector<ContactPatch> parts(np);
   std::vector<int> loaded_points;
-  run_closures(g, m, w, dz);
   for (int i = 0; i < np; ++i) {
-    const int k = w.point_run[i];
-    if (k >= 0) {  // member of a run closure: the lead carries the run's patch
-      const RunClosure& rc = w.runs[k];
-      if (i == rc.lead) {
-        std::vector<int> members;
-        for (int j = 0; j < np; ++j)
-          if (w.point_run[j] == k) members.push_back(j);
-        std::sort(members.begin(), members.end(),
-                  [&](int x, int y) { return g.points[x].band_s < g.points[y].band_s; });
-        run_patch(g, o, w, rc, members, dz, &parts[i]);
-        r.vertical_load += rc.vertical;
-      } else {
-        init_patch(g, w.points[i], &parts[i]);
-        parts[i].penetration = std::max(dz - w.points[i].h, 0.0) * w.points[i].cos_ref;
-      }
-      loaded_points.push_back(i);
-      r.status |= parts[i].status;
-      continue;
-    }
     const PatchSums s = evaluate(g, m, o, w.points[i], w, dz, &parts[i]);
     r.vertical_load += s.vertical;
     if (s.normal > 0.0) loaded_points.push_back(i);
@@ -918,13 +793,7 @@ WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
       if (contains(gr, s)) home = &gr;
     if (!home) {
       Group gr;
-      const int k = w.point_run[i];
-      if (k >= 0 && !o.combine_patches && w.points[i].model == NormalModel::hertz) {
-        gr.ref = w.runs[k].ref;  // a Hertz run's patch is its ellipse, centred mid-run
-        gr.has_ref = true;
-      } else {
-        gr.has_ref = !o.combine_patches && rigid_run(g, w, dz, w.points[i].i0, &gr.ref);
-      }
+      gr.has_ref = !o.combine_patches && rigid_run(g, w, dz, w.points[i].i0, &gr.ref);
       groups.push_back(std::move(gr));
       home = &groups.back();
     }
@@ -997,6 +866,7 @@ WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
 
 void fill(const WheelContactGeometry& g, const Material& m, const NormalOptions& o, Workspace& w,
           double dz, WheelNormalResult& out) {
+  run_weights(g, w, dz);
   if (fill_single_hertz(g, m, o, w, dz, out)) return;
   out = fill_general(g, m, o, w, dz);
 }

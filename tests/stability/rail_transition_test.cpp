@@ -59,9 +59,10 @@ TEST(RailTransition, CrownToShoulderR300R80) {
 // 0.45, 0.50 mm). Each point carried its own Hertz closure, and at fixed penetration a Hertz
 // contribution grows like B^(-1/2) as B -> 0, so the vertical approach turned over steeply
 // (4.95e-5 -> 4.41e-5 m between y = 0.45 and 0.50 mm, neighbouring steps ~1e-6 m). Fixed in
-// src/normal (RunClosure in normal_internal.hpp): the points of one rigid overlap run share ONE
-// closure (largest penetration, B of the parabola through it and the run's ends), which moves
-// continuously while the points swap roles (y = 0.20 -> 0.25 mm) or one vanishes inside the run.
+// src/normal (run weights, normal_internal.hpp): a point sharing an overlap run with others
+// carries the share w = t + (1 - t) p / sum p of its own closure (p its prominence above the
+// saddle, t = p / penetration), which vanishes with the fold and stays continuous when the second
+// point appears (y = -0.35 mm) and when the two minima swap depth order (y = 0.20 -> 0.25 mm).
 TEST(RailTransition, CrownToShoulderR300R80HertzLinder) {
   check(variants_named({"hertz", "linder"}), -1.5e-3, 1.5e-3);
 }
