@@ -38,8 +38,9 @@ void add_simulate_command(CLI::App& app) {
                              opt->direct ? "direct contact evaluation" : "table lookup");
     for (const ModelSummary& m : summary.models) {
       const double total = m.steps.empty() ? 0.0 : m.steps.back().cumulative_worn_area;
-      std::cout << fmt::format("  {:<12} worn area {:.4f} mm2 after {:.0f} km\n", m.model, total * 1e6,
-                               scene.running_distance / 1e3);
+      std::cout << fmt::format(
+          "  {:<12} worn area {:.4f} mm2 after {:.0f} km; wear centroid u = {:.2f} mm, peak {:.2f} um at u = {:.2f} mm\n",
+          m.model, total * 1e6, scene.running_distance / 1e3, m.centroid_u * 1e3, m.peak_depth * 1e6, m.peak_u * 1e3);
     }
     std::cout << fmt::format("  simulated seconds per wall-clock second: {:.2f}\n", simulation_speed(summary));
   });

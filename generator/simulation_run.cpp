@@ -362,6 +362,16 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
       ms.u = u;
     }
     ms.cumulative_depth = cumulative;
+    double weight_sum = 0.0, moment = 0.0;
+    for (std::size_t i = 0; i < cumulative.size(); ++i) {
+      weight_sum += cumulative[i];
+      moment += cumulative[i] * ms.u[i];
+      if (cumulative[i] > ms.peak_depth) {
+        ms.peak_depth = cumulative[i];
+        ms.peak_u = ms.u[i];
+      }
+    }
+    ms.centroid_u = weight_sum > 0.0 ? moment / weight_sum : 0.0;
     final_series.push_back({model, ms.u, cumulative, model.rfind("stripes", 0) == 0});
     summary.models.push_back(std::move(ms));
   }
@@ -395,6 +405,9 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
     const double total = m.steps.empty() ? 0.0 : m.steps.back().cumulative_worn_area;
     jm["total_worn_area_m2"] = total;
     jm["total_worn_area_mm2"] = total * 1e6;
+    jm["wear_centroid_u_m"] = m.centroid_u;
+    jm["peak_depth_m"] = m.peak_depth;
+    jm["peak_depth_u_m"] = m.peak_u;
     j["models"].push_back(jm);
   }
   write_file(summary.directory / "summary.json", j.dump(2) + "\n");
