@@ -94,11 +94,7 @@ std::uint32_t WearAccumulator::sample(double y_relative, const double (&load)[ve
         const WearResult wear = archard_wear(workspace_, wear_, distribution_);
         bits |= patch.status | force.status | wear.status;
         // archard_wear sizes distribution_.strips to this solve's strips.
-        if (patch.strips.empty()) {
-          add_elliptic_strips(patch, wheel);
-        } else {
-          pending_.insert(pending_.end(), distribution_.strips.begin(), distribution_.strips.end());
-        }
+        pending_.insert(pending_.end(), distribution_.strips.begin(), distribution_.strips.end());
       }
     } catch (const Error&) {
       ++failures_;
@@ -108,26 +104,6 @@ std::uint32_t WearAccumulator::sample(double y_relative, const double (&load)[ve
     for (const StripWear& s : pending_) add_strip(w, s.wheel_u, s.width_u, s.depth_rate * distance);
   }
   return bits;
-}
-
-// The elliptic FASTSIM (Hertz patch without strips) lays its strips at wheel_u + y, y the
-// lateral coordinate along s in the contact plane, and archard_wear then sees du/dy = 1. On the
-// wheel profile the ellipse covers only 2 b cos(beta) of u (beta the contact angle relative to
-// the wheel axle: about 1 on the tread, 0.3-0.5 on the flange), and s points towards -u on the
-// right wheel (s is close to +y track for both wheels). Without this the Hertz wear on a flange
-// would come out 2-3 times too wide and shallow next to STRIPES's (whose strips carry their own
-// wheel_u). Area is kept: depth / cos(beta) over width * cos(beta). The proper place for this is
-// the tangential layer's elliptic strips; remove it here when they carry the profile mapping.
-void WearAccumulator::add_elliptic_strips(const ContactPatch& patch, const WheelContactGeometry& geometry) {
-  const double sigma = outward_sign(geometry.side);
-  const double beta = sigma * patch.contact_angle - geometry.wheel_roll;
-  const double cb = std::clamp(std::cos(beta), 0.05, 1.0);  // the clamp archard_wear uses
-  for (StripWear s : distribution_.strips) {
-    s.wheel_u = patch.wheel_u + sigma * (s.wheel_u - patch.wheel_u) * cb;
-    s.width_u *= cb;
-    s.depth_rate /= cb;
-    pending_.push_back(s);
-  }
 }
 
 // Adds a strip's radial depth over [u_centre -+ width_u/2] to the bins it overlaps, each by its

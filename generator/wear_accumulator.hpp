@@ -53,7 +53,6 @@ class WearAccumulator {
   double clipped_area(int wheel) const;
 
  private:
-  void add_elliptic_strips(const ContactPatch& patch, const WheelContactGeometry& geometry);
   void add_strip(int wheel, double u_centre, double width_u, double depth);
 
   ContactGeometrySolver solver_;

@@ -302,6 +302,8 @@ FastsimResult fastsim_ellipse(const EllipticPatch& patch, const Creepage& creepa
   check_inputs(creepage, mu, speed, material, elements_per_strip);
   RAILTAB_CHECK(patch.a > 0.0 && patch.b > 0.0 && std::isfinite(patch.a) && std::isfinite(patch.b),
                 "fastsim_ellipse: semi-axes a {} m, b {} m must be positive", patch.a, patch.b);
+  RAILTAB_CHECK(std::isfinite(patch.du_dy) && std::abs(patch.du_dy) <= 1.0,
+                "fastsim_ellipse: du_dy {} must be finite with |du_dy| <= 1", patch.du_dy);
   RAILTAB_CHECK(patch.strips >= 1 && patch.strips <= 100000,
                 "fastsim_ellipse: strip count {} must be in [1, 100000]", patch.strips);
   const int m = patch.strips;
@@ -321,7 +323,7 @@ FastsimResult fastsim_ellipse(const EllipticPatch& patch, const Creepage& creepa
     s.parabolic = true;
     s.ellipse_a = patch.a;
     s.ellipse_b = patch.b;
-    s.wheel_u = patch.wheel_u + y;
+    s.wheel_u = patch.wheel_u + patch.du_dy * y;
     s.rolling_radius = patch.rolling_radius;
     s.contact_angle = 0.0;
   }

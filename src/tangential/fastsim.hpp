@@ -100,6 +100,11 @@ struct EllipticPatch {
   int strips = 40;               // lateral strips over [-b, b] [-]
   double rolling_radius = 0.46;  // wheel radius, used only to convert wear per pass to per metre [m]
   double wheel_u = 0.0;          // wheel-profile coordinate of the centre, for wear output [m]
+  // d(wheel u)/d(lateral y along s) at the centre: sigma cos(beta), beta the contact angle
+  // relative to the wheel axle, sigma = +1 left / -1 right wheel (s points towards -u on the right
+  // wheel). The ellipse covers 2 b |du/dy| of the wheel profile; archard_wear reads the mapping
+  // from the strips' wheel_u, so the wear lands on the profile where the patch lies. [-]
+  double du_dy = 1.0;
 };
 
 struct FastsimResult {

@@ -24,8 +24,14 @@ FastsimResult fastsim_contact(const WheelContactGeometry& geometry, const Contac
   }
   if (patch.strips.empty() && patch.semi_axis_a > 0.0 && patch.semi_axis_b > 0.0) {
     // Hertz without strips (NormalOptions::hertz_strips off): Kalker's FASTSIM on the ellipse.
+    // The ellipse lies in the contact plane; on the wheel profile it spans 2 b cos(beta), beta =
+    // the contact angle relative to the wheel's own axle (roll included), and s runs towards -u
+    // on the right wheel.
+    const double sigma = outward_sign(geometry.side);
+    const double beta = sigma * patch.contact_angle - geometry.wheel_roll;
     const EllipticPatch ellipse{patch.semi_axis_a, patch.semi_axis_b, patch.normal_force,
-                                conditions.ellipse_strips, patch.rolling_radius, patch.wheel_u};
+                                conditions.ellipse_strips, patch.rolling_radius, patch.wheel_u,
+                                sigma * std::cos(beta)};
     return fastsim_ellipse(ellipse, creepage, conditions.friction, conditions.speed, material,
                            options.elements_per_strip, workspace);
   }

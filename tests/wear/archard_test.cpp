@@ -76,6 +76,37 @@ TEST(Archard, RadialDepthOnASlopedProfile) {
   EXPECT_NEAR(wl.wear_rate, w.wear_rate / 5.5, 1e-9 * w.wear_rate);
 }
 
+// The same on an elliptic (Hertz) patch: the ellipse lies in the contact plane, on the wheel
+// profile it spans 2 b cos(beta), mirrored on the right wheel (du_dy = sigma cos(beta) < 0).
+// Radial depth = normal depth / cos(beta), worn area unchanged by the mapping.
+TEST(Archard, EllipseMapsOntoTheSlopedWheelProfile) {
+  const Material mat = steel();
+  const double beta = 1.0;  // a flange contact
+  FastsimWorkspace ws;
+  WearDistribution dist;
+  double area[2] = {};
+  for (int k = 0; k < 2; ++k) {
+    const double du_dy = (k == 0 ? 1.0 : -1.0) * std::cos(beta);
+    const EllipticPatch ep{4e-3, 1e-3, 40e3, 40, 0.47, -0.03, du_dy};
+    fastsim_ellipse(ep, {2e-3, 1e-3, 0.0}, 0.3, 10.0, mat, 20, ws);
+    const WearResult w = archard_wear(ws, {}, dist);
+    double u_lo = 1.0, u_hi = -1.0, width = 0.0;
+    for (const StripWear& s : dist.strips) {
+      u_lo = std::min(u_lo, s.wheel_u - 0.5 * s.width_u);
+      u_hi = std::max(u_hi, s.wheel_u + 0.5 * s.width_u);
+      width += s.width_u;
+      area[k] += s.depth_rate * s.width_u;
+    }
+    EXPECT_NEAR(width, 2.0 * ep.b * std::cos(beta), 1e-12);
+    EXPECT_NEAR(u_hi - u_lo, 2.0 * ep.b * std::cos(beta), 1e-12);
+    EXPECT_NEAR(0.5 * (u_lo + u_hi), ep.wheel_u, 1e-12);
+    EXPECT_NEAR(area[k], w.wear_rate, 1e-9 * w.wear_rate);
+    // the strip at the most positive contact-plane y lands at the smaller u on the right wheel
+    EXPECT_EQ(dist.strips.back().wheel_u > dist.strips.front().wheel_u, k == 0);
+  }
+  EXPECT_NEAR(area[0], area[1], 1e-12 * area[0]);
+}
+
 // Seed 001 Table 7 (Enblom & Berg after Telliskivi): twin-disc test, 1600 N, nominal Hertz
 // 1400 MPa, 1.5 % creep, mu 0.6, disc radius 32.5 mm, 1.0 m/s. Initial wear rate [ug/rev]:
 // elliptic 6.3, STRIPES 6.1, test 6.7. Two equal discs (A = 1/R); the lateral curvature B is the
