@@ -40,6 +40,7 @@ struct PointContext {
   StatusBits flags = 0;        // preparation flags (fallback, curvature treatment, ...)
   double weight = 1.0;         // Hertz, Linder: share of its own closure the point carries when
                                //   it shares an overlap run with others (run_weights) [-]
+  int run_group = -1;          // points joined by positive saddle overlap share one id (run_weights)
   // Band samples of this point whose per-sample data is ready in the Workspace (empty: lo > hi).
   // The domains [lo, hi] of the points are disjoint, so the points share the band-sized arrays.
   int cos_lo = 0, cos_hi = -1;  // Workspace::cos_angle ready on [cos_lo, cos_hi]

@@ -433,7 +433,10 @@ bool uses_run_weight(const PointContext& p) {
 
 // Sets PointContext::weight of every point for approach dz (normal_internal.hpp, run weights).
 void run_weights(const WheelContactGeometry& g, Workspace& w, double dz) {
-  for (PointContext& p : w.points) p.weight = 1.0;
+  for (PointContext& p : w.points) {
+    p.weight = 1.0;
+    p.run_group = -1;
+  }
   const int n = static_cast<int>(w.order.size());
   int k0 = 0;
   while (k0 < n) {
@@ -453,6 +456,7 @@ void run_weights(const WheelContactGeometry& g, Workspace& w, double dz) {
     };
     if (joinable(k0))
       while (k1 + 1 < n && joinable(k1 + 1) && saddle_overlap(k1) > 0.0) ++k1;
+    for (int k = k0; k <= k1; ++k) w.points[w.order[k]].run_group = k0;
     if (k1 > k0) {
       double prominence_sum = 0.0;
       for (int k = k0; k <= k1; ++k) {
@@ -765,6 +769,7 @@ WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
     RunReference ref;
     bool has_ref = false;
     std::vector<int> members;  // loaded contributions
+    int key = -1;              // Hertz: PointContext::run_group of the members
   };
   std::vector<Group> groups;
   const double half_step = 0.5 * g.band_step;
@@ -786,7 +791,53 @@ WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
       groups.push_back(std::move(gr));
     }
   }
+  // Hertz points: grouped by run_weights' runs (positive overlap at the saddles between them), no
+  // band scan; the patch of several ellipses is referred to their force-weighted centre below.
+  auto hertz_grouped = [&](int i) {
+    return !o.combine_patches && w.points[i].model == NormalModel::hertz &&
+           w.points[i].run_group >= 0;
+  };
   for (int i : loaded_points) {
+    if (!hertz_grouped(i)) continue;
+    Group* home = nullptr;
+    for (Group& gr : groups)
+      if (gr.key == w.points[i].run_group) home = &gr;
+    if (!home) {
+      groups.emplace_back();
+      home = &groups.back();
+      home->key = w.points[i].run_group;
+    }
+    home->members.push_back(i);
+  }
+  for (Group& gr : groups) {
+    if (gr.key < 0 || gr.members.size() < 2) continue;
+    // Centre of force of the ellipses (each centred at its point); extent: their union.
+    double sum = 0.0, s = 0.0, angle = 0.0, radius = 0.0, wu = 0.0, ru = 0.0;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int k : gr.members) {
+      const ContactPoint& cp = g.points[k];
+      const double f = parts[k].normal_force;
+      sum += f;
+      s += f * cp.band_s;
+      angle += f * cp.contact_angle_side;
+      radius += f * cp.rolling_radius;
+      wu += f * cp.wheel_u;
+      ru += f * cp.rail_u;
+      lo = std::min(lo, cp.band_s - parts[k].semi_axis_b);
+      hi = std::max(hi, cp.band_s + parts[k].semi_axis_b);
+    }
+    gr.ref.band_s = s / sum;
+    gr.ref.angle_side = angle / sum;
+    gr.ref.radius = radius / sum;
+    gr.ref.wheel_u = wu / sum;
+    gr.ref.rail_u = ru / sum;
+    gr.ref.s_start = lo;
+    gr.ref.s_end = hi;
+    gr.ref.clipped = g.band.size() >= 2 && (lo < g.band.front().s || hi > g.band.back().s);
+    gr.has_ref = true;
+  }
+  for (int i : loaded_points) {
+    if (hertz_grouped(i)) continue;
     const double s = g.points[i].band_s;
     Group* home = nullptr;
     for (Group& gr : groups)
