@@ -4,11 +4,12 @@
 // a rigid wheelset touches with both when the drops agree. f(roll) = drop_left - drop_right
 // falls with roll at about -2*Q0 (positive roll lifts the left wheel, so the axle must sink for
 // it and may rise for the right one), so a secant step from roll = 0 lands close; a bracket and
-// Brent's method finish the job, also across the kink of a jump into flange contact.
+// Brent's method (core/root_find.hpp) finish the job, also across the kink of a jump into flange
+// contact.
 #include <cmath>
-#include <utility>
 
 #include "core/check.hpp"
+#include "core/root_find.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "geometry/placement.hpp"
 
@@ -40,52 +41,8 @@ double ContactGeometrySolver::equilibrium_roll(double y) const {
   }
   RAILTAB_CHECK((fa > 0.0) != (fb > 0.0), "contact geometry: no equilibrium roll found at y = {} m", y);
 
-  // Brent's root finder (Numerical Recipes zbrent form).
   constexpr double kTol = 1e-14;  // [rad]
-  double c = b, fc = fb, d = 0.0, e = 0.0;
-  for (int it = 0; it < 200; ++it) {
-    if ((fb > 0.0) == (fc > 0.0)) {
-      c = a;
-      fc = fa;
-      d = e = b - a;
-    }
-    if (std::abs(fc) < std::abs(fb)) {
-      a = b; b = c; c = a;
-      fa = fb; fb = fc; fc = fa;
-    }
-    const double tol = 2.0 * 1e-16 * std::abs(b) + 0.5 * kTol;
-    const double xm = 0.5 * (c - b);
-    if (std::abs(xm) <= tol || fb == 0.0) return b;
-    if (std::abs(e) >= tol && std::abs(fa) > std::abs(fb)) {
-      const double s = fb / fa;
-      double p, q;
-      if (a == c) {
-        p = 2.0 * xm * s;
-        q = 1.0 - s;
-      } else {
-        const double qq = fa / fc, r = fb / fc;
-        p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
-        q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-      }
-      if (p > 0.0) q = -q;
-      p = std::abs(p);
-      if (2.0 * p < std::min(3.0 * xm * q - std::abs(tol * q), std::abs(e * q))) {
-        e = d;
-        d = p / q;
-      } else {
-        d = xm;
-        e = d;
-      }
-    } else {
-      d = xm;
-      e = d;
-    }
-    a = b;
-    fa = fb;
-    b += std::abs(d) > tol ? d : (xm > 0.0 ? tol : -tol);
-    fb = f(b);
-  }
-  return b;
+  return brent_root(f, a, b, fa, fb, kTol, 0.0, 200).x;
 }
 
 }  // namespace railtab

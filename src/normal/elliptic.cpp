@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/check.hpp"
+#include "core/root_find.hpp"
 #include "normal/normal_internal.hpp"
-#include "normal/root_find.hpp"
 
 namespace railtab {
 namespace {
@@ -101,7 +101,7 @@ HertzShape hertz_shape_impl(double ratio, bool use_table) {
       hi = std::min(0.0, hi + 1.0);
       fhi = hi < 0.0 ? f(hi) : -target;
     }
-    const auto root = detail::brent_root(f, lo, hi, flo, fhi, 1e-14, 0.0, 200);
+    const auto root = brent_root(f, lo, hi, flo, fhi, 1e-14, 0.0, 200);
     g = std::exp(root.x);
   }
   const EllipticKE ke = complete_elliptic_complementary(g);

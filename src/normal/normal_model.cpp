@@ -20,8 +20,8 @@
 #endif
 
 #include "core/check.hpp"
+#include "core/root_find.hpp"
 #include "normal/normal_internal.hpp"
-#include "normal/root_find.hpp"
 #include "geometry/overlap_reference.hpp"
 
 namespace railtab {
@@ -1072,7 +1072,7 @@ void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical
   // inside the tolerance, so Brent's own confirming evaluation is saved. A miss (the fill's load
   // outside the tolerance) falls back to Brent at the full tolerance.
   const double loose = std::max(f_tol, 1e-5 * target);
-  auto root = detail::brent_root(f, lo, hi, flo, fhi, x_tol, loose, options.max_iterations);
+  auto root = brent_root(f, lo, hi, flo, fhi, x_tol, loose, options.max_iterations);
   double x = root.x;
   if (root.converged && std::abs(root.fx) > f_tol && f_last[1] != f_last[0]) {
     const double step = f_last[1] * (x_last[1] - x_last[0]) / (f_last[1] - f_last[0]);
@@ -1084,7 +1084,7 @@ void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical
     return std::abs(r.vertical_load - vertical_load) <= factor * options.tolerance * vertical_load;
   };
   if (x != root.x && !within(1.0)) {
-    root = detail::brent_root(f, lo, hi, flo, fhi, x_tol, f_tol, options.max_iterations);
+    root = brent_root(f, lo, hi, flo, fhi, x_tol, f_tol, options.max_iterations);
     detail::fill(geometry, material, options, w, root.x, r);
   }
   r.iterations = evaluations;

@@ -1,13 +1,15 @@
 // Brent's bracketed root finder (Brent 1973, "Algorithms for minimization without derivatives",
 // ch. 4): inverse quadratic interpolation safeguarded by bisection, so it never leaves the bracket
 // and converges for any continuous function with a sign change. Header-only, allocation-free.
+// One copy for the library: the normal load control and Hertz shape (src/normal) and the
+// equilibrium roll (src/geometry) use it.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-namespace railtab::detail {
+namespace railtab {
 
 struct RootResult {
   double x;        // best root estimate
@@ -74,4 +76,4 @@ RootResult brent_root(F&& f, double a, double b, double fa, double fb, double x_
   return {b, fb, it, false};
 }
 
-}  // namespace railtab::detail
+}  // namespace railtab
