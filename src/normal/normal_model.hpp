@@ -7,6 +7,10 @@
 // (its curvatures, its separation). All contributions of one wheel share one rigid vertical
 // approach delta_z: a point with vertical separation h and contact angle gamma sees the normal
 // penetration (delta_z - h) cos(gamma), so the load splits between tread and flange by the physics.
+// Hertz and Linder, whose closure is per point, weight the contributions of points that share one
+// run of rigid overlap by their prominence above the saddle between them (run weights,
+// normal_internal.hpp): separate wells count fully, a shallow ripple or a vanishing minimum of the
+// gap hardly at all, continuously in the approach and in the geometry.
 //
 // Patches (what the result reports): a patch is one run of positive RIGID overlap
 // d(s) = delta_z cos g(s) - gap(s) along the gap band at the solved approach, as CONTACT's contact
@@ -21,8 +25,9 @@
 // ellipse centred at its rigid contact point and its forces act there, so its reference is the
 // contact point itself (band_s, contact_angle, rolling_radius, wheel_u, rail_u of the point; FASTSIM
 // is placed at the ellipse centre) and s_start/s_end are the ellipse's lateral extent band_s -+ b
-// (kProfileEdge only when the ellipse leaves the band). A Hertz patch merged from several points
-// (several ellipses in one overlap run, or combine_patches) keeps the run's overlap reference.
+// (kProfileEdge only when the ellipse leaves the band). A Hertz patch of several ellipses in one
+// overlap run is referred to their centre of force (force-weighted band_s, angle, radius, u's) and
+// spans their union; with combine_patches it keeps CONTACT's combined reference.
 // Patches are ordered by band_s ascending (band s grows
 // towards the field side: a flange patch comes before a tread patch). Only loaded patches are
 // listed.

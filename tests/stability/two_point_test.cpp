@@ -53,6 +53,18 @@ TEST(TwoPoint, FlangeOnsetContinuity) {
 // ~0.1 mm, so the vertical approach (measured from the rigid position) rises 2e-4 -> 6e-4 m and N
 // 113 -> 220 kN within ~0.1 mm. At 0.05 mm steps that follows the exempt jump step and precedes a
 // plateau, so the measure still reports it. Still disabled.
+// Measure or model? The model (checked after the run weights, stripes-a/shift, left wheel, 78.5 kN,
+// 0.025 mm steps): the elastic wheel height z = wheel_drop - vertical_approach is 704, 720, 739 um
+// at y = 6.550..6.600 mm (rising with the root contact), then 665, 565, 493, 482 um at 6.625..6.700
+// and rises again at the flank's tan(70 deg) from 6.725 mm (529, 603, 686 um). Pushed towards its
+// flange, the wheel SINKS by 257 um, although the jump adds the flank as a support: at a fixed load
+// more rigid contact can only lift the wheel. Cause: STRIPES closes the load at the rigid point
+// (Boussinesq condition with delta0 = (dz - h) cos g at the point); right after the jump that point
+// is the barely penetrated 70 deg flank (cos g = 0.34), while the patch, following its own angles,
+// still reaches down the conformal root, which carries the vertical load. The pressure amplitude
+// is tied to the flank's small approach, so the root is over-penetrated until the flank takes the
+// load. The continuity measure is right to report it; the fix belongs in stripes.cpp (close the
+// load at the run's weighted reference, where the pressure is, instead of at the rigid point).
 TEST(TwoPoint, DISABLED_FlangeOnsetContinuityStripes) {
   for (const Variant& v : variants_named({"stripes-a/shift", "stripes-a/clip", "stripes-ab/shift",
                                           "stripes-ab/clip"}))
