@@ -13,6 +13,7 @@
 #include "contact_kernel.hpp"
 #include "core/check.hpp"
 #include "generate.hpp"
+#include "merge.hpp"
 #include "table_io.hpp"
 #include "test_tables.hpp"
 
@@ -220,6 +221,16 @@ TEST(ModelChoice, TableRecordsTheChoiceAndIsByteIdenticalForAnyThreadCount) {
   Table one = read_table(dir / "one.h5");
   Table two = read_table(dir / "two.h5");
   testing::expect_same_datasets(one, two);
+  // Shards slice the choice with y; merged, they are the single run's table.
+  std::vector<Table> shards;
+  for (int k = 1; k <= 2; ++k) {
+    options.output = dir / fmt::format("shard{}.h5", k);
+    options.shard_index = k;
+    options.shard_count = 2;
+    generate_table(options);
+    shards.push_back(read_table(options.output));
+  }
+  testing::expect_same_datasets(one, merge_shards(shards, {"shard1.h5", "shard2.h5"}));
 
   Scene scene = load_scene(options.scene);
   build_adaptive_grids(scene, 1);
@@ -249,8 +260,9 @@ TEST(ModelChoice, TableRecordsTheChoiceAndIsByteIdenticalForAnyThreadCount) {
 
 // The measurement of docs/adaptive-grids.md, "Model choice per y" (minutes; run by hand):
 //   build/adapt/tests/test_generator --gtest_also_run_disabled_tests --gtest_filter='*ModelChoiceReport*'
-// Prints the choice of tables/default_mixed.toml, the shares per model at other targets on the same
-// grids, and the table error at random off-grid states (GridComparison, row "adaptive, models").
+// Prints the choice of tables/default_mixed.toml, the shares per model at other model tolerances on the
+// same grids, and the table error at random off-grid states (GridComparison, row "adaptive, models";
+// row "adaptive" is the same grids with the reference model everywhere) at model_tolerance 5 and 10.
 TEST(ModelChoiceReport, DISABLED_DefaultMixed) {
   const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables/default_mixed.toml");
   Scene placed = scene;
@@ -265,8 +277,12 @@ TEST(ModelChoiceReport, DISABLED_DefaultMixed) {
                              c.to_json()["y_nodes_per_model"].dump());
   }
   if (std::getenv("RAILTAB_CHOICE_ONLY")) return;
-  GridComparison c = compare_adaptive_with_uniform(scene, 400, 20261122u, 0);
-  std::cout << c.text();
+  for (double tolerance : {5.0, 10.0}) {
+    Scene variant = scene;
+    variant.accuracy.model_tolerance = tolerance;
+    GridComparison c = compare_adaptive_with_uniform(variant, 400, 20261122u, 0);
+    std::cout << fmt::format("model_tolerance {}:\n", tolerance) << c.text();
+  }
 }
 
 }  // namespace
