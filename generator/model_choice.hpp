@@ -30,8 +30,8 @@ ModelProbeStates model_probe_states(const Scene& scene);
 // as a fraction of `targets` (choose_models passes the scene's targets x model_tolerance) (<= 1: within all targets), per wheel and loaded slot of the
 // reference: fx and fy each against creep_force x mu x N, N against normal_force x N, the patch
 // reference point's contact angle and rolling radius against contact_angle and rolling_radius.
-// +infinity when the slot regimes differ (another slot occupancy or patch count), a slot failed, or
-// the candidate fell back to another model or did not converge.
+// +infinity when the slot regimes differ (another slot occupancy or patch count, or a slot failed
+// where the reference did not), or the candidate fell back to another model or did not converge.
 using ProbeResults = std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>>;  // [load][creepage][wheel]
 double model_error(const ProbeResults& candidate, const ProbeResults& reference, const AccuracyTargets& targets,
                    double friction);
