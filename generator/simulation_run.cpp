@@ -318,6 +318,15 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
                              sim.name, model, k, position, r.simulated_seconds, r.distance, r.dynamics_wall_seconds,
                              r.dynamics_wall_seconds > 0 ? r.simulated_seconds / r.dynamics_wall_seconds : 0.0,
                              r.max_abs_y * 1e3, r.out_of_range, r.queries, r.wear_samples, r.wear_failures));
+        if (r.stable_time_step_estimate > 0.0 && sim.time_step > r.stable_time_step_estimate) {
+          log_line(options, fmt::format("warning: time_step {} s exceeds the stable RK4 step estimate {:.3e} s",
+                                        sim.time_step, r.stable_time_step_estimate));
+        }
+        if (r.out_of_range > 0 || r.invalid_input > 0) {
+          log_line(options, fmt::format("warning: {} table queries out of range, {} invalid (see summary.json "
+                                        "outside_axis): widen the contact scene's grid",
+                                        r.out_of_range, r.invalid_input));
+        }
         step.runs.push_back(r);
       }
 
