@@ -261,6 +261,9 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   std::vector<std::string> models = options.models.empty() ? sim.models : options.models;
   for (const auto& m : models) parse_normal_model(m);  // throws naming a bad model
   const Scene contact = load_scene(sim.contact_scene);
+  // The wheelset has no roll degree of freedom: its roll is the kinematic one at every y.
+  RAILTAB_CHECK(contact.equilibrium_roll, "{}: the contact scene of a simulation needs [grid] equilibrium_roll = true",
+                sim.contact_scene.string());
 
   SimulationSummary summary;
   summary.name = sim.name;
