@@ -58,13 +58,16 @@ TEST(TwoPoint, FlangeOnsetContinuity) {
 // at y = 6.550..6.600 mm (rising with the root contact), then 665, 565, 493, 482 um at 6.625..6.700
 // and rises again at the flank's tan(70 deg) from 6.725 mm (529, 603, 686 um). Pushed towards its
 // flange, the wheel SINKS by 257 um, although the jump adds the flank as a support: at a fixed load
-// more rigid contact can only lift the wheel. Cause: STRIPES closes the load at the rigid point
-// (Boussinesq condition with delta0 = (dz - h) cos g at the point); right after the jump that point
-// is the barely penetrated 70 deg flank (cos g = 0.34), while the patch, following its own angles,
-// still reaches down the conformal root, which carries the vertical load. The pressure amplitude
-// is tied to the flank's small approach, so the root is over-penetrated until the flank takes the
-// load. The continuity measure is right to report it; the fix belongs in stripes.cpp (close the
-// load at the run's weighted reference, where the pressure is, instead of at the rigid point).
+// more rigid contact can only lift the wheel. So the continuity measure is right to report it and
+// the model is wrong here. Not the cause (tried, not kept): the point of the Boussinesq closure.
+// With the contact condition at the patch's centre of force (rigid approach dz cos g - gap there)
+// instead of at the rigid point, block B moved < 1 % but the wheel still sank 736 -> 498 um. The
+// cause is eps, the virtual-penetration fraction STRIPES takes from the rigid point for the whole
+// patch: 0.42 / 0.47 at y = 6.575 / 6.600 mm (root point, A0 = 0.88, B0 = 1.25 1/m), 0.23 from
+// 6.625 mm on (flank point, A0 = 0.36, B0 = 38.5 1/m). The virtual overlap eps dz cos g - gap of
+// the root part of the patch halves at the jump, so the approach must roughly double before the
+// root carries the load again. Fix (not done): eps from the patch (e.g. the curvatures at its
+// weighted reference) rather than from the rigid point; until then the step is a model defect.
 TEST(TwoPoint, DISABLED_FlangeOnsetContinuityStripes) {
   for (const Variant& v : variants_named({"stripes-a/shift", "stripes-a/clip", "stripes-ab/shift",
                                           "stripes-ab/clip"}))
