@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/check.hpp"
@@ -14,6 +15,7 @@
 #include "generate.hpp"
 #include "lookup_contact_model.hpp"
 #include "scene.hpp"
+#include "simulation_run.hpp"
 #include "simulation_scene.hpp"
 #include "vehicle/wheelset_model.hpp"
 
@@ -167,6 +169,46 @@ TEST_F(SimulateTest, LookupAndDirectAgreeAtAGridNode) {
     EXPECT_GE(loaded, 2);
   }
   EXPECT_EQ(direct_model.failures(), 0u);
+}
+
+// The whole loop on a short route: two wear steps (table, run, wear, worn profile, next table).
+TEST_F(SimulateTest, RunWritesEveryStepAndTheWornProfileFeedsTheNextStep) {
+  std::ofstream(*dir_ / "sim.toml") << "[simulation]\nname = \"short\"\ncontact_scene = \"scene.toml\"\n"
+                                        "models = [\"hertz\"]\npositions = [\"leading\", \"trailing\"]\n"
+                                        "speed = 20.0\nwear_steps = 2\nrunning_distance = 1.0e6\n"
+                                        "profile_smoothing = 0.004\n"
+                                        "[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 20.0\n"
+                                        "[[route.section]]\nkind = \"transition\"\nlength = 20.0\n"
+                                        "[[route.section]]\nkind = \"circular\"\nlength = 20.0\nradius = 1000.0\n";
+  const SimulationScene sim = load_simulation_scene(*dir_ / "sim.toml");
+  SimulationOptions options;
+  options.out = *dir_ / "out";
+  options.threads = 2;
+  const SimulationSummary summary = run_simulation(sim, options);
+  ASSERT_EQ(summary.models.size(), 1u);
+  const ModelSummary& m = summary.models[0];
+  ASSERT_EQ(m.steps.size(), 2u);
+  for (const StepSummary& step : m.steps) {
+    SCOPED_TRACE(testing::Message() << "step " << step.step);
+    EXPECT_GT(step.worn_area, 0.0);
+    EXPECT_TRUE(std::isfinite(step.worn_area));
+    ASSERT_EQ(step.runs.size(), 2u);
+    for (const RunSummary& r : step.runs) {
+      EXPECT_NEAR(r.distance, 60.0, 0.02);
+      EXPECT_EQ(r.out_of_range, 0u);
+      EXPECT_EQ(r.wear_failures, 0);
+      EXPECT_LT(r.max_creep_force_ratio, 1.0 + 1e-9);
+    }
+  }
+  EXPECT_NEAR(m.steps[1].cumulative_worn_area, m.steps[0].worn_area + m.steps[1].worn_area,
+              1e-12 * m.steps[1].cumulative_worn_area);
+  const fs::path out = *dir_ / "out" / "short" / "hertz";
+  EXPECT_TRUE(fs::exists(out / "step0" / "table.h5"));
+  EXPECT_TRUE(fs::exists(out / "step1" / "wheel_worn.txt"));
+  // Step 1 ran on the worn wheel written by step 0.
+  EXPECT_EQ(load_scene(out / "step1" / "scene.toml").wheel.file.filename(), "wheel_worn.txt");
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(*dir_ / "out" / "short" / "summary.json"));
+  EXPECT_NEAR(j["models"][0]["total_worn_area_m2"].get<double>(), m.steps[1].cumulative_worn_area, 1e-15);
 }
 
 // A minimal valid simulation scene; `extra` is appended to [simulation].
