@@ -370,6 +370,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
       log_line(options, fmt::format("{} {} step {}: worn area {:.4f} mm2 (cumulative {:.4f} mm2 after {:.0f} km)", sim.name,
                                     model, k, step.worn_area * 1e6, step.cumulative_worn_area * 1e6,
                                     step_distance * (k + 1) / 1e3));
+      ms.step_cumulative_depth.push_back(cumulative);
       ms.steps.push_back(std::move(step));
       ms.u = u;
     }
@@ -426,6 +427,16 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   try {
     draw_wear_chart(final_series, summary.directory / "wear.png",
                     fmt::format("{}: radial wear after {:.0f} km", sim.name, sim.running_distance / 1e3));
+    // The evolution: every model after each wear step.
+    for (int k = 0; k + 1 < sim.wear_steps; ++k) {
+      std::vector<WearSeries> series;
+      for (const ModelSummary& m : summary.models) {
+        series.push_back({m.model, m.u, m.step_cumulative_depth[static_cast<std::size_t>(k)],
+                          m.model.rfind("stripes", 0) == 0});
+      }
+      draw_wear_chart(series, summary.directory / fmt::format("wear_step{}.png", k),
+                      fmt::format("{}: radial wear after {:.0f} km", sim.name, step_distance * (k + 1) / 1e3));
+    }
   } catch (const Error& e) {
     log_line(options, fmt::format("warning: no chart: {}", e.what()));  // the CSVs are written
   }

@@ -62,6 +62,7 @@ struct ModelSummary {
   std::vector<StepSummary> steps;
   std::vector<double> u;                   // wear bin centres [m]
   std::vector<double> cumulative_depth;    // radial depth after the last step, mean [m]
+  std::vector<std::vector<double>> step_cumulative_depth;  // after each step (steps x bins) [m]
   // Where the wear sits (flange at negative u): depth-weighted mean u and the deepest bin.
   double centroid_u = 0.0;                 // [m]
   double peak_u = 0.0;                     // [m]
