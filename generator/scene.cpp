@@ -12,164 +12,25 @@
 #include <optional>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "core/check.hpp"
+#include "toml_section.hpp"
 
 namespace railtab {
 namespace {
 
 constexpr std::size_t kMaxAxisPoints = 1'000'000;  // guards against a range with a tiny step
 
-// Where a key sits in the file, for messages.
-struct Context {
-  std::string file;  // file name as given to the parser
-};
+using scene_toml::Context;
+using scene_toml::fail;
+using scene_toml::join;
+using scene_toml::non_negative;
+using scene_toml::positive;
+using scene_toml::Section;
+using scene_toml::section;
+using scene_toml::type_name;
 
-[[noreturn]] void fail(const Context& ctx, const toml::source_region& where, const std::string& key,
-                       const std::string& message) {
-  if (where.begin.line > 0) {
-    throw Error(fmt::format("{}:{}: {}: {}", ctx.file, where.begin.line, key, message));
-  }
-  throw Error(fmt::format("{}: {}: {}", ctx.file, key, message));
-}
-
-const char* type_name(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::table: return "table";
-    case toml::node_type::array: return "array";
-    case toml::node_type::string: return "string";
-    case toml::node_type::integer: return "integer";
-    case toml::node_type::floating_point: return "float";
-    case toml::node_type::boolean: return "boolean";
-    default: return "date/time";
-  }
-}
-
-std::string join(const std::vector<std::string>& words) {
-  std::string out;
-  for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
-  return out;
-}
-
-// One TOML table with a fixed list of allowed keys. Accessors record which keys were read;
-// finish() reports the first key that nobody asked for.
-class Section {
- public:
-  Section(const Context& ctx, std::string name, const toml::table* table,
-          std::vector<std::string> allowed)
-      : ctx_(ctx), name_(std::move(name)), table_(table), allowed_(std::move(allowed)) {
-    if (!table_) return;
-    for (auto&& [key, node] : *table_) {
-      if (std::find(allowed_.begin(), allowed_.end(), key.str()) == allowed_.end()) {
-        fail(ctx_, key.source(), dotted(std::string(key.str())),
-             fmt::format("unknown key (known keys: {})", join(allowed_)));
-      }
-    }
-  }
-
-  bool present() const { return table_ != nullptr; }
-  bool has(const std::string& key) const { return table_ && table_->get(key) != nullptr; }
-  const toml::node* node(const std::string& key) const { return table_ ? table_->get(key) : nullptr; }
-  std::string dotted(const std::string& key) const { return name_ + "." + key; }
-  const Context& context() const { return ctx_; }
-
-  const toml::node& required(const std::string& key) const {
-    const toml::node* n = node(key);
-    if (!n) {
-      fail(ctx_, table_ ? table_->source() : toml::source_region{}, dotted(key),
-           table_ ? "missing required key" : fmt::format("missing required key (no [{}] section)", name_));
-    }
-    return *n;
-  }
-
-  double number(const toml::node& n, const std::string& key) const {
-    double value = 0.0;
-    if (auto i = n.as_integer()) {
-      value = static_cast<double>(i->get());
-    } else if (auto f = n.as_floating_point()) {
-      value = f->get();
-    } else {
-      fail(ctx_, n.source(), dotted(key), fmt::format("expected a number, got {}", type_name(n)));
-    }
-    if (!std::isfinite(value)) fail(ctx_, n.source(), dotted(key), "value is not finite");
-    return value;
-  }
-
-  // Optional number; `check` is a predicate on the value with its description for the message.
-  double number(const std::string& key, double fallback, bool (*check)(double) = nullptr,
-                const char* requirement = "") const {
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    double value = number(*n, key);
-    if (check && !check(value)) fail(ctx_, n->source(), dotted(key), fmt::format("must be {}", requirement));
-    return value;
-  }
-
-  int integer(const std::string& key, int fallback, int min_value) const {
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    auto i = n->as_integer();
-    if (!i) fail(ctx_, n->source(), dotted(key), fmt::format("expected an integer, got {}", type_name(*n)));
-    if (i->get() < min_value || i->get() > 1'000'000) {
-      fail(ctx_, n->source(), dotted(key), fmt::format("must be an integer >= {}", min_value));
-    }
-    return static_cast<int>(i->get());
-  }
-
-  bool boolean(const std::string& key, bool fallback) const {
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    auto b = n->as_boolean();
-    if (!b) fail(ctx_, n->source(), dotted(key), fmt::format("expected true or false, got {}", type_name(*n)));
-    return b->get();
-  }
-
-  std::string string(const toml::node& n, const std::string& key) const {
-    auto s = n.as_string();
-    if (!s) fail(ctx_, n.source(), dotted(key), fmt::format("expected a string, got {}", type_name(n)));
-    return s->get();
-  }
-
-  std::optional<std::string> string(const std::string& key) const {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    return string(*n, key);
-  }
-
-  // Run a parser of a string value (e.g. parse_normal_model), turning its Error into one that
-  // names the file, line and key.
-  template <class Parse>
-  auto parse_string(const std::string& key, Parse parse) const -> std::optional<decltype(parse(""))> {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    std::string text = string(*n, key);
-    try {
-      return parse(text);
-    } catch (const Error& e) {
-      fail(ctx_, n->source(), dotted(key), e.what());
-    }
-  }
-
- private:
-  const Context& ctx_;
-  std::string name_;
-  const toml::table* table_;
-  std::vector<std::string> allowed_;
-};
-
-bool positive(double v) { return v > 0.0; }
-bool non_negative(double v) { return v >= 0.0; }
 bool fraction(double v) { return v >= 0.0 && v < 0.5; }
-
-Section section(const Context& ctx, const toml::table& root, const std::string& name,
-                std::vector<std::string> allowed) {
-  const toml::node* n = root.get(name);
-  if (n && !n->is_table()) {
-    fail(ctx, n->source(), name, fmt::format("expected a table [{}], got {}", name, type_name(*n)));
-  }
-  return Section(ctx, name, n ? n->as_table() : nullptr, std::move(allowed));
-}
 
 // "1:40" -> 0.025; a number is the tangent itself.
 double parse_inclination(const Section& s, const toml::node& n) {

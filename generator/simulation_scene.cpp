@@ -1,6 +1,6 @@
 // Simulation scenes: TOML (toml++) into a SimulationScene. As in scene.cpp every key is checked
-// against its section's list, so a typo is an error naming file, line and dotted key; the small
-// helpers are local because scene.cpp keeps its own private.
+// against its section's list, so a typo is an error naming file, line and dotted key; the
+// checked reading is generator/toml_section.hpp, shared with scene.cpp.
 #include "simulation_scene.hpp"
 
 #include <fmt/format.h>
@@ -9,127 +9,20 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "core/check.hpp"
 #include "normal/normal_model.hpp"
+#include "toml_section.hpp"
 
 namespace railtab {
 namespace {
 
-[[noreturn]] void fail(const std::string& file, const toml::source_region& where, const std::string& key,
-                       const std::string& message) {
-  if (where.begin.line > 0) throw Error(fmt::format("{}:{}: {}: {}", file, where.begin.line, key, message));
-  throw Error(fmt::format("{}: {}: {}", file, key, message));
-}
-
-// One TOML table with its allowed keys; every accessor names file, line and dotted key on error.
-class Keys {
- public:
-  Keys(const std::string& file, std::string name, const toml::table* table, const std::vector<std::string>& allowed)
-      : file_(file), name_(std::move(name)), table_(table) {
-    if (!table_) return;
-    for (auto&& [key, node] : *table_) {
-      if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
-      std::string known;
-      for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
-      fail(file_, key.source(), dotted(std::string(key.str())), fmt::format("unknown key (known keys: {})", known));
-    }
-  }
-
-  std::string dotted(const std::string& key) const { return name_ + "." + key; }
-  const toml::node* node(const std::string& key) const { return table_ ? table_->get(key) : nullptr; }
-
-  const toml::node& required(const std::string& key) const {
-    const toml::node* n = node(key);
-    if (!n) {
-      fail(file_, table_ ? table_->source() : toml::source_region{}, dotted(key),
-           table_ ? "missing required key" : fmt::format("missing required key (no [{}] section)", name_));
-    }
-    return *n;
-  }
-
-  double number(const toml::node& n, const std::string& key) const {
-    double value = 0.0;
-    if (auto i = n.as_integer()) {
-      value = static_cast<double>(i->get());
-    } else if (auto f = n.as_floating_point()) {
-      value = f->get();
-    } else {
-      fail(file_, n.source(), dotted(key), "expected a number");
-    }
-    if (!std::isfinite(value)) fail(file_, n.source(), dotted(key), "value is not finite");
-    return value;
-  }
-
-  // A number with a range check; `required` or with a fallback when absent.
-  double number(const std::string& key, double fallback, bool (*ok)(double), const char* requirement,
-                bool is_required = false) const {
-    const toml::node* n = is_required ? &required(key) : node(key);
-    if (!n) return fallback;
-    const double v = number(*n, key);
-    if (!ok(v)) fail(file_, n->source(), dotted(key), fmt::format("must be {}, got {}", requirement, v));
-    return v;
-  }
-
-  int integer(const std::string& key, int fallback, int min_value, int max_value) const {
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    auto i = n->as_integer();
-    if (!i) fail(file_, n->source(), dotted(key), "expected an integer");
-    if (i->get() < min_value || i->get() > max_value) {
-      fail(file_, n->source(), dotted(key), fmt::format("must be an integer in [{}, {}]", min_value, max_value));
-    }
-    return static_cast<int>(i->get());
-  }
-
-  std::string string(const toml::node& n, const std::string& key) const {
-    auto s = n.as_string();
-    if (!s) fail(file_, n.source(), dotted(key), "expected a string");
-    return s->get();
-  }
-
-  // A non-empty list of strings, each passed to `check` (which throws railtab::Error).
-  template <class Check>
-  std::vector<std::string> strings(const std::string& key, std::vector<std::string> fallback, Check check) const {
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    const toml::array* a = n->as_array();
-    if (!a || a->empty()) fail(file_, n->source(), dotted(key), "expected a non-empty list of strings");
-    std::vector<std::string> out;
-    for (const toml::node& e : *a) {
-      std::string text = string(e, key);
-      try {
-        check(text);
-      } catch (const Error& err) {
-        fail(file_, e.source(), dotted(key), err.what());
-      }
-      if (std::find(out.begin(), out.end(), text) != out.end()) {
-        fail(file_, e.source(), dotted(key), fmt::format("'{}' is listed twice", text));
-      }
-      out.push_back(std::move(text));
-    }
-    return out;
-  }
-
-  const toml::source_region source() const { return table_ ? table_->source() : toml::source_region{}; }
-
- private:
-  const std::string& file_;
-  std::string name_;
-  const toml::table* table_;
-};
-
-bool positive(double v) { return v > 0.0; }
-bool non_negative(double v) { return v >= 0.0; }
-
-const toml::table* table_at(const std::string& file, const toml::table& parent, const std::string& key,
-                            const std::string& dotted) {
-  const toml::node* n = parent.get(key);
-  if (!n) return nullptr;
-  if (!n->is_table()) fail(file, n->source(), dotted, "expected a table");
-  return n->as_table();
-}
+using scene_toml::Context;
+using scene_toml::fail;
+using scene_toml::non_negative;
+using scene_toml::positive;
+using scene_toml::Section;
+using scene_toml::table_at;
 
 // A route section as written, before transitions are resolved.
 struct RawSection {
@@ -139,7 +32,7 @@ struct RawSection {
   double cant = 0.0;         // circular: [m]
 };
 
-std::vector<vehicle::TrackSection> resolve_transitions(const std::string& file, const std::vector<RawSection>& raw,
+std::vector<vehicle::TrackSection> resolve_transitions(const Context& file, const std::vector<RawSection>& raw,
                                                        const toml::source_region& where) {
   std::vector<vehicle::TrackSection> out;
   for (std::size_t i = 0; i < raw.size(); ++i) {
@@ -163,12 +56,12 @@ std::vector<vehicle::TrackSection> resolve_transitions(const std::string& file, 
   return out;
 }
 
-void parse_vehicle(const std::string& file, const toml::table& root, vehicle::WheelsetParameters& v) {
+void parse_vehicle(const Context& file, const toml::table& root, vehicle::WheelsetParameters& v) {
   static const std::vector<std::string> kKeys{
       "mass", "yaw_inertia", "carried_mass", "cg_height", "primary_lateral_stiffness",
       "primary_longitudinal_stiffness", "primary_lateral_damping", "axlebox_semi_spacing", "semi_wheelbase",
       "nominal_radius", "running_circle_q", "gravity"};
-  Keys k(file, "vehicle", table_at(file, root, "vehicle", "vehicle"), kKeys);
+  Section k(file, "vehicle", table_at(file, root, "vehicle", "vehicle"), kKeys);
   const char* kPositive = "> 0";
   v.mass = k.number("mass", v.mass, positive, kPositive);
   v.yaw_inertia = k.number("yaw_inertia", v.yaw_inertia, positive, kPositive);
@@ -186,9 +79,9 @@ void parse_vehicle(const std::string& file, const toml::table& root, vehicle::Wh
   v.gravity = k.number("gravity", v.gravity, positive, kPositive);
 }
 
-void parse_route(const std::string& file, const toml::table& root, SimulationScene& scene) {
+void parse_route(const Context& file, const toml::table& root, SimulationScene& scene) {
   const toml::table* route = table_at(file, root, "route", "route");
-  Keys k(file, "route", route, {"rail_centre_distance", "section", "irregularity"});
+  Section k(file, "route", route, {"rail_centre_distance", "section", "irregularity"});
   if (!route) fail(file, {}, "route", "missing required section [route]");
   scene.rail_centre_distance = k.number("rail_centre_distance", 1.5, positive, "> 0");
 
@@ -201,7 +94,7 @@ void parse_route(const std::string& file, const toml::table& root, SimulationSce
   for (std::size_t i = 0; i < list->size(); ++i) {
     const toml::table& t = *list->get(i)->as_table();
     const std::string name = fmt::format("route.section[{}]", i + 1);
-    Keys s(file, name, &t, {"kind", "length", "radius", "cant"});
+    Section s(file, name, &t, {"kind", "length", "radius", "cant"});
     RawSection r;
     r.kind = s.string(s.required("kind"), "kind");
     if (r.kind != "tangent" && r.kind != "transition" && r.kind != "circular") {
@@ -224,7 +117,7 @@ void parse_route(const std::string& file, const toml::table& root, SimulationSce
   }
   scene.route = resolve_transitions(file, raw, sections.source());
 
-  Keys irr(file, "route.irregularity", table_at(file, *route, "irregularity", "route.irregularity"),
+  Section irr(file, "route.irregularity", table_at(file, *route, "irregularity", "route.irregularity"),
            {"amplitude", "wavelength_min", "wavelength_max", "components", "seed"});
   vehicle::Irregularity& g = scene.irregularity;
   g.amplitude = irr.number("amplitude", 0.0, [](double v) { return v >= 0.0 && v <= 0.02; }, "in [0, 0.02] m");
@@ -257,14 +150,15 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
   for (auto&& [key, node] : root) {
     const std::string k(key.str());
     if (k != "simulation" && k != "vehicle" && k != "route") {
-      fail(source_name, key.source(), k, "unknown section (known sections: simulation, vehicle, route)");
+      fail(Context{source_name}, key.source(), k, "unknown section (known sections: simulation, vehicle, route)");
     }
   }
 
+  const Context file{source_name};
   SimulationScene scene;
-  const toml::table* sim = table_at(source_name, root, "simulation", "simulation");
-  if (!sim) fail(source_name, {}, "simulation", "missing required section [simulation]");
-  Keys k(source_name, "simulation", sim,
+  const toml::table* sim = table_at(file, root, "simulation", "simulation");
+  if (!sim) fail(file, {}, "simulation", "missing required section [simulation]");
+  Section k(file, "simulation", sim,
          {"name", "description", "contact_scene", "models", "positions", "speed", "time_step", "initial_y",
           "wear_steps", "running_distance", "lubrication_factor", "profile_smoothing", "trajectory_interval"});
   scene.name = k.node("name") ? k.string(*k.node("name"), "name")
@@ -274,7 +168,7 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
   const toml::node& contact = k.required("contact_scene");
   scene.contact_scene = base_dir / k.string(contact, "contact_scene");
   if (!std::filesystem::is_regular_file(scene.contact_scene)) {
-    fail(source_name, contact.source(), "simulation.contact_scene",
+    fail(file, contact.source(), "simulation.contact_scene",
          fmt::format("no such file: {}", scene.contact_scene.string()));
   }
   scene.models = k.strings("models", {}, [](const std::string& m) { parse_normal_model(m); });
@@ -291,8 +185,8 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
   scene.profile_smoothing = k.number("profile_smoothing", 0.0, non_negative, ">= 0 m");
   scene.trajectory_interval = k.number("trajectory_interval", scene.trajectory_interval, positive, "> 0 m");
 
-  parse_vehicle(source_name, root, scene.vehicle);
-  parse_route(source_name, root, scene);
+  parse_vehicle(file, root, scene.vehicle);
+  parse_route(file, root, scene);
   return scene;
 }
 
