@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -248,13 +247,7 @@ ProfileSource parse_profile(const Section& s, const std::string& key, const std:
 Scene parse_scene(std::string_view toml_text, const std::string& source_name,
                   const std::filesystem::path& base_dir) {
   Context ctx{source_name};
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw Error(fmt::format("{}:{}:{}: TOML syntax error: {}", source_name, e.source().begin.line,
-                            e.source().begin.column, e.description()));
-  }
+  const toml::table root = scene_toml::parse(toml_text, source_name);
 
   static const std::vector<std::string> kSections{"scene", "profiles", "track", "wheelset", "geometry",
                                                   "material", "contact", "wear", "grid",
@@ -385,12 +378,7 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
 }
 
 Scene load_scene(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  RAILTAB_CHECK(in.good(), "{}: cannot open scene file", path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  RAILTAB_CHECK(!in.bad(), "{}: cannot read scene file", path.string());
-  Scene scene = parse_scene(text.str(), path.string(), path.parent_path());
+  Scene scene = parse_scene(scene_toml::read_text(path, "scene file"), path.string(), path.parent_path());
   scene.path = path;
   return scene;
 }

@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "core/check.hpp"
 #include "normal/normal_model.hpp"
@@ -140,13 +138,7 @@ double SimulationScene::route_length() const {
 
 SimulationScene parse_simulation_scene(std::string_view toml_text, const std::string& source_name,
                                        const std::filesystem::path& base_dir) {
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw Error(fmt::format("{}:{}:{}: TOML syntax error: {}", source_name, e.source().begin.line,
-                            e.source().begin.column, e.description()));
-  }
+  const toml::table root = scene_toml::parse(toml_text, source_name);
   for (auto&& [key, node] : root) {
     const std::string k(key.str());
     if (k != "simulation" && k != "vehicle" && k != "route") {
@@ -191,12 +183,8 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
 }
 
 SimulationScene load_simulation_scene(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  RAILTAB_CHECK(in.good(), "{}: cannot open simulation scene", path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  RAILTAB_CHECK(!in.bad(), "{}: cannot read simulation scene", path.string());
-  SimulationScene scene = parse_simulation_scene(text.str(), path.string(), path.parent_path());
+  SimulationScene scene =
+      parse_simulation_scene(scene_toml::read_text(path, "simulation scene"), path.string(), path.parent_path());
   scene.path = path;
   return scene;
 }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 namespace railtab::scene_toml {
 
@@ -121,6 +123,24 @@ const toml::table* table_at(const Context& ctx, const toml::table& parent, const
     fail(ctx, n->source(), dotted_name, fmt::format("expected a table [{}], got {}", dotted_name, type_name(*n)));
   }
   return n->as_table();
+}
+
+std::string read_text(const std::filesystem::path& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  RAILTAB_CHECK(in.good(), "{}: cannot open {}", path.string(), what);
+  std::ostringstream text;
+  text << in.rdbuf();
+  RAILTAB_CHECK(!in.bad(), "{}: cannot read {}", path.string(), what);
+  return text.str();
+}
+
+toml::table parse(std::string_view text, const std::string& source_name) {
+  try {
+    return toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw Error(fmt::format("{}:{}:{}: TOML syntax error: {}", source_name, e.source().begin.line,
+                            e.source().begin.column, e.description()));
+  }
 }
 
 Section section(const Context& ctx, const toml::table& root, const std::string& name,

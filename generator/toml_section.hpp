@@ -3,6 +3,7 @@
 // names the file, the line and the dotted key ("bad.toml:12: grid.load: must be > 0, got -1").
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,6 +72,11 @@ class Section {
 // The table `key` of `parent` (nullptr when absent; an error naming `dotted_name` when not a table).
 const toml::table* table_at(const Context& ctx, const toml::table& parent, const std::string& key,
                             const std::string& dotted_name);
+// The whole text of a scene file; `what` names the kind of file in the error ("scene file").
+std::string read_text(const std::filesystem::path& path, const char* what);
+// Parses TOML text; a syntax error names the file, line and column.
+toml::table parse(std::string_view text, const std::string& source_name);
+
 // Section `name` of the file's root table.
 Section section(const Context& ctx, const toml::table& root, const std::string& name,
                 std::vector<std::string> allowed);
