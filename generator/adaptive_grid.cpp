@@ -236,10 +236,13 @@ namespace slot_bits {
 constexpr std::uint32_t kGeometry = 1u << 0;       // a geometric point in the slot
 constexpr std::uint32_t kGeometryTwo = 1u << 1;    // two points competed for the slot
 constexpr std::uint32_t kLoaded = 1u << 2;         // a loaded patch in the slot
-constexpr std::uint32_t kPatchTwo = 1u << 3;       // two patches competed for the slot
+constexpr std::uint32_t kPatchDropped = 1u << 3;   // a third patch was dropped from the slot (its load is missing)
 constexpr std::uint32_t kFailed = 1u << 4;         // the core threw
 constexpr std::uint32_t kGeometryFirst = 1u << 5;  // of two points in the slot, the kept one has the smaller wheel u
-constexpr std::uint32_t kPatchFirst = 1u << 6;     // of two patches in the slot, the kept one has the smaller band s
+// A slot's values are the sum of its up to two patches (slot_normal, slot_creep), so a second patch
+// appearing in a slot with ~0 load is continuous and carries no marker; a patch moving between the
+// slots (its angle crossing flange_angle) shows as kLoaded changing when it enters or leaves an
+// empty slot, else as an error at min_step (an unmet interval).
 }  // namespace slot_bits
 }  // namespace
 
@@ -311,20 +314,9 @@ std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> ContactProbe::evalu
         continue;
       }
       for (std::size_t s = 0; s < kSlots; ++s) {
-        if (patch_slots.extra[s]) loaded.slot[s].status |= slot_bits::kPatchTwo;
-        if (patch_slots.patch[s] < 0) continue;
-        const ContactPatch& patch = normal.patches[static_cast<std::size_t>(patch_slots.patch[s])];
-        if (patch_slots.extra[s]) {  // which of the competing patches is kept
-          bool first = true;
-          for (std::size_t q = 0; q < normal.patches.size(); ++q) {
-            if (static_cast<int>(q) == patch_slots.patch[s]) continue;
-            if (normal.patches[q].band_s < patch.band_s &&
-                (outward_sign(side) * normal.patches[q].contact_angle > k.solver.settings().flange_angle) == (s == 1)) {
-              first = false;
-            }
-          }
-          if (first) loaded.slot[s].status |= slot_bits::kPatchFirst;
-        }
+        if (patch_slots.dropped[s] > 0) loaded.slot[s].status |= slot_bits::kPatchDropped;
+        if (!patch_slots.occupied(s)) continue;
+        const ContactPatch patch = slot_normal(normal, patch_slots, s);  // as the table stores it
         if (!(patch.normal_force > 0.0)) continue;
         loaded.slot[s].loaded = true;
         loaded.slot[s].status |= slot_bits::kLoaded;
@@ -337,11 +329,10 @@ std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> ContactProbe::evalu
         Wheel w = loaded;
         for (std::size_t s = 0; s < kSlots; ++s) {
           if (!w.slot[s].loaded) continue;
-          const ContactPatch& patch = normal.patches[static_cast<std::size_t>(patch_slots.patch[s])];
           try {
             const auto& c = creepages[ic];
-            FastsimResult r =
-                fastsim_contact(geometry, patch, Creepage{c[0], c[1], c[2]}, k.creep, k.material, k.fastsim, workspace);
+            const FastsimResult r = slot_creep(geometry, normal, patch_slots, s, Creepage{c[0], c[1], c[2]}, k.creep,
+                                               k.material, k.fastsim, workspace);
             w.slot[s].fx = r.fx;
             w.slot[s].fy = r.fy;
           } catch (const std::exception&) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -101,25 +102,27 @@ struct KernelData {
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
 
-// Creep forces and wear of one loaded patch over the creepage grid, into the cells of load il.
-void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, const ContactPatch& patch,
-                 const ColumnState& state, std::size_t wheel, std::size_t il, std::size_t slot, StatusBits extra,
-                 ColumnOutput& out) {
+// Creep forces and wear of one slot's loaded patches (summed, slot_creep) over the creepage grid,
+// into the cells of load il.
+void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                 const PatchSlots& slots, const ColumnState& state, std::size_t wheel, std::size_t il,
+                 std::size_t slot, ColumnOutput& out) {
   FastsimWorkspace& workspace = thread_fastsim_workspace();
   thread_local WearDistribution distribution;
+  const StatusBits extra = slots.extra[slot];
   std::size_t c = il * k.creepages();
   for (double xi : k.grids.xi) {
     for (double eta : k.grids.eta) {
       for (double phi : k.grids.phi) {
         const std::size_t cell = c++ * kSlots + slot;
         try {
-          FastsimResult creep = fastsim_contact(geometry, patch, Creepage{xi, eta, phi}, k.creep, k.material,
-                                                k.fastsim, workspace);
+          SlotWear wear{k.wear, distribution, {}};
+          FastsimResult creep = slot_creep(geometry, normal, slots, slot, Creepage{xi, eta, phi}, k.creep,
+                                           k.material, k.fastsim, workspace, &wear);
           store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
           out.status(wheel, kCreepPart)[cell] = creep.status | extra;
-          WearResult wear = archard_wear(workspace, k.wear, distribution);
-          store(kWearOutputs, wear, out, wheel, kWearPart, cell);
-          out.status(wheel, kWearPart)[cell] = wear.status | extra;
+          store(kWearOutputs, wear.result, out, wheel, kWearPart, cell);
+          out.status(wheel, kWearPart)[cell] = wear.result.status | extra;
         } catch (const std::exception& e) {
           out.failure(fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
                                   to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi, e.what()));
@@ -180,11 +183,11 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     const StatusBits solver_bits = normal.status & (status::kConverged | status::kNotConverged);
     const PatchSlots patch_slots = assign_patch_slots(normal, side, k.solver.settings().flange_angle);
     for (std::size_t s = 0; s < kSlots; ++s) {
-      if (patch_slots.patch[s] < 0) continue;  // no loaded patch in this slot: zeros, status 0
-      const ContactPatch& patch = normal.patches[static_cast<std::size_t>(patch_slots.patch[s])];
+      if (!patch_slots.occupied(s)) continue;  // no loaded patch in this slot: zeros, status 0
+      const ContactPatch patch = slot_normal(normal, patch_slots, s);  // the sum of the slot's patches
       store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
       out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | patch_slots.extra[s];
-      // Creep and wear on top of this normal result; an unloaded patch has none (zeros, lift_off).
+      // Creep and wear on top of this normal result; an unloaded slot has none (zeros, lift_off).
       if (!(patch.normal_force > 0.0)) {
         const std::size_t per_load = k.creepages();
         for (std::size_t c = il * per_load; c < (il + 1) * per_load; ++c) {
@@ -193,7 +196,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
         }
         continue;
       }
-      solve_creep(k, geometry, patch, state, wheel, il, s, patch_slots.extra[s], out);
+      solve_creep(k, geometry, normal, patch_slots, state, wheel, il, s, out);
     }
   }
 }
@@ -202,21 +205,85 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
 
 PatchSlots assign_patch_slots(const WheelNormalResult& normal, Side side, double flange_angle) {
   PatchSlots a;
+  auto force = [&](int i) { return normal.patches[static_cast<std::size_t>(i)].normal_force; };
   for (std::size_t i = 0; i < normal.patches.size(); ++i) {
     const ContactPatch& patch = normal.patches[i];
     const double angle_side = outward_sign(side) * patch.contact_angle;
     const std::size_t slot = angle_side > flange_angle ? 1 : 0;
-    int& current = a.patch[slot];
-    if (current < 0) {
-      current = static_cast<int>(i);
+    int(&kept)[kPatchesPerSlot] = a.patch[slot];
+    const int index = static_cast<int>(i);
+    if (kept[0] < 0) {
+      kept[0] = index;
       continue;
     }
     a.extra[slot] |= status::kTwoPoint;
-    if (patch.normal_force > normal.patches[static_cast<std::size_t>(current)].normal_force) {
-      current = static_cast<int>(i);
+    if (kept[1] >= 0) ++a.dropped[slot];  // a third patch: the one with the smallest force goes
+    if (patch.normal_force > force(kept[0])) {
+      kept[1] = kept[0];
+      kept[0] = index;
+    } else if (kept[1] < 0 || patch.normal_force > force(kept[1])) {
+      kept[1] = index;
     }
   }
   return a;
+}
+
+ContactPatch slot_normal(const WheelNormalResult& normal, const PatchSlots& slots, std::size_t slot) {
+  RAILTAB_CHECK(slot < kSlots && slots.occupied(slot), "slot_normal: slot {} holds no patch", slot);
+  ContactPatch sum = normal.patches[static_cast<std::size_t>(slots.patch[slot][0])];
+  const int second = slots.patch[slot][1];
+  if (second < 0) return sum;
+  const ContactPatch& q = normal.patches[static_cast<std::size_t>(second)];
+  sum.normal_force += q.normal_force;
+  sum.area += q.area;
+  sum.max_pressure = std::max(sum.max_pressure, q.max_pressure);
+  sum.status |= q.status;
+  return sum;
+}
+
+FastsimResult slot_creep(const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                         const PatchSlots& slots, std::size_t slot, const Creepage& creepage,
+                         const CreepConditions& conditions, const Material& material, const FastsimOptions& options,
+                         FastsimWorkspace& workspace, SlotWear* wear) {
+  RAILTAB_CHECK(slot < kSlots, "slot_creep: slot {} of {}", slot, kSlots);
+  FastsimResult total;
+  WearResult worn;
+  double area = 0.0, slip_area = 0.0, seizure_volume = 0.0;
+  int loaded = 0;
+  for (int ip : slots.patch[slot]) {
+    if (ip < 0) continue;
+    const ContactPatch& patch = normal.patches[static_cast<std::size_t>(ip)];
+    if (!(patch.normal_force > 0.0)) continue;
+    const FastsimResult r = fastsim_contact(geometry, patch, creepage, conditions, material, options, workspace);
+    WearResult w;
+    if (wear) w = archard_wear(workspace, wear->options, wear->distribution);
+    area += patch.area;
+    slip_area += r.slip_fraction * patch.area;
+    seizure_volume += w.seizure_fraction * w.volume_rate;
+    if (loaded++ == 0) {  // one patch: its results unchanged
+      total = r;
+      worn = w;
+      continue;
+    }
+    total.fx += r.fx;
+    total.fy += r.fy;
+    total.mz += r.mz;
+    total.normal_force += r.normal_force;
+    total.frictional_work += r.frictional_work;
+    total.slip_fraction = area > 0.0 ? slip_area / area : std::max(total.slip_fraction, r.slip_fraction);
+    total.status |= r.status;
+    worn.wear_rate += w.wear_rate;
+    worn.volume_rate += w.volume_rate;
+    worn.max_depth_rate = std::max(worn.max_depth_rate, w.max_depth_rate);
+    worn.seizure_fraction = worn.volume_rate > 0.0 ? seizure_volume / worn.volume_rate : 0.0;
+    worn.status |= w.status;
+  }
+  if (loaded == 0) {
+    total.status = status::kConverged | status::kLiftOff;
+    worn.status = status::kConverged | status::kLiftOff;
+  }
+  if (wear) wear->result = worn;
+  return total;
 }
 
 SlotAssignment assign_slots(const WheelContactGeometry& geometry) {

@@ -27,8 +27,9 @@ void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels]
     const Side side = w == 0 ? Side::left : Side::right;
     for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
       contacts[w].slot[slot] = {};
-      patch_[w][slot] = -1;
+      loaded_[w][slot] = false;
     }
+    patches_[w] = {};
     try {
       if (!roll_ok) throw Error("no equilibrium roll");
       geometry_[w] = solver_.solve_wheel(side, WheelsetState{y, roll});
@@ -39,19 +40,20 @@ void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels]
       continue;
     }
     const SlotAssignment points = assign_slots(geometry_[w]);
-    const PatchSlots patches = assign_patch_slots(normal_[w], side, solver_.settings().flange_angle);
+    patches_[w] = assign_patch_slots(normal_[w], side, solver_.settings().flange_angle);
+    const PatchSlots& patches = patches_[w];
     const StatusBits solver_bits = normal_[w].status & (status::kConverged | status::kNotConverged);
     for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
-      const int ip = patches.patch[slot];
-      if (ip < 0) continue;
-      const ContactPatch& patch = normal_[w].patches[static_cast<std::size_t>(ip)];
+      const auto s = static_cast<std::size_t>(slot);
+      if (!patches.occupied(s)) continue;
+      const ContactPatch patch = slot_normal(normal_[w], patches, s);  // the sum of the slot's patches
       vehicle::SlotContact& out = contacts[w].slot[slot];
       out.normal_force = patch.normal_force;
       out.area = patch.area;
       out.loaded = patch.normal_force > 0.0;
       out.status = patch.status | solver_bits | patches.extra[slot];
       if (!out.loaded) continue;
-      patch_[w][slot] = ip;
+      loaded_[w][slot] = true;
       // Geometry of the slot's rigid point, as the table's geometry part holds it; a patch whose
       // point sits in the other slot takes that point (the lookup model does the same).
       int point = points.point[slot] >= 0 ? points.point[slot] : points.point[1 - slot];
@@ -76,13 +78,12 @@ void DirectContactModel::creep(const vehicle::SlotCreepage (&creepage)[vehicle::
     for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
       vehicle::SlotForces& f = forces[w][slot];
       f = {};
-      const int ip = patch_[w][slot];
-      if (ip < 0) continue;
+      if (!loaded_[w][slot]) continue;
       const vehicle::SlotCreepage& c = creepage[w][slot];
       try {
-        const FastsimResult r =
-            fastsim_contact(geometry_[w], normal_[w].patches[static_cast<std::size_t>(ip)], Creepage{c.xi, c.eta, c.phi},
-                            creep_conditions_, material_, fastsim_options_, workspace);
+        const FastsimResult r = slot_creep(geometry_[w], normal_[w], patches_[w], static_cast<std::size_t>(slot),
+                                           Creepage{c.xi, c.eta, c.phi}, creep_conditions_, material_,
+                                           fastsim_options_, workspace);
         f.fx = r.fx;
         f.fy = r.fy;
         f.mz = r.mz;

@@ -1,12 +1,14 @@
 // vehicle::ContactModel evaluating the core at every call: rigid geometry at the equilibrium
 // roll, the scene's normal model under the wheel load, FASTSIM per loaded patch. Slots and outputs
 // are mapped exactly as the table sweep maps them (contact_kernel.hpp: assign_slots for the
-// geometry, assign_patch_slots for the patches), so at a grid node it returns what the table
-// holds. The reference run of `railtab simulate --direct`.
+// geometry, assign_patch_slots for the patches, a slot's normal force/area and creep forces the sum
+// of its up to two patches by slot_normal and slot_creep), so at a grid node it returns what the
+// table holds. The reference run of `railtab simulate --direct`.
 #pragma once
 
 #include <cstdint>
 
+#include "contact_kernel.hpp"
 #include "normal/normal_model.hpp"
 #include "scene.hpp"
 #include "tangential/fastsim_contact.hpp"
@@ -35,7 +37,8 @@ class DirectContactModel final : public vehicle::ContactModel {
   FastsimOptions fastsim_options_;
   WheelContactGeometry geometry_[vehicle::kWheels];   // of the last normal() call
   WheelNormalResult normal_[vehicle::kWheels];         // of the last normal() call
-  int patch_[vehicle::kWheels][vehicle::kContactSlots] = {{-1, -1}, {-1, -1}};  // slot -> patch index
+  PatchSlots patches_[vehicle::kWheels];                // slot -> patches, of the last normal() call
+  bool loaded_[vehicle::kWheels][vehicle::kContactSlots] = {{false, false}, {false, false}};
   std::uint64_t failures_ = 0;
 };
 
