@@ -41,6 +41,14 @@ struct PointContext {
   double weight = 1.0;         // Hertz, Linder: share of its own closure the point carries when
                                //   it shares an overlap run with others (run_weights) [-]
   int run_group = -1;          // points joined by positive saddle overlap share one id (run_weights)
+  // STRIPES: points sharing a rigid overlap run are one patch (run_weights): one strip set over the
+  // run, one closure at its lead (largest penetration). -1: alone; else the lead's index in points,
+  // the run's members being order[grp_k0..grp_k1].
+  int stripes_lead = -1;
+  int grp_k0 = -1, grp_k1 = -1;
+  double sweight = 1.0;        // STRIPES run member: its run weight (as Hertz's weight) [-]
+  double sblend = 1.0;         // STRIPES run: share of the one-run patch against the per-point
+                               //   patches (0 when the run joins, 1 once the saddle is deep) [-]
   // Band samples of this point whose per-sample data is ready in the Workspace (empty: lo > hi).
   // The domains [lo, hi] of the points are disjoint, so the points share the band-sized arrays.
   int cos_lo = 0, cos_hi = -1;  // Workspace::cos_angle ready on [cos_lo, cos_hi]
@@ -52,6 +60,14 @@ struct SampleData {
   double cos_angle;  // cos of the sample's contact angle [-]
   double A;          // longitudinal curvature used for the strip length (corrected for STRIPES) [1/m]
   double q;          // STRIPES: local Hertz (b/a)^2 of the virtual ellipse [-]
+};
+
+// STRIPES closure reference: the contact condition is imposed at s with approach delta, weight w.
+struct ClosureRef {
+  double s = 0.0;       // band arc length of the reference point [m]
+  double delta = 0.0;   // true normal approach there [m]
+  double weight = 1.0;  // share of the contact condition [-]
+  double hp = 0.0;      // hertz_peak closure: p_max / (eps delta) of the point [Pa/m]
 };
 
 struct Workspace {
@@ -72,9 +88,12 @@ struct Workspace {
   std::vector<double> weight;           // band-sized scratch: overlap weight of the reference
   std::vector<double> strip_len;        // per-strip scratch: half-lengths [m]
   std::vector<double> strip_pos;        // per-strip scratch: lateral positions [m]
+  std::vector<double> strip_A;          // per-strip scratch: corrected curvature A_c [1/m]
+  std::vector<ClosureRef> refs;         // STRIPES run closure references (one per point)
   std::vector<double> log_arg;          // STRIPES Boussinesq integral: logarithm arguments (4 per
   std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]
   std::vector<double> A_int;            // band-sized scratch: running integral of A over s [1]
+  std::vector<double> A_grp;            // band-sized scratch: the same over a STRIPES run of points
   std::vector<int> order;               // points with a band sample, ascending band position
   std::vector<int> saddle;              // order[k]..order[k+1]: sample of the largest gap between
 };

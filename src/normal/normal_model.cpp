@@ -305,9 +305,12 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
     w.cosb.resize(nb);
     w.weight.resize(nb);
     w.A_int.resize(nb);
+    w.A_grp.resize(nb);
   }
   w.strip_len.resize(std::max(o.strips, 1));
   w.strip_pos.resize(std::max(o.strips, 1));
+  w.strip_A.resize(std::max(o.strips, 1));
+  w.refs.resize(std::max(np, 1));
   w.log_arg.resize(4 * std::max(o.strips, 1));
   w.log_coef.resize(4 * std::max(o.strips, 1));
 
@@ -475,6 +478,67 @@ void run_weights(const WheelContactGeometry& g, Workspace& w, double dz) {
         const double t = std::clamp(prominence / d, 0.0, 1.0);
         const double share = prominence_sum > 0.0 ? prominence / prominence_sum : 1.0 / m;
         p.weight = std::clamp(t + (1.0 - t) * share, 0.0, 1.0);
+      }
+    }
+    k0 = k1 + 1;
+  }
+  // STRIPES: consecutive loaded points joined by positive rigid overlap at their saddles form one
+  // run, evaluated once by its lead (the largest penetration), stripes_patch.
+  for (PointContext& p : w.points) {
+    p.stripes_lead = p.grp_k0 = p.grp_k1 = -1;
+    p.sweight = 1.0;
+    p.sblend = 1.0;
+  }
+  k0 = 0;
+  while (k0 < n) {
+    auto joinable = [&](int k) {
+      const PointContext& p = w.points[w.order[k]];
+      return is_stripes(p.model) && dz > p.h;
+    };
+    auto saddle_overlap = [&](int k) {
+      const BandSample& b = g.band[w.saddle[k]];
+      return dz * band_cos(b.contact_angle) - b.gap;
+    };
+    int k1 = k0;
+    if (joinable(k0))
+      while (k1 + 1 < n && joinable(k1 + 1) && saddle_overlap(k1) > 0.0) ++k1;
+    if (k1 > k0) {
+      int lead = w.order[k0];
+      double best = -std::numeric_limits<double>::infinity();
+      for (int k = k0; k <= k1; ++k) {
+        const PointContext& p = w.points[w.order[k]];
+        const double d = (dz - p.h) * p.cos_ref;
+        if (d > best) {
+          best = d;
+          lead = w.order[k];
+        }
+      }
+      double prominence_sum = 0.0;
+      for (int k = k0; k <= k1; ++k) {
+        PointContext& p = w.points[w.order[k]];
+        p.stripes_lead = lead;
+        p.grp_k0 = k0;
+        p.grp_k1 = k1;
+        double ds = 0.0;
+        if (k > k0) ds = std::max(ds, saddle_overlap(k - 1));
+        if (k < k1) ds = std::max(ds, saddle_overlap(k));
+        p.sweight = std::max((dz - p.h) * p.cos_ref - ds, 0.0);  // prominence for now
+        prominence_sum += p.sweight;
+      }
+      // Blend from the per-point patches (the run just joined: saddle overlap 0) to the one-run
+      // patch (saddle overlap >= the smallest prominence, e.g. a ripple's): continuous in dz and y.
+      double ds_max = 0.0, p_min = std::numeric_limits<double>::infinity();
+      for (int k = k0; k < k1; ++k) ds_max = std::max(ds_max, saddle_overlap(k));
+      for (int k = k0; k <= k1; ++k) p_min = std::min(p_min, w.points[w.order[k]].sweight);
+      const double blend = ds_max >= p_min ? 1.0 : ds_max / p_min;
+      const double count = k1 - k0 + 1;
+      for (int k = k0; k <= k1; ++k) {
+        PointContext& p = w.points[w.order[k]];
+        p.sblend = blend;
+        const double prominence = p.sweight, d = (dz - p.h) * p.cos_ref;
+        const double t = std::clamp(prominence / d, 0.0, 1.0);
+        const double share = prominence_sum > 0.0 ? prominence / prominence_sum : 1.0 / count;
+        p.sweight = std::clamp(t + (1.0 - t) * share, 0.0, 1.0);
       }
     }
     k0 = k1 + 1;
@@ -763,6 +827,13 @@ WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
   if (loaded_points.empty()) {
     r.status |= status::kLiftOff;
     return r;
+  }
+  // STRIPES points evaluated by their run's lead (one strip set, stripes.cpp) belong to its patch.
+  for (int i = 0; i < np; ++i) {
+    const int lead = w.points[i].stripes_lead;
+    if (lead >= 0 && lead != i && parts[lead].normal_force > 0.0 &&
+        std::find(loaded_points.begin(), loaded_points.end(), i) == loaded_points.end())
+      loaded_points.push_back(i);
   }
   // Rigid overlap runs holding the loaded points.
   struct Group {

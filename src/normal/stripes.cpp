@@ -37,6 +37,7 @@
 // smoothing_half_width over the window.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "normal/elliptic.hpp"
@@ -232,24 +233,22 @@ class BoussinesqSum {
 
 }  // namespace
 
-PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
-                        const NormalOptions& o, PointContext& p, Workspace& w, double dz,
-                        ContactPatch* out) {
-  const Run run = find_run(g, p, w, dz, o);
-  if (!run.loaded) return {};
-  const double delta0 = (dz - p.h) * p.cos_ref;
+namespace {
+
+// Strips over [run.s_lo, run.s_hi] and the closure: p = scale (v - A_c x^2), the contact condition
+// at s_ref with the true approach delta0 (see the file comment). The per-sample data (v, A, q, cos)
+// is ready on [ja, jb], around the whole run, with A_int its running integral there (any offset).
+PatchSums strips_and_closure(const WheelContactGeometry& g, const Material& m,
+                             const NormalOptions& o, const PointContext& p, Workspace& w,
+                             const Run& run, int ja, int jb, const double* A_int,
+                             const ClosureRef* refs, int nrefs, ContactPatch* out) {
   const int n = o.strips;
   const double width = (run.s_hi - run.s_lo) / n;
-  const double s_ref = g.points[p.point].band_s;
   const bool boussinesq = o.stripes_closure == StripesClosure::boussinesq;
-  // Per strip: overlap v, corrected A, half-length a; volume sums for the force.
-  int j0, j1;
-  strip_sample_range(g, run.s_lo, width, n, &j0, &j1);
   const double* v_s = w.v.data();
   const double* A_s = w.A.data();
   const double* q_s = w.q.data();
   const double* c_s = w.cos_angle.data();
-  BoussinesqSum bsum(w.log_arg.data(), w.log_coef.data());
   // Corrected curvature of a strip: the mean of the (linearly interpolated) per-sample A_c over
   // the strip's width, not its value at the centre. A_c jumps where the lateral curvature of a
   // profile jumps (radius transitions, the straight flange flank meeting the flange-root arc: the
@@ -257,20 +256,8 @@ PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
   // centres, the load then depended on which side of the jump each centre fell, and since the
   // strips slide with the patch edges, N(delta) had bumps (non-monotone: several approaches carry
   // the same load, the load control picked different ones from one y to the next). The mean moves
-  // continuously as a jump sweeps through a strip. The per-sample data (and the running integral
-  // of A kept with it, extend_samples) must cover the samples [ja, jb] around the whole run.
-  int ja, jb;
-  {
-    double t;
-    locate(g, p.lo, p.hi, run.s_lo, &ja, &t);
-    locate(g, p.lo, p.hi, run.s_hi, &jb, &t);
-    if (t != 0.0) ++jb;
-    ja = std::min(ja, j0);
-    jb = std::max(jb, j1);
-  }
-  ensure_samples(g, p, w, ja, jb, o);
-  const double* A_int = w.A_int.data();  // running integral of A on [smp_lo, smp_hi] (extend_samples)
-  auto A_integral = [&](double s) {  // int_{s_smp_lo}^{s} A ds, s inside [s_ja, s_jb]
+  // continuously as a jump sweeps through a strip.
+  auto A_integral = [&](double s) {  // int A ds from a fixed origin, s inside [s_ja, s_jb]
     int j;
     double t;
     locate(g, ja, jb, s, &j, &t);
@@ -293,21 +280,36 @@ PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
     const double vol = (4.0 / 3.0) * v * a * width;  // parabola: int (1 - x^2/a^2) = 4/3 a
     volume += vol;
     volume_z += vol * lerp_at(c_s, j, t);
-    if (boussinesq) bsum.add(A, a, s - s_ref, width);
+    w.strip_A[k] = A;
     w.strip_len[k] = a;
     w.strip_pos[k] = lerp_at(q_s, j, t);
   }
-  const double J = boussinesq ? bsum.total() : 0.0;
-  double scale;  // pressure per unit virtual overlap [Pa/m]
+  // One amplitude for the patch. Boussinesq: the contact condition at the reference point(s),
+  // sum_r w_r (u(s_r) - kappa delta_r) = 0 with u(s_r) = C J_r / (pi E*).
+  double scale = 0.0;  // pressure per unit virtual overlap [Pa/m]
   if (boussinesq) {
+    double J = 0.0, D = 0.0;
+    for (int r = 0; r < nrefs; ++r) {
+      if (!(refs[r].weight > 0.0)) continue;
+      BoussinesqSum bsum(w.log_arg.data(), w.log_coef.data());
+      for (int k = 0; k < n; ++k)
+        bsum.add(w.strip_A[k], w.strip_len[k], run.s_lo + (k + 0.5) * width - refs[r].s, width);
+      J += refs[r].weight * bsum.total();
+      D += refs[r].weight * refs[r].delta;
+    }
     constexpr double kappa = 32.0 / (9.0 * std::numbers::pi);
-    scale = J > 0.0 ? kappa * std::numbers::pi * m.contact_modulus() * delta0 / J : 0.0;
+    if (J > 0.0) scale = kappa * std::numbers::pi * m.contact_modulus() * D / J;
   } else {
-    scale = p.pmax_coef * std::sqrt(delta0) / (p.eps * delta0);
+    double W = 0.0;
+    for (int r = 0; r < nrefs; ++r) {
+      scale += refs[r].weight * refs[r].hp;
+      W += refs[r].weight;
+    }
+    scale = W > 0.0 ? scale / W : 0.0;
   }
   PatchSums sums{scale * volume, scale * volume_z};
-  double area = 0.0;
   if (out) {
+    double area = 0.0;
     out->strips.reserve(n);
     for (int k = 0; k < n; ++k) {
       const double s = run.s_lo + (k + 0.5) * width;
@@ -321,8 +323,6 @@ PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
       area += 2.0 * a * width;
       out->strips.push_back(st);
     }
-  }
-  if (out) {
     out->pressure_shape = StripPressure::parabolic;
     out->normal_force = sums.normal;
     out->area = area;
@@ -330,6 +330,198 @@ PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
     if (run.at_band_end) out->status |= status::kProfileEdge;
   }
   return sums;
+}
+
+// Samples [ja, jb] around [s_lo, s_hi] inside [lo, hi], covering the strip centres too.
+void run_samples(const WheelContactGeometry& g, int lo, int hi, const Run& run, int n, int* ja,
+                 int* jb) {
+  const double width = (run.s_hi - run.s_lo) / n;
+  int j0, j1;
+  strip_sample_range(g, run.s_lo, width, n, &j0, &j1);
+  double t;
+  locate(g, lo, hi, run.s_lo, ja, &t);
+  locate(g, lo, hi, run.s_hi, jb, &t);
+  if (t != 0.0) ++*jb;
+  *ja = std::min(*ja, j0);
+  *jb = std::max(*jb, j1);
+}
+
+// STRIPES patch of the points order[grp_k0..grp_k1], which share one run of rigid overlap
+// (run_weights): ONE strip set over the run, ONE amplitude. Per-point strip sets met inside the
+// patch with different closures and overlaps, so the pressure stepped there (S1002/UIC60 at y = 0:
+// the second rigid minimum, a 1.9 um ripple, built its own ~50 strips). Point k alone has the
+// virtual overlap E_k cos g(s) - gap(s), virtual approach E_k = eps_k dz + (1 - eps_k) h_k
+// (normal_model.cpp); the run takes E = sum w_k E_k / sum w_k with the points' run weights w_k
+// (normal_internal.hpp: prominence above the saddle; 1 for separate wells, -> 0 for a vanishing
+// minimum or ripple), continuous when minima vanish or swap depth order. The amplitude C satisfies
+// the Boussinesq contact condition at the points in the weighted mean,
+//   sum_k w_k (C J_k / (pi E*) - kappa delta_k) = 0,   J_k = the strips' J seen from point k,
+// which is the single-point closure for one point and keeps the ripple from steering the patch.
+// Positive parts of the overlap around the points (separate just after the rigid run joins) are
+// spanned by the strips; strips between them carry nothing. Each sample keeps the local data (A_c,
+// q) of the point whose band domain holds it.
+PatchSums stripes_run_patch(const WheelContactGeometry& g, const Material& m,
+                            const NormalOptions& o, PointContext& p, Workspace& w, double dz,
+                            ContactPatch* out) {
+  const int k0 = p.grp_k0, k1 = p.grp_k1;
+  auto member = [&](int k) -> PointContext& { return w.points[w.order[k]]; };
+  const int L = member(k0).lo, H = member(k1).hi;
+  double E = 0.0, W = 0.0;  // weighted virtual approach, sum of the weights
+  for (int k = k0; k <= k1; ++k) {
+    const PointContext& q = member(k);
+    E += q.sweight * (q.eps * dz + (1.0 - q.eps) * q.h);
+    W += q.sweight;
+  }
+  if (!(W > 0.0)) return {};
+  E /= W;
+  auto owner = [&](int j) -> PointContext& {
+    for (int k = k0; k < k1; ++k)
+      if (j <= member(k).hi) return member(k);
+    return member(k1);
+  };
+  const BandSample* band = g.band.data();
+  double* v = w.v.data();
+  const double* c = w.cos_angle.data();
+  auto overlap = [&](int j) {
+    PointContext& q = owner(j);
+    if (j < q.cos_lo || j > q.cos_hi) [[unlikely]]
+      extend_cos(g, q, w, std::max(q.lo, j - 16), std::min(q.hi, j + 16));
+    return v[j] = E * c[j] - band[j].gap;
+  };
+  // Runs of positive overlap around each member's point; the strips span their hull.
+  const int last = static_cast<int>(g.band.size()) - 1;
+  Run run;
+  int scanned_lo = 1, scanned_hi = 0;  // samples already inside a found run
+  for (int k = k0; k <= k1; ++k) {
+    const int i0 = member(k).i0;
+    if (i0 < L || i0 > H || (i0 >= scanned_lo && i0 <= scanned_hi)) continue;
+    const double v0 = overlap(i0);
+    if (!(v0 > 0.0)) continue;
+    double vmax = v0, s_lo, s_hi;
+    bool edge = false;
+    int a = i0, b = i0;
+    for (;;) {
+      if (a == L) {
+        s_lo = band[a].s;
+        edge = a == 0;
+        break;
+      }
+      const double vn = overlap(a - 1);
+      if (!(vn > 0.0)) {
+        s_lo = band[a].s - g.band_step * v[a] / (v[a] - vn);
+        break;
+      }
+      --a;
+      vmax = std::max(vmax, vn);
+    }
+    for (;;) {
+      if (b == H) {
+        s_hi = band[b].s;
+        edge = edge || b == last;
+        break;
+      }
+      const double vn = overlap(b + 1);
+      if (!(vn > 0.0)) {
+        s_hi = band[b].s + g.band_step * v[b] / (v[b] - vn);
+        break;
+      }
+      ++b;
+      vmax = std::max(vmax, vn);
+    }
+    if (!run.loaded) {
+      run.loaded = true;
+      run.s_lo = s_lo;
+      run.s_hi = s_hi;
+      scanned_lo = a;
+      scanned_hi = b;
+    } else {
+      run.s_lo = std::min(run.s_lo, s_lo);
+      run.s_hi = std::max(run.s_hi, s_hi);
+      scanned_lo = std::min(scanned_lo, a);
+      scanned_hi = std::max(scanned_hi, b);
+    }
+    run.v_max = std::max(run.v_max, vmax);
+    run.at_band_end = run.at_band_end || edge;
+  }
+  if (!run.loaded || !(run.s_hi > run.s_lo)) return {};
+  int ja, jb;
+  run_samples(g, L, H, run, o.strips, &ja, &jb);
+  // The overlap on all samples the strips read (between separate parts of the run too).
+  for (int j = ja; j <= jb; ++j) overlap(j);
+  for (int k = k0; k <= k1; ++k) {
+    PointContext& q = member(k);
+    const int j0 = std::max(ja, q.lo), j1 = std::min(jb, q.hi);
+    if (j0 <= j1) ensure_samples(g, q, w, j0, j1, o);
+  }
+  double* A_int = w.A_grp.data();
+  const double* A_s = w.A.data();
+  const double half_h = 0.5 * g.band_step;
+  A_int[ja] = 0.0;
+  for (int j = ja; j < jb; ++j) A_int[j + 1] = A_int[j] + half_h * (A_s[j] + A_s[j + 1]);
+  ClosureRef* refs = w.refs.data();
+  int nrefs = 0;
+  for (int k = k0; k <= k1; ++k) {
+    const PointContext& q = member(k);
+    const double d = (dz - q.h) * q.cos_ref;
+    const double hp = d > 0.0 ? q.pmax_coef * std::sqrt(d) / (q.eps * d) : 0.0;
+    refs[nrefs++] = {g.points[q.point].band_s, d, q.sweight, hp};
+  }
+  return strips_and_closure(g, m, o, p, w, run, ja, jb, A_int, refs, nrefs, out);
+}
+
+// The patch of point p alone (its band domain), one strip set and its own closure.
+PatchSums stripes_point_patch(const WheelContactGeometry& g, const Material& m,
+                              const NormalOptions& o, PointContext& p, Workspace& w, double dz,
+                              ContactPatch* out) {
+  const Run run = find_run(g, p, w, dz, o);
+  if (!run.loaded) return {};
+  const double delta0 = (dz - p.h) * p.cos_ref;
+  // The per-sample data (and the running integral of A kept with it, extend_samples) must cover
+  // the samples [ja, jb] around the whole run.
+  int ja, jb;
+  run_samples(g, p.lo, p.hi, run, o.strips, &ja, &jb);
+  ensure_samples(g, p, w, ja, jb, o);
+  const ClosureRef ref{g.points[p.point].band_s, delta0, 1.0,
+                       p.pmax_coef * std::sqrt(delta0) / (p.eps * delta0)};
+  return strips_and_closure(g, m, o, p, w, run, ja, jb, w.A_int.data(), &ref, 1, out);
+}
+
+}  // namespace
+
+PatchSums stripes_patch(const WheelContactGeometry& g, const Material& m,
+                        const NormalOptions& o, PointContext& p, Workspace& w, double dz,
+                        ContactPatch* out) {
+  if (p.stripes_lead < 0) return stripes_point_patch(g, m, o, p, w, dz, out);
+  // A point of a rigid overlap run of several: the run's force is
+  //   sblend * (one-run patch) + (1 - sblend) * sum of the per-point patches,
+  // the one-run part evaluated by the lead; each point adds its own per-point share. The patch
+  // output is the one strip set of the run, its pressure scaled to the run's force (the per-point
+  // share matters only right after the run joins: sblend = 1 once the saddle is deeper than the
+  // smallest prominence).
+  const double beta = p.sblend;
+  auto scaled = [](PatchSums a, double f) { return PatchSums{a.normal * f, a.vertical * f}; };
+  auto add = [](PatchSums a, PatchSums b) { return PatchSums{a.normal + b.normal, a.vertical + b.vertical}; };
+  PatchSums own{};
+  if (beta < 1.0) own = scaled(stripes_point_patch(g, m, o, p, w, dz, nullptr), 1.0 - beta);
+  if (p.stripes_lead != p.point) return own;
+  if (!out) {
+    if (beta > 0.0) own = add(own, scaled(stripes_run_patch(g, m, o, p, w, dz, nullptr), beta));
+    return own;
+  }
+  const PatchSums run = stripes_run_patch(g, m, o, p, w, dz, out);
+  PatchSums total = scaled(run, beta);
+  if (beta < 1.0) {
+    for (int k = p.grp_k0; k <= p.grp_k1; ++k)
+      total = add(total, scaled(stripes_point_patch(g, m, o, w.points[w.order[k]], w, dz, nullptr),
+                                1.0 - beta));
+  }
+  if (beta < 1.0 && run.normal > 0.0) {
+    const double f = total.normal / run.normal;
+    for (Strip& st : out->strips) st.pressure_peak *= f;
+    out->max_pressure *= f;
+  }
+  out->normal_force = total.normal;
+  return add(own, scaled(run, beta));
 }
 
 }  // namespace railtab::detail
