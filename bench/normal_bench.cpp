@@ -3,8 +3,8 @@
 // Targets: STRIPES < 20 us per solve (~50 strips), Hertz < 1 us. Every solve includes the patch
 // grouping and the reference point of each patch (normal_model.hpp: CONTACT-style for the overlap
 // runs; Hertz: the contact point of one ellipse, the centre of force of several). The central case
-// has two rigid points in one overlap run (Hertz/Linder weight them: run weights). The result is
-// reused across solves.
+// has two rigid points in one overlap run (Hertz/Linder weight them: run weights; STRIPES builds
+// one strip set over the run). The result is reused across solves.
 #include <benchmark/benchmark.h>
 
 #include "geometry/contact_geometry.hpp"

@@ -22,6 +22,8 @@
 //    J per strip: along x in closed form, int_{-a}^{a} (a^2 - x^2)/sqrt(x^2+y^2) dx
 //    = (2a^2 + y^2) asinh(a/|y|) - a sqrt(a^2 + y^2); for the strips near the reference point
 //    (|y| < 6 widths) also along y, with the antiderivative F below.
+//    Several rigid points in one run of rigid overlap: one strip set over the run and the contact
+//    condition at the points, weighted by their run weights (stripes_run_patch).
 //  - hertz_peak (FACTS 2.4.5): p_max = (4/3) p0_Hertz(A0, B0, delta0); also exact on Hertz
 //    geometry, but on conformal treads B0 at the point says little about the patch.
 //
