@@ -94,6 +94,9 @@ struct Workspace {
   std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]
   std::vector<double> A_int;            // band-sized scratch: running integral of A over s [1]
   std::vector<double> A_grp;            // band-sized scratch: the same over a STRIPES run of points
+  int grp_lead = -1, grp_ja = 0, grp_jb = 0;  // A_grp is the integral from grp_ja, ready up to
+                                              //   grp_jb, for the run led by point grp_lead
+                                              //   (-1: none; reset by every prepare)
   std::vector<int> order;               // points with a band sample, ascending band position
   std::vector<int> saddle;              // order[k]..order[k+1]: sample of the largest gap between
 };

@@ -294,6 +294,7 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   const int np = static_cast<int>(g.points.size());
   const int nb = static_cast<int>(g.band.size());
   w.points.assign(np, PointContext{});
+  w.grp_lead = -1;  // the STRIPES run integral belongs to the previous solve
   if (static_cast<int>(w.hertz_cache.size()) < np) w.hertz_cache.resize(np);
   const bool band_ok = nb >= 2 && g.band_step > 0.0 && std::isfinite(g.band_step);
   if (band_ok) {

@@ -193,6 +193,81 @@ class BoussinesqSum {
     rest_ -= A * w * a * r;
   }
 
+  // add(A[k], a[k], s_lo + (k + 1/2) width - s_ref, width) for k = 0..n-1, with the square roots
+  // and divisions of two strips (far) or of the two edges of a strip (near) on two SSE2 lanes: the
+  // same IEEE operations, logarithm arguments, coefficients and order of the remainder sums.
+  void add_strips(const double* A, const double* a, int n, double s_lo, double width,
+                  double s_ref) {
+#if defined(__SSE2__)
+    const double w = width;
+    const __m128d vw = _mm_set1_pd(w);
+    const __m128d sign = _mm_set1_pd(-0.0);
+    int k = 0;
+    while (k < n) {
+      const double y0 = s_lo + (k + 0.5) * width - s_ref;
+      const double ay0 = std::abs(y0);
+      if (k + 1 < n && a[k] > 0.0 && a[k + 1] > 0.0 && !(ay0 < 6.0 * w)) {
+        const double y1 = s_lo + (k + 1 + 0.5) * width - s_ref;
+        const double ay1 = std::abs(y1);
+        if (!(ay1 < 6.0 * w)) {  // two far strips
+          const __m128d va = _mm_loadu_pd(a + k);
+          const __m128d vA = _mm_loadu_pd(A + k);
+          const __m128d vay = _mm_set_pd(ay1, ay0);
+          const __m128d r =
+              _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(va, va), _mm_mul_pd(vay, vay)));
+          const __m128d Aw = _mm_mul_pd(vA, vw);
+          _mm_storeu_pd(arg_ + n_, _mm_div_pd(_mm_add_pd(va, r), vay));
+          _mm_storeu_pd(coef_ + n_,
+                        _mm_mul_pd(Aw, _mm_add_pd(_mm_mul_pd(_mm_mul_pd(_mm_set1_pd(2.0), va), va),
+                                                  _mm_mul_pd(vay, vay))));
+          n_ += 2;
+          double t[2];
+          _mm_storeu_pd(t, _mm_mul_pd(_mm_mul_pd(Aw, va), r));
+          rest_ -= t[0];
+          rest_ -= t[1];
+          k += 2;
+          continue;
+        }
+      }
+      const double ak = a[k];
+      if (ak > 0.0 && ay0 < 6.0 * w) {
+        const double yp = y0 + 0.5 * w, ym = y0 - 0.5 * w;
+        if (yp != 0.0 && ym != 0.0) {  // both edges of a near strip
+          const double factor = 2.0 * A[k];
+          const __m128d f = _mm_set_pd(ym > 0.0 ? -factor : factor, yp > 0.0 ? factor : -factor);
+          const __m128d vy = _mm_set_pd(ym, yp);
+          const __m128d vay = _mm_andnot_pd(sign, vy);
+          const __m128d va = _mm_set1_pd(ak);
+          const __m128d r =
+              _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(va, va), _mm_mul_pd(vay, vay)));
+          const __m128d arg1 = _mm_div_pd(_mm_add_pd(vay, r), va);  // asinh(|y|/a)
+          const __m128d arg2 = _mm_div_pd(_mm_add_pd(va, r), vay);  // asinh(a/|y|)
+          const __m128d coef1 = _mm_mul_pd(f, _mm_set1_pd(2.0 * ak * ak * ak / 3.0));
+          const __m128d coef2 = _mm_mul_pd(
+              f, _mm_add_pd(_mm_mul_pd(_mm_mul_pd(va, va), vay),
+                            _mm_div_pd(_mm_mul_pd(_mm_mul_pd(vay, vay), vay), _mm_set1_pd(6.0))));
+          _mm_storeu_pd(arg_ + n_, _mm_unpacklo_pd(arg1, arg2));
+          _mm_storeu_pd(arg_ + n_ + 2, _mm_unpackhi_pd(arg1, arg2));
+          _mm_storeu_pd(coef_ + n_, _mm_unpacklo_pd(coef1, coef2));
+          _mm_storeu_pd(coef_ + n_ + 2, _mm_unpackhi_pd(coef1, coef2));
+          n_ += 4;
+          double t[2];
+          _mm_storeu_pd(
+              t, _mm_mul_pd(f, _mm_div_pd(_mm_mul_pd(_mm_mul_pd(vay, va), r), _mm_set1_pd(6.0))));
+          rest_ -= t[0];
+          rest_ -= t[1];
+          ++k;
+          continue;
+        }
+      }
+      add(A[k], ak, y0, w);
+      ++k;
+    }
+#else
+    for (int k = 0; k < n; ++k) add(A[k], a[k], s_lo + (k + 0.5) * width - s_ref, width);
+#endif
+  }
+
   double total() const {
     double sum = rest_;
     int i = 0;
@@ -294,8 +369,7 @@ PatchSums strips_and_closure(const WheelContactGeometry& g, const Material& m,
     for (int r = 0; r < nrefs; ++r) {
       if (!(refs[r].weight > 0.0)) continue;
       BoussinesqSum bsum(w.log_arg.data(), w.log_coef.data());
-      for (int k = 0; k < n; ++k)
-        bsum.add(w.strip_A[k], w.strip_len[k], run.s_lo + (k + 0.5) * width - refs[r].s, width);
+      bsum.add_strips(w.strip_A.data(), w.strip_len.data(), n, run.s_lo, width, refs[r].s);
       J += refs[r].weight * bsum.total();
       D += refs[r].weight * refs[r].delta;
     }
@@ -376,7 +450,24 @@ PatchSums stripes_run_patch(const WheelContactGeometry& g, const Material& m,
   }
   if (!(W > 0.0)) return {};
   E /= W;
+  // The members' domains are disjoint and ascending: sample j belongs to the first member whose
+  // domain ends at or after j (the last member otherwise). Their ends are read once.
+  constexpr int kMaxMembers = 8;
+  const int nmem = k1 - k0 + 1;
+  PointContext* mem_ptr[kMaxMembers];
+  int mem_hi[kMaxMembers];
+  if (nmem <= kMaxMembers) {
+    for (int k = k0; k <= k1; ++k) {
+      mem_ptr[k - k0] = &member(k);
+      mem_hi[k - k0] = member(k).hi;
+    }
+  }
   auto owner = [&](int j) -> PointContext& {
+    if (nmem <= kMaxMembers) [[likely]] {
+      int k = 0;
+      while (k + 1 < nmem && j > mem_hi[k]) ++k;
+      return *mem_ptr[k];
+    }
     for (int k = k0; k < k1; ++k)
       if (j <= member(k).hi) return member(k);
     return member(k1);
@@ -394,6 +485,7 @@ PatchSums stripes_run_patch(const WheelContactGeometry& g, const Material& m,
   const int last = static_cast<int>(g.band.size()) - 1;
   Run run;
   int scanned_lo = 1, scanned_hi = 0;  // samples already inside a found run
+  int done_lo = 1, done_hi = 0;        // samples whose overlap v is already set (one interval)
   for (int k = k0; k <= k1; ++k) {
     const int i0 = member(k).i0;
     if (i0 < L || i0 > H || (i0 >= scanned_lo && i0 <= scanned_hi)) continue;
@@ -430,6 +522,15 @@ PatchSums stripes_run_patch(const WheelContactGeometry& g, const Material& m,
       ++b;
       vmax = std::max(vmax, vn);
     }
+    // v is set on the run [a, b] and on the samples just beyond it that ended the scan.
+    const int c_lo = a == L ? a : a - 1, c_hi = b == H ? b : b + 1;
+    if (done_lo > done_hi) {
+      done_lo = c_lo;
+      done_hi = c_hi;
+    } else if (c_lo <= done_hi + 1 && c_hi >= done_lo - 1) {
+      done_lo = std::min(done_lo, c_lo);
+      done_hi = std::max(done_hi, c_hi);
+    }
     if (!run.loaded) {
       run.loaded = true;
       run.s_lo = s_lo;
@@ -448,18 +549,37 @@ PatchSums stripes_run_patch(const WheelContactGeometry& g, const Material& m,
   if (!run.loaded || !(run.s_hi > run.s_lo)) return {};
   int ja, jb;
   run_samples(g, L, H, run, o.strips, &ja, &jb);
-  // The overlap on all samples the strips read (between separate parts of the run too).
-  for (int j = ja; j <= jb; ++j) overlap(j);
+  // The overlap on all samples the strips read (between separate parts of the run too); the
+  // samples the scans already set keep their (same) values.
+  for (int j = ja; j <= jb; ++j) {
+    if (j >= done_lo && j <= done_hi) {
+      j = done_hi;
+      continue;
+    }
+    overlap(j);
+  }
   for (int k = k0; k <= k1; ++k) {
     PointContext& q = member(k);
     const int j0 = std::max(ja, q.lo), j1 = std::min(jb, q.hi);
     if (j0 <= j1) ensure_samples(g, q, w, j0, j1, o);
   }
+  // Running integral of A from ja. The per-sample A is fixed once ready (once per solve), so the
+  // integral from the same origin ja for the same run of points is the same sequence of sums as
+  // before: kept across the load-control evaluations (prepare() invalidates it), extended only.
   double* A_int = w.A_grp.data();
   const double* A_s = w.A.data();
   const double half_h = 0.5 * g.band_step;
-  A_int[ja] = 0.0;
-  for (int j = ja; j < jb; ++j) A_int[j + 1] = A_int[j] + half_h * (A_s[j] + A_s[j + 1]);
+  int from = ja;
+  if (w.grp_lead == p.point && w.grp_ja == ja) {
+    from = std::min(std::max(w.grp_jb, ja), jb);
+  } else {
+    A_int[ja] = 0.0;
+    w.grp_lead = p.point;
+    w.grp_ja = ja;
+    w.grp_jb = ja;
+  }
+  for (int j = from; j < jb; ++j) A_int[j + 1] = A_int[j] + half_h * (A_s[j] + A_s[j + 1]);
+  w.grp_jb = std::max(w.grp_jb, jb);
   ClosureRef* refs = w.refs.data();
   int nrefs = 0;
   for (int k = k0; k <= k1; ++k) {
