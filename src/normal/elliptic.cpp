@@ -1,5 +1,6 @@
 #include "normal/elliptic.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -175,5 +176,36 @@ double hertz_axis_ratio_fast(double ratio) {
   const double y = fast_log_axis_ratio(ratio, &ok);
   return ok ? std::exp(y) : hertz_shape_impl(ratio, false).g;
 }
+
+namespace detail {
+
+void hertz_axis_ratio_fast_n(double* x, int n) {
+  // In chunks: the table lookups first (no calls, independent), then the exponentials.
+  constexpr int kChunk = 64;
+  double y[kChunk];
+  unsigned char state[kChunk];  // 0: ratio >= 1, 1: table, 2: exact shape
+  for (int c0 = 0; c0 < n; c0 += kChunk) {
+    const int m = std::min(kChunk, n - c0);
+    double* xc = x + c0;
+    for (int i = 0; i < m; ++i) {
+      const double ratio = xc[i];
+      if (ratio >= 1.0) {
+        state[i] = 0;
+        continue;
+      }
+      bool ok = false;
+      y[i] = fast_log_axis_ratio(ratio, &ok);
+      state[i] = ok ? 1 : 2;
+    }
+    for (int i = 0; i < m; ++i) {
+      if (state[i] == 1) [[likely]]
+        xc[i] = std::exp(y[i]);
+      else
+        xc[i] = state[i] == 0 ? 1.0 : hertz_shape_impl(xc[i], false).g;
+    }
+  }
+}
+
+}  // namespace detail
 
 }  // namespace railtab

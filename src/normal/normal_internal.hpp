@@ -220,6 +220,8 @@ struct PatchSums {
 // Hertz coefficients from the shape table plus one AGM (no root find): the same numbers as
 // hertz_coefficients to ~1e-9 (hertz.cpp).
 HertzCoefficients hertz_coefficients_fast(double A, double B);
+// hertz_axis_ratio_fast(x[i]) in place for i < n, the same numbers (elliptic.cpp).
+void hertz_axis_ratio_fast_n(double* x, int n);
 
 // Shared preparation and evaluation (normal_model.cpp).
 // Per-sample data on [j0, j1] (inside the point's band domain) made ready: cos only, or A and q

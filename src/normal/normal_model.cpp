@@ -104,6 +104,38 @@ inline void compute_sample(const WheelContactGeometry& g, const PointContext& p,
   }
 }
 
+// Samples [a, b] of point p (a <= b): as compute_sample for each, with the local Hertz shapes of
+// STRIPES computed together (hertz_axis_ratio_fast_n: the same numbers).
+inline void compute_samples(const WheelContactGeometry& g, const PointContext& p, Workspace& w,
+                            int a, int b, const NormalOptions& o) {
+  if (!is_stripes(p.model)) {
+    for (int j = a; j <= b; ++j) compute_sample(g, p, w, j, o);
+    return;
+  }
+  double* Aw = w.A.data();
+  double* qw = w.q.data();
+  const double Bfloor = o.min_curvature_ratio * p.A0;
+  for (int j = a; j <= b; ++j) {  // local A, and the curvature ratio in q
+    const BandSample& bs = g.band[j];
+    const double radius = bs.rolling_radius > 0.0 ? bs.rolling_radius : p.r_ref;
+    const double scale_r = p.r_ref > 0.0 ? p.r_ref / radius : 1.0;
+    const double A = p.A0 * scale_r * w.cos_angle[j] / p.cos_ref;
+    const double B = std::max(w.B_treated[j], Bfloor);
+    Aw[j] = A;
+    qw[j] = std::min(A, B) / std::max(A, B);
+  }
+  hertz_axis_ratio_fast_n(qw + a, b - a + 1);
+  const bool corr_a = p.model == NormalModel::stripes_a;
+  for (int j = a; j <= b; ++j) {
+    const double A = Aw[j];
+    const double B = std::max(w.B_treated[j], Bfloor);
+    const double gr = qw[j];
+    const double q = A <= B ? gr * gr : 1.0 / (gr * gr);
+    qw[j] = q;
+    Aw[j] = corr_a ? q * B : (A + B) * q / (1.0 + q);
+  }
+}
+
 // Grows the ready interval [*lo, *hi] to cover [j0, j1] (contiguous: the gap in between too),
 // calling fn(j) for every new sample.
 template <class Fn>
@@ -120,6 +152,21 @@ inline void grow(int* lo, int* hi, int j0, int j1, Fn&& fn) {
   *hi = std::max(*hi, j1);
 }
 
+// As grow, calling fn(a, b) for the (at most two) new contiguous ranges.
+template <class Fn>
+inline void grow_ranges(int* lo, int* hi, int j0, int j1, Fn&& fn) {
+  if (*lo > *hi) {
+    if (j0 <= j1) fn(j0, j1);
+    *lo = j0;
+    *hi = j1;
+    return;
+  }
+  if (std::min(j0, *lo) < *lo) fn(std::min(j0, *lo), *lo - 1);
+  if (*hi + 1 <= std::max(j1, *hi)) fn(*hi + 1, std::max(j1, *hi));
+  *lo = std::min(*lo, j0);
+  *hi = std::max(*hi, j1);
+}
+
 }  // namespace
 
 void extend_cos(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0, int j1) {
@@ -131,7 +178,8 @@ void extend_cos(const WheelContactGeometry& g, PointContext& p, Workspace& w, in
 void extend_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0, int j1,
                     const NormalOptions& o) {
   if (is_stripes(p.model)) ensure_cos(g, p, w, j0, j1);
-  grow(&p.smp_lo, &p.smp_hi, j0, j1, [&](int j) { compute_sample(g, p, w, j, o); });
+  grow_ranges(&p.smp_lo, &p.smp_hi, j0, j1,
+              [&](int a, int b) { compute_samples(g, p, w, a, b, o); });
   if (is_stripes(p.model)) {
     // Running integral of A over the ready samples (trapezoids, exact for the linear interpolant),
     // from smp_lo: STRIPES averages A over each strip (stripes.cpp).
