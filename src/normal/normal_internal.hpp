@@ -89,6 +89,9 @@ struct Workspace {
   std::vector<double> strip_len;        // per-strip scratch: half-lengths [m]
   std::vector<double> strip_pos;        // per-strip scratch: lateral positions [m]
   std::vector<double> strip_A;          // per-strip scratch: corrected curvature A_c [1/m]
+  std::vector<double> strip_v;          // per-strip scratch (STRIPES): overlap at the centre [m]
+  std::vector<double> strip_c;          //   cos of the contact angle at the centre [-]
+  std::vector<double> strip_F;          //   integral of A_c at the edges (strips + 1) [1]
   std::vector<ClosureRef> refs;         // STRIPES run closure references (one per point)
   std::vector<double> log_arg;          // STRIPES Boussinesq integral: logarithm arguments (4 per
   std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]

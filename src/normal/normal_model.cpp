@@ -359,6 +359,9 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   w.strip_len.resize(std::max(o.strips, 1));
   w.strip_pos.resize(std::max(o.strips, 1));
   w.strip_A.resize(std::max(o.strips, 1));
+  w.strip_v.resize(std::max(o.strips, 1));
+  w.strip_c.resize(std::max(o.strips, 1));
+  w.strip_F.resize(std::max(o.strips, 1) + 1);
   w.refs.resize(std::max(np, 1));
   w.log_arg.resize(4 * std::max(o.strips, 1));
   w.log_coef.resize(4 * std::max(o.strips, 1));

@@ -342,24 +342,49 @@ PatchSums strips_and_closure(const WheelContactGeometry& g, const Material& m,
     if (t == 0.0) return A_int[j];
     return A_int[j] + t * g.band_step * (a0 + 0.5 * t * (A_s[j + 1] - a0));
   };
-  double volume = 0.0, volume_z = 0.0;  // sum v a w (4/3), its projection on track z
-  double F_lo = A_integral(run.s_lo);
+  // In passes with independent iterations (the divisions and roots of different strips overlap):
+  // the samples at the strip centres and the integral at the strip edges, the strip curvatures
+  // and half-lengths, then the volume sums in strip order.
+  double* sv = w.strip_v.data();  // overlap at the strip centre
+  double* sc = w.strip_c.data();  // cos of the contact angle at the strip centre
+  double* sF = w.strip_F.data();  // integral of A at the strip edges (n + 1)
+  double* sA = w.strip_A.data();
+  double* sa = w.strip_len.data();
+  sF[0] = A_integral(run.s_lo);
   for (int k = 0; k < n; ++k) {
     const double s = run.s_lo + (k + 0.5) * width;
     int j;
     double t;
     locate(g, s, &j, &t);
-    const double v = std::max(lerp_at(v_s, j, t), 0.0);
-    const double F_hi = A_integral(run.s_lo + (k + 1) * width);
-    const double A = (F_hi - F_lo) / width;
-    F_lo = F_hi;
-    const double a = A > 0.0 ? std::sqrt(v / A) : 0.0;
-    const double vol = (4.0 / 3.0) * v * a * width;  // parabola: int (1 - x^2/a^2) = 4/3 a
-    volume += vol;
-    volume_z += vol * lerp_at(c_s, j, t);
-    w.strip_A[k] = A;
-    w.strip_len[k] = a;
+    sv[k] = std::max(lerp_at(v_s, j, t), 0.0);
+    sc[k] = lerp_at(c_s, j, t);
     w.strip_pos[k] = lerp_at(q_s, j, t);
+    sF[k + 1] = A_integral(run.s_lo + (k + 1) * width);
+  }
+  {
+    int k = 0;
+#if defined(__SSE2__)
+    const __m128d vwidth = _mm_set1_pd(width), zero = _mm_setzero_pd();
+    for (; k + 1 < n; k += 2) {
+      const __m128d A =
+          _mm_div_pd(_mm_sub_pd(_mm_loadu_pd(sF + k + 1), _mm_loadu_pd(sF + k)), vwidth);
+      const __m128d a = _mm_and_pd(_mm_cmpgt_pd(A, zero),
+                                   _mm_sqrt_pd(_mm_div_pd(_mm_loadu_pd(sv + k), A)));
+      _mm_storeu_pd(sA + k, A);
+      _mm_storeu_pd(sa + k, a);
+    }
+#endif
+    for (; k < n; ++k) {
+      const double A = (sF[k + 1] - sF[k]) / width;
+      sA[k] = A;
+      sa[k] = A > 0.0 ? std::sqrt(sv[k] / A) : 0.0;
+    }
+  }
+  double volume = 0.0, volume_z = 0.0;  // sum v a w (4/3), its projection on track z
+  for (int k = 0; k < n; ++k) {
+    const double vol = (4.0 / 3.0) * sv[k] * sa[k] * width;  // parabola: int (1 - x^2/a^2) = 4/3 a
+    volume += vol;
+    volume_z += vol * sc[k];
   }
   // One amplitude for the patch. Boussinesq: the contact condition at the reference point(s),
   // sum_r w_r (u(s_r) - kappa delta_r) = 0 with u(s_r) = C J_r / (pi E*).
