@@ -151,6 +151,8 @@ const ShapeTable& shape_table() {
   return table;
 }
 
+inline double table_at(const ShapeTable& t, double pos);
+
 double fast_log_axis_ratio(double ratio, bool* ok) {
   *ok = false;
   if (!(ratio > 0.0) || ratio >= 1.0) return 0.0;
@@ -158,7 +160,10 @@ double fast_log_axis_ratio(double ratio, bool* ok) {
   const double x = detail::fast_log(ratio);  // within an ulp of std::log, without the call
   if (x < ShapeTable::kXMin) return 0.0;
   *ok = true;
-  const double pos = (x - ShapeTable::kXMin) / t.h;
+  return table_at(t, (x - ShapeTable::kXMin) / t.h);
+}
+
+inline double table_at(const ShapeTable& t, double pos) {
   int i = static_cast<int>(pos);
   if (i >= ShapeTable::kNodes - 1) i = ShapeTable::kNodes - 2;
   const double s = pos - i;
@@ -181,23 +186,41 @@ namespace detail {
 
 void hertz_axis_ratio_fast_n(double* x, int n) {
   // In chunks: the table lookups first (no calls, independent), then the exponentials.
+  // The logarithms and table positions two at a time (fast_log_pd: the same operations as
+  // fast_log), then the table (fast_log_axis_ratio's steps) and the exponentials.
   constexpr int kChunk = 64;
   double y[kChunk];
   unsigned char state[kChunk];  // 0: ratio >= 1, 1: table, 2: exact shape
+  const ShapeTable& t = shape_table();
   for (int c0 = 0; c0 < n; c0 += kChunk) {
     const int m = std::min(kChunk, n - c0);
     double* xc = x + c0;
-    for (int i = 0; i < m; ++i) {
+    double lx[kChunk], pos[kChunk];
+    int i = 0;
+#if defined(__SSE2__)
+    const __m128d xmin = _mm_set1_pd(ShapeTable::kXMin), vh = _mm_set1_pd(t.h);
+    for (; i + 1 < m; i += 2) {
+      const __m128d l = fast_log_pd(_mm_loadu_pd(xc + i));
+      _mm_storeu_pd(lx + i, l);
+      _mm_storeu_pd(pos + i, _mm_div_pd(_mm_sub_pd(l, xmin), vh));
+    }
+#endif
+    for (; i < m; ++i) {
+      lx[i] = fast_log(xc[i]);
+      pos[i] = (lx[i] - ShapeTable::kXMin) / t.h;
+    }
+    for (i = 0; i < m; ++i) {
       const double ratio = xc[i];
       if (ratio >= 1.0) {
         state[i] = 0;
-        continue;
+      } else if (!(ratio > 0.0) || lx[i] < ShapeTable::kXMin) {
+        state[i] = 2;
+      } else {
+        state[i] = 1;
+        y[i] = table_at(t, pos[i]);
       }
-      bool ok = false;
-      y[i] = fast_log_axis_ratio(ratio, &ok);
-      state[i] = ok ? 1 : 2;
     }
-    for (int i = 0; i < m; ++i) {
+    for (i = 0; i < m; ++i) {
       if (state[i] == 1) [[likely]]
         xc[i] = std::exp(y[i]);
       else

@@ -94,7 +94,7 @@ struct Workspace {
   std::vector<double> strip_F;          //   integral of A_c at the edges (strips + 1) [1]
   std::vector<ClosureRef> refs;         // STRIPES run closure references (one per point)
   std::vector<double> log_arg;          // STRIPES Boussinesq integral: logarithm arguments (4 per
-  std::vector<double> log_coef;         //   strip) and their coefficients [-], [m^3]
+  std::vector<double> log_coef;         //   strip, two references) and their coefficients [-], [m^3]
   std::vector<double> A_int;            // band-sized scratch: running integral of A over s [1]
   std::vector<double> A_grp;            // band-sized scratch: the same over a STRIPES run of points
   int grp_lead = -1, grp_ja = 0, grp_jb = 0;  // A_grp is the integral from grp_ja, ready up to

@@ -363,8 +363,8 @@ void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptio
   w.strip_c.resize(std::max(o.strips, 1));
   w.strip_F.resize(std::max(o.strips, 1) + 1);
   w.refs.resize(std::max(np, 1));
-  w.log_arg.resize(4 * std::max(o.strips, 1));
-  w.log_coef.resize(4 * std::max(o.strips, 1));
+  w.log_arg.resize(8 * std::max(o.strips, 1));  // two references at a time (stripes.cpp)
+  w.log_coef.resize(8 * std::max(o.strips, 1));
 
   for (int i = 0; i < np; ++i) {
     const ContactPoint& cp = g.points[i];

@@ -268,9 +268,34 @@ class BoussinesqSum {
 #endif
   }
 
-  double total() const {
-    double sum = rest_;
+  // total() of two sums, their logarithms interleaved (two independent chains of additions, each
+  // in its own order).
+  static void total2(const BoussinesqSum& s1, const BoussinesqSum& s2, double* t1, double* t2) {
+    double sum1 = s1.rest_, sum2 = s2.rest_;
+    const int m = std::min(s1.n_, s2.n_) & ~1;
     int i = 0;
+#if defined(__SSE2__)
+    for (; i < m; i += 2) {
+      double u1[2], u2[2];
+      _mm_storeu_pd(u1, _mm_mul_pd(fast_log_pd(_mm_loadu_pd(s1.arg_ + i)),
+                                   _mm_loadu_pd(s1.coef_ + i)));
+      _mm_storeu_pd(u2, _mm_mul_pd(fast_log_pd(_mm_loadu_pd(s2.arg_ + i)),
+                                   _mm_loadu_pd(s2.coef_ + i)));
+      sum1 += u1[0];
+      sum2 += u2[0];
+      sum1 += u1[1];
+      sum2 += u2[1];
+    }
+#endif
+    *t1 = s1.sum_from(i, sum1);
+    *t2 = s2.sum_from(i, sum2);
+  }
+
+  double total() const { return sum_from(0, rest_); }
+
+ private:
+  // sum + the terms i.. in order.
+  double sum_from(int i, double sum) const {
 #if defined(__SSE2__)
     for (; i + 1 < n_; i += 2) {
       const __m128d l = fast_log_pd(_mm_loadu_pd(arg_ + i));
@@ -285,7 +310,6 @@ class BoussinesqSum {
     return sum;
   }
 
- private:
   // factor * F(a, y).
   void edge(double factor, double a, double y) {
     if (y == 0.0) return;
@@ -391,12 +415,33 @@ PatchSums strips_and_closure(const WheelContactGeometry& g, const Material& m,
   double scale = 0.0;  // pressure per unit virtual overlap [Pa/m]
   if (boussinesq) {
     double J = 0.0, D = 0.0;
-    for (int r = 0; r < nrefs; ++r) {
-      if (!(refs[r].weight > 0.0)) continue;
-      BoussinesqSum bsum(w.log_arg.data(), w.log_coef.data());
-      bsum.add_strips(w.strip_A.data(), w.strip_len.data(), n, run.s_lo, width, refs[r].s);
-      J += refs[r].weight * bsum.total();
-      D += refs[r].weight * refs[r].delta;
+    // The references with a weight two at a time (their sums evaluated together), J and D summed
+    // in reference order.
+    int r = 0;
+    while (r < nrefs) {
+      if (!(refs[r].weight > 0.0)) {
+        ++r;
+        continue;
+      }
+      int r2 = r + 1;
+      while (r2 < nrefs && !(refs[r2].weight > 0.0)) ++r2;
+      BoussinesqSum b1(w.log_arg.data(), w.log_coef.data());
+      b1.add_strips(w.strip_A.data(), w.strip_len.data(), n, run.s_lo, width, refs[r].s);
+      if (r2 < nrefs) {
+        BoussinesqSum b2(w.log_arg.data() + 4 * n, w.log_coef.data() + 4 * n);
+        b2.add_strips(w.strip_A.data(), w.strip_len.data(), n, run.s_lo, width, refs[r2].s);
+        double t1, t2;
+        BoussinesqSum::total2(b1, b2, &t1, &t2);
+        J += refs[r].weight * t1;
+        D += refs[r].weight * refs[r].delta;
+        J += refs[r2].weight * t2;
+        D += refs[r2].weight * refs[r2].delta;
+        r = r2 + 1;
+      } else {
+        J += refs[r].weight * b1.total();
+        D += refs[r].weight * refs[r].delta;
+        r = r2;
+      }
     }
     constexpr double kappa = 32.0 / (9.0 * std::numbers::pi);
     if (J > 0.0) scale = kappa * std::numbers::pi * m.contact_modulus() * D / J;
