@@ -53,6 +53,7 @@ struct PointContext {
   // The domains [lo, hi] of the points are disjoint, so the points share the band-sized arrays.
   int cos_lo = 0, cos_hi = -1;  // Workspace::cos_angle ready on [cos_lo, cos_hi]
   int smp_lo = 0, smp_hi = -1;  // Workspace::A and q ready on [smp_lo, smp_hi]
+  int aint_lo = 0, aint_hi = -1;  // Workspace::A_int: integral from aint_lo ready to aint_hi
 };
 
 // Per-sample data interpolated at an arc length (interp_sample).
@@ -239,6 +240,12 @@ inline void ensure_cos(const WheelContactGeometry& g, PointContext& p, Workspace
 inline void ensure_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0,
                            int j1, const NormalOptions& o) {
   if (j0 < p.smp_lo || j1 > p.smp_hi) extend_samples(g, p, w, j0, j1, o);
+}
+// STRIPES: Workspace::A_int, the running integral of A from smp_lo, made ready on the point's
+// ready samples (the point's own patch; a run of points integrates over its run, stripes.cpp).
+void point_A_integral(const WheelContactGeometry& g, PointContext& p, Workspace& w);
+inline void ensure_point_A_integral(const WheelContactGeometry& g, PointContext& p, Workspace& w) {
+  if (p.aint_lo != p.smp_lo || p.aint_hi != p.smp_hi) point_A_integral(g, p, w);
 }
 Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
              const NormalOptions& o);

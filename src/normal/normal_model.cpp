@@ -180,15 +180,24 @@ void extend_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w
   if (is_stripes(p.model)) ensure_cos(g, p, w, j0, j1);
   grow_ranges(&p.smp_lo, &p.smp_hi, j0, j1,
               [&](int a, int b) { compute_samples(g, p, w, a, b, o); });
-  if (is_stripes(p.model)) {
-    // Running integral of A over the ready samples (trapezoids, exact for the linear interpolant),
-    // from smp_lo: STRIPES averages A over each strip (stripes.cpp).
-    double* A_int = w.A_int.data();
-    const double* A = w.A.data();
-    const double half_h = 0.5 * g.band_step;
+}
+
+void point_A_integral(const WheelContactGeometry& g, PointContext& p, Workspace& w) {
+  // Running integral of A over the ready samples (trapezoids, exact for the linear interpolant),
+  // from smp_lo: STRIPES averages A over each strip (stripes.cpp). Kept while smp_lo stays, only
+  // extended (the same sums).
+  double* A_int = w.A_int.data();
+  const double* A = w.A.data();
+  const double half_h = 0.5 * g.band_step;
+  int from = p.smp_lo;
+  if (p.aint_lo == p.smp_lo && p.aint_hi >= p.aint_lo) {
+    from = p.aint_hi;
+  } else {
     A_int[p.smp_lo] = 0.0;
-    for (int j = p.smp_lo; j < p.smp_hi; ++j) A_int[j + 1] = A_int[j] + half_h * (A[j] + A[j + 1]);
   }
+  for (int j = from; j < p.smp_hi; ++j) A_int[j + 1] = A_int[j] + half_h * (A[j] + A[j + 1]);
+  p.aint_lo = p.smp_lo;
+  p.aint_hi = std::max(p.smp_hi, from);
 }
 
 namespace {

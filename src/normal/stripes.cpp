@@ -673,6 +673,7 @@ PatchSums stripes_point_patch(const WheelContactGeometry& g, const Material& m,
   int ja, jb;
   run_samples(g, p.lo, p.hi, run, o.strips, &ja, &jb);
   ensure_samples(g, p, w, ja, jb, o);
+  ensure_point_A_integral(g, p, w);
   const ClosureRef ref{g.points[p.point].band_s, delta0, 1.0,
                        p.pmax_coef * std::sqrt(delta0) / (p.eps * delta0)};
   return strips_and_closure(g, m, o, p, w, run, ja, jb, w.A_int.data(), &ref, 1, out);
