@@ -545,10 +545,22 @@ PatchSums stripes_run_patch(const WheelContactGeometry& g, const Material& m,
   const BandSample* band = g.band.data();
   double* v = w.v.data();
   const double* c = w.cos_angle.data();
+  // Fast path: samples [rlo, rhi] lie in one member's share of the run with its cos ready.
+  int rlo = 1, rhi = 0;
   auto overlap = [&](int j) {
-    PointContext& q = owner(j);
-    if (j < q.cos_lo || j > q.cos_hi) [[unlikely]]
-      extend_cos(g, q, w, std::max(q.lo, j - 16), std::min(q.hi, j + 16));
+    if (j < rlo || j > rhi) [[unlikely]] {
+      PointContext& q = owner(j);
+      if (j < q.cos_lo || j > q.cos_hi) [[unlikely]]
+        extend_cos(g, q, w, std::max(q.lo, j - 16), std::min(q.hi, j + 16));
+      if (nmem <= kMaxMembers) {
+        int k = 0;
+        while (k + 1 < nmem && j > mem_hi[k]) ++k;
+        const int seg_lo = k == 0 ? std::numeric_limits<int>::min() : mem_hi[k - 1] + 1;
+        const int seg_hi = k + 1 == nmem ? std::numeric_limits<int>::max() : mem_hi[k];
+        rlo = std::max(seg_lo, q.cos_lo);
+        rhi = std::min(seg_hi, q.cos_hi);
+      }
+    }
     return v[j] = E * c[j] - band[j].gap;
   };
   // Runs of positive overlap around each member's point; the strips span their hull.
