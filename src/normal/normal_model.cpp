@@ -115,7 +115,31 @@ inline void compute_samples(const WheelContactGeometry& g, const PointContext& p
   double* Aw = w.A.data();
   double* qw = w.q.data();
   const double Bfloor = o.min_curvature_ratio * p.A0;
-  for (int j = a; j <= b; ++j) {  // local A, and the curvature ratio in q
+  const double* cw = w.cos_angle.data();
+  const double* Bt = w.B_treated.data();
+  // Two samples per SSE2 step, the same operations (std::max(x, y) = maxpd(y, x), std::min(x, y)
+  // = minpd(y, x), NaNs included), then the scalar loop for the rest.
+  int j1 = a;
+#if defined(__SSE2__)
+  {
+    const __m128d vr = _mm_set1_pd(p.r_ref), vA0 = _mm_set1_pd(p.A0),
+                  vcr = _mm_set1_pd(p.cos_ref), vBf = _mm_set1_pd(Bfloor),
+                  zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0);
+    const bool r_pos = p.r_ref > 0.0;
+    for (; j1 + 1 <= b; j1 += 2) {
+      const __m128d rr = _mm_set_pd(g.band[j1 + 1].rolling_radius, g.band[j1].rolling_radius);
+      const __m128d pos = _mm_cmpgt_pd(rr, zero);
+      const __m128d radius = _mm_or_pd(_mm_and_pd(pos, rr), _mm_andnot_pd(pos, vr));
+      const __m128d scale_r = r_pos ? _mm_div_pd(vr, radius) : one;
+      const __m128d A =
+          _mm_div_pd(_mm_mul_pd(_mm_mul_pd(vA0, scale_r), _mm_loadu_pd(cw + j1)), vcr);
+      const __m128d B = _mm_max_pd(vBf, _mm_loadu_pd(Bt + j1));
+      _mm_storeu_pd(Aw + j1, A);
+      _mm_storeu_pd(qw + j1, _mm_div_pd(_mm_min_pd(B, A), _mm_max_pd(B, A)));
+    }
+  }
+#endif
+  for (int j = j1; j <= b; ++j) {  // local A, and the curvature ratio in q
     const BandSample& bs = g.band[j];
     const double radius = bs.rolling_radius > 0.0 ? bs.rolling_radius : p.r_ref;
     const double scale_r = p.r_ref > 0.0 ? p.r_ref / radius : 1.0;
@@ -126,7 +150,25 @@ inline void compute_samples(const WheelContactGeometry& g, const PointContext& p
   }
   hertz_axis_ratio_fast_n(qw + a, b - a + 1);
   const bool corr_a = p.model == NormalModel::stripes_a;
-  for (int j = a; j <= b; ++j) {
+  int j3 = a;
+#if defined(__SSE2__)
+  {
+    const __m128d vBf = _mm_set1_pd(Bfloor), one = _mm_set1_pd(1.0);
+    for (; j3 + 1 <= b; j3 += 2) {
+      const __m128d A = _mm_loadu_pd(Aw + j3);
+      const __m128d B = _mm_max_pd(vBf, _mm_loadu_pd(Bt + j3));
+      const __m128d gr = _mm_loadu_pd(qw + j3);
+      const __m128d g2 = _mm_mul_pd(gr, gr);
+      const __m128d le = _mm_cmple_pd(A, B);
+      const __m128d q = _mm_or_pd(_mm_and_pd(le, g2), _mm_andnot_pd(le, _mm_div_pd(one, g2)));
+      _mm_storeu_pd(qw + j3, q);
+      _mm_storeu_pd(Aw + j3, corr_a ? _mm_mul_pd(q, B)
+                                    : _mm_div_pd(_mm_mul_pd(_mm_add_pd(A, B), q),
+                                                 _mm_add_pd(one, q)));
+    }
+  }
+#endif
+  for (int j = j3; j <= b; ++j) {
     const double A = Aw[j];
     const double B = std::max(w.B_treated[j], Bfloor);
     const double gr = qw[j];
