@@ -252,8 +252,12 @@ Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, doubl
 double interp_band(const WheelContactGeometry& g, double s, double BandSample::*field);
 
 // Band segment [j, j + 1] and fraction t for arc length s, kept inside [lo, hi].
+inline void locate_pos(int lo, int hi, double pos, int* j, double* t);
 inline void locate(const WheelContactGeometry& g, int lo, int hi, double s, int* j, double* t) {
-  const double pos = (s - g.band.front().s) / g.band_step;
+  locate_pos(lo, hi, (s - g.band.front().s) / g.band_step, j, t);
+}
+// locate with the band position pos = (s - s_0) / band_step given.
+inline void locate_pos(int lo, int hi, double pos, int* j, double* t) {
   int i = static_cast<int>(std::floor(pos));
   const int jmax = std::max(lo, hi - 1);
   i = std::clamp(i, lo, jmax);

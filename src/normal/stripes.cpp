@@ -438,10 +438,10 @@ PatchSums strips_and_closure(const WheelContactGeometry& g, const Material& m,
   // strips slide with the patch edges, N(delta) had bumps (non-monotone: several approaches carry
   // the same load, the load control picked different ones from one y to the next). The mean moves
   // continuously as a jump sweeps through a strip.
-  auto A_integral = [&](double s) {  // int A ds from a fixed origin, s inside [s_ja, s_jb]
+  auto A_integral_pos = [&](double pos) {  // int A ds from a fixed origin at band position pos
     int j;
     double t;
-    locate(g, ja, jb, s, &j, &t);
+    locate_pos(ja, jb, pos, &j, &t);
     const double a0 = A_s[j];
     if (t == 0.0) return A_int[j];
     return A_int[j] + t * g.band_step * (a0 + 0.5 * t * (A_s[j + 1] - a0));
@@ -454,16 +454,36 @@ PatchSums strips_and_closure(const WheelContactGeometry& g, const Material& m,
   double* sF = w.strip_F.data();  // integral of A at the strip edges (n + 1)
   double* sA = w.strip_A.data();
   double* sa = w.strip_len.data();
-  sF[0] = A_integral(run.s_lo);
+  // Band positions (s - s_0) / band_step of the centres (in sv) and edges (in sF), two per SSE2
+  // division, then the samples there (locate_pos: as locate).
+  const double s0 = g.band.front().s, step = g.band_step;
+  const int last = static_cast<int>(g.band.size()) - 1;
+  sF[0] = (run.s_lo - s0) / step;
+  {
+    int k = 0;
+#if defined(__SSE2__)
+    const __m128d vs0 = _mm_set1_pd(s0), vstep = _mm_set1_pd(step);
+    for (; k + 1 < n; k += 2) {
+      const __m128d sc2 = _mm_set_pd(run.s_lo + (k + 1 + 0.5) * width, run.s_lo + (k + 0.5) * width);
+      const __m128d se2 = _mm_set_pd(run.s_lo + (k + 2) * width, run.s_lo + (k + 1) * width);
+      _mm_storeu_pd(sv + k, _mm_div_pd(_mm_sub_pd(sc2, vs0), vstep));
+      _mm_storeu_pd(sF + k + 1, _mm_div_pd(_mm_sub_pd(se2, vs0), vstep));
+    }
+#endif
+    for (; k < n; ++k) {
+      sv[k] = (run.s_lo + (k + 0.5) * width - s0) / step;
+      sF[k + 1] = (run.s_lo + (k + 1) * width - s0) / step;
+    }
+  }
+  sF[0] = A_integral_pos(sF[0]);
   for (int k = 0; k < n; ++k) {
-    const double s = run.s_lo + (k + 0.5) * width;
     int j;
     double t;
-    locate(g, s, &j, &t);
+    locate_pos(0, last, sv[k], &j, &t);
     sv[k] = std::max(lerp_at(v_s, j, t), 0.0);
     sc[k] = lerp_at(c_s, j, t);
     w.strip_pos[k] = lerp_at(q_s, j, t);
-    sF[k + 1] = A_integral(run.s_lo + (k + 1) * width);
+    sF[k + 1] = A_integral_pos(sF[k + 1]);
   }
   {
     int k = 0;
