@@ -12,6 +12,7 @@
 #include "generate.hpp"
 #include "table_io.hpp"
 #include "test_tables.hpp"
+#include "error_message.hpp"
 
 namespace railtab {
 namespace {
@@ -95,12 +96,7 @@ rail = "uic60"
 )";
 
 std::string error_of(const std::string& text) {
-  try {
-    parse_scene(std::string(kHead) + text, "s.toml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test::error_message([&] { parse_scene(std::string(kHead) + text, "s.toml"); });
 }
 
 TEST(AdaptiveScene, ParsesTargetsAndAdaptiveAxes) {

@@ -16,6 +16,7 @@
 #include "merge.hpp"
 #include "table_io.hpp"
 #include "test_tables.hpp"
+#include "error_message.hpp"
 
 namespace railtab {
 namespace {
@@ -35,12 +36,7 @@ load = 1e5
 )";
 
 std::string error_of(const std::string& accuracy) {
-  try {
-    parse_scene(std::string(kHead) + accuracy + kGrid, "s.toml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test::error_message([&] { parse_scene(std::string(kHead) + accuracy + kGrid, "s.toml"); });
 }
 
 TEST(ModelChoiceScene, ModelsEndWithTheReference) {

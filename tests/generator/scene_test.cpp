@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/check.hpp"
+#include "error_message.hpp"
 
 namespace railtab {
 namespace {
@@ -23,12 +24,7 @@ load = 78500
 
 // The message of the Error that parsing `text` throws ("" when it does not throw).
 std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.toml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_message([&] { parse_scene(text, "bad.toml"); });
 }
 
 TEST(Scene, MinimalSceneGetsDefaults) {

@@ -18,6 +18,7 @@
 #include "simulation_run.hpp"
 #include "simulation_scene.hpp"
 #include "vehicle/wheelset_model.hpp"
+#include "error_message.hpp"
 
 namespace railtab {
 namespace {
@@ -222,12 +223,7 @@ std::string simulation_text(const std::string& extra) {
 }
 
 std::string error_of(const std::string& text, const fs::path& base) {
-  try {
-    parse_simulation_scene(text, "sim.toml", base);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_message([&] { parse_simulation_scene(text, "sim.toml", base); });
 }
 
 TEST_F(SimulateTest, SimulationSceneParsesAndResolvesTransitions) {

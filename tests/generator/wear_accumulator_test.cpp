@@ -18,6 +18,7 @@
 #include "profile/s1002.hpp"
 #include "wear_chart.hpp"
 #include "worn_profile.hpp"
+#include "error_message.hpp"
 
 namespace railtab {
 namespace {
@@ -351,29 +352,18 @@ TEST(WornProfile, WornWheelFeedsTheNextStep) {
   std::filesystem::remove_all(dir);
 }
 
-// The message of the Error that `f` throws ("" when it does not throw).
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(WornProfile, BadInputThrowsNamingTheFile) {
   Synthetic s = synthetic_depth();
   const ProfilePtr wheel = make_s1002_profile();
   const auto dir = temp_dir("bad");
   const auto file = dir / "worn_nan.txt";
   s.depth[100] = std::nan("");
-  std::string message = error_of([&] { write_worn_profile(*wheel, s.u, s.depth, 0.003, file); });
+  std::string message = test::error_message([&] { write_worn_profile(*wheel, s.u, s.depth, 0.003, file); });
   EXPECT_NE(message.find("worn_nan.txt"), std::string::npos) << message;
   EXPECT_FALSE(std::filesystem::exists(file));
   s.depth[100] = 0.0;
   const auto unwritable = dir / "no_such_dir" / "worn.txt";
-  message = error_of([&] { write_worn_profile(*wheel, s.u, s.depth, 0.003, unwritable); });
+  message = test::error_message([&] { write_worn_profile(*wheel, s.u, s.depth, 0.003, unwritable); });
   EXPECT_NE(message.find(unwritable.string()), std::string::npos) << message;
   std::filesystem::remove_all(dir);
 }

@@ -5,6 +5,7 @@
 #include "core/check.hpp"
 #include "stability_common.hpp"
 #include "tangential/kalker_coefficients.hpp"
+#include "error_message.hpp"
 
 namespace railtab::stability {
 namespace {
@@ -13,27 +14,16 @@ const double kBad[] = {std::numeric_limits<double>::quiet_NaN(),
                        std::numeric_limits<double>::infinity(),
                        -std::numeric_limits<double>::infinity()};
 
-// The message of the Error that f throws ("" when it throws none).
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(InvalidInput, StateYAndRollThrowNamingTheInput) {
   const ContactGeometrySolver& solver = s1002_uic60();
   for (double bad : kBad) {
     for (Side side : {Side::left, Side::right}) {
-      const std::string ey = error_of([&] { solver.solve_wheel(side, WheelsetState{bad, 0.0}); });
+      const std::string ey = test::error_message([&] { solver.solve_wheel(side, WheelsetState{bad, 0.0}); });
       EXPECT_NE(ey.find(" y "), std::string::npos) << ey;
-      const std::string er = error_of([&] { solver.solve_wheel(side, WheelsetState{0.0, bad}); });
+      const std::string er = test::error_message([&] { solver.solve_wheel(side, WheelsetState{0.0, bad}); });
       EXPECT_NE(er.find("roll"), std::string::npos) << er;
     }
-    const std::string ee = error_of([&] { solver.equilibrium_roll(bad); });
+    const std::string ee = test::error_message([&] { solver.equilibrium_roll(bad); });
     EXPECT_FALSE(ee.empty()) << "equilibrium_roll(" << bad << ") did not throw";
   }
 }
@@ -63,10 +53,10 @@ TEST(InvalidInput, CreepageAndFrictionThrowNamingTheInput) {
       for (int k = 0; k < 3; ++k) {
         Creepage c{1e-3, 1e-3, 0.1};
         (k == 0 ? c.xi : k == 1 ? c.eta : c.phi) = bad;
-        const std::string e = error_of([&] { creep_and_wear(g, p, c); });
+        const std::string e = test::error_message([&] { creep_and_wear(g, p, c); });
         EXPECT_NE(e.find("creepage"), std::string::npos) << v.label << ": '" << e << "'";
       }
-      const std::string em = error_of([&] { creep_and_wear(g, p, Creepage{1e-3, 0.0, 0.0}, bad); });
+      const std::string em = test::error_message([&] { creep_and_wear(g, p, Creepage{1e-3, 0.0, 0.0}, bad); });
       EXPECT_NE(em.find("friction"), std::string::npos) << v.label << ": '" << em << "'";
     }
   }

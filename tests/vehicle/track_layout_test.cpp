@@ -6,17 +6,13 @@
 #include <string>
 
 #include "core/check.hpp"
+#include "error_message.hpp"
 
 namespace railtab::vehicle {
 namespace {
 
 std::string error_of(const std::vector<TrackSection>& sections, Irregularity irregularity = {}) {
-  try {
-    TrackLayout layout(sections, irregularity);
-  } catch (const railtab::Error& e) {
-    return e.what();
-  }
-  return "no exception";
+  return test::error_message([&] { TrackLayout layout(sections, irregularity); });
 }
 
 TEST(TrackLayout, CurvatureAndCantRampLinearlyThroughTransitions) {
