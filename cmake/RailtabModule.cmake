@@ -17,13 +17,15 @@ function(railtab_module name)
 endfunction()
 
 # railtab_test(DIR LIBS lib... [LABELS label...])
-# tests/DIR/*_test.cpp -> one executable test_DIR, registered with CTest (label = DIR).
+# tests/DIR/*_test.cpp -> one executable test_DIR, registered with CTest (label = DIR). A "/" in
+# DIR becomes "_" in the names: tests/generator/sweep -> test_generator_sweep.
 function(railtab_test dir)
   cmake_parse_arguments(ARG "" "" "LIBS;LABELS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/*_test.cpp)
   if(NOT sources)
     return()
   endif()
+  string(REPLACE "/" "_" dir ${dir})
   add_executable(test_${dir} ${sources})
   target_include_directories(test_${dir} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_options(test_${dir} PRIVATE ${RAILTAB_WARNINGS})

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <string>
 
-#include "scene.hpp"
-#include "sweep.hpp"
-#include "table.hpp"
+#include "scene/scene.hpp"
+#include "sweep/sweep.hpp"
+#include "table/table.hpp"
 
 namespace railtab::testing {
 

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <string>
 
-#include "table.hpp"
+#include "table/table.hpp"
 
 namespace railtab::testing {
 

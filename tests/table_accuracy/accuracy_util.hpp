@@ -24,11 +24,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "contact_kernel.hpp"
 #include "railtab/lookup.hpp"
-#include "scene.hpp"
-#include "sweep.hpp"
-#include "table_io.hpp"
+#include "scene/scene.hpp"
+#include "sweep/contact_kernel.hpp"
+#include "sweep/sweep.hpp"
+#include "table/table_io.hpp"
 
 namespace railtab::accuracy {
 

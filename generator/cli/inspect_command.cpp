@@ -1,0 +1,25 @@
+// railtab inspect TABLE.h5 [--scene]: axes, outputs, status counts and provenance of a table.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.hpp"
+#include "table/inspect.hpp"
+#include "table/table_io.hpp"
+
+namespace railtab {
+
+void add_inspect_command(CLI::App& app) {
+  auto path = std::make_shared<std::string>();
+  auto scene = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand("inspect", "Summary of a table file: axes, outputs, status counts, provenance");
+  cmd->add_option("table", *path, "Table file (HDF5)")->required();
+  cmd->add_flag("--scene", *scene, "Also print the scene text stored in the table");
+  cmd->callback([path, scene] {
+    Table table = read_table(*path);
+    print_table_summary(table, *path, std::filesystem::file_size(*path), *scene, std::cout);
+  });
+}
+
+}  // namespace railtab

@@ -1,0 +1,386 @@
+// Scene files: TOML (toml++) into a Scene. Every key is checked against the list of keys its
+// section knows, so a typo is an error, never a silently ignored setting. Errors name the file,
+// the line and the dotted key. File format: docs/scenes.md.
+#include "scene/scene.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "core/check.hpp"
+#include "scene/toml_section.hpp"
+
+namespace railtab {
+namespace {
+
+constexpr std::size_t kMaxAxisPoints = 1'000'000;  // guards against a range with a tiny step
+
+using scene_toml::Context;
+using scene_toml::fail;
+using scene_toml::join;
+using scene_toml::non_negative;
+using scene_toml::positive;
+using scene_toml::Section;
+using scene_toml::section;
+using scene_toml::type_name;
+
+bool fraction(double v) { return v >= 0.0 && v < 0.5; }
+
+// "1:40" -> 0.025; a number is the tangent itself.
+double parse_inclination(const Section& s, const toml::node& n) {
+  if (!n.is_string()) {
+    double v = s.number(n, "rail_inclination");
+    if (v < 0.0 || v > 0.2) fail(s.context(), n.source(), s.dotted("rail_inclination"), "must be a tangent in [0, 0.2]");
+    return v;
+  }
+  std::string text = s.string(n, "rail_inclination");
+  auto colon = text.find(':');
+  double num = 0.0, den = 0.0;
+  bool ok = colon != std::string::npos;
+  if (ok) {
+    std::istringstream a(text.substr(0, colon)), b(text.substr(colon + 1));
+    ok = static_cast<bool>(a >> num) && static_cast<bool>(b >> den) && (a >> std::ws).eof() &&
+         (b >> std::ws).eof();
+  }
+  if (!ok || !(den > 0.0) || num < 0.0 || !std::isfinite(num / den) || num / den > 0.2) {
+    fail(s.context(), n.source(), s.dotted("rail_inclination"),
+         fmt::format("expected a ratio like \"1:40\" or a tangent, got \"{}\"", text));
+  }
+  return num / den;
+}
+
+// One grid segment: a number, or a range table {start, stop, step} / {start, stop, count}.
+void append_segment(const Section& s, const std::string& key, const toml::node& n,
+                    std::vector<double>& out) {
+  if (!n.is_table()) {
+    out.push_back(s.number(n, key));
+    return;
+  }
+  const toml::table& t = *n.as_table();
+  for (auto&& [k, v] : t) {
+    if (k == "max_step" || k == "min_step") {
+      fail(s.context(), k.source(), s.dotted(key) + "." + std::string(k.str()),
+           "an adaptive range {start, stop, max_step, min_step} must be the whole axis, not a list element");
+    }
+    if (k != "start" && k != "stop" && k != "step" && k != "count") {
+      fail(s.context(), k.source(), s.dotted(key) + "." + std::string(k.str()),
+           "unknown key in a range (known keys: start, stop, step, count)");
+    }
+  }
+  auto get = [&](const char* name) -> double {
+    const toml::node* v = t.get(name);
+    if (!v) fail(s.context(), n.source(), s.dotted(key) + "." + name, "missing required key of a range");
+    return s.number(*v, key + "." + name);
+  };
+  double start = get("start");
+  double stop = get("stop");
+  bool has_step = t.contains("step"), has_count = t.contains("count");
+  if (has_step == has_count) {
+    fail(s.context(), n.source(), s.dotted(key), "a range needs exactly one of step or count");
+  }
+  if (!(stop > start)) fail(s.context(), n.source(), s.dotted(key), "a range needs stop > start");
+  std::size_t count = 0;
+  if (has_step) {
+    double step = get("step");
+    if (!(step > 0.0)) fail(s.context(), t.get("step")->source(), s.dotted(key) + ".step", "must be > 0");
+    double intervals = (stop - start) / step;
+    if (intervals > static_cast<double>(kMaxAxisPoints)) {
+      fail(s.context(), n.source(), s.dotted(key), "range has too many points");
+    }
+    count = static_cast<std::size_t>(std::floor(intervals + 1e-9)) + 1;
+    for (std::size_t i = 0; i < count; ++i) out.push_back(start + static_cast<double>(i) * step);
+    // Snap the end point so that {start, stop, step} with stop on the lattice ends exactly at stop.
+    if (std::abs(out.back() - stop) < 1e-9 * step) out.back() = stop;
+  } else {
+    const toml::node* c = t.get("count");
+    auto i = c->as_integer();
+    if (!i || i->get() < 2 || i->get() > static_cast<std::int64_t>(kMaxAxisPoints)) {
+      fail(s.context(), c->source(), s.dotted(key) + ".count", "must be an integer >= 2");
+    }
+    count = static_cast<std::size_t>(i->get());
+    for (std::size_t j = 0; j < count; ++j) {
+      // Endpoints exact; interior points by linear interpolation.
+      double f = static_cast<double>(j) / static_cast<double>(count - 1);
+      out.push_back(j + 1 == count ? stop : start + f * (stop - start));
+    }
+  }
+}
+
+// A grid axis: number, list of numbers and/or ranges (concatenated, shared end points merged), or
+// one range table. The result is strictly increasing.
+std::vector<double> parse_axis(const Section& s, const std::string& key, const toml::node& n) {
+  std::vector<double> values;
+  if (auto arr = n.as_array()) {
+    if (arr->empty()) fail(s.context(), n.source(), s.dotted(key), "empty grid");
+    for (const toml::node& el : *arr) {
+      std::size_t before = values.size();
+      append_segment(s, key, el, values);
+      // A range that starts where the previous segment ended shares that point.
+      if (before > 0 && el.is_table() && values[before] == values[before - 1]) {
+        values.erase(values.begin() + static_cast<std::ptrdiff_t>(before));
+      }
+    }
+  } else if (n.is_table() || n.is_number()) {
+    append_segment(s, key, n, values);
+  } else {
+    fail(s.context(), n.source(), s.dotted(key),
+         fmt::format("expected a number, a list or a range table, got {}", type_name(n)));
+  }
+  for (std::size_t i = 1; i < values.size(); ++i) {
+    if (!(values[i] > values[i - 1])) {
+      fail(s.context(), n.source(), s.dotted(key),
+           fmt::format("grid is not strictly increasing ({} after {})", values[i], values[i - 1]));
+    }
+  }
+  if (values.size() > kMaxAxisPoints) fail(s.context(), n.source(), s.dotted(key), "grid too large");
+  return values;
+}
+
+bool is_adaptive_range(const toml::node& n) {
+  const toml::table* t = n.as_table();
+  return t && (t->contains("max_step") || t->contains("min_step"));
+}
+
+// An adaptive axis {start, stop, max_step, min_step} ([accuracy] scenes). Returns the spec; the
+// starting grid (uniform, step <= max_step) goes into `values`.
+AdaptiveAxisSpec parse_adaptive_axis(const Section& s, const std::string& key, const toml::node& n,
+                                     bool accuracy_enabled, std::vector<double>& values) {
+  const toml::table& t = *n.as_table();
+  for (auto&& [k, v] : t) {
+    if (k != "start" && k != "stop" && k != "max_step" && k != "min_step") {
+      fail(s.context(), k.source(), s.dotted(key) + "." + std::string(k.str()),
+           "unknown key in an adaptive range (known keys: start, stop, max_step, min_step)");
+    }
+  }
+  if (!accuracy_enabled) {
+    fail(s.context(), n.source(), s.dotted(key),
+         "an adaptive range {start, stop, max_step, min_step} needs an [accuracy] section");
+  }
+  auto get = [&](const char* name) -> double {
+    const toml::node* v = t.get(name);
+    if (!v) fail(s.context(), n.source(), s.dotted(key) + "." + name, "missing required key of an adaptive range");
+    return s.number(*v, key + "." + name);
+  };
+  AdaptiveAxisSpec a{key, get("start"), get("stop"), get("max_step"), get("min_step")};
+  if (!(a.stop > a.start)) fail(s.context(), n.source(), s.dotted(key), "an adaptive range needs stop > start");
+  if (!(a.min_step > 0.0)) fail(s.context(), t.get("min_step")->source(), s.dotted(key) + ".min_step", "must be > 0");
+  if (!(a.max_step >= a.min_step)) {
+    fail(s.context(), t.get("max_step")->source(), s.dotted(key) + ".max_step",
+         fmt::format("must be >= min_step ({})", a.min_step));
+  }
+  if ((a.stop - a.start) / a.min_step > static_cast<double>(kMaxAxisPoints)) {
+    fail(s.context(), t.get("min_step")->source(), s.dotted(key) + ".min_step", "too small: range has too many points");
+  }
+  auto intervals = static_cast<std::size_t>(std::ceil((a.stop - a.start) / a.max_step - 1e-9));
+  intervals = std::max<std::size_t>(intervals, 1);
+  values.clear();
+  for (std::size_t i = 0; i <= intervals; ++i) {
+    double f = static_cast<double>(i) / static_cast<double>(intervals);
+    values.push_back(i == intervals ? a.stop : a.start + f * (a.stop - a.start));
+  }
+  return a;
+}
+
+// [accuracy] models = ["hertz", "kik-piotrowski", ...]: the normal models the generator may use per y
+// region, cheapest first. The reference ([contact] normal_model) is the most accurate by definition,
+// so it may only come last; it is appended when not listed.
+std::vector<NormalModel> parse_model_choice(const Section& s, const toml::node& n, NormalModel reference) {
+  const toml::array* list = n.as_array();
+  if (!list || list->empty()) {
+    fail(s.context(), n.source(), s.dotted("models"),
+         fmt::format("expected a non-empty list of normal model names, cheapest first, got {}",
+                     list ? "an empty list" : type_name(n)));
+  }
+  std::vector<NormalModel> models;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::node& el = *list->get(i);
+    const std::string key = fmt::format("models[{}]", i);
+    if (!el.is_string()) fail(s.context(), el.source(), s.dotted(key), fmt::format("expected a string, got {}", type_name(el)));
+    NormalModel m{};
+    try {
+      m = parse_normal_model(el.as_string()->get());
+    } catch (const Error& e) {
+      fail(s.context(), el.source(), s.dotted(key), e.what());
+    }
+    if (std::find(models.begin(), models.end(), m) != models.end()) {
+      fail(s.context(), el.source(), s.dotted(key), fmt::format("'{}' is listed twice", to_string(m)));
+    }
+    if (m == reference && i + 1 != list->size()) {
+      fail(s.context(), el.source(), s.dotted(key),
+           fmt::format("'{}' is the reference ([contact] normal_model): it may only be the last (most expensive) "
+                       "entry",
+                       to_string(m)));
+    }
+    models.push_back(m);
+  }
+  if (models.back() != reference) models.push_back(reference);
+  return models;
+}
+
+ProfileSource parse_profile(const Section& s, const std::string& key, const std::filesystem::path& base_dir,
+                            double smoothing) {
+  const toml::node& n = s.required(key);
+  ProfileSource p;
+  p.name = s.string(n, key);
+  p.smoothing_length = smoothing;
+  if (p.name.empty()) fail(s.context(), n.source(), s.dotted(key), "empty profile name");
+  bool builtin = (key == "wheel" && p.name == "s1002") || (key == "rail" && p.name == "uic60");
+  if (!builtin) {
+    std::filesystem::path file(p.name);
+    p.file = file.is_absolute() ? file : base_dir / file;
+    if (!std::filesystem::exists(p.file)) {
+      fail(s.context(), n.source(), s.dotted(key),
+           fmt::format("not a built-in {} profile ({}) and no such file: {}", key,
+                       key == "wheel" ? "s1002" : "uic60", p.file.string()));
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view toml_text, const std::string& source_name,
+                  const std::filesystem::path& base_dir) {
+  Context ctx{source_name};
+  const toml::table root = scene_toml::parse(toml_text, source_name);
+
+  static const std::vector<std::string> kSections{"scene", "profiles", "track", "wheelset", "geometry",
+                                                  "material", "contact", "wear", "grid",
+                                                  "accuracy"};
+  for (auto&& [key, node] : root) {
+    if (std::find(kSections.begin(), kSections.end(), key.str()) == kSections.end()) {
+      fail(ctx, key.source(), std::string(key.str()),
+           fmt::format("unknown section or key (known sections: {})", join(kSections)));
+    }
+  }
+
+  Scene scene;
+  scene.text = std::string(toml_text);
+
+  Section sc = section(ctx, root, "scene", {"name", "description"});
+  scene.name = sc.string(sc.required("name"), "name");
+  if (scene.name.empty()) fail(ctx, sc.required("name").source(), "scene.name", "must not be empty");
+  scene.description = sc.string("description").value_or("");
+
+  Section pr = section(ctx, root, "profiles", {"wheel", "rail", "smoothing"});
+  double smoothing = pr.number("smoothing", 0.0, non_negative, ">= 0 [m]");
+  scene.wheel = parse_profile(pr, "wheel", base_dir, smoothing);
+  scene.rail = parse_profile(pr, "rail", base_dir, smoothing);
+
+  Section tr = section(ctx, root, "track", {"gauge", "gauge_measuring_depth", "rail_inclination"});
+  scene.track.gauge = tr.number("gauge", scene.track.gauge, positive, "> 0 [m]");
+  scene.track.gauge_measuring_depth =
+      tr.number("gauge_measuring_depth", scene.track.gauge_measuring_depth, non_negative, ">= 0 [m]");
+  if (const toml::node* n = tr.node("rail_inclination")) scene.track.rail_inclination = parse_inclination(tr, *n);
+
+  Section ws = section(ctx, root, "wheelset", {"back_to_back", "flange_back_position", "nominal_radius"});
+  scene.wheelset.back_to_back = ws.number("back_to_back", scene.wheelset.back_to_back, positive, "> 0 [m]");
+  scene.wheelset.flange_back_position =
+      ws.number("flange_back_position", scene.wheelset.flange_back_position);
+  scene.wheelset.nominal_radius =
+      ws.number("nominal_radius", scene.wheelset.nominal_radius, positive, "> 0 [m]");
+
+  Section ge = section(ctx, root, "geometry", {"search_step", "max_separation", "band_step",
+                                               "band_half_width", "band_max_gap", "flange_angle"});
+  GeometrySettings& g = scene.geometry;
+  g.search_step = ge.number("search_step", g.search_step, positive, "> 0 [m]");
+  g.max_separation = ge.number("max_separation", g.max_separation, non_negative, ">= 0 [m]");
+  g.band_step = ge.number("band_step", g.band_step, positive, "> 0 [m]");
+  g.band_half_width = ge.number("band_half_width", g.band_half_width, positive, "> 0 [m]");
+  g.band_max_gap = ge.number("band_max_gap", g.band_max_gap, positive, "> 0 [m]");
+  g.flange_angle = ge.number("flange_angle", g.flange_angle, positive, "> 0 [rad]");
+
+  Section ma = section(ctx, root, "material", {"youngs_modulus", "poisson_ratio"});
+  scene.material.youngs_modulus = ma.number("youngs_modulus", scene.material.youngs_modulus, positive, "> 0 [Pa]");
+  scene.material.poisson_ratio = ma.number("poisson_ratio", scene.material.poisson_ratio, fraction, "in [0, 0.5)");
+
+  Section co = section(ctx, root, "contact",
+                       {"normal_model", "negative_curvature", "strips", "virtual_penetration", "tolerance",
+                        "max_iterations", "friction", "elements_per_strip", "spin_per_strip", "speed"});
+  NormalOptions& no = scene.normal;
+  if (auto m = co.parse_string("normal_model", parse_normal_model)) no.model = *m;
+  if (auto m = co.parse_string("negative_curvature", parse_negative_curvature)) no.negative_curvature = *m;
+  no.strips = co.integer("strips", no.strips, 1);
+  no.virtual_penetration = co.number("virtual_penetration", no.virtual_penetration, positive, "> 0");
+  no.tolerance = co.number("tolerance", no.tolerance, positive, "> 0");
+  no.max_iterations = co.integer("max_iterations", no.max_iterations, 1);
+  TangentialSettings& ts = scene.tangential;
+  ts.friction = co.number("friction", ts.friction, non_negative, ">= 0");
+  ts.elements_per_strip = co.integer("elements_per_strip", ts.elements_per_strip, 1);
+  ts.spin_per_strip = co.boolean("spin_per_strip", ts.spin_per_strip);
+  ts.speed = co.number("speed", ts.speed, positive, "> 0 [m/s]");
+
+  Section we = section(ctx, root, "wear", {"hardness", "lubrication_factor"});
+  scene.wear.hardness = we.number("hardness", scene.wear.hardness, positive, "> 0 [Pa]");
+  scene.wear.lubrication_factor = we.number("lubrication_factor", scene.wear.lubrication_factor, positive, "> 0");
+
+  Section ac = section(ctx, root, "accuracy",
+                       {"creep_force", "contact_angle", "rolling_radius", "normal_force", "models", "model_tolerance"});
+  AccuracyTargets& acc = scene.accuracy;
+  acc.enabled = ac.present();
+  acc.creep_force = ac.number("creep_force", 0.0, positive, "> 0 (relative to mu N)");
+  acc.contact_angle = ac.number("contact_angle", 0.0, positive, "> 0 [rad]");
+  acc.rolling_radius = ac.number("rolling_radius", 0.0, positive, "> 0 [m]");
+  acc.normal_force = ac.number("normal_force", 0.0, positive, "> 0 (relative to N)");
+  if (acc.enabled && acc.creep_force == 0.0 && acc.contact_angle == 0.0 && acc.rolling_radius == 0.0 &&
+      acc.normal_force == 0.0) {
+    fail(ctx, root.get("accuracy")->source(), "accuracy",
+         "needs at least one target (creep_force, contact_angle, rolling_radius, normal_force)");
+  }
+
+  if (const toml::node* n = ac.node("models")) acc.models = parse_model_choice(ac, *n, scene.normal.model);
+  acc.model_tolerance = ac.number("model_tolerance", 1.0, positive, "> 0 (a multiple of the targets)");
+  if (ac.has("model_tolerance") && acc.models.empty()) {
+    fail(ctx, ac.node("model_tolerance")->source(), "accuracy.model_tolerance", "needs accuracy.models");
+  }
+
+  Section gr = section(ctx, root, "grid", {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll"});
+  SceneGrids& grids = scene.grids;
+  // A grid axis, or an adaptive one ([accuracy] scenes) recorded in scene.accuracy.axes.
+  auto grid_axis = [&](const std::string& key, const toml::node& n) -> std::vector<double> {
+    if (!is_adaptive_range(n)) return parse_axis(gr, key, n);
+    std::vector<double> values;
+    acc.axes.push_back(parse_adaptive_axis(gr, key, n, acc.enabled, values));
+    return values;
+  };
+  grids.y = grid_axis("y", gr.required("y"));
+  grids.load = grid_axis("load", gr.required("load"));
+  for (double load : grids.load) {
+    if (!(load > 0.0)) fail(ctx, gr.node("load")->source(), "grid.load", "loads must be > 0 [N]");
+  }
+  scene.equilibrium_roll = gr.boolean("equilibrium_roll", false);
+  if (const toml::node* n = gr.node("roll")) {
+    if (scene.equilibrium_roll) {
+      fail(ctx, n->source(), "grid.roll", "cannot be given together with equilibrium_roll = true");
+    }
+    if (is_adaptive_range(*n)) fail(ctx, n->source(), "grid.roll", "roll cannot be adaptive (use a list or equilibrium_roll)");
+    grids.roll = parse_axis(gr, "roll", *n);
+  } else {
+    grids.roll = {0.0};
+  }
+  auto optional_axis = [&](const char* key) -> std::vector<double> {
+    const toml::node* n = gr.node(key);
+    return n ? grid_axis(key, *n) : std::vector<double>{0.0};
+  };
+  grids.xi = optional_axis("xi");
+  grids.eta = optional_axis("eta");
+  grids.phi = optional_axis("phi");
+  if (acc.enabled && acc.axes.empty()) {
+    fail(ctx, root.get("accuracy")->source(), "accuracy",
+         "no grid axis is adaptive: give at least one as {start, stop, max_step, min_step}");
+  }
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  Scene scene = parse_scene(scene_toml::read_text(path, "scene file"), path.string(), path.parent_path());
+  scene.path = path;
+  return scene;
+}
+
+}  // namespace railtab

@@ -1,0 +1,99 @@
+#include "simulate/direct_contact_model.hpp"
+
+#include <exception>
+
+#include "core/check.hpp"
+#include "sweep/contact_kernel.hpp"
+
+namespace railtab {
+
+DirectContactModel::DirectContactModel(const Scene& scene)
+    : solver_(make_geometry_solver(scene)),
+      material_(scene.material),
+      normal_options_(scene.normal),
+      creep_conditions_(creep_conditions(scene)),
+      fastsim_options_(fastsim_options(scene)) {}
+
+void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels],
+                                vehicle::WheelContacts (&contacts)[vehicle::kWheels]) {
+  double roll = 0.0;
+  bool roll_ok = true;
+  try {
+    roll = solver_.equilibrium_roll(y);  // as the sweep does for equilibrium-roll tables
+  } catch (const std::exception&) {
+    roll_ok = false;
+  }
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    const Side side = w == 0 ? Side::left : Side::right;
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      contacts[w].slot[slot] = {};
+      loaded_[w][slot] = false;
+    }
+    patches_[w] = {};
+    try {
+      if (!roll_ok) throw Error("no equilibrium roll");
+      geometry_[w] = solver_.solve_wheel(side, WheelsetState{y, roll});
+      solve_normal_for_load(geometry_[w], load[w], material_, normal_options_, normal_[w]);
+    } catch (const std::exception&) {
+      ++failures_;
+      for (int slot = 0; slot < vehicle::kContactSlots; ++slot) contacts[w].slot[slot].status = status::kFailed;
+      continue;
+    }
+    const SlotAssignment points = assign_slots(geometry_[w]);
+    patches_[w] = assign_patch_slots(normal_[w], side, solver_.settings().flange_angle);
+    const PatchSlots& patches = patches_[w];
+    const StatusBits solver_bits = normal_[w].status & (status::kConverged | status::kNotConverged);
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      const auto s = static_cast<std::size_t>(slot);
+      if (!patches.occupied(s)) continue;
+      const ContactPatch patch = slot_normal(normal_[w], patches, s);  // the sum of the slot's patches
+      vehicle::SlotContact& out = contacts[w].slot[slot];
+      out.normal_force = patch.normal_force;
+      out.area = patch.area;
+      out.loaded = patch.normal_force > 0.0;
+      out.status = patch.status | solver_bits | patches.extra[slot];
+      if (!out.loaded) continue;
+      loaded_[w][slot] = true;
+      // Geometry of the slot's rigid point, as the table's geometry part holds it; a patch whose
+      // point sits in the other slot takes that point (the lookup model does the same).
+      int point = points.point[slot] >= 0 ? points.point[slot] : points.point[1 - slot];
+      if (point >= 0) {
+        const ContactPoint& p = geometry_[w].points[static_cast<std::size_t>(point)];
+        out.contact_angle = p.contact_angle;
+        out.rolling_radius = p.rolling_radius;
+        out.wheel_u = p.wheel_u;
+      } else {
+        out.contact_angle = patch.contact_angle;
+        out.rolling_radius = patch.rolling_radius;
+        out.wheel_u = patch.wheel_u;
+      }
+    }
+  }
+}
+
+void DirectContactModel::creep(const vehicle::SlotCreepage (&creepage)[vehicle::kWheels][vehicle::kContactSlots],
+                               vehicle::SlotForces (&forces)[vehicle::kWheels][vehicle::kContactSlots]) {
+  FastsimWorkspace& workspace = thread_fastsim_workspace();
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      vehicle::SlotForces& f = forces[w][slot];
+      f = {};
+      if (!loaded_[w][slot]) continue;
+      const vehicle::SlotCreepage& c = creepage[w][slot];
+      try {
+        const FastsimResult r = slot_creep(geometry_[w], normal_[w], patches_[w], static_cast<std::size_t>(slot),
+                                           Creepage{c.xi, c.eta, c.phi}, creep_conditions_, material_,
+                                           fastsim_options_, workspace);
+        f.fx = r.fx;
+        f.fy = r.fy;
+        f.mz = r.mz;
+        f.status = r.status;
+      } catch (const std::exception&) {
+        ++failures_;
+        f.status = status::kFailed;
+      }
+    }
+  }
+}
+
+}  // namespace railtab

@@ -1,0 +1,45 @@
+// vehicle::ContactModel evaluating the core at every call: rigid geometry at the equilibrium
+// roll, the scene's normal model under the wheel load, FASTSIM per loaded patch. Slots and outputs
+// are mapped exactly as the table sweep maps them (contact_kernel.hpp: assign_slots for the
+// geometry, assign_patch_slots for the patches, a slot's normal force/area and creep forces the sum
+// of its up to two patches by slot_normal and slot_creep), so at a grid node it returns what the
+// table holds. The reference run of `railtab simulate --direct`.
+#pragma once
+
+#include <cstdint>
+
+#include "normal/normal_model.hpp"
+#include "scene/scene.hpp"
+#include "sweep/contact_kernel.hpp"
+#include "tangential/fastsim_contact.hpp"
+#include "vehicle/contact_model.hpp"
+
+namespace railtab {
+
+class DirectContactModel final : public vehicle::ContactModel {
+ public:
+  // Builds the scene's profiles and solver; throws railtab::Error for a bad scene.
+  explicit DirectContactModel(const Scene& scene);
+
+  void normal(double y, const double (&load)[vehicle::kWheels],
+              vehicle::WheelContacts (&contacts)[vehicle::kWheels]) override;
+  void creep(const vehicle::SlotCreepage (&creepage)[vehicle::kWheels][vehicle::kContactSlots],
+             vehicle::SlotForces (&forces)[vehicle::kWheels][vehicle::kContactSlots]) override;
+
+  // Evaluations where the core threw (the slot's outputs are zero, status kFailed) [-].
+  std::uint64_t failures() const { return failures_; }
+
+ private:
+  ContactGeometrySolver solver_;
+  Material material_;
+  NormalOptions normal_options_;
+  CreepConditions creep_conditions_;
+  FastsimOptions fastsim_options_;
+  WheelContactGeometry geometry_[vehicle::kWheels];   // of the last normal() call
+  WheelNormalResult normal_[vehicle::kWheels];         // of the last normal() call
+  PatchSlots patches_[vehicle::kWheels];                // slot -> patches, of the last normal() call
+  bool loaded_[vehicle::kWheels][vehicle::kContactSlots] = {{false, false}, {false, false}};
+  std::uint64_t failures_ = 0;
+};
+
+}  // namespace railtab

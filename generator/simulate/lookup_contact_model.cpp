@@ -1,0 +1,179 @@
+#include "simulate/lookup_contact_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.hpp"
+
+namespace railtab {
+namespace {
+
+namespace lk = railtab::lookup;
+
+constexpr int kY = 0, kLoad = 1, kXi = 2, kEta = 3, kPhi = 4;
+
+double variable(const lk::State& s, int v) {
+  switch (v) {
+    case kY: return s.y;
+    case kLoad: return s.load;
+    case kXi: return s.xi;
+    case kEta: return s.eta;
+    default: return s.phi;
+  }
+}
+
+int variable_index(const std::string& name) {
+  for (int v = 0; v < 5; ++v) {
+    if (name == kLookupVariableNames[v]) return v;
+  }
+  return -1;
+}
+
+}  // namespace
+
+LookupContactModel::LookupContactModel(lk::Table table) : table_(std::move(table)), base_(table_.default_state()) {
+  RAILTAB_CHECK(table_.n_slots() >= vehicle::kContactSlots, "{}: the table has {} contact slots, the simulation needs {}",
+                table_.path(), table_.n_slots(), vehicle::kContactSlots);
+  RAILTAB_CHECK(table_.has_part(lk::kGeometry) && table_.has_part(lk::kNormal) && table_.has_part(lk::kCreep),
+                "{}: the table lacks the geometry, normal or creep part", table_.path());
+  for (const lk::AxisInfo& axis : table_.axes()) {
+    RAILTAB_CHECK(axis.name != "roll",
+                  "{}: roll is a table axis; the wheelset model has no roll degree of freedom, so the simulation "
+                  "needs a table with equilibrium_roll = true (or one fixed roll)",
+                  table_.path());
+    const int v = variable_index(axis.name);
+    if (v < 0 || axis.nodes.empty()) continue;
+    range_[static_cast<std::size_t>(v)] = {axis.nodes.front(), axis.nodes.back()};
+    if (v == kY) y_nodes_ = axis.nodes;
+  }
+  RAILTAB_CHECK(!y_nodes_.empty(), "{}: the table does not tabulate y", table_.path());
+
+  // The geometry part depends on y only (roll follows it): read it at every y node. At a node the
+  // interpolation weight of the neighbour is 0, so the values are the node's own.
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    for (double y : y_nodes_) {
+      lk::State s = base_;
+      s.y = y;
+      if (!range_[kLoad].empty()) s.load = range_[kLoad][0];
+      const lk::Result r = table_.query(static_cast<lk::Wheel>(w), s);
+      for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+        const lk::Contact& c = r.contact[slot];
+        GeometryNode node;
+        node.present = c.value[lk::kRollingRadius] > 0.0;  // an empty slot is all zeros
+        node.contact_angle = c.value[lk::kContactAngle];
+        node.rolling_radius = c.value[lk::kRollingRadius];
+        node.wheel_u = c.value[lk::kWheelY];
+        geometry_[w][slot].push_back(node);
+      }
+    }
+  }
+}
+
+void LookupContactModel::geometry_at(int wheel, int slot, double y, vehicle::SlotContact& out) const {
+  const std::vector<GeometryNode>& g = geometry_[wheel][slot];
+  const std::size_t n = y_nodes_.size();
+  std::size_t i = 0;
+  double t = 0.0;
+  if (n > 1) {
+    const double yc = std::clamp(y, y_nodes_.front(), y_nodes_.back());
+    i = static_cast<std::size_t>(std::upper_bound(y_nodes_.begin(), y_nodes_.end(), yc) - y_nodes_.begin());
+    i = std::clamp<std::size_t>(i, 1, n - 1) - 1;
+    t = (yc - y_nodes_[i]) / (y_nodes_[i + 1] - y_nodes_[i]);
+  }
+  const GeometryNode& a = g[i];
+  const GeometryNode& b = g[std::min(i + 1, n - 1)];
+  const GeometryNode* only = nullptr;
+  if (a.present && b.present) {
+    out.contact_angle = a.contact_angle + t * (b.contact_angle - a.contact_angle);
+    out.rolling_radius = a.rolling_radius + t * (b.rolling_radius - a.rolling_radius);
+    out.wheel_u = a.wheel_u + t * (b.wheel_u - a.wheel_u);
+    return;
+  }
+  if (a.present) only = &a;
+  if (b.present) only = &b;
+  if (!only) return;  // no point in this slot at either node: the caller falls back
+  out.contact_angle = only->contact_angle;
+  out.rolling_radius = only->rolling_radius;
+  out.wheel_u = only->wheel_u;
+}
+
+void LookupContactModel::count(const lk::State& state, lk::StatusBits query_bits) {
+  ++counts_.queries;
+  if (query_bits & lk::status::kOutOfRange) {
+    ++counts_.out_of_range;
+    for (std::size_t v = 0; v < 5; ++v) {
+      if (range_[v].empty()) continue;
+      const double x = variable(state, static_cast<int>(v));
+      if (x < range_[v][0] || x > range_[v][1]) ++counts_.outside_axis[v];
+    }
+  }
+  if (query_bits & lk::status::kInvalidInput) ++counts_.invalid_input;
+}
+
+void LookupContactModel::normal(double y, const double (&load)[vehicle::kWheels],
+                                vehicle::WheelContacts (&contacts)[vehicle::kWheels]) {
+  lk::Query queries[vehicle::kWheels];
+  lk::Result results[vehicle::kWheels];
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    lk::State s = base_;
+    s.y = y;
+    s.load = load[w];  // a fixed load queried off its value is flagged out of range: reported
+    // Zero creepage where the table tabulates it (the normal part does not depend on it).
+    if (!range_[kXi].empty()) s.xi = 0.0;
+    if (!range_[kEta].empty()) s.eta = 0.0;
+    if (!range_[kPhi].empty()) s.phi = 0.0;
+    state_[w] = s;
+    queries[w] = {static_cast<lk::Wheel>(w), s};
+  }
+  table_.query(queries, results);
+
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    count(state_[w], results[w].status);
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      const lk::Contact& c = results[w].contact[slot];
+      vehicle::SlotContact& out = contacts[w].slot[slot];
+      out = {};
+      out.normal_force = c.value[lk::kNormalForce];
+      out.area = c.value[lk::kArea];
+      out.status = c.status;
+      out.loaded = out.normal_force > 0.0;
+      loaded_[w][slot] = out.loaded;
+      if (!out.loaded) continue;
+      geometry_at(w, slot, y, out);
+      // A loaded patch whose rigid point sits in the other slot (its overlap reference crossed
+      // the flange angle): the point it grew from.
+      if (out.rolling_radius <= 0.0) geometry_at(w, 1 - slot, y, out);
+      if (out.rolling_radius <= 0.0) {  // no point in either slot: the table's own interpolation
+        out.contact_angle = c.value[lk::kContactAngle];
+        out.rolling_radius = c.value[lk::kRollingRadius];
+        out.wheel_u = c.value[lk::kWheelY];
+      }
+    }
+  }
+}
+
+void LookupContactModel::creep(const vehicle::SlotCreepage (&creepage)[vehicle::kWheels][vehicle::kContactSlots],
+                               vehicle::SlotForces (&forces)[vehicle::kWheels][vehicle::kContactSlots]) {
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      vehicle::SlotForces& f = forces[w][slot];
+      f = {};
+      if (!loaded_[w][slot]) continue;
+      lk::State s = state_[w];
+      // Always the true creepage: a table with a fixed creepage flags the query out of range.
+      s.xi = creepage[w][slot].xi;
+      s.eta = creepage[w][slot].eta;
+      s.phi = creepage[w][slot].phi;
+      lk::Contact c;
+      table_.query_slot(static_cast<lk::Wheel>(w), s, slot, c);
+      // query_slot folds the query bits into the slot status.
+      count(s, c.status & (lk::status::kOutOfRange | lk::status::kInvalidInput));
+      f.fx = c.value[lk::kFx];
+      f.fy = c.value[lk::kFy];
+      f.mz = c.value[lk::kMz];
+      f.status = c.part_status[lk::kCreep] | (c.status & (lk::status::kOutOfRange | lk::status::kInvalidInput));
+    }
+  }
+}
+
+}  // namespace railtab

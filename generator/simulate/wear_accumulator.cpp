@@ -1,0 +1,160 @@
+#include "simulate/wear_accumulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.hpp"
+
+namespace railtab {
+namespace {
+
+// Number of bins of `grid`; the range must be a whole number of steps, so that every bin has the
+// same width and worn_area = step * sum(depth) holds exactly.
+std::size_t bin_count(const WearGrid& grid) {
+  RAILTAB_CHECK(std::isfinite(grid.u_min) && std::isfinite(grid.u_max) && grid.u_max > grid.u_min,
+                "wear grid: u_min < u_max (both finite) required, got [{}, {}] m", grid.u_min, grid.u_max);
+  RAILTAB_CHECK(std::isfinite(grid.step) && grid.step > 0.0, "wear grid: step must be > 0, got {} m", grid.step);
+  const double bins = (grid.u_max - grid.u_min) / grid.step;
+  const double whole = std::round(bins);
+  RAILTAB_CHECK(whole >= 1.0 && std::abs(bins - whole) <= 1e-6 * whole,
+                "wear grid: [{}, {}] m is not a whole number of steps of {} m", grid.u_min, grid.u_max,
+                grid.step);
+  RAILTAB_CHECK(whole <= 1e7, "wear grid: {} bins is too many", whole);
+  return static_cast<std::size_t>(whole);
+}
+
+CreepConditions simulation_conditions(const Scene& scene) {
+  CreepConditions c = creep_conditions(scene);
+  c.speed = 0.0;  // set per sample from the motion: the KTH map depends on the slip velocity
+  return c;
+}
+
+}  // namespace
+
+WearAccumulator::WearAccumulator(const Scene& scene, const WearGrid& grid)
+    : solver_(make_geometry_solver(scene)),
+      material_(scene.material),
+      normal_(scene.normal),
+      fastsim_(fastsim_options(scene)),
+      conditions_(simulation_conditions(scene)),
+      wear_(wear_options(scene)),
+      running_circle_q_(scene.wheelset.back_to_back / 2.0 - scene.wheelset.flange_back_position),
+      grid_(grid) {
+  const std::size_t n = bin_count(grid);
+  u_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) u_[i] = grid.u_min + (static_cast<double>(i) + 0.5) * grid.step;
+  for (auto& d : depth_) d.assign(n, 0.0);
+}
+
+std::uint32_t WearAccumulator::sample(double y_relative, const double (&load)[vehicle::kWheels],
+                                      const vehicle::WheelsetMotion& motion, double distance) {
+  RAILTAB_CHECK(std::isfinite(distance) && distance >= 0.0,
+                "wear sample: distance must be finite and >= 0 m, got {}", distance);
+  RAILTAB_CHECK(std::isfinite(motion.speed) && motion.speed > 0.0,
+                "wear sample: speed must be > 0 m/s (creepages divide by it), got {}", motion.speed);
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    RAILTAB_CHECK(std::isfinite(load[w]) && load[w] >= 0.0,
+                  "wear sample: load of wheel {} must be finite and >= 0 N, got {}", w, load[w]);
+  }
+  ++samples_;
+  distance_ += distance;
+  conditions_.speed = motion.speed;
+
+  StatusBits bits = 0;
+  WheelsetContactGeometry geometry;
+  try {
+    geometry = solver_.solve({y_relative, solver_.equilibrium_roll(y_relative)});
+  } catch (const Error&) {
+    failures_ += vehicle::kWheels;
+    return status::kFailed;
+  }
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    if (!(load[w] > 0.0)) {
+      bits |= status::kLiftOff;
+      continue;
+    }
+    const WheelContactGeometry& wheel = geometry.wheels[static_cast<std::size_t>(w)];
+    pending_.clear();
+    try {
+      solve_normal_for_load(wheel, load[w], material_, normal_, normal_result_);
+      bits |= normal_result_.status;
+      for (const ContactPatch& patch : normal_result_.patches) {
+        if (!(patch.normal_force > 0.0)) continue;
+        vehicle::SlotContact slot;
+        slot.loaded = true;
+        slot.contact_angle = patch.contact_angle;
+        slot.rolling_radius = patch.rolling_radius;
+        slot.wheel_u = patch.wheel_u;
+        slot.normal_force = patch.normal_force;
+        slot.area = patch.area;
+        slot.status = patch.status;
+        const vehicle::SlotCreepage c = vehicle::creepage(motion, w, slot, running_circle_q_);
+        const FastsimResult force = fastsim_contact(wheel, patch, Creepage{c.xi, c.eta, c.phi}, conditions_,
+                                                    material_, fastsim_, workspace_);
+        const WearResult wear = archard_wear(workspace_, wear_, distribution_);
+        bits |= patch.status | force.status | wear.status;
+        // archard_wear sizes distribution_.strips to this solve's strips.
+        pending_.insert(pending_.end(), distribution_.strips.begin(), distribution_.strips.end());
+      }
+    } catch (const Error&) {
+      ++failures_;
+      bits |= status::kFailed;
+      continue;  // this wheel adds no wear: none of its patches, not only the failing one
+    }
+    for (const StripWear& s : pending_) add_strip(w, s.wheel_u, s.width_u, s.depth_rate * distance);
+  }
+  return bits;
+}
+
+// Adds a strip's radial depth over [u_centre -+ width_u/2] to the bins it overlaps, each by its
+// overlap length, so the worn area depth * width_u is kept exactly (up to what leaves the grid).
+void WearAccumulator::add_strip(int wheel, double u_centre, double width_u, double depth) {
+  if (!(depth > 0.0) || !(width_u > 0.0)) return;
+  std::vector<double>& d = depth_[static_cast<std::size_t>(wheel)];
+  const double a = u_centre - 0.5 * width_u;
+  const double b = u_centre + 0.5 * width_u;
+  const double step = grid_.step;
+  const auto n = static_cast<std::ptrdiff_t>(d.size());
+  const auto first = std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>(std::floor((a - grid_.u_min) / step)));
+  const auto last = std::min<std::ptrdiff_t>(n - 1, static_cast<std::ptrdiff_t>(std::floor((b - grid_.u_min) / step)));
+  for (std::ptrdiff_t i = first; i <= last; ++i) {
+    const double lo = grid_.u_min + static_cast<double>(i) * step;
+    const double overlap = std::min(b, lo + step) - std::max(a, lo);
+    if (overlap > 0.0) d[static_cast<std::size_t>(i)] += depth * overlap / step;
+  }
+  const double end = grid_.u_min + static_cast<double>(n) * step;
+  const double outside = std::clamp(grid_.u_min - a, 0.0, width_u) + std::clamp(b - end, 0.0, width_u);
+  clipped_[static_cast<std::size_t>(wheel)] += depth * std::min(outside, width_u);
+}
+
+const std::vector<double>& WearAccumulator::u() const { return u_; }
+
+const std::vector<double>& WearAccumulator::depth(int wheel) const {
+  RAILTAB_CHECK(wheel >= 0 && wheel < vehicle::kWheels, "wheel index must be 0 or 1, got {}", wheel);
+  return depth_[static_cast<std::size_t>(wheel)];
+}
+
+double WearAccumulator::worn_area(int wheel) const {
+  double sum = 0.0;
+  for (double d : depth(wheel)) sum += d;
+  return sum * grid_.step;
+}
+
+double WearAccumulator::clipped_area(int wheel) const {
+  RAILTAB_CHECK(wheel >= 0 && wheel < vehicle::kWheels, "wheel index must be 0 or 1, got {}", wheel);
+  return clipped_[static_cast<std::size_t>(wheel)];
+}
+
+double WearAccumulator::distance() const { return distance_; }
+int WearAccumulator::samples() const { return samples_; }
+int WearAccumulator::failures() const { return failures_; }
+
+void WearAccumulator::scale(double factor) {
+  RAILTAB_CHECK(std::isfinite(factor) && factor >= 0.0, "wear scale factor must be finite and >= 0, got {}", factor);
+  for (auto& d : depth_) {
+    for (double& v : d) v *= factor;
+  }
+  for (double& c : clipped_) c *= factor;
+}
+
+}  // namespace railtab

@@ -1,0 +1,374 @@
+#include "sweep/contact_kernel.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "core/check.hpp"
+#include "geometry/contact_geometry.hpp"
+#include "normal/normal_model.hpp"
+#include "tangential/fastsim_contact.hpp"
+#include "wear/archard.hpp"
+
+namespace railtab {
+namespace {
+
+// One float64 output of a part: dataset name, units, description, and how to get it from the
+// part's per-contact result.
+template <class Result>
+struct Output {
+  const char* name;
+  const char* units;
+  const char* description;
+  double (*get)(const Result&);
+};
+
+// Geometry part, per contact point (axes y, roll, slot).
+const Output<ContactPoint> kGeometryOutputs[] = {
+    {"contact_angle", "rad", "contact angle, track frame, ISO sign (+ towards the flange for the left wheel)",
+     [](const ContactPoint& p) { return p.contact_angle; }},
+    {"rolling_radius", "m", "wheel rolling radius at the contact point",
+     [](const ContactPoint& p) { return p.rolling_radius; }},
+    {"wheel_y", "m", "contact position in the wheel profile frame (u)", [](const ContactPoint& p) { return p.wheel_u; }},
+    {"rail_y", "m", "contact position in the rail profile frame (u)", [](const ContactPoint& p) { return p.rail_u; }},
+    {"separation", "m", "vertical gap still open at rigid contact (0 = touching)",
+     [](const ContactPoint& p) { return p.separation; }},
+    {"curvature_a", "1/m", "relative curvature A, rolling direction", [](const ContactPoint& p) { return p.curvature_a; }},
+    {"curvature_b", "1/m", "relative curvature B, lateral direction", [](const ContactPoint& p) { return p.curvature_b; }},
+};
+
+// Normal part, per contact patch (axes y, roll, load, slot).
+const Output<ContactPatch> kNormalOutputs[] = {
+    {"normal_force", "N", "normal force along the contact normal", [](const ContactPatch& c) { return c.normal_force; }},
+    {"approach", "m", "normal approach at the patch reference point", [](const ContactPatch& c) { return c.penetration; }},
+    {"area", "m2", "contact area", [](const ContactPatch& c) { return c.area; }},
+    {"max_pressure", "Pa", "maximum contact pressure", [](const ContactPatch& c) { return c.max_pressure; }},
+    {"a", "m", "rolling semi-axis (elliptic models; 0 for non-elliptic patches)",
+     [](const ContactPatch& c) { return c.semi_axis_a; }},
+    {"b", "m", "lateral semi-axis (elliptic models; 0 for non-elliptic patches)",
+     [](const ContactPatch& c) { return c.semi_axis_b; }},
+};
+
+// Creep part, per loaded patch and creepage (axes y, roll, load, xi, eta, phi, slot).
+const Output<FastsimResult> kCreepOutputs[] = {
+    {"fx", "N", "longitudinal creep force on the wheel (contact frame x)", [](const FastsimResult& r) { return r.fx; }},
+    {"fy", "N", "lateral creep force on the wheel (contact frame s)", [](const FastsimResult& r) { return r.fy; }},
+    {"mz", "N m", "spin moment on the wheel about the contact normal", [](const FastsimResult& r) { return r.mz; }},
+    {"slip_fraction", "1", "slipping share of the contact area", [](const FastsimResult& r) { return r.slip_fraction; }},
+};
+
+// Wear part, same grid as creep.
+const Output<WearResult> kWearOutputs[] = {
+    {"wear_rate", "m2/m", "worn wheel-profile cross-section per rolled distance (Archard, KTH map)",
+     [](const WearResult& r) { return r.wear_rate; }},
+};
+
+template <class Result, std::size_t N>
+PartSpec part_spec(const char* name, std::vector<std::string> inner_axes, const Output<Result> (&outputs)[N]) {
+  PartSpec spec{name, std::move(inner_axes), {}};
+  for (const Output<Result>& o : outputs) spec.outputs.push_back({o.name, o.units, o.description});
+  return spec;
+}
+
+template <class Result, std::size_t N>
+void store(const Output<Result> (&outputs)[N], const Result& result, const ColumnOutput& out, std::size_t wheel,
+           std::size_t part, std::size_t cell) {
+  for (std::size_t o = 0; o < N; ++o) out.values(wheel, part, o)[cell] = outputs[o].get(result);
+}
+
+constexpr std::size_t kGeometryPart = 0;
+constexpr std::size_t kNormalPart = 1;
+constexpr std::size_t kCreepPart = 2;
+constexpr std::size_t kWearPart = 3;
+
+// A point where the core threw: no values (zeros), and kFailed instead of kConverged.
+StatusBits failure_status(const ColumnState& state) {
+  bool bad_input = !std::isfinite(state.y) || !std::isfinite(state.roll);
+  return status::kFailed | (bad_input ? status::kInvalidInput : 0u);
+}
+
+struct KernelData {
+  ContactGeometrySolver solver;
+  SceneGrids grids;           // load [N] and creepage grids
+  Material material;
+  NormalOptions normal;
+  TangentialSettings tangential;
+  CreepConditions creep;
+  FastsimOptions fastsim;
+  WearOptions wear;
+  std::vector<NormalModel> model_by_y;  // per node of the scene's y grid (planned model choice); empty = normal.model
+  std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
+};
+
+// Creep forces and wear of one slot's loaded patches (summed, slot_creep) over the creepage grid,
+// into the cells of load il.
+void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                 const PatchSlots& slots, const ColumnState& state, std::size_t wheel, std::size_t il,
+                 std::size_t slot, ColumnOutput& out) {
+  FastsimWorkspace& workspace = thread_fastsim_workspace();
+  thread_local WearDistribution distribution;
+  const StatusBits extra = slots.extra[slot];
+  std::size_t c = il * k.creepages();
+  for (double xi : k.grids.xi) {
+    for (double eta : k.grids.eta) {
+      for (double phi : k.grids.phi) {
+        const std::size_t cell = c++ * kSlots + slot;
+        try {
+          SlotWear wear{k.wear, distribution, {}};
+          FastsimResult creep = slot_creep(geometry, normal, slots, slot, Creepage{xi, eta, phi}, k.creep,
+                                           k.material, k.fastsim, workspace, &wear);
+          store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
+          out.status(wheel, kCreepPart)[cell] = creep.status | extra;
+          store(kWearOutputs, wear.result, out, wheel, kWearPart, cell);
+          out.status(wheel, kWearPart)[cell] = wear.result.status | extra;
+        } catch (const std::exception& e) {
+          out.failure(fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
+                                  to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi, e.what()));
+          out.status(wheel, kCreepPart)[cell] = failure_status(state);
+          out.status(wheel, kWearPart)[cell] = failure_status(state);
+        }
+      }
+    }
+  }
+}
+
+// Every cell of a part for load il (or all loads) gets the failure status.
+void fail_cells(ColumnOutput& out, std::size_t wheel, std::size_t part, std::size_t begin, std::size_t end,
+                StatusBits bits) {
+  for (std::size_t c = begin; c < end; ++c) out.status(wheel, part)[c] = bits;
+}
+
+void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size_t wheel, ColumnOutput& out) {
+  const Side side = wheel == 0 ? Side::left : Side::right;
+  const std::size_t nload = k.grids.load.size();
+  const std::size_t ncreep = nload * k.creepages() * kSlots;  // creep/wear cells of the column
+  WheelContactGeometry geometry;
+  try {
+    geometry = k.solver.solve_wheel(side, WheelsetState{state.y, state.roll});
+  } catch (const std::exception& e) {
+    out.failure(fmt::format("geometry, {} wheel, y = {} m, roll = {} rad: {}", to_string(side), state.y,
+                            state.roll, e.what()));
+    fail_cells(out, wheel, kGeometryPart, 0, kSlots, failure_status(state));
+    fail_cells(out, wheel, kNormalPart, 0, nload * kSlots, failure_status(state));
+    fail_cells(out, wheel, kCreepPart, 0, ncreep, failure_status(state));
+    fail_cells(out, wheel, kWearPart, 0, ncreep, failure_status(state));
+    return;
+  }
+  const SlotAssignment slots = assign_slots(geometry);
+  const StatusBits wheel_bits = geometry.status & (status::kTwoPoint | status::kProfileEdge);
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    if (slots.point[s] < 0) continue;  // empty slot: zeros, status 0
+    const ContactPoint& p = geometry.points[static_cast<std::size_t>(slots.point[s])];
+    store(kGeometryOutputs, p, out, wheel, kGeometryPart, s);
+    out.status(wheel, kGeometryPart)[s] = p.status | status::kConverged | wheel_bits | slots.extra[s];
+  }
+
+  NormalOptions normal_options = k.normal;
+  if (!k.model_by_y.empty()) normal_options.model = k.model_by_y[state.iy];
+  for (std::size_t il = 0; il < nload; ++il) {
+    WheelNormalResult normal;
+    try {
+      normal = solve_normal_for_load(geometry, k.grids.load[il], k.material, normal_options);
+    } catch (const std::exception& e) {
+      out.failure(fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N: {}", to_string(side),
+                              state.y, state.roll, k.grids.load[il], e.what()));
+      fail_cells(out, wheel, kNormalPart, il * kSlots, (il + 1) * kSlots, failure_status(state));
+      const std::size_t per_load = k.creepages() * kSlots;
+      fail_cells(out, wheel, kCreepPart, il * per_load, (il + 1) * per_load, failure_status(state));
+      fail_cells(out, wheel, kWearPart, il * per_load, (il + 1) * per_load, failure_status(state));
+      continue;
+    }
+    const StatusBits solver_bits = normal.status & (status::kConverged | status::kNotConverged);
+    const PatchSlots patch_slots = assign_patch_slots(normal, side, k.solver.settings().flange_angle);
+    for (std::size_t s = 0; s < kSlots; ++s) {
+      if (!patch_slots.occupied(s)) continue;  // no loaded patch in this slot: zeros, status 0
+      const ContactPatch patch = slot_normal(normal, patch_slots, s);  // the sum of the slot's patches
+      store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
+      out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | patch_slots.extra[s];
+      // Creep and wear on top of this normal result; an unloaded slot has none (zeros, lift_off).
+      if (!(patch.normal_force > 0.0)) {
+        const std::size_t per_load = k.creepages();
+        for (std::size_t c = il * per_load; c < (il + 1) * per_load; ++c) {
+          out.status(wheel, kCreepPart)[c * kSlots + s] = status::kConverged | status::kLiftOff | patch_slots.extra[s];
+          out.status(wheel, kWearPart)[c * kSlots + s] = status::kConverged | status::kLiftOff | patch_slots.extra[s];
+        }
+        continue;
+      }
+      solve_creep(k, geometry, normal, patch_slots, state, wheel, il, s, out);
+    }
+  }
+}
+
+}  // namespace
+
+PatchSlots assign_patch_slots(const WheelNormalResult& normal, Side side, double flange_angle) {
+  PatchSlots a;
+  auto force = [&](int i) { return normal.patches[static_cast<std::size_t>(i)].normal_force; };
+  for (std::size_t i = 0; i < normal.patches.size(); ++i) {
+    const ContactPatch& patch = normal.patches[i];
+    const double angle_side = outward_sign(side) * patch.contact_angle;
+    const std::size_t slot = angle_side > flange_angle ? 1 : 0;
+    int(&kept)[kPatchesPerSlot] = a.patch[slot];
+    const int index = static_cast<int>(i);
+    if (kept[0] < 0) {
+      kept[0] = index;
+      continue;
+    }
+    a.extra[slot] |= status::kTwoPoint;
+    if (kept[1] >= 0) ++a.dropped[slot];  // a third patch: the one with the smallest force goes
+    if (patch.normal_force > force(kept[0])) {
+      kept[1] = kept[0];
+      kept[0] = index;
+    } else if (kept[1] < 0 || patch.normal_force > force(kept[1])) {
+      kept[1] = index;
+    }
+  }
+  return a;
+}
+
+ContactPatch slot_normal(const WheelNormalResult& normal, const PatchSlots& slots, std::size_t slot) {
+  RAILTAB_CHECK(slot < kSlots && slots.occupied(slot), "slot_normal: slot {} holds no patch", slot);
+  ContactPatch sum = normal.patches[static_cast<std::size_t>(slots.patch[slot][0])];
+  const int second = slots.patch[slot][1];
+  if (second < 0) return sum;
+  const ContactPatch& q = normal.patches[static_cast<std::size_t>(second)];
+  sum.normal_force += q.normal_force;
+  sum.area += q.area;
+  sum.max_pressure = std::max(sum.max_pressure, q.max_pressure);
+  sum.status |= q.status;
+  return sum;
+}
+
+FastsimResult slot_creep(const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                         const PatchSlots& slots, std::size_t slot, const Creepage& creepage,
+                         const CreepConditions& conditions, const Material& material, const FastsimOptions& options,
+                         FastsimWorkspace& workspace, SlotWear* wear) {
+  RAILTAB_CHECK(slot < kSlots, "slot_creep: slot {} of {}", slot, kSlots);
+  FastsimResult total;
+  WearResult worn;
+  double area = 0.0, slip_area = 0.0, seizure_volume = 0.0;
+  int loaded = 0;
+  for (int ip : slots.patch[slot]) {
+    if (ip < 0) continue;
+    const ContactPatch& patch = normal.patches[static_cast<std::size_t>(ip)];
+    if (!(patch.normal_force > 0.0)) continue;
+    const FastsimResult r = fastsim_contact(geometry, patch, creepage, conditions, material, options, workspace);
+    WearResult w;
+    if (wear) w = archard_wear(workspace, wear->options, wear->distribution);
+    area += patch.area;
+    slip_area += r.slip_fraction * patch.area;
+    seizure_volume += w.seizure_fraction * w.volume_rate;
+    if (loaded++ == 0) {  // one patch: its results unchanged
+      total = r;
+      worn = w;
+      continue;
+    }
+    total.fx += r.fx;
+    total.fy += r.fy;
+    total.mz += r.mz;
+    total.normal_force += r.normal_force;
+    total.frictional_work += r.frictional_work;
+    total.slip_fraction = area > 0.0 ? slip_area / area : std::max(total.slip_fraction, r.slip_fraction);
+    total.status |= r.status;
+    worn.wear_rate += w.wear_rate;
+    worn.volume_rate += w.volume_rate;
+    worn.max_depth_rate = std::max(worn.max_depth_rate, w.max_depth_rate);
+    worn.seizure_fraction = worn.volume_rate > 0.0 ? seizure_volume / worn.volume_rate : 0.0;
+    worn.status |= w.status;
+  }
+  if (loaded == 0) {
+    total.status = status::kConverged | status::kLiftOff;
+    worn.status = status::kConverged | status::kLiftOff;
+  }
+  if (wear) wear->result = worn;
+  return total;
+}
+
+SlotAssignment assign_slots(const WheelContactGeometry& geometry) {
+  SlotAssignment a;
+  for (std::size_t i = 0; i < geometry.points.size(); ++i) {
+    const ContactPoint& p = geometry.points[i];
+    std::size_t slot = (p.status & status::kFlangeContact) ? 1 : 0;
+    int& current = a.point[slot];
+    if (current < 0) {
+      current = static_cast<int>(i);
+      continue;
+    }
+    a.extra[slot] |= status::kTwoPoint;
+    if (p.separation < geometry.points[static_cast<std::size_t>(current)].separation) current = static_cast<int>(i);
+  }
+  return a;
+}
+
+SweepKernel make_contact_kernel(const Scene& scene) {
+  const FastsimOptions fastsim = fastsim_options(scene);
+  const CreepConditions creep = creep_conditions(scene);
+  const WearOptions wear = wear_options(scene);
+  // [accuracy] models: the normal model chosen per y node (docs/adaptive-grids.md).
+  const AccuracyTargets& accuracy = scene.accuracy;
+  std::vector<NormalModel> model_by_y;
+  if (!accuracy.model_by_y.empty()) {
+    RAILTAB_CHECK(accuracy.model_by_y.size() == scene.grids.y.size(),
+                  "contact kernel: a model choice for {} y nodes but the y grid has {}", accuracy.model_by_y.size(),
+                  scene.grids.y.size());
+    for (std::size_t i : accuracy.model_by_y) {
+      RAILTAB_CHECK(i < accuracy.models.size(), "contact kernel: model index {} of {} models", i, accuracy.models.size());
+      model_by_y.push_back(accuracy.models[i]);
+    }
+  }
+  auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
+                                                            scene.normal, scene.tangential, creep, fastsim, wear,
+                                                            model_by_y});
+  SweepKernel kernel;
+  kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
+  kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));
+  kernel.parts.push_back(part_spec("creep", {"load", "xi", "eta", "phi"}, kCreepOutputs));
+  kernel.parts.push_back(part_spec("wear", {"load", "xi", "eta", "phi"}, kWearOutputs));
+  kernel.points_per_column = scene.grids.load.size() * data->creepages();
+  const NormalOptions& n = scene.normal;
+  kernel.models = {
+      {"normal", to_string(n.model)},
+      {"negative_curvature", to_string(n.negative_curvature)},
+      {"strips", n.strips},
+      {"virtual_penetration", n.virtual_penetration},
+      {"normal_tolerance", n.tolerance},
+      {"flange_angle", scene.geometry.flange_angle},
+      {"youngs_modulus", scene.material.youngs_modulus},
+      {"poisson_ratio", scene.material.poisson_ratio},
+      {"tangential", "fastsim-strips"},
+      {"spin", to_string(fastsim.spin)},
+      {"elements_per_strip", fastsim.elements_per_strip},
+      {"friction", scene.tangential.friction},
+      {"speed", scene.tangential.speed},
+      {"wear", "archard-kth"},
+      {"hardness", scene.wear.hardness},
+      {"lubrication_factor", scene.wear.lubrication_factor},
+  };
+  if (!model_by_y.empty()) {
+    // The planned choice is data, not status: kFallbackModel stays reserved for failures.
+    nlohmann::json names = nlohmann::json::array();
+    std::string legend;
+    for (std::size_t i = 0; i < accuracy.models.size(); ++i) {
+      names.push_back(to_string(accuracy.models[i]));
+      legend += fmt::format("{}{} = {}", i ? ", " : "", i, to_string(accuracy.models[i]));
+    }
+    kernel.models["normal_models"] = names;
+    kernel.models["normal_model_choice"] = "per y node, root dataset normal_model_index; `normal` is the reference";
+    SweepKernel::PerYOutput index{{"normal_model_index", "1",
+                                   fmt::format("normal model used at this y (planned choice, [accuracy] models): "
+                                               "index into models.normal_models: {}",
+                                               legend)},
+                                  {}};
+    index.values.assign(accuracy.model_by_y.begin(), accuracy.model_by_y.end());
+    kernel.per_y.push_back(std::move(index));
+  }
+  kernel.equilibrium_roll = [data](double y) { return data->solver.equilibrium_roll(y); };
+  kernel.compute = [data](const ColumnState& state, ColumnOutput& out) {
+    for (std::size_t wheel = 0; wheel < 2; ++wheel) solve_wheel_column(*data, state, wheel, out);
+  };
+  return kernel;
+}
+
+}  // namespace railtab

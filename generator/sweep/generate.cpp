@@ -1,0 +1,96 @@
+#include "sweep/generate.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "sweep/adaptive_grid.hpp"
+#include "sweep/contact_kernel.hpp"
+#include "sweep/progress.hpp"
+#include "table/interrupt.hpp"
+#include "table/table_io.hpp"
+
+namespace railtab {
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& output) { return output.string() + ".partial"; }
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  int index = 0, count = 0;
+  char slash = 0, extra = 0;
+  bool ok = std::sscanf(text.c_str(), "%d %c %d %c", &index, &slash, &count, &extra) == 3 && slash == '/' &&
+            count >= 1 && index >= 1 && index <= count;
+  RAILTAB_CHECK(ok, "--shard \"{}\": expected I/N with 1 <= I <= N, e.g. 2/8", text);
+  return {index, count};
+}
+
+SweepSummary generate_table(const GenerateOptions& options) {
+  Scene scene = load_scene(options.scene);
+  // [accuracy] scenes: place the adaptive axes' nodes first (docs/adaptive-grids.md); deterministic,
+  // so shards and resumed runs get the same grids.
+  AdaptiveGridSummary adaptive = build_adaptive_grids(scene, options.threads);
+  if (options.log && scene.accuracy.enabled) {
+    for (const AxisRefinement& r : adaptive.axes) {
+      *options.log << fmt::format("adaptive {}: {} nodes, worst midpoint error {:.2f} of target, {} jump(s), "
+                                  "{} unmet, {} evaluations\n",
+                                  r.axis, r.nodes.size(), r.worst_error, r.jumps, r.unmet, r.evaluations);
+    }
+    *options.log << fmt::format("adaptive grids placed in {:.2f} s\n", adaptive.seconds);
+  }
+  const SweepKernel kernel = options.make_kernel ? options.make_kernel(scene) : make_contact_kernel(scene);
+  std::ostream* log = options.log;
+
+  ProgressPrinter printer(log ? *log : std::cerr, options.terminal);
+  SweepOptions sweep;
+  sweep.threads = options.threads;
+  sweep.shard_index = options.shard_index;
+  sweep.shard_count = options.shard_count;
+  sweep.interrupt = options.interrupt;
+  if (options.resume) sweep.checkpoint = checkpoint_path(options.output);
+  if (log) sweep.progress = [&printer](const SweepProgress& p) { printer(p); };
+
+  SweepResult result = run_sweep(scene, kernel, sweep);
+  printer.finish();
+  SweepSummary& s = result.summary;
+  if (log && s.checkpoint_discarded) {
+    *log << fmt::format("note: {} belonged to another scene or build; started afresh\n", sweep.checkpoint.string());
+  }
+  bool stop = options.interrupt && options.interrupt->load();
+  if (s.interrupted || stop) {
+    throw Interrupted(options.resume
+                          ? fmt::format("interrupted: {} of {} y blocks kept in {}; rerun with --resume to finish",
+                                        s.blocks_done, s.blocks_total, sweep.checkpoint.string())
+                          : fmt::format("interrupted: nothing written ({} of {} y blocks were done; use --resume "
+                                        "to keep finished blocks)",
+                                        s.blocks_done, s.blocks_total));
+  }
+  if (scene.accuracy.enabled) {
+    result.table.set_attribute("accuracy_targets", adaptive.targets_json(scene).dump());
+    result.table.set_attribute("accuracy_achieved", adaptive.achieved_json().dump());
+  }
+  write_table(result.table, options.output, options.interrupt);
+  if (options.resume) {
+    std::error_code ignored;
+    std::filesystem::remove(sweep.checkpoint, ignored);
+  }
+
+  if (log) {
+    double rate = s.seconds > 0 ? static_cast<double>(s.points_computed) / s.seconds : 0.0;
+    double per_point = s.points_computed > 0 ? s.seconds * s.threads / static_cast<double>(s.points_computed) : 0.0;
+    *log << fmt::format("computed {} points (both wheels each) in {:.2f} s with {} thread{}: {:.0f} points/s, "
+                        "{:.3g} ms per point per thread\n",
+                        s.points_computed, s.seconds, s.threads, s.threads == 1 ? "" : "s", rate, 1e3 * per_point);
+    if (s.points_resumed > 0) *log << fmt::format("resumed {} points from the checkpoint\n", s.points_resumed);
+    if (s.failures > 0) {
+      *log << fmt::format("{} point(s) failed and are flagged failed; first: {}\n", s.failures,
+                          s.first_failure);
+    }
+    *log << fmt::format("wrote {} ({:.1f} KiB){}\n", options.output.string(),
+                        static_cast<double>(std::filesystem::file_size(options.output)) / 1024.0,
+                        options.shard_count > 1 ? fmt::format(", shard {}/{}", options.shard_index, options.shard_count)
+                                                : "");
+  }
+  return s;
+}
+
+}  // namespace railtab

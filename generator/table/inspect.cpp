@@ -1,0 +1,78 @@
+#include "table/inspect.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+
+namespace railtab {
+namespace {
+
+std::string shape_text(const TableDataset& d) {
+  if (d.shape.empty()) return "scalar";
+  std::string s;
+  for (std::size_t i = 0; i < d.shape.size(); ++i) s += fmt::format("{}{}={}", i ? " x " : "", d.axes[i], d.shape[i]);
+  return s;
+}
+
+std::string bytes_text(double bytes) {
+  if (bytes >= 1024.0 * 1024.0) return fmt::format("{:.1f} MiB", bytes / (1024.0 * 1024.0));
+  if (bytes >= 1024.0) return fmt::format("{:.1f} KiB", bytes / 1024.0);
+  return fmt::format("{:.0f} B", bytes);
+}
+
+// Cells per status bit, and cells with status 0 (no contact in that slot).
+void print_status(const TableDataset& d, std::ostream& out) {
+  std::array<std::size_t, 32> count{};
+  std::size_t empty = 0;
+  for (StatusBits s : d.status) {
+    if (s == 0) ++empty;
+    for (unsigned b = 0; b < 32; ++b) count[b] += (s >> b) & 1u;
+  }
+  out << fmt::format("      status counts ({} cells): no contact {}", d.status.size(), empty);
+  for (unsigned b = 0; b < 32; ++b) {
+    if (count[b] > 0) out << fmt::format(", {} {}", status::describe(1u << b), count[b]);
+  }
+  out << "\n";
+}
+
+}  // namespace
+
+void print_table_summary(const Table& table, const std::string& path, std::uintmax_t file_bytes, bool print_scene,
+                         std::ostream& out) {
+  out << fmt::format("{}  ({})\n", path, bytes_text(static_cast<double>(file_bytes)));
+  out << "provenance:\n";
+  for (const auto& [name, value] : table.attributes) {
+    if (name == "scene") {
+      std::size_t lines = static_cast<std::size_t>(std::count(value.begin(), value.end(), '\n'));
+      out << fmt::format("  {:16} {} lines of TOML{}\n", name, lines, print_scene ? ":" : " (--scene prints it)");
+      if (print_scene) {
+        std::istringstream text(value);
+        for (std::string line; std::getline(text, line);) out << "    | " << line << "\n";
+      }
+    } else {
+      out << fmt::format("  {:16} {}\n", name, value);
+    }
+  }
+  out << "axes:\n";
+  for (const TableAxis& a : table.axes) {
+    out << fmt::format("  {:6} {:5} values  [{:.6g}, {:.6g}] {}  {}\n", a.name, a.values.size(), a.values.front(),
+                       a.values.back(), a.units, a.description);
+  }
+  for (const TableGroup& g : table.groups) {
+    std::size_t raw = 0, stored = 0;
+    for (const TableDataset& d : g.datasets) {
+      raw += d.size() * (d.is_status ? sizeof(StatusBits) : sizeof(double));
+      stored += d.storage_bytes;
+    }
+    out << fmt::format("{}  ({} datasets, {} in memory, {} on disk)\n", g.path.empty() ? "/ (root)" : "/" + g.path,
+                       g.datasets.size(), bytes_text(static_cast<double>(raw)), bytes_text(static_cast<double>(stored)));
+    for (const TableDataset& d : g.datasets) {
+      out << fmt::format("    {:16} [{}] {}  {}\n", d.name, d.units, shape_text(d), d.description);
+      if (d.is_status) print_status(d, out);
+    }
+  }
+}
+
+}  // namespace railtab

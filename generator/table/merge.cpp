@@ -1,0 +1,114 @@
+#include "table/merge.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <ctime>
+#include <numeric>
+
+#include "core/check.hpp"
+
+namespace railtab {
+namespace {
+
+struct ShardId {
+  int index = 0;
+  int count = 0;
+  std::size_t y_begin = 0, y_end = 0, y_total = 0;
+};
+
+std::size_t to_size(const std::string* text, const std::string& name, const std::string& attr) {
+  RAILTAB_CHECK(text, "{}: not a shard (no '{}' attribute); merge joins files written with --shard", name, attr);
+  try {
+    return static_cast<std::size_t>(std::stoull(*text));
+  } catch (const std::exception&) {
+    throw Error(fmt::format("{}: malformed attribute {} = \"{}\"", name, attr, *text));
+  }
+}
+
+ShardId shard_id(const Table& t, const std::string& name) {
+  const std::string* shard = t.attribute("shard");
+  RAILTAB_CHECK(shard, "{}: not a shard (no 'shard' attribute); merge joins files written with --shard", name);
+  ShardId id;
+  RAILTAB_CHECK(std::sscanf(shard->c_str(), "%d/%d", &id.index, &id.count) == 2 && id.index >= 1 &&
+                    id.index <= id.count,
+                "{}: malformed shard attribute \"{}\"", name, *shard);
+  id.y_begin = to_size(t.attribute("shard_y_begin"), name, "shard_y_begin");
+  id.y_end = to_size(t.attribute("shard_y_end"), name, "shard_y_end");
+  id.y_total = to_size(t.attribute("shard_y_total"), name, "shard_y_total");
+  return id;
+}
+
+}  // namespace
+
+Table merge_shards(const std::vector<Table>& shards, const std::vector<std::string>& names) {
+  RAILTAB_CHECK(!shards.empty() && shards.size() == names.size(), "merge: no shards given");
+  std::vector<ShardId> ids;
+  for (std::size_t i = 0; i < shards.size(); ++i) ids.push_back(shard_id(shards[i], names[i]));
+  const int count = ids[0].count;
+  RAILTAB_CHECK(static_cast<std::size_t>(count) == shards.size(), "merge: {} is shard {}/{} but {} file(s) given",
+                names[0], ids[0].index, count, shards.size());
+
+  std::vector<std::size_t> order(shards.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ids[a].index < ids[b].index; });
+  const Table& first = shards[order[0]];
+  std::size_t expected_begin = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Table& t = shards[order[k]];
+    const ShardId& id = ids[order[k]];
+    const std::string& name = names[order[k]];
+    RAILTAB_CHECK(id.count == count, "merge: {} is a shard of {} but {} of {}", name, id.count, names[order[0]], count);
+    RAILTAB_CHECK(id.index == static_cast<int>(k) + 1, "merge: shard {}/{} is missing or given twice (at {})",
+                  k + 1, count, name);
+    RAILTAB_CHECK(id.y_begin == expected_begin && id.y_end > id.y_begin && id.y_total == ids[order[0]].y_total,
+                  "merge: {}: y range [{}, {}) does not continue the previous shards", name, id.y_begin, id.y_end);
+    expected_begin = id.y_end;
+    for (const char* attr : {"format_version", "scene", "models", "fixed_axes", "railtab_version", "git_commit"}) {
+      const std::string* a = t.attribute(attr);
+      const std::string* b = first.attribute(attr);
+      RAILTAB_CHECK(a && b && *a == *b, "merge: {} differs from {} in '{}' (not shards of one run)", name,
+                    names[order[0]], attr);
+    }
+    RAILTAB_CHECK(t.axes.size() == first.axes.size() && t.groups.size() == first.groups.size(),
+                  "merge: {} has another layout than {}", name, names[order[0]]);
+  }
+  RAILTAB_CHECK(expected_begin == ids[order[0]].y_total, "merge: the shards cover {} of {} y values", expected_begin,
+                ids[order[0]].y_total);
+
+  Table merged = first;
+  for (const char* attr : {"shard", "shard_y_begin", "shard_y_end", "shard_y_total"}) merged.remove_attribute(attr);
+  merged.set_attribute("created", utc_timestamp());
+  for (TableAxis& axis : merged.axes) {
+    for (std::size_t k = 1; k < order.size(); ++k) {
+      const TableAxis* other = shards[order[k]].axis(axis.name);
+      RAILTAB_CHECK(other, "merge: {} lacks axis {}", names[order[k]], axis.name);
+      if (axis.name == "y") {
+        axis.values.insert(axis.values.end(), other->values.begin(), other->values.end());
+      } else {
+        RAILTAB_CHECK(other->values == axis.values, "merge: {}: axis {} differs", names[order[k]], axis.name);
+      }
+    }
+  }
+  for (TableGroup& group : merged.groups) {
+    for (TableDataset& d : group.datasets) {
+      RAILTAB_CHECK(!d.axes.empty() && d.axes.front() == "y", "merge: /{}/{} has no y dimension to join along",
+                    group.path, d.name);
+      for (std::size_t k = 1; k < order.size(); ++k) {
+        const TableGroup* g = shards[order[k]].group(group.path);
+        const TableDataset* o = g ? g->find(d.name) : nullptr;
+        RAILTAB_CHECK(o && o->axes == d.axes && o->is_status == d.is_status &&
+                          std::equal(o->shape.begin() + 1, o->shape.end(), d.shape.begin() + 1, d.shape.end()),
+                      "merge: {}: /{}/{} is missing or shaped differently", names[order[k]], group.path, d.name);
+        // y is the slowest dimension: joining along y is appending.
+        d.values.insert(d.values.end(), o->values.begin(), o->values.end());
+        d.status.insert(d.status.end(), o->status.begin(), o->status.end());
+        d.shape[0] += o->shape[0];
+      }
+      d.storage_bytes = 0;
+    }
+  }
+  return merged;
+}
+
+}  // namespace railtab

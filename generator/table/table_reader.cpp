@@ -1,0 +1,212 @@
+// Reads a format-1.x table file into a Table, checking everything a consumer relies on, so that a
+// damaged or foreign file fails here with the file name and the problem, not later with garbage.
+#include <hdf5_hl.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+
+#include "core/check.hpp"
+#include "table/h5_util.hpp"
+#include "table/table_io.hpp"
+
+namespace railtab {
+namespace {
+
+// Names of the members (links or attributes) of an object, in creation order when the file tracks
+// it, else alphabetically (files written by other tools).
+herr_t collect_link(hid_t, const char* name, const H5L_info_t*, void* data) {
+  static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+  return 0;
+}
+herr_t collect_attribute(hid_t, const char* name, const H5A_info_t*, void* data) {
+  static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+  return 0;
+}
+
+std::vector<std::string> links(hid_t group, const std::string& file, const std::string& where) {
+  std::vector<std::string> names;
+  if (H5Literate(group, H5_INDEX_CRT_ORDER, H5_ITER_INC, nullptr, collect_link, &names) < 0) {
+    names.clear();
+    h5::last_error();  // clear the stack of the failed attempt
+    h5::check(H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_link, &names), file,
+              "list members of " + where);
+  }
+  return names;
+}
+
+std::vector<std::string> attribute_names(hid_t object, const std::string& file) {
+  std::vector<std::string> names;
+  if (H5Aiterate2(object, H5_INDEX_CRT_ORDER, H5_ITER_INC, nullptr, collect_attribute, &names) < 0) {
+    names.clear();
+    h5::last_error();
+    h5::check(H5Aiterate2(object, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_attribute, &names), file,
+              "list attributes");
+  }
+  return names;
+}
+
+std::vector<std::string> split_axes(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= text.size() && !text.empty()) {
+    std::size_t comma = text.find(',', start);
+    out.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  Table read() {
+    RAILTAB_CHECK(std::filesystem::exists(file_), "{}: no such file", file_);
+    htri_t is_hdf5 = H5Fis_hdf5(file_.c_str());
+    h5::last_error();
+    RAILTAB_CHECK(is_hdf5 > 0, "{}: not an HDF5 file (or its header is damaged)", file_);
+    h5::Id file(h5::check_id(H5Fopen(file_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), file_,
+                             "cannot open (truncated or damaged file?)"),
+                H5Fclose);
+    Table table;
+    read_version(file);
+    for (const std::string& name : attribute_names(file, file_)) {
+      h5::Id attr(h5::check_id(H5Aopen(file, name.c_str(), H5P_DEFAULT), file_, "open attribute " + name),
+                  H5Aclose);
+      h5::Id type(h5::check_id(H5Aget_type(attr), file_, "attribute type " + name), H5Tclose);
+      if (H5Tget_class(type) != H5T_STRING) continue;  // only string attributes belong to the format
+      table.attributes.emplace_back(name, h5::read_string_attribute(file, name, file_));
+    }
+
+    RAILTAB_CHECK(H5Lexists(file, "axes", H5P_DEFAULT) > 0, "{}: missing group /axes", file_);
+    h5::Id axes(h5::check_id(H5Gopen2(file, "axes", H5P_DEFAULT), file_, "open /axes"), H5Gclose);
+    for (const std::string& name : links(axes, file_, "/axes")) table.axes.push_back(read_axis(axes, name));
+    RAILTAB_CHECK(table.axis("slot"), "{}: missing axis /axes/slot", file_);
+
+    for (const std::string& name : links(file, file_, "/")) {
+      if (name == "axes") continue;
+      h5::Id object(h5::check_id(H5Oopen(file, name.c_str(), H5P_DEFAULT), file_, "open /" + name), H5Oclose);
+      if (H5Iget_type(object) == H5I_DATASET) {
+        if (!table.group("")) table.groups.push_back(TableGroup{"", {}});
+        table.group("")->datasets.push_back(read_dataset(table, file, "", name));
+      }
+    }
+    for (const char* wheel : {"left", "right"}) {
+      RAILTAB_CHECK(H5Lexists(file, wheel, H5P_DEFAULT) > 0, "{}: missing group /{}", file_, wheel);
+      h5::Id w(h5::check_id(H5Gopen2(file, wheel, H5P_DEFAULT), file_, fmt::format("open /{}", wheel)), H5Gclose);
+      std::vector<std::string> parts = links(w, file_, std::string("/") + wheel);
+      for (const char* required : {"geometry", "normal"}) {
+        RAILTAB_CHECK(std::find(parts.begin(), parts.end(), std::string(required)) != parts.end(), "{}: missing group /{}/{}",
+                      file_, wheel, required);
+      }
+      for (const std::string& part : parts) {
+        std::string path = std::string(wheel) + "/" + part;
+        h5::Id g(h5::check_id(H5Gopen2(w, part.c_str(), H5P_DEFAULT), file_, "open /" + path), H5Gclose);
+        TableGroup group{path, {}};
+        for (const std::string& name : links(g, file_, "/" + path)) {
+          group.datasets.push_back(read_dataset(table, g, path, name));
+        }
+        for (const std::string& required : required_outputs(part)) {
+          RAILTAB_CHECK(group.find(required), "{}: missing dataset /{}/{}", file_, path, required);
+        }
+        table.groups.push_back(std::move(group));
+      }
+    }
+    return table;
+  }
+
+ private:
+  void read_version(hid_t file) const {
+    RAILTAB_CHECK(h5::has_attribute(file, "format_version"),
+                  "{}: not a railtab table (no format_version attribute)", file_);
+    std::string version = h5::read_string_attribute(file, "format_version", file_);
+    int major = -1;
+    auto dot = version.find('.');
+    auto [end, ec] = std::from_chars(version.data(), version.data() + (dot == std::string::npos ? version.size() : dot), major);
+    RAILTAB_CHECK(ec == std::errc() && dot != std::string::npos, "{}: malformed format_version \"{}\"", file_, version);
+    RAILTAB_CHECK(major == kTableFormatMajor,
+                  "{}: table format version {} is not supported (this railtab reads {}.x); regenerate the table "
+                  "or use a matching railtab",
+                  file_, version, kTableFormatMajor);
+  }
+
+  std::string required_attribute(hid_t object, const std::string& where, const std::string& name) const {
+    RAILTAB_CHECK(h5::has_attribute(object, name), "{}: {}: missing attribute '{}'", file_, where, name);
+    return h5::read_string_attribute(object, name, file_);
+  }
+
+  TableAxis read_axis(hid_t group, const std::string& name) const {
+    std::string where = "/axes/" + name;
+    h5::Id ds(h5::check_id(H5Dopen2(group, name.c_str(), H5P_DEFAULT), file_, "open " + where), H5Dclose);
+    h5::Id space(h5::check_id(H5Dget_space(ds), file_, where), H5Sclose);
+    RAILTAB_CHECK(H5Sget_simple_extent_ndims(space) == 1, "{}: {}: an axis must be 1-D", file_, where);
+    hsize_t n = 0;
+    H5Sget_simple_extent_dims(space, &n, nullptr);
+    RAILTAB_CHECK(n >= 1, "{}: {}: empty axis", file_, where);
+    TableAxis axis;
+    axis.name = name;
+    h5::Id type(h5::check_id(H5Dget_type(ds), file_, where), H5Tclose);
+    axis.integer = H5Tget_class(type) == H5T_INTEGER;
+    axis.values.resize(n);
+    h5::check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, axis.values.data()), file_,
+              "read " + where + " (truncated file?)");
+    for (std::size_t i = 1; i < axis.values.size(); ++i) {
+      RAILTAB_CHECK(axis.values[i] > axis.values[i - 1], "{}: {}: not strictly increasing", file_, where);
+    }
+    axis.units = required_attribute(ds, where, "units");
+    axis.description = required_attribute(ds, where, "description");
+    return axis;
+  }
+
+  TableDataset read_dataset(const Table& table, hid_t group, const std::string& path, const std::string& name) const {
+    std::string where = "/" + (path.empty() ? name : path + "/" + name);
+    h5::Id ds(h5::check_id(H5Dopen2(group, name.c_str(), H5P_DEFAULT), file_, "open " + where), H5Dclose);
+    TableDataset d;
+    d.name = name;
+    d.units = required_attribute(ds, where, "units");
+    d.description = required_attribute(ds, where, "description");
+    d.axes = split_axes(required_attribute(ds, where, "axes"));
+    h5::Id space(h5::check_id(H5Dget_space(ds), file_, where), H5Sclose);
+    int rank = H5Sget_simple_extent_ndims(space);
+    RAILTAB_CHECK(rank == static_cast<int>(d.axes.size()), "{}: {}: rank {} but {} axes named", file_, where,
+                  rank, d.axes.size());
+    std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+    if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    for (int i = 0; i < rank; ++i) {
+      const TableAxis* axis = table.axis(d.axes[static_cast<std::size_t>(i)]);
+      RAILTAB_CHECK(axis, "{}: {}: axis '{}' not in /axes", file_, where, d.axes[static_cast<std::size_t>(i)]);
+      RAILTAB_CHECK(axis->values.size() == dims[static_cast<std::size_t>(i)],
+                    "{}: {}: dimension {} has {} entries but axis '{}' has {}", file_, where, i,
+                    dims[static_cast<std::size_t>(i)], axis->name, axis->values.size());
+    }
+    d.shape.assign(dims.begin(), dims.end());
+    h5::Id type(h5::check_id(H5Dget_type(ds), file_, where), H5Tclose);
+    d.is_status = H5Tget_class(type) == H5T_INTEGER;
+    RAILTAB_CHECK(d.is_status == (name == "status"), "{}: {}: {} dataset expected", file_, where,
+                  name == "status" ? "uint32" : "float64");
+    std::string what = "read " + where + " (truncated or damaged file?)";
+    if (d.is_status) {
+      d.status.resize(d.size());
+      h5::check(H5Dread(ds, H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.status.data()), file_, what);
+    } else {
+      d.values.resize(d.size());
+      h5::check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.values.data()), file_, what);
+    }
+    d.storage_bytes = H5Dget_storage_size(ds);
+    return d;
+  }
+
+  std::string file_;
+};
+
+}  // namespace
+
+Table read_table(const std::filesystem::path& path) {
+  h5::silence_errors();
+  return Reader(path.string()).read();
+}
+
+}  // namespace railtab

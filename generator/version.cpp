@@ -1,8 +1,0 @@
-#include "version.hpp"
-
-#include "railtab_commit.h"  // generated at build time (cmake/WriteCommit.cmake)
-
-namespace railtab {
-const char* version_string() { return RAILTAB_VERSION; }
-const char* git_commit() { return RAILTAB_GIT_COMMIT; }
-}  // namespace railtab

@@ -1,0 +1,163 @@
+// railtab chart's measurement (generator/speed_accuracy.*) on a tiny state set: CSV columns,
+// finite numbers, and a non-dominated Pareto front. Seconds, not minutes.
+#include "charts/speed_accuracy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace railtab {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> f;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) f.push_back(cell);
+  return f;
+}
+
+// Rows of a CSV with '#' comment lines: column name -> cell, per row.
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path, std::vector<std::string>& header) {
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::map<std::string, std::string>> rows;
+  header.clear();
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (header.empty()) {
+      header = split(line);
+      continue;
+    }
+    const std::vector<std::string> f = split(line);
+    EXPECT_EQ(f.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < f.size() && i < header.size(); ++i) row[header[i]] = f[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+SpeedAccuracyOptions tiny(const fs::path& work) {
+  SpeedAccuracyOptions o;
+  o.dy_mm = {-2.0, 8.0};  // one tread, one flange state
+  o.creep_sets = {"a_none", "c_lat0.001", "e_combined"};
+  o.models = {{NormalModel::hertz, 0, 10}, {NormalModel::stripes_ab, 10, 10}, {NormalModel::kik_piotrowski, 10, 10}};
+  o.tables = {{2e-3, false}};
+  o.cubic = false;
+  o.repeats = 1;
+  o.lookup_passes = 3;
+  o.table_threads = 1;
+  o.work_dir = work;
+  o.fallback_reference = {NormalModel::stripes_ab, 25, 20};
+  return o;
+}
+
+void check_result(const SpeedAccuracyResult& r, const fs::path& dir) {
+  ASSERT_EQ(r.rows.size(), 4u);  // 3 models + 1 table
+  const fs::path csv = dir / "speed_accuracy.csv";
+  write_speed_accuracy_csv(r, csv);
+  write_states_csv(r, dir / "states.csv");
+  write_table_memory_csv(r, dir / "memory.csv");
+  std::vector<std::string> header;
+  const auto rows = read_csv(csv, header);
+  ASSERT_EQ(rows.size(), r.rows.size());
+  for (const char* c : {"label", "kind", "family", "time_us", "time_tread_us", "time_flange_us", "err_force",
+                        "err_force_tread", "err_force_flange", "err_area", "table_file_bytes", "table_memory_bytes",
+                        "pareto_all", "pareto_tread", "pareto_flange", "reference"}) {
+    EXPECT_NE(std::find(header.begin(), header.end(), c), header.end()) << "missing column " << c;
+  }
+  for (const auto& row : rows) {
+    for (const char* c : {"time_us", "time_tread_us", "time_flange_us", "err_force", "err_force_tread",
+                          "err_force_flange"}) {
+      const double v = std::stod(row.at(c));
+      EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << row.at("label") << " " << c << " = " << row.at(c);
+    }
+    EXPECT_GT(std::stod(row.at("time_us")), 0.0);
+    if (row.at("kind") == "lookup") {
+      EXPECT_GT(std::stoull(row.at("table_file_bytes")), 0u);
+      EXPECT_GT(std::stoull(row.at("table_memory_bytes")), 0u);
+    }
+  }
+  // Pareto fronts: non-empty and non-dominated; every point off the front is dominated.
+  struct Panel {
+    const char* t;
+    const char* e;
+    const char* p;
+  };
+  for (const Panel& p : {Panel{"time_us", "err_force", "pareto_all"}, Panel{"time_tread_us", "err_force_tread", "pareto_tread"},
+                         Panel{"time_flange_us", "err_force_flange", "pareto_flange"}}) {
+    int on_front = 0;
+    for (const auto& a : rows) {
+      const double ta = std::stod(a.at(p.t)), ea = std::stod(a.at(p.e));
+      bool dominated = false;
+      for (const auto& b : rows) {
+        const double tb = std::stod(b.at(p.t)), eb = std::stod(b.at(p.e));
+        if (tb <= ta && eb <= ea && (tb < ta || eb < ea)) dominated = true;
+      }
+      const bool front = a.at(p.p) == "1";
+      on_front += front;
+      EXPECT_EQ(front, !dominated) << p.p << ": " << a.at("label");
+    }
+    EXPECT_GE(on_front, 1) << p.p;
+  }
+  // The per-state file has one line per (row, state).
+  std::vector<std::string> sh;
+  EXPECT_EQ(read_csv(dir / "states.csv", sh).size(), r.rows.size() * r.states.size());
+  std::vector<std::string> mh;
+  EXPECT_EQ(read_csv(dir / "memory.csv", mh).size(), 1u);
+}
+
+TEST(SpeedAccuracy, ParetoFrontIsNonDominated) {
+  const std::vector<double> t{1, 2, 3, 4, 2, std::nan("")};
+  const std::vector<double> e{5, 3, 3, 1, 6, 0.1};
+  const std::vector<bool> f = pareto_front(t, e);
+  EXPECT_EQ(f, (std::vector<bool>{true, true, false, true, false, false}));
+}
+
+TEST(SpeedAccuracy, TinyRunAgainstContact) {
+  const fs::path ref = fs::path(RAILTAB_SHARED_DIR) / "reference" / "blockC_sweep_integer_dy.csv";
+  if (!fs::exists(ref)) GTEST_SKIP() << ref.string() << " absent";
+  const fs::path dir = fs::temp_directory_path() / "railtab_speed_accuracy_contact";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  SpeedAccuracyOptions o = tiny(dir / "tables");
+  o.reference_csv = ref;
+  const SpeedAccuracyResult r = measure_speed_accuracy(scene, o);
+  EXPECT_TRUE(r.contact_reference);
+  EXPECT_EQ(r.states.size(), 6u);
+  for (const SaState& s : r.states) {
+    if (s.creep_set == "c_lat0.001") {
+      EXPECT_GT(std::abs(s.ref_fy), 1000.0);  // CONTACT lateral force
+    }
+  }
+  check_result(r, dir);
+  EXPECT_FALSE(fs::exists(dir / "tables" / "speed_accuracy_y2mm.h5"));  // temporary table removed
+  fs::remove_all(dir);
+}
+
+TEST(SpeedAccuracy, TinyRunWithoutContactUsesFineStripes) {
+  const fs::path dir = fs::temp_directory_path() / "railtab_speed_accuracy_fallback";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  SpeedAccuracyOptions o = tiny(dir / "tables");
+  o.reference_csv = dir / "no-such-reference.csv";
+  const SpeedAccuracyResult r = measure_speed_accuracy(scene, o);
+  EXPECT_FALSE(r.contact_reference);
+  EXPECT_NE(r.reference.find("STRIPES"), std::string::npos);
+  check_result(r, dir);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace railtab

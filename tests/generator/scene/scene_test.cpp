@@ -1,0 +1,192 @@
+#include "scene/scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/check.hpp"
+#include "error_message.hpp"
+
+namespace railtab {
+namespace {
+
+constexpr const char* kMinimal = R"(
+[scene]
+name = "t"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[grid]
+y = [-0.001, 0.0, 0.001]
+load = 78500
+)";
+
+// The message of the Error that parsing `text` throws ("" when it does not throw).
+std::string error_of(const std::string& text) {
+  return test::error_message([&] { parse_scene(text, "bad.toml"); });
+}
+
+TEST(Scene, MinimalSceneGetsDefaults) {
+  Scene s = parse_scene(kMinimal, "t.toml");
+  EXPECT_EQ(s.name, "t");
+  EXPECT_EQ(s.wheel.name, "s1002");
+  EXPECT_TRUE(s.wheel.file.empty());
+  EXPECT_EQ(s.grids.y.size(), 3u);
+  EXPECT_EQ(s.grids.load, std::vector<double>{78500.0});
+  EXPECT_EQ(s.grids.roll, std::vector<double>{0.0});
+  EXPECT_EQ(s.grids.xi, std::vector<double>{0.0});
+  EXPECT_DOUBLE_EQ(s.track.rail_inclination, 1.0 / 40.0);
+  EXPECT_EQ(s.normal.model, NormalModel::stripes_ab);
+  EXPECT_EQ(s.text, kMinimal);
+}
+
+TEST(Scene, ShippedScenesParse) {
+  for (const char* name : {"default.toml", "flange.toml"}) {
+    Scene s = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / name);
+    EXPECT_FALSE(s.name.empty()) << name;
+    EXPECT_GE(s.grids.y.size(), 20u) << name;
+  }
+}
+
+TEST(Scene, AllSectionsParse) {
+  std::string text = std::string(kMinimal) + R"(
+equilibrium_roll = true
+xi = {start = -0.002, stop = 0.002, count = 5}
+eta = [0.0]
+phi = [{start = -1.0, stop = 0.0, step = 0.5}, {start = 0.0, stop = 1.0, step = 1.0}]
+[track]
+gauge = 1.437
+rail_inclination = "1:20"
+[wheelset]
+nominal_radius = 0.45
+[material]
+youngs_modulus = 200e9
+[contact]
+normal_model = "kik-piotrowski"
+strips = 30
+friction = 0.4
+spin_per_strip = false
+[wear]
+lubrication_factor = 11
+[geometry]
+flange_angle = 0.4
+)";
+  Scene s = parse_scene(text, "t.toml");
+  EXPECT_TRUE(s.equilibrium_roll);
+  EXPECT_DOUBLE_EQ(s.track.gauge, 1.437);
+  EXPECT_DOUBLE_EQ(s.track.rail_inclination, 0.05);
+  EXPECT_DOUBLE_EQ(s.wheelset.nominal_radius, 0.45);
+  EXPECT_DOUBLE_EQ(s.material.youngs_modulus, 200e9);
+  EXPECT_EQ(s.normal.model, NormalModel::kik_piotrowski);
+  EXPECT_EQ(s.normal.strips, 30);
+  EXPECT_DOUBLE_EQ(s.tangential.friction, 0.4);
+  EXPECT_FALSE(s.tangential.spin_per_strip);
+  EXPECT_DOUBLE_EQ(s.wear.lubrication_factor, 11.0);
+  EXPECT_DOUBLE_EQ(s.geometry.flange_angle, 0.4);
+  EXPECT_EQ(s.grids.xi, (std::vector<double>{-0.002, -0.001, 0.0, 0.001, 0.002}));
+  EXPECT_EQ(s.grids.phi, (std::vector<double>{-1.0, -0.5, 0.0, 1.0}));  // shared 0 merged
+}
+
+TEST(Scene, RangeWithStepEndsExactlyAtStop) {
+  Scene s = parse_scene(R"(
+[scene]
+name = "t"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[grid]
+y = {start = -0.010, stop = 0.010, step = 0.0005}
+load = [50e3, 78.5e3]
+)", "t.toml");
+  ASSERT_EQ(s.grids.y.size(), 41u);
+  EXPECT_EQ(s.grids.y.front(), -0.010);
+  EXPECT_EQ(s.grids.y.back(), 0.010);
+  EXPECT_NEAR(s.grids.y[20], 0.0, 1e-15);
+  EXPECT_DOUBLE_EQ(s.track.rail_inclination, 0.025);
+}
+
+TEST(Scene, InclinationAsNumber) {
+  Scene s = parse_scene(std::string(kMinimal) + "[track]\nrail_inclination = 0.05\n", "t.toml");
+  EXPECT_DOUBLE_EQ(s.track.rail_inclination, 0.05);
+}
+
+struct BadCase {
+  const char* what;     // test label
+  std::string text;     // scene text
+  const char* needle1;  // substrings the message must contain
+  const char* needle2;
+};
+
+TEST(Scene, ErrorsNameFileKeyAndLine) {
+  const std::string m = kMinimal;  // grid is the last section: appended keys land in [grid]
+  std::vector<BadCase> cases{
+      {"typo in track", m + "[track]\ngague = 1.435\n", "track.gague", "unknown key"},
+      {"unknown section", m + "[trak]\ngauge = 1.4\n", "trak", "unknown section"},
+      {"unknown grid key", m + "roll_eq = true\n", "grid.roll_eq", "unknown key"},
+      {"missing name", "[scene]\n[profiles]\nwheel='s1002'\nrail='uic60'\n[grid]\ny=[0.0]\nload=1.0\n",
+       "scene.name", "missing required key"},
+      {"missing grid.load", "[scene]\nname='t'\n[profiles]\nwheel='s1002'\nrail='uic60'\n[grid]\ny=[0.0]\n",
+       "grid.load", "missing required key"},
+      {"missing profiles", "[scene]\nname='t'\n[grid]\ny=[0.0]\nload=1.0\n", "profiles.wheel", "missing"},
+      {"wrong type", m + "[track]\ngauge = \"wide\"\n", "track.gauge", "expected a number"},
+      {"wrong type bool", m + "[contact]\nspin_per_strip = 1\n", "contact.spin_per_strip", "true or false"},
+      {"empty grid", m + "xi = []\n", "grid.xi", "empty grid"},
+      {"non-monotonic", m + "eta = [0.0, 0.002, 0.001]\n", "grid.eta", "strictly increasing"},
+      {"duplicate", m + "eta = [0.0, 0.0]\n", "grid.eta", "strictly increasing"},
+      {"nan", m + "phi = [0.0, nan]\n", "grid.phi", "not finite"},
+      {"inf", m + "[track]\ngauge = inf\n", "track.gauge", "not finite"},
+      {"range step and count", m + "xi = {start = 0.0, stop = 1.0, step = 0.5, count = 3}\n", "grid.xi",
+       "exactly one of step or count"},
+      {"range reversed", m + "xi = {start = 1.0, stop = 0.0, step = 0.5}\n", "grid.xi", "stop > start"},
+      {"range bad key", m + "xi = {start = 0.0, stop = 1.0, stpe = 0.5}\n", "grid.xi.stpe", "unknown key"},
+      {"range zero step", m + "xi = {start = 0.0, stop = 1.0, step = 0.0}\n", "grid.xi.step", "> 0"},
+      {"bad model", m + "[contact]\nnormal_model = \"hurts\"\n", "contact.normal_model", "hurts"},
+      {"bad inclination", m + "[track]\nrail_inclination = \"1/40\"\n", "track.rail_inclination", "1:40"},
+      {"roll with equilibrium", m + "equilibrium_roll = true\nroll = [0.0, 0.001]\n", "grid.roll",
+       "equilibrium_roll"},
+      {"missing profile file", "[scene]\nname='t'\n[profiles]\nwheel='nope.prw'\nrail='uic60'\n", "profiles.wheel",
+       "no such file"},
+      {"negative load", m.substr(0, m.find("load")) + "load = [-1.0, 2.0]\n", "grid.load", "> 0"},
+      {"syntax", m + "xi = [0.0,\n", "bad.toml", "TOML syntax error"},
+  };
+  for (const BadCase& c : cases) {
+    std::string message = error_of(c.text);
+    EXPECT_NE(message.find(c.needle1), std::string::npos) << c.what << ": " << message;
+    EXPECT_NE(message.find(c.needle2), std::string::npos) << c.what << ": " << message;
+    EXPECT_EQ(message.rfind("bad.toml:", 0), 0u) << c.what << ": " << message;
+  }
+}
+
+TEST(Scene, ErrorGivesTheLineOfTheKey) {
+  std::string text = std::string(kMinimal) + "[track]\n\ngague = 1.435\n";
+  int line = 0;
+  for (std::size_t i = 0; i < text.find("gague"); ++i) line += text[i] == '\n';
+  EXPECT_NE(error_of(text).find("bad.toml:" + std::to_string(line + 1) + ":"), std::string::npos)
+      << error_of(text);
+}
+
+TEST(Scene, ProfileFileResolvedRelativeToScene) {
+  auto dir = std::filesystem::temp_directory_path() / "railtab_scene_test";
+  std::filesystem::create_directories(dir / "profiles");
+  std::ofstream(dir / "profiles" / "w.prw") << "0 0\n";
+  std::ofstream(dir / "s.toml") << "[scene]\nname='t'\n[profiles]\nwheel='profiles/w.prw'\nrail='uic60'\n"
+                                   "smoothing = 0.002\n[grid]\ny=[0.0]\nload=1.0\n";
+  Scene s = load_scene(dir / "s.toml");
+  EXPECT_EQ(s.wheel.file, dir / "profiles" / "w.prw");
+  EXPECT_DOUBLE_EQ(s.wheel.smoothing_length, 0.002);
+  EXPECT_EQ(s.path, dir / "s.toml");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Scene, MissingFileNamesIt) {
+  try {
+    load_scene("/nonexistent/x.toml");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.toml"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace railtab

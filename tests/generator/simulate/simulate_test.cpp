@@ -1,0 +1,263 @@
+// railtab simulate: a small Hertz table generated here (a second or so), a wheelset run over it
+// through LookupContactModel, the direct model against the table at a grid node, and the
+// simulation scene's located errors.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/check.hpp"
+#include "error_message.hpp"
+#include "scene/scene.hpp"
+#include "scene/simulation_scene.hpp"
+#include "simulate/direct_contact_model.hpp"
+#include "simulate/lookup_contact_model.hpp"
+#include "simulate/simulation_run.hpp"
+#include "sweep/generate.hpp"
+#include "vehicle/wheelset_model.hpp"
+
+namespace railtab {
+namespace {
+
+namespace fs = std::filesystem;
+
+// S1002 / UIC60 1:40, Hertz, loads around the default wheelset's 39 kN static wheel load. The
+// creepage grid is wide enough for the runs below (checked: no query out of range).
+constexpr const char* kSceneText = R"(
+[scene]
+name = "simulate-test"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[contact]
+normal_model = "hertz"
+friction = 0.3
+speed = 20.0
+[grid]
+y = { start = -0.010, stop = 0.010, step = 0.001 }
+equilibrium_roll = true
+load = [20e3, 40e3, 60e3]
+xi = [-0.02, -0.004, -0.001, 0.0, 0.001, 0.004, 0.02]
+eta = [-0.02, -0.004, -0.001, 0.0, 0.001, 0.004, 0.02]
+phi = [-2.0, -0.5, 0.0, 0.5, 2.0]
+)";
+
+class SimulateTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() / ("railtab_simulate_test_" + std::to_string(::getpid())));
+    fs::create_directories(*dir_);
+    std::ofstream(*dir_ / "scene.toml") << kSceneText;
+    GenerateOptions g;
+    g.scene = *dir_ / "scene.toml";
+    g.output = *dir_ / "table.h5";
+    g.threads = 2;
+    generate_table(g);
+  }
+  static void TearDownTestSuite() {
+    std::error_code ec;
+    fs::remove_all(*dir_, ec);
+    delete dir_;
+  }
+  static Scene scene() { return load_scene(*dir_ / "scene.toml"); }
+  static lookup::Table table() { return lookup::Table::load((*dir_ / "table.h5").string()); }
+
+  // Runs `seconds` on tangent track without irregularity at 20 m/s from lateral offset y0 and
+  // checks every step: finite, within the flange play, creep forces within mu N per slot.
+  static double run_tangent(LookupContactModel& contact, double y0, double seconds) {
+    const vehicle::TrackLayout track({vehicle::TrackSection{1000.0, 0.0, 0.0, 0.0, 0.0}}, vehicle::Irregularity{});
+    vehicle::WheelsetState initial;
+    initial.y = y0;
+    vehicle::WheelsetSimulation sim(vehicle::WheelsetParameters{}, track, contact, 20.0, 0.5e-3, initial);
+    const double mu = 0.3;
+    double max_abs_y = 0.0;
+    while (sim.time() < seconds) {
+      sim.step();
+      const vehicle::ContactSnapshot& s = sim.snapshot();
+      EXPECT_TRUE(std::isfinite(sim.state().y) && std::isfinite(sim.state().yaw)) << "t = " << sim.time();
+      EXPECT_LT(std::abs(sim.state().y), 0.012) << "t = " << sim.time();  // beyond the flange play
+      for (int w = 0; w < vehicle::kWheels; ++w) {
+        for (int k = 0; k < vehicle::kContactSlots; ++k) {
+          const vehicle::SlotContact& c = s.contacts[w].slot[k];
+          if (!c.loaded) continue;
+          const double f = std::hypot(s.forces[w][k].fx, s.forces[w][k].fy);
+          EXPECT_LE(f, mu * c.normal_force * (1.0 + 1e-9)) << "t = " << sim.time() << " wheel " << w << " slot " << k;
+        }
+      }
+      if (::testing::Test::HasFailure()) break;  // one message, not thousands
+      max_abs_y = std::max(max_abs_y, std::abs(sim.state().y));
+    }
+    return max_abs_y;
+  }
+
+  static fs::path* dir_;
+};
+fs::path* SimulateTest::dir_ = nullptr;
+
+TEST_F(SimulateTest, CentredWheelsetStaysCentredOnPerfectTangentTrack) {
+  LookupContactModel contact(table());
+  const double max_abs_y = run_tangent(contact, 0.0, 3.0);
+  std::printf("centred start, 3 s at 20 m/s: max |y| = %.3e m\n", max_abs_y);
+  // Left and right are mirror images in the table, so nothing pushes the wheelset sideways: what
+  // is left is round-off. 1 um is a thousandth of the tread's creep-dominated range.
+  EXPECT_LT(max_abs_y, 1e-6);
+  EXPECT_EQ(contact.counts().out_of_range, 0u);
+  EXPECT_EQ(contact.counts().invalid_input, 0u);
+  EXPECT_GT(contact.counts().queries, 0u);
+}
+
+TEST_F(SimulateTest, OffsetWheelsetStaysBoundedAndFinite) {
+  LookupContactModel contact(table());
+  const double max_abs_y = run_tangent(contact, 0.004, 3.0);
+  std::printf("start at y = 4 mm, 3 s at 20 m/s: max |y| = %.3e m, out of range %llu of %llu queries\n", max_abs_y,
+              static_cast<unsigned long long>(contact.counts().out_of_range),
+              static_cast<unsigned long long>(contact.counts().queries));
+  EXPECT_EQ(contact.counts().invalid_input, 0u);
+}
+
+TEST_F(SimulateTest, OutOfRangeQueriesAreCountedPerAxis) {
+  LookupContactModel contact(table());
+  vehicle::WheelContacts contacts[vehicle::kWheels];
+  contact.normal(0.0, {40e3, 40e3}, contacts);
+  EXPECT_EQ(contact.counts().out_of_range, 0u);
+  contact.normal(0.02, {40e3, 90e3}, contacts);  // y beyond 10 mm, right load beyond 60 kN
+  EXPECT_EQ(contact.counts().out_of_range, 2u);
+  EXPECT_EQ(contact.counts().outside_axis[0], 2u);  // y, both wheels
+  EXPECT_EQ(contact.counts().outside_axis[1], 1u);  // load, right wheel
+  contact.normal(std::nan(""), {40e3, 40e3}, contacts);
+  EXPECT_EQ(contact.counts().invalid_input, 2u);
+}
+
+TEST_F(SimulateTest, LookupAndDirectAgreeAtAGridNode) {
+  LookupContactModel lookup_model(table());
+  DirectContactModel direct_model(scene());
+  const double load[vehicle::kWheels] = {40e3, 60e3};  // load nodes
+  for (double y : {0.0, 0.003, -0.007}) {               // y nodes, tread and flange contact
+    vehicle::WheelContacts a[vehicle::kWheels], b[vehicle::kWheels];
+    lookup_model.normal(y, load, a);
+    direct_model.normal(y, load, b);
+    vehicle::SlotCreepage creepage[vehicle::kWheels][vehicle::kContactSlots];
+    for (auto& wheel : creepage) {
+      wheel[0] = {0.001, -0.004, 0.5};  // creepage nodes
+      wheel[1] = {-0.02, 0.004, -2.0};
+    }
+    vehicle::SlotForces fa[vehicle::kWheels][vehicle::kContactSlots], fb[vehicle::kWheels][vehicle::kContactSlots];
+    lookup_model.creep(creepage, fa);
+    direct_model.creep(creepage, fb);
+    int loaded = 0;
+    for (int w = 0; w < vehicle::kWheels; ++w) {
+      for (int k = 0; k < vehicle::kContactSlots; ++k) {
+        const vehicle::SlotContact& ca = a[w].slot[k];
+        const vehicle::SlotContact& cb = b[w].slot[k];
+        SCOPED_TRACE(testing::Message() << "y = " << y << " wheel " << w << " slot " << k);
+        ASSERT_EQ(ca.loaded, cb.loaded);
+        if (!ca.loaded) continue;
+        ++loaded;
+        const double n = cb.normal_force;
+        EXPECT_NEAR(ca.normal_force, n, 1e-9 * n);
+        EXPECT_NEAR(ca.contact_angle, cb.contact_angle, 1e-9);
+        EXPECT_NEAR(ca.rolling_radius, cb.rolling_radius, 1e-12);
+        EXPECT_NEAR(ca.wheel_u, cb.wheel_u, 1e-12);
+        EXPECT_NEAR(fa[w][k].fx, fb[w][k].fx, 1e-9 * n);
+        EXPECT_NEAR(fa[w][k].fy, fb[w][k].fy, 1e-9 * n);
+        EXPECT_NEAR(fa[w][k].mz, fb[w][k].mz, 1e-9 * n);
+      }
+    }
+    EXPECT_GE(loaded, 2);
+  }
+  EXPECT_EQ(direct_model.failures(), 0u);
+}
+
+// The whole loop on a short route: two wear steps (table, run, wear, worn profile, next table).
+TEST_F(SimulateTest, RunWritesEveryStepAndTheWornProfileFeedsTheNextStep) {
+  std::ofstream(*dir_ / "sim.toml") << "[simulation]\nname = \"short\"\ncontact_scene = \"scene.toml\"\n"
+                                        "models = [\"hertz\"]\npositions = [\"leading\", \"trailing\"]\n"
+                                        "speed = 20.0\nwear_steps = 2\nrunning_distance = 1.0e6\n"
+                                        "profile_smoothing = 0.004\n"
+                                        "[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 20.0\n"
+                                        "[[route.section]]\nkind = \"transition\"\nlength = 20.0\n"
+                                        "[[route.section]]\nkind = \"circular\"\nlength = 20.0\nradius = 1000.0\n";
+  const SimulationScene sim = load_simulation_scene(*dir_ / "sim.toml");
+  SimulationOptions options;
+  options.out = *dir_ / "out";
+  options.threads = 2;
+  const SimulationSummary summary = run_simulation(sim, options);
+  ASSERT_EQ(summary.models.size(), 1u);
+  const ModelSummary& m = summary.models[0];
+  ASSERT_EQ(m.steps.size(), 2u);
+  for (const StepSummary& step : m.steps) {
+    SCOPED_TRACE(testing::Message() << "step " << step.step);
+    EXPECT_GT(step.worn_area, 0.0);
+    EXPECT_TRUE(std::isfinite(step.worn_area));
+    ASSERT_EQ(step.runs.size(), 2u);
+    for (const RunSummary& r : step.runs) {
+      EXPECT_NEAR(r.distance, 60.0, 0.02);
+      EXPECT_EQ(r.out_of_range, 0u);
+      EXPECT_EQ(r.wear_failures, 0);
+      EXPECT_LT(r.max_creep_force_ratio, 1.0 + 1e-9);
+    }
+  }
+  EXPECT_NEAR(m.steps[1].cumulative_worn_area, m.steps[0].worn_area + m.steps[1].worn_area,
+              1e-12 * m.steps[1].cumulative_worn_area);
+  const fs::path out = *dir_ / "out" / "short" / "hertz";
+  EXPECT_TRUE(fs::exists(out / "step0" / "table.h5"));
+  EXPECT_TRUE(fs::exists(out / "step1" / "wheel_worn.txt"));
+  // Step 1 ran on the worn wheel written by step 0.
+  EXPECT_EQ(load_scene(out / "step1" / "scene.toml").wheel.file.filename(), "wheel_worn.txt");
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(*dir_ / "out" / "short" / "summary.json"));
+  EXPECT_NEAR(j["models"][0]["total_worn_area_m2"].get<double>(), m.steps[1].cumulative_worn_area, 1e-15);
+}
+
+// A minimal valid simulation scene; `extra` is appended to [simulation].
+std::string simulation_text(const std::string& extra) {
+  return "[simulation]\ncontact_scene = \"scene.toml\"\nmodels = [\"hertz\"]\nspeed = 20.0\n"
+         "running_distance = 1e6\n" +
+         extra +
+         "\n[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 100.0\n"
+         "[[route.section]]\nkind = \"transition\"\nlength = 50.0\n"
+         "[[route.section]]\nkind = \"circular\"\nlength = 100.0\nradius = 600.0\ncant = 0.15\n";
+}
+
+std::string error_of(const std::string& text, const fs::path& base) {
+  return test::error_message([&] { parse_simulation_scene(text, "sim.toml", base); });
+}
+
+TEST_F(SimulateTest, SimulationSceneParsesAndResolvesTransitions) {
+  const SimulationScene s = parse_simulation_scene(simulation_text(""), "sim.toml", *dir_);
+  ASSERT_EQ(s.route.size(), 3u);
+  EXPECT_DOUBLE_EQ(s.route[1].curvature_start, 0.0);
+  EXPECT_DOUBLE_EQ(s.route[1].curvature_end, 1.0 / 600.0);
+  EXPECT_DOUBLE_EQ(s.route[1].cant_end, 0.15);
+  EXPECT_DOUBLE_EQ(s.route_length(), 250.0);
+  EXPECT_EQ(s.name, "sim");
+}
+
+TEST_F(SimulateTest, BadSimulationSceneGivesALocatedError) {
+  EXPECT_EQ(error_of(simulation_text("sped = 3.0"), *dir_).rfind("sim.toml:6: simulation.sped: unknown key", 0), 0u)
+      << error_of(simulation_text("sped = 3.0"), *dir_);
+  EXPECT_NE(error_of(simulation_text("time_step = \"fast\""), *dir_).find("sim.toml:6: simulation.time_step: expected a number"),
+            std::string::npos);
+  std::string bad_model = simulation_text("");
+  bad_model.replace(bad_model.find("[\"hertz\"]"), 9, "[\"hertzz\"]");
+  EXPECT_NE(error_of(bad_model, *dir_).find("sim.toml:3: simulation.models: unknown normal model"), std::string::npos)
+      << error_of(bad_model, *dir_);
+  EXPECT_NE(error_of(simulation_text("positions = [\"middle\"]"), *dir_).find("sim.toml:6: simulation.positions"),
+            std::string::npos);
+  // Missing required key, and a contact scene that does not exist.
+  EXPECT_NE(error_of("[simulation]\ncontact_scene = \"scene.toml\"\nmodels = [\"hertz\"]\nspeed = 20.0\n", *dir_)
+                .find("simulation.running_distance: missing required key"),
+            std::string::npos);
+  EXPECT_NE(error_of(simulation_text(""), "/nonexistent").find("simulation.contact_scene: no such file"),
+            std::string::npos);
+  // A radius on a transition.
+  std::string text = simulation_text("");
+  text.replace(text.find("length = 50.0"), 13, "length = 50.0\nradius = 300.0");
+  EXPECT_NE(error_of(text, *dir_).find("route.section[2].radius"), std::string::npos) << error_of(text, *dir_);
+}
+
+}  // namespace
+}  // namespace railtab

@@ -1,0 +1,178 @@
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <hdf5_hl.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "core/check.hpp"
+#include "generator/test_tables.hpp"
+#include "table/interrupt.hpp"
+#include "table/table_io.hpp"
+
+namespace railtab {
+namespace {
+
+// A small but complete format-1.0 table: y x slot geometry and y x load x slot normal parts.
+Table small_table(std::size_t ny = 3) {
+  Table t;
+  t.attributes = {{"format_version", "1.0"}, {"railtab_version", "0.1.0"}, {"git_commit", "abc"},
+                  {"created", "2024-01-01T00:00:00Z"}, {"scene", "[scene]\nname = \"t\"\n"},
+                  {"scene_name", "t"}, {"models", R"({"normal":"hertz"})"}, {"fixed_axes", R"({"roll":0.0})"}};
+  TableAxis y{"y", "m", "lateral displacement", {}, false};
+  for (std::size_t i = 0; i < ny; ++i) y.values.push_back(-0.001 + 0.001 * static_cast<double>(i));
+  t.axes = {y, {"load", "N", "wheel load", {5e4, 8e4}, false}, {"slot", "1", "contact slot", {0, 1}, true}};
+  for (const char* wheel : {"left", "right"}) {
+    for (const char* part : {"geometry", "normal"}) {
+      TableGroup g{std::string(wheel) + "/" + part, {}};
+      bool normal = std::string(part) == "normal";
+      std::vector<std::string> axes = normal ? std::vector<std::string>{"y", "load", "slot"}
+                                             : std::vector<std::string>{"y", "slot"};
+      std::vector<std::size_t> shape = normal ? std::vector<std::size_t>{ny, 2, 2} : std::vector<std::size_t>{ny, 2};
+      for (const std::string& name : required_outputs(part)) {
+        TableDataset d{name, "m", "test output " + name, axes, shape, {}, {}, name == "status", 0};
+        for (std::size_t i = 0; i < d.size(); ++i) {
+          if (d.is_status) d.status.push_back(static_cast<StatusBits>(i % 3 == 0 ? 1 : 5));
+          else d.values.push_back(std::sin(static_cast<double>(i) + static_cast<double>(name.size())));
+        }
+        g.datasets.push_back(std::move(d));
+      }
+      t.groups.push_back(std::move(g));
+    }
+  }
+  return t;
+}
+
+TEST(TableWriter, RoundTripKeepsEverything) {
+  testing::TempDir dir("writer_roundtrip");
+  Table t = small_table();
+  write_table(t, dir / "t.h5");
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"t.h5"});  // no temporary file left
+  Table r = read_table(dir / "t.h5");
+  EXPECT_EQ(r.attributes, t.attributes);
+  testing::expect_same_datasets(t, r);
+  for (const TableAxis& a : t.axes) {
+    EXPECT_EQ(r.axis(a.name)->units, a.units);
+    EXPECT_EQ(r.axis(a.name)->description, a.description);
+    EXPECT_EQ(r.axis(a.name)->integer, a.integer);
+  }
+  const TableDataset* d = r.group("left/normal")->find("area");
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->units, "m");
+  EXPECT_EQ(d->description, "test output area");
+  EXPECT_GT(d->storage_bytes, 0u);
+  // Dataset order is the writing order (creation order tracked).
+  EXPECT_EQ(r.group("left/geometry")->datasets.front().name, "contact_angle");
+}
+
+TEST(TableWriter, AxesAreDimensionScalesAttachedToEveryDimension) {
+  testing::TempDir dir("writer_scales");
+  write_table(small_table(), dir / "t.h5");
+  hid_t f = H5Fopen((dir / "t.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  hid_t y = H5Dopen2(f, "/axes/y", H5P_DEFAULT);
+  hid_t slot = H5Dopen2(f, "/axes/slot", H5P_DEFAULT);
+  hid_t load = H5Dopen2(f, "/axes/load", H5P_DEFAULT);
+  hid_t d = H5Dopen2(f, "/right/normal/max_pressure", H5P_DEFAULT);
+  EXPECT_GT(H5DSis_scale(y), 0);
+  EXPECT_GT(H5DSis_attached(d, y, 0), 0);
+  EXPECT_GT(H5DSis_attached(d, load, 1), 0);
+  EXPECT_GT(H5DSis_attached(d, slot, 2), 0);
+  for (hid_t id : {y, slot, load, d}) H5Dclose(id);
+  H5Fclose(f);
+}
+
+TEST(TableWriter, LargeDatasetsAreCompressed) {
+  testing::TempDir dir("writer_chunks");
+  Table t = small_table(3000);  // 3000 x 2 x 2 doubles = 96 KiB per normal dataset
+  write_table(t, dir / "t.h5");
+  hid_t f = H5Fopen((dir / "t.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t d = H5Dopen2(f, "/left/normal/area", H5P_DEFAULT);
+  hid_t dcpl = H5Dget_create_plist(d);
+  EXPECT_EQ(H5Pget_layout(dcpl), H5D_CHUNKED);
+  EXPECT_EQ(H5Pget_nfilters(dcpl), 2);  // shuffle + deflate
+  H5Pclose(dcpl);
+  H5Dclose(d);
+  hid_t small = H5Dopen2(f, "/left/geometry/status", H5P_DEFAULT);
+  dcpl = H5Dget_create_plist(small);
+  EXPECT_EQ(H5Pget_layout(dcpl), H5D_CONTIGUOUS);  // 24 KiB: not worth chunking
+  H5Pclose(dcpl);
+  H5Dclose(small);
+  H5Fclose(f);
+  testing::expect_same_datasets(t, read_table(dir / "t.h5"));
+}
+
+TEST(TableWriter, InconsistentTableWritesNothing) {
+  testing::TempDir dir("writer_bad");
+  Table t = small_table();
+  t.groups[0].datasets[0].values.pop_back();
+  EXPECT_THROW(write_table(t, dir / "t.h5"), Error);
+  EXPECT_TRUE(dir.files().empty());
+}
+
+TEST(TableWriter, CancelRemovesTemporaryAndKeepsOldTarget) {
+  testing::TempDir dir("writer_cancel");
+  std::filesystem::path target = dir / "t.h5";
+  write_table(small_table(2), target);
+  std::atomic<bool> cancel{true};
+  EXPECT_THROW(write_table(small_table(5), target, &cancel), Interrupted);
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"t.h5"});
+  EXPECT_EQ(read_table(target).axis("y")->values.size(), 2u);  // the old file is intact
+}
+
+TEST(TableReader, RejectsUnknownMajorVersion) {
+  testing::TempDir dir("reader_version");
+  Table t = small_table();
+  t.set_attribute("format_version", "2.0");
+  write_table(t, dir / "t.h5");
+  try {
+    read_table(dir / "t.h5");
+    FAIL() << "version 2.0 accepted";
+  } catch (const Error& e) {
+    std::string m = e.what();
+    EXPECT_NE(m.find((dir / "t.h5").string()), std::string::npos) << m;
+    EXPECT_NE(m.find("format version 2.0 is not supported"), std::string::npos) << m;
+  }
+  t.set_attribute("format_version", "1.7");  // newer minor: accepted
+  write_table(t, dir / "t.h5");
+  EXPECT_NO_THROW(read_table(dir / "t.h5"));
+}
+
+TEST(TableReader, RejectsTruncatedFile) {
+  testing::TempDir dir("reader_truncated");
+  write_table(small_table(3000), dir / "t.h5");
+  auto size = std::filesystem::file_size(dir / "t.h5");
+  std::filesystem::copy_file(dir / "t.h5", dir / "cut.h5");
+  std::filesystem::resize_file(dir / "cut.h5", size / 2);
+  try {
+    read_table(dir / "cut.h5");
+    FAIL() << "truncated file accepted";
+  } catch (const Error& e) {
+    std::string m = e.what();
+    EXPECT_NE(m.find("cut.h5"), std::string::npos) << m;
+    EXPECT_NE(m.find("truncated"), std::string::npos) << m;
+  }
+}
+
+TEST(TableReader, RejectsMissingDatasetsAndForeignFiles) {
+  testing::TempDir dir("reader_missing");
+  Table t = small_table();
+  std::erase_if(t.group("right/normal")->datasets, [](const auto& d) { return d.name == "area"; });
+  write_table(t, dir / "t.h5");
+  try {
+    read_table(dir / "t.h5");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing dataset /right/normal/area"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "text.h5") << "not hdf5";
+  EXPECT_THROW(read_table(dir / "text.h5"), Error);
+  EXPECT_THROW(read_table(dir / "absent.h5"), Error);
+  t = small_table();
+  t.remove_attribute("format_version");
+  write_table(t, dir / "nover.h5");
+  EXPECT_THROW(read_table(dir / "nover.h5"), Error);
+}
+
+}  // namespace
+}  // namespace railtab
