@@ -1,4 +1,5 @@
 #include "sweep/adaptive_grid.hpp"
+#include "sweep/grid_comparison.hpp"
 
 #include <gtest/gtest.h>
 

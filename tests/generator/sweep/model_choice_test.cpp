@@ -1,4 +1,4 @@
-// Per-region model choice of [accuracy] scenes (generator/model_choice.*, docs/adaptive-grids.md).
+// Per-region model choice of [accuracy] scenes (generator/sweep/model_choice.*, docs/adaptive-grids.md).
 #include "sweep/model_choice.hpp"
 
 #include <fmt/format.h>
@@ -15,6 +15,7 @@
 #include "generator/test_tables.hpp"
 #include "sweep/contact_kernel.hpp"
 #include "sweep/generate.hpp"
+#include "sweep/grid_comparison.hpp"
 #include "table/merge.hpp"
 #include "table/table_io.hpp"
 
