@@ -1,3 +1,4 @@
+// Speed against accuracy: times and errors of every model setting and of table lookup at the states.
 #include "charts/speed_accuracy.hpp"
 
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "charts/speed_accuracy_states.hpp"
 #include "core/check.hpp"
 #include "sweep/contact_kernel.hpp"
 #include "sweep/sweep.hpp"
@@ -50,103 +52,6 @@ double percentile(std::vector<double> v, double q) {
   const std::size_t i = static_cast<std::size_t>(pos);
   const double f = pos - static_cast<double>(i);
   return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
-}
-
-// ---------------------------------------------------------------------------------------------
-// States
-
-struct CreepTarget {
-  const char* name;
-  double cksi, ceta, cphi;  // CONTACT's targets
-};
-constexpr CreepTarget kCreepSets[] = {{"a_none", 0, 0, 0},
-                                      {"b_long0.001", 0.001, 0, 0},
-                                      {"c_lat0.001", 0, 0.001, 0},
-                                      {"d_spin0.052", 0, 0, 0.052},
-                                      {"e_combined", 0.003, 0.002, 0.1}};
-
-bool wanted(const std::vector<std::string>& sets, const std::string& s) {
-  return sets.empty() || std::find(sets.begin(), sets.end(), s) != sets.end();
-}
-bool wanted(const std::vector<double>& dys, double dy) {
-  return dys.empty() || std::any_of(dys.begin(), dys.end(), [dy](double d) { return std::abs(d - dy) < 1e-9; });
-}
-
-void classify(SaState& s) {
-  s.y = -s.dy_mm * 1e-3;
-  s.flange = s.dy_mm >= 6.5;  // CONTACT: flange contact from dy = 6.5 mm
-  s.creep = s.xi != 0.0 || s.eta != 0.0 || s.phi != 0.0;
-  if (s.creep_set == "a_none") s.creep = false;  // CONTACT's tiny residual creepages are not a case
-}
-
-std::vector<SaState> read_contact_states(const std::filesystem::path& path, const SpeedAccuracyOptions& opt) {
-  std::ifstream in(path);
-  RAILTAB_CHECK(in.good(), "cannot read {}", path.string());
-  std::string line;
-  std::getline(in, line);
-  std::map<std::string, std::size_t> col;
-  {
-    std::stringstream ss(line);
-    std::string name;
-    for (std::size_t i = 0; std::getline(ss, name, ','); ++i) col[name] = i;
-  }
-  for (const char* need : {"dy_mm", "creep_set", "mu", "fz_prescribed_N", "cksi", "ceta", "cphi_rad_per_m",
-                           "fx_N", "fs_N", "area_mm2", "pmax_MPa", "contact_angle_rad"}) {
-    RAILTAB_CHECK(col.count(need) == 1, "{}: column '{}' missing", path.string(), need);
-  }
-  std::map<std::pair<double, std::string>, SaState> by_key;  // the file repeats the dy = -6 rows
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    auto num = [&](const char* name) { return std::stod(f.at(col.at(name))); };
-    SaState s;
-    s.dy_mm = num("dy_mm");
-    s.creep_set = f.at(col.at("creep_set"));
-    if (!wanted(opt.dy_mm, s.dy_mm) || !wanted(opt.creep_sets, s.creep_set)) continue;
-    s.friction = num("mu");
-    s.load = num("fz_prescribed_N");
-    // Conventions (docs/conventions.md), right wheel: xi = -cksi, eta = +ceta, phi = +cphi,
-    // fx = -fx_N, fy = +fs_N. The creepages CONTACT actually used, not the targets.
-    s.xi = -num("cksi");
-    s.eta = num("ceta");
-    s.phi = num("cphi_rad_per_m");
-    s.ref_fx = -num("fx_N");
-    s.ref_fy = num("fs_N");
-    s.ref_area = num("area_mm2") * 1e-6;
-    s.ref_pmax = num("pmax_MPa") * 1e6;
-    s.ref_angle = num("contact_angle_rad");
-    classify(s);
-    s.normal_reliable = !(s.creep_set == "a_none" && std::abs(s.dy_mm - 7.0) < 1e-9);  // README outlier
-    by_key[{s.dy_mm, s.creep_set}] = s;
-  }
-  std::vector<SaState> states;
-  for (const auto& [key, s] : by_key) states.push_back(s);
-  RAILTAB_CHECK(!states.empty(), "{}: no block C state matches the selection", path.string());
-  return states;
-}
-
-std::vector<SaState> target_states(const SpeedAccuracyOptions& opt, const Scene& scene) {
-  std::vector<SaState> states;
-  for (int dy = -6; dy <= 10; ++dy) {
-    if (!wanted(opt.dy_mm, dy)) continue;
-    for (const CreepTarget& c : kCreepSets) {
-      if (!wanted(opt.creep_sets, c.name)) continue;
-      SaState s;
-      s.dy_mm = dy;
-      s.creep_set = c.name;
-      s.friction = scene.tangential.friction;
-      s.xi = -c.cksi;
-      s.eta = c.ceta;
-      s.phi = c.cphi;
-      classify(s);
-      states.push_back(s);
-    }
-  }
-  RAILTAB_CHECK(!states.empty(), "speed-accuracy: no state matches the selection");
-  return states;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -335,6 +240,13 @@ std::vector<SaModelSetting> default_model_settings() {
 std::vector<SaTableSetting> default_table_settings() {
   return {{2e-3, false}, {1e-3, false}, {0.5e-3, false}, {0.25e-3, false}, {0.5e-3, true}, {0.25e-3, true}};
 }
+
+std::vector<SaModelSetting> quick_model_settings() {
+  return {{NormalModel::hertz, 0, 20}, {NormalModel::linder, 50, 20}, {NormalModel::kik_piotrowski, 50, 20},
+          {NormalModel::stripes_a, 25, 20}, {NormalModel::stripes_ab, 25, 20}, {NormalModel::stripes_ab, 50, 20}};
+}
+
+std::vector<SaTableSetting> quick_table_settings() { return {{1e-3, false}, {0.5e-3, false}}; }
 
 double force_error(const SaOutcome& out, const SaState& s) {
   const double ref = std::hypot(s.ref_fx, s.ref_fy);
@@ -600,75 +512,6 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
   if (sink == 12345.678) res.reference += " ";  // keeps the timed work observable
   res.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return res;
-}
-
-namespace {
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string("nan"); }
-
-void header_comments(std::ostream& out, const SpeedAccuracyResult& r) {
-  out << "# railtab chart: speed against accuracy (docs/speed-vs-accuracy.md)\n";
-  out << "# reference: " << r.reference << "\n";
-  out << "# set-up: " << r.setup << "\n";
-  out << "# error measure: err_force = |F - F_ref| / |F_ref|, F = (fx, fy) creep force on the wheel summed over "
-         "patches, states with creepage; medians (p90 = 90th percentile); tread = dy <= 6 mm, flange = dy >= 7 mm; "
-         "err_area, err_pmax = |q/q_ref - 1| and err_angle = |angle - angle_ref| on states without creepage "
-         "(CONTACT's dy = 7 mm a_none outlier excluded)\n";
-  out << "# time: models = full chain geometry + normal + FASTSIM + Archard per state (median of repeats after a "
-         "warm-up, then median over states), time_geometry = the geometry step alone; lookups = Table::query of "
-         "both slots of the right wheel; one thread, steady_clock\n";
-}
-}  // namespace
-
-void write_speed_accuracy_csv(const SpeedAccuracyResult& result, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  RAILTAB_CHECK(out.good(), "cannot write {}", path.string());
-  header_comments(out, result);
-  out << "label,kind,family,strips,elements,table_y_step_mm,table_creep_grid,time_us,time_tread_us,"
-         "time_flange_us,time_geometry_us,time_contact_us,err_force,err_force_p90,err_force_tread,err_force_flange,err_area,"
-         "err_pmax,err_angle_mrad,n_creep,n_normal,n_failed,table_file_bytes,table_memory_bytes,pareto_all,"
-         "pareto_tread,pareto_flange,err_interp,err_interp_p90,reference\n";
-  for (const SaRow& r : result.rows) {
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-                       r.label, r.kind, r.family, r.strips, r.elements, num(r.table_y_step * 1e3),
-                       r.table_creep_grid, num(r.time_us), num(r.time_tread_us), num(r.time_flange_us),
-                       num(r.time_geometry_us), num(r.time_contact_us), num(r.err_force), num(r.err_force_p90), num(r.err_force_tread),
-                       num(r.err_force_flange), num(r.err_area), num(r.err_pmax), num(r.err_angle_mrad), r.n_creep,
-                       r.n_normal, r.n_failed, r.file_bytes, r.memory_bytes, int(r.pareto_all),
-                       int(r.pareto_tread), int(r.pareto_flange), num(r.err_interp), num(r.err_interp_p90),
-                       result.contact_reference ? "contact" : "stripes");
-  }
-}
-
-void write_states_csv(const SpeedAccuracyResult& result, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  RAILTAB_CHECK(out.good(), "cannot write {}", path.string());
-  header_comments(out, result);
-  out << "label,dy_mm,y_m,creep_set,xi,eta,phi_rad_per_m,flange,fx_N,fy_N,ref_fx_N,ref_fy_N,err_force,area_m2,"
-         "ref_area_m2,pmax_Pa,ref_pmax_Pa,contact_angle_rad,ref_contact_angle_rad,time_us\n";
-  for (const SaStateRow& p : result.per_state) {
-    const SaState& s = result.states[p.state];
-    out << fmt::format("{},{:g},{:g},{},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-                       result.rows[p.row].label, s.dy_mm, s.y, s.creep_set, s.xi, s.eta, s.phi, int(s.flange),
-                       num(p.out.fx), num(p.out.fy), num(s.ref_fx), num(s.ref_fy), num(p.err_force), num(p.out.area),
-                       num(s.ref_area), num(p.out.pmax), num(s.ref_pmax), num(p.out.angle), num(s.ref_angle),
-                       num(p.time_us));
-  }
-}
-
-void write_table_memory_csv(const SpeedAccuracyResult& result, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  RAILTAB_CHECK(out.good(), "cannot write {}", path.string());
-  header_comments(out, result);
-  out << "label,method,table_y_step_mm,table_creep_grid,table_file_bytes,table_memory_bytes,time_us,err_force,"
-         "err_force_p90,err_force_tread,err_force_flange,err_area,err_angle_mrad,err_interp,err_interp_p90\n";
-  for (const SaRow& r : result.rows) {
-    if (r.kind != "lookup") continue;
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.label,
-                       r.family == "lookup-linear" ? "linear" : "cubic", num(r.table_y_step * 1e3),
-                       r.table_creep_grid, r.file_bytes, r.memory_bytes, num(r.time_us), num(r.err_force),
-                       num(r.err_force_p90), num(r.err_force_tread), num(r.err_force_flange), num(r.err_area),
-                       num(r.err_angle_mrad), num(r.err_interp), num(r.err_interp_p90));
-  }
 }
 
 }  // namespace railtab

@@ -1,8 +1,9 @@
 // Speed against accuracy: for a fixed set of wheel-rail states of a scene, time per evaluation and
 // error against a reference of every contact model setting (full chain: geometry -> normal ->
 // FASTSIM -> Archard) and of table lookup at several grid resolutions (lookup query only: a
-// lookup replaces the whole chain). The measurement only; `railtab chart` (chart_command.cpp)
-// writes the CSVs, draws the charts and prints the summary. Method: docs/speed-vs-accuracy.md.
+// lookup replaces the whole chain). The measurement only; speed_accuracy_chart.hpp writes the CSVs
+// (speed_accuracy_csv.cpp) and draws the charts, `railtab chart` prints the summary. The states are
+// read in speed_accuracy_states.cpp. Method: docs/speed-vs-accuracy.md.
 //
 // States: the right wheel of CONTACT's block C (../shared/reference/blockC_sweep_integer_dy.csv):
 // dy = -6..10 mm (our y = -dy), no roll, Fz = 78.5 kN, mu of the row, creepages as CONTACT used
@@ -80,6 +81,9 @@ struct SpeedAccuracyOptions {
 
 std::vector<SaModelSetting> default_model_settings();
 std::vector<SaTableSetting> default_table_settings();
+// A few settings only, for smoke runs (railtab chart --quick).
+std::vector<SaModelSetting> quick_model_settings();
+std::vector<SaTableSetting> quick_table_settings();
 
 // One point of the charts: a model setting or a table (+ interpolation method).
 struct SaRow {
