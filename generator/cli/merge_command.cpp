@@ -8,7 +8,6 @@
 
 #include "cli/commands.hpp"
 #include "table/merge.hpp"
-#include "table/table_io.hpp"
 
 namespace railtab {
 
@@ -19,13 +18,8 @@ void add_merge_command(CLI::App& app) {
   cmd->add_option("output", *output, "Table file to write (HDF5)")->required();
   cmd->add_option("shards", *inputs, "All N shard files, in any order")->required()->check(CLI::ExistingFile);
   cmd->callback([output, inputs] {
-    std::vector<Table> shards;
-    for (const std::string& path : *inputs) shards.push_back(read_table(path));
-    Table merged = merge_shards(shards, *inputs);
-    shards.clear();
-    write_table(merged, *output);
-    std::cerr << fmt::format("merged {} shards into {} ({} y values)\n", inputs->size(), *output,
-                             merged.axis("y") ? merged.axis("y")->values.size() : 1);
+    const std::size_t y_values = merge_table_files(*inputs, *output);
+    std::cerr << fmt::format("merged {} shards into {} ({} y values)\n", inputs->size(), *output, y_values);
   });
 }
 

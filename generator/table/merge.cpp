@@ -1,3 +1,4 @@
+// Joins table shards (generate --shard I/N) into one table, checking they fit together.
 #include "table/merge.hpp"
 
 #include <fmt/format.h>
@@ -7,6 +8,7 @@
 #include <numeric>
 
 #include "core/check.hpp"
+#include "table/table_io.hpp"
 
 namespace railtab {
 namespace {
@@ -109,6 +111,15 @@ Table merge_shards(const std::vector<Table>& shards, const std::vector<std::stri
     }
   }
   return merged;
+}
+
+std::size_t merge_table_files(const std::vector<std::string>& inputs, const std::string& output) {
+  std::vector<Table> shards;
+  for (const std::string& path : inputs) shards.push_back(read_table(path));
+  Table merged = merge_shards(shards, inputs);
+  shards.clear();  // the shards' memory before writing
+  write_table(merged, output);
+  return merged.axis("y") ? merged.axis("y")->values.size() : 1;
 }
 
 }  // namespace railtab

@@ -13,4 +13,8 @@ namespace railtab {
 // single run's byte for byte. Throws railtab::Error naming the offending shard (by `names`).
 Table merge_shards(const std::vector<Table>& shards, const std::vector<std::string>& names);
 
+// railtab merge: reads the shard files, merges them and writes `output`. Returns the merged table's
+// number of y values.
+std::size_t merge_table_files(const std::vector<std::string>& inputs, const std::string& output);
+
 }  // namespace railtab

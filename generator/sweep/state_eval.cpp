@@ -1,0 +1,150 @@
+// One wheelset state of a scene through the whole chain, as JSON (state_eval.hpp; railtab eval).
+#include "sweep/state_eval.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "core/check.hpp"
+
+namespace railtab {
+namespace {
+
+struct CreepOutput {
+  FastsimResult force;  // creep forces on the wheel
+  WearResult wear;      // Archard wear of the same solve
+};
+
+struct WheelEval {
+  const WheelContactGeometry* geometry = nullptr;
+  WheelNormalResult normal;
+  std::vector<CreepOutput> creep;  // per patch, empty without --creepage
+};
+
+nlohmann::json patch_json(const ContactPatch& patch, StatusBits solver_bits, const CreepOutput* creep) {
+  nlohmann::json c;
+  c["wheel_y"] = patch.wheel_u;
+  c["rail_y"] = patch.rail_u;
+  c["contact_angle"] = patch.contact_angle;
+  c["rolling_radius"] = patch.rolling_radius;
+  c["model"] = to_string(patch.model);
+  c["normal_force"] = patch.normal_force;
+  c["approach"] = patch.penetration;
+  c["area"] = patch.area;
+  c["max_pressure"] = patch.max_pressure;
+  if (patch.model == NormalModel::hertz) {
+    c["a"] = patch.semi_axis_a;
+    c["b"] = patch.semi_axis_b;
+  }
+  c["rigid_point"] = patch.point_index;
+  StatusBits bits = patch.status | solver_bits;  // as in the table: the load control's verdict too
+  if (creep != nullptr) {
+    c["fx"] = creep->force.fx;
+    c["fy"] = creep->force.fy;
+    c["mz"] = creep->force.mz;
+    c["slip_fraction"] = creep->force.slip_fraction;
+    c["wear_rate"] = creep->wear.wear_rate;
+    bits |= creep->force.status;
+  }
+  c["status"] = status::describe(bits);
+  c["status_bits"] = bits;
+  return c;
+}
+
+nlohmann::json point_json(const ContactPoint& point, int patch) {
+  return {{"wheel_y", point.wheel_u},         {"rail_y", point.rail_u},
+          {"y_track", point.y_track},         {"z_track", point.z_track},
+          {"contact_angle", point.contact_angle}, {"rolling_radius", point.rolling_radius},
+          {"separation", point.separation},   {"curvature_a", point.curvature_a},
+          {"curvature_b", point.curvature_b}, {"patch", patch},
+          {"status", status::describe(point.status)}, {"status_bits", point.status}};
+}
+
+}  // namespace
+
+nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request) {
+  RAILTAB_CHECK(std::isfinite(request.y), "--y must be finite, got {}", request.y);
+  Scene scene = base;
+  if (!request.model.empty()) scene.normal.model = parse_normal_model(request.model);
+  if (request.mu) {
+    RAILTAB_CHECK(std::isfinite(*request.mu) && *request.mu >= 0.0, "--mu must be finite and >= 0, got {}", *request.mu);
+    scene.tangential.friction = *request.mu;
+  }
+  const bool with_creep = !request.creepage.empty();
+  RAILTAB_CHECK(!with_creep || request.creepage.size() == 3,
+                "--creepage takes XI,ETA,PHI (three numbers), got {} value(s)", request.creepage.size());
+  for (double c : request.creepage) RAILTAB_CHECK(std::isfinite(c), "--creepage values must be finite, got {}", c);
+  const ContactGeometrySolver solver = make_geometry_solver(scene);
+
+  double roll = 0.0;
+  if (request.roll) {
+    RAILTAB_CHECK(std::isfinite(*request.roll), "--roll must be finite, got {}", *request.roll);
+    RAILTAB_CHECK(!request.equilibrium_roll, "--roll and --equilibrium-roll exclude each other");
+    roll = *request.roll;
+  } else if (request.equilibrium_roll || scene.equilibrium_roll) {
+    roll = solver.equilibrium_roll(request.y);
+  } else if (!scene.grids.roll.empty()) {
+    roll = scene.grids.roll.front();
+  }
+  double load = 0.0;
+  if (request.load) {
+    load = *request.load;
+  } else {
+    RAILTAB_CHECK(!scene.grids.load.empty(), "scene '{}' has no load grid: give --load", scene.name);
+    load = scene.grids.load.front();
+  }
+  RAILTAB_CHECK(std::isfinite(load) && load >= 0.0, "--load must be finite and >= 0 N, got {}", load);
+
+  const WheelsetContactGeometry geometry = solver.solve({request.y, roll});
+  const FastsimOptions fastsim = fastsim_options(scene);
+  const CreepConditions conditions = creep_conditions(scene);
+  const WearOptions wear = wear_options(scene);
+  std::array<WheelEval, 2> wheels;
+  for (int w = 0; w < 2; ++w) {
+    WheelEval& e = wheels[w];
+    e.geometry = &geometry.wheels[w];
+    e.normal = solve_normal_for_load(*e.geometry, load, scene.material, scene.normal);
+    if (!with_creep) continue;
+    FastsimWorkspace workspace;
+    WearDistribution distribution;
+    const Creepage creepage{request.creepage[0], request.creepage[1], request.creepage[2]};
+    for (const ContactPatch& patch : e.normal.patches) {
+      CreepOutput c;
+      c.force = fastsim_contact(*e.geometry, patch, creepage, conditions, scene.material, fastsim, workspace);
+      if (patch.normal_force > 0.0) c.wear = archard_wear(workspace, wear, distribution);
+      e.creep.push_back(c);
+    }
+  }
+
+  nlohmann::json out;
+  out["scene"] = scene.name;
+  out["state"] = {{"y", request.y}, {"roll", roll}, {"load", load}};
+  out["normal_model"] = to_string(scene.normal.model);
+  if (with_creep) {
+    out["creepage"] = {{"xi", request.creepage[0]}, {"eta", request.creepage[1]}, {"phi", request.creepage[2]}};
+    out["friction"] = scene.tangential.friction;
+    out["spin"] = to_string(fastsim.spin);
+  }
+  out["rolling_radius_difference"] = geometry.rolling_radius_difference;
+  out["wheels"] = nlohmann::json::array();
+  for (const WheelEval& e : wheels) {
+    nlohmann::json wj;
+    wj["side"] = to_string(e.geometry->side);
+    wj["vertical_approach"] = e.normal.vertical_approach;
+    wj["vertical_load"] = e.normal.vertical_load;
+    wj["status"] = status::describe(e.geometry->status | e.normal.status);
+    wj["contacts"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < e.normal.patches.size(); ++i) {
+      const StatusBits solver_bits = e.normal.status & (status::kConverged | status::kNotConverged);
+      wj["contacts"].push_back(patch_json(e.normal.patches[i], solver_bits, with_creep ? &e.creep[i] : nullptr));
+    }
+    wj["rigid_points"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < e.geometry->points.size(); ++i) {
+      const int patch = i < e.normal.point_patch.size() ? e.normal.point_patch[i] : -1;
+      wj["rigid_points"].push_back(point_json(e.geometry->points[i], patch));
+    }
+    out["wheels"].push_back(wj);
+  }
+  return out;
+}
+
+}  // namespace railtab
