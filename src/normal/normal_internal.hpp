@@ -317,4 +317,31 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
 // width w, returns I1 = sum int int sqrt(L^2-x^2) and I2 = sum int int sqrt(L^2-x^2)/r.
 void kp_integrals(const double* L, const double* y, int n, double width, double* I1, double* I2);
 
+// Model kinds and band positions, shared by the files of the layer.
+inline bool is_stripes(NormalModel m) {
+  return m == NormalModel::stripes_a || m == NormalModel::stripes_ab;
+}
+inline double band_position(const WheelContactGeometry& g, double s) {
+  return (s - g.band.front().s) / g.band_step;
+}
+
+// The steps of a solve (normal_model.cpp unless named): prepare the points of a geometry; one
+// point's patch at approach dz (dispatch to the model; out: the patch, or nullptr for the sums
+// only); the summed vertical load at dz; the options check; the lift-off result.
+void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptions& o, Workspace& w);
+PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                   PointContext& p, Workspace& w, double dz, ContactPatch* out);
+double vertical_load(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                     Workspace& w, double dz);
+void check_options(const NormalOptions& o);
+WheelNormalResult lift_off(const WheelContactGeometry& g, StatusBits extra);
+// Sets PointContext::weight of every point for approach dz (run_weights.cpp).
+void run_weights(const WheelContactGeometry& g, Workspace& w, double dz);
+// The wheel's patches at approach dz (patch_assembly.cpp); fill_single_hertz: the shortcut for one
+// loaded Hertz point, false if it does not apply.
+bool fill_single_hertz(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+                       Workspace& w, double dz, WheelNormalResult& out);
+void fill(const WheelContactGeometry& g, const Material& m, const NormalOptions& o, Workspace& w,
+          double dz, WheelNormalResult& out);
+
 }  // namespace railtab::detail
