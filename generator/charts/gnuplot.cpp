@@ -1,3 +1,4 @@
+// Writes a gnuplot script file and runs gnuplot on it (the one place charts leave the process).
 #include "charts/gnuplot.hpp"
 
 #include <cstdlib>

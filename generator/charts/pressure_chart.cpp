@@ -1,3 +1,4 @@
+// Pressure along the strip centre lines of every normal model: CSV, then the gnuplot chart.
 #include "charts/pressure_chart.hpp"
 
 #include <fmt/format.h>

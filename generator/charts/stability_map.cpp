@@ -1,3 +1,4 @@
+// Stability map: runs every normal model across y and records the status flags it raises.
 #include "charts/stability_map.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// Radial wear depth across the wheel profile per step: CSV, then the gnuplot chart.
 #include "charts/wear_chart.hpp"
 
 #include <fmt/format.h>

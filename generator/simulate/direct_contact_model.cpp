@@ -1,3 +1,4 @@
+// ContactModel evaluating geometry, normal model and FASTSIM at every call (the reference).
 #include "simulate/direct_contact_model.hpp"
 
 #include <exception>

@@ -1,3 +1,4 @@
+// ContactModel over a contact table: interpolates the table with railtab::lookup every step.
 #include "simulate/lookup_contact_model.hpp"
 
 #include <algorithm>

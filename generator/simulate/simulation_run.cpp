@@ -1,3 +1,4 @@
+// railtab simulate: table, wheelset run, wear accumulation and profile update, step after step.
 #include "simulate/simulation_run.hpp"
 
 #include <fmt/format.h>

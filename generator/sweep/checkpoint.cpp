@@ -1,3 +1,4 @@
+// Checkpoint file of an interrupted sweep: writes finished y blocks, reads them back on --resume.
 #include "sweep/checkpoint.hpp"
 
 #include <unistd.h>

@@ -1,3 +1,4 @@
+// railtab generate as a library call: adaptive grids, sweep, checkpoint and table file.
 #include "sweep/generate.hpp"
 
 #include <fmt/format.h>

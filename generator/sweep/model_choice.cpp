@@ -1,3 +1,4 @@
+// Model choice per y node for [accuracy] scenes: the cheapest model within the targets.
 #include "sweep/model_choice.hpp"
 
 #include <oneapi/tbb/info.h>

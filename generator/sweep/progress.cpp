@@ -1,3 +1,4 @@
+// Progress bar (terminal) or periodic lines (logs) of a running sweep.
 #include "sweep/progress.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// The sweep engine: a kernel over the (y, roll) grid in parallel, in a deterministic order.
 #include "sweep/sweep.hpp"
 
 #include <fmt/format.h>

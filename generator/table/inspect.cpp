@@ -1,3 +1,4 @@
+// Text summary of a table file: provenance, axes and the range of every output.
 #include "table/inspect.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// The SIGINT flag and its guard (interrupt.hpp).
 #include "table/interrupt.hpp"
 
 #include <csignal>

@@ -1,3 +1,4 @@
+// In-memory table: dataset lookup by name, sizes and the creation time stamp.
 #include "table/table.hpp"
 
 #include <algorithm>

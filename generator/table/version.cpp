@@ -1,3 +1,4 @@
+// Version string and git commit of this build (the commit header is generated at build time).
 #include "table/version.hpp"
 
 #include "railtab_commit.h"  // generated at build time (cmake/WriteCommit.cmake)

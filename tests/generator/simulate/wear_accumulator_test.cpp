@@ -1,5 +1,5 @@
-// Wear post-processing of a simulation (generator/wear_accumulator.hpp) and the profile update
-// (generator/worn_profile.hpp, generator/wear_chart.hpp).
+// Wear post-processing of a simulation (generator/simulate/wear_accumulator.hpp) and the profile update
+// (generator/simulate/worn_profile.hpp, generator/charts/wear_chart.hpp).
 #include "simulate/wear_accumulator.hpp"
 
 #include <gtest/gtest.h>

@@ -133,7 +133,7 @@ load = [60e3, 80e3]
   EXPECT_NEAR(geo.find("rolling_radius")->values[1 * 2 + 0], 0.46, 0.005);
   // The vertical components of the normal forces of one wheel carry its load. Where two rigid
   // points share a slot (kTwoPoint) the slot's force is the sum of its patches but the geometry part
-  // holds one point's angle, so there only an upper bound is checked (tests/generator/
+  // holds one point's angle, so there only an upper bound is checked (tests/generator/simulate/
   // slot_sum_test.cpp checks the balance within the spread of the patch angles).
   const TableGroup& nor = *a.table.group("left/normal");
   for (std::size_t iy = 0; iy < 4; ++iy) {
