@@ -1,3 +1,5 @@
+// Stability map (generator/charts/stability_map.hpp): one row per model variant, wheel and y;
+// range checks.
 #include "charts/stability_map.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Scene files (generator/scene/): defaults, every section, the shipped scenes, clear errors.
 #include "scene/scene.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Adaptive grids (generator/sweep/axis_refinement, adaptive_grid, grid_comparison): node placement
+// and targets.
 #include "sweep/adaptive_grid.hpp"
 #include "sweep/grid_comparison.hpp"
 

@@ -1,3 +1,5 @@
+// railtab generate as a library call (generator/sweep/generate.hpp): target file, interrupt,
+// resume, shards.
 #include "sweep/generate.hpp"
 
 #include <gtest/gtest.h>

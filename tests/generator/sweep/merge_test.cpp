@@ -1,3 +1,5 @@
+// Shards of one sweep merged (generator/table/merge.hpp) equal a single run; foreign shards
+// rejected.
 #include "table/merge.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// The sweep engine and contact kernel (generator/sweep/): table layout, failures as status,
+// thread-count determinism.
 #include "sweep/sweep.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Table files (generator/table/): write/read round trip, dimension scales, compression,
+// interrupted writes.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <hdf5_hl.h>
