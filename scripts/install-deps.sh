@@ -14,6 +14,7 @@ packages=(
   libtomlplusplus-dev      # scene files
   nlohmann-json3-dev       # JSON output of railtab eval
   libfmt-dev               # formatting
+  openmpi-bin libopenmpi-dev  # MPI table generation (mpirun -n N railtab generate)
   gnuplot-nox              # PNG charts from CSV (pngcairo)
 )
 

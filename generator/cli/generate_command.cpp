@@ -1,4 +1,5 @@
-// railtab generate SCENE -o TABLE.h5 [--threads N] [--quiet] [--resume] [--shard I/N]
+// railtab generate SCENE -o TABLE.h5 [--threads N] [--quiet] [--resume] [--shard I/N]; under mpirun/srun
+// the MPI engine (generator/distributed/) when built with it
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -7,6 +8,10 @@
 
 #include "cli/commands.hpp"
 #include "sweep/generate.hpp"
+#include "sweep/shard_split.hpp"
+#ifdef RAILTAB_HAVE_MPI
+#include "distributed/mpi_sweep.hpp"
+#endif
 #include "table/interrupt.hpp"
 
 namespace railtab {
@@ -24,16 +29,26 @@ void add_generate_command(CLI::App& app) {
   cmd->add_flag("--quiet", *quiet, "No progress and no summary");
   cmd->add_flag("--resume", opt->resume,
                 "Keep finished y blocks in OUTPUT.partial and skip those already there (result = fresh run)");
-  cmd->add_option("--shard", *shard, "Compute only part I of N (1-based, split along y); join with railtab merge");
+  cmd->add_option("--shard", *shard, "Compute only part I of N (1-based, contiguous y ranges of about equal estimated cost; "
+                "\"auto\": from SLURM_ARRAY_TASK_ID/COUNT); join with railtab merge");
   cmd->callback([opt, shard, quiet] {
-    if (!shard->empty()) std::tie(opt->shard_index, opt->shard_count) = parse_shard(*shard);
+    if (!shard->empty()) std::tie(opt->shard_index, opt->shard_count) = parse_shard_spec(*shard);
     opt->log = *quiet ? nullptr : &std::cerr;
     opt->terminal = ::isatty(STDERR_FILENO) != 0;
     interrupt_flag().store(false);
     opt->interrupt = &interrupt_flag();
     SigintGuard guard;
     try {
-      generate_table(*opt);
+      if (launched_by_mpi()) {
+#ifdef RAILTAB_HAVE_MPI
+        generate_table_mpi(*opt);
+#else
+        throw Error("railtab generate was started by an MPI launcher, but this build has no MPI (RAILTAB_MPI=OFF): "
+                    "every process would compute and write the whole table; rebuild with MPI or run it once");
+#endif
+      } else {
+        generate_table(*opt);
+      }
     } catch (const Interrupted& e) {
       std::cerr << "\nrailtab: " << e.what() << "\n";
       throw CLI::RuntimeError(130);  // the shell's code for death by SIGINT

@@ -4,17 +4,26 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "sweep/adaptive_grid.hpp"
 #include "sweep/contact_kernel.hpp"
 #include "sweep/progress.hpp"
+#include "sweep/shard_split.hpp"
 #include "table/interrupt.hpp"
 #include "table/table_io.hpp"
 
 namespace railtab {
 
 std::filesystem::path checkpoint_path(const std::filesystem::path& output) { return output.string() + ".partial"; }
+
+bool launched_by_mpi() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "MPI_LOCALNRANKS"}) {
+    if (std::getenv(name) != nullptr) return true;
+  }
+  return false;
+}
 
 std::pair<int, int> parse_shard(const std::string& text) {
   int index = 0, count = 0;
@@ -46,11 +55,20 @@ SweepSummary generate_table(const GenerateOptions& options) {
   sweep.threads = options.threads;
   sweep.shard_index = options.shard_index;
   sweep.shard_count = options.shard_count;
+  if (options.shard_count > 1) sweep.y_costs = column_costs(scene);  // flange columns count more
   sweep.interrupt = options.interrupt;
-  if (options.resume) sweep.checkpoint = checkpoint_path(options.output);
+  const bool keep_checkpoint = options.resume || options.always_checkpoint;
+  if (keep_checkpoint) sweep.checkpoint = checkpoint_path(options.output);
+  if (options.always_checkpoint && !options.resume) {
+    std::error_code ignored;  // a fresh run: an old checkpoint is not resumed
+    std::filesystem::remove(sweep.checkpoint, ignored);
+  }
   if (log) sweep.progress = [&printer](const SweepProgress& p) { printer(p); };
 
-  SweepResult result = run_sweep(scene, kernel, sweep);
+  std::optional<SweepResult> computed =
+      options.engine ? options.engine(scene, kernel, sweep) : std::optional<SweepResult>(run_sweep(scene, kernel, sweep));
+  if (!computed) return {};  // an MPI rank other than 0: rank 0 writes the table
+  SweepResult& result = *computed;
   printer.finish();
   SweepSummary& s = result.summary;
   if (log && s.checkpoint_discarded) {
@@ -58,7 +76,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
   }
   bool stop = options.interrupt && options.interrupt->load();
   if (s.interrupted || stop) {
-    throw Interrupted(options.resume
+    throw Interrupted(keep_checkpoint
                           ? fmt::format("interrupted: {} of {} y blocks kept in {}; rerun with --resume to finish",
                                         s.blocks_done, s.blocks_total, sweep.checkpoint.string())
                           : fmt::format("interrupted: nothing written ({} of {} y blocks were done; use --resume "
@@ -70,7 +88,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
     result.table.set_attribute("accuracy_achieved", adaptive.achieved_json().dump());
   }
   write_table(result.table, options.output, options.interrupt);
-  if (options.resume) {
+  if (keep_checkpoint) {
     std::error_code ignored;
     std::filesystem::remove(sweep.checkpoint, ignored);
   }
@@ -79,8 +97,9 @@ SweepSummary generate_table(const GenerateOptions& options) {
     double rate = s.seconds > 0 ? static_cast<double>(s.points_computed) / s.seconds : 0.0;
     double per_point = s.points_computed > 0 ? s.seconds * s.threads / static_cast<double>(s.points_computed) : 0.0;
     *log << fmt::format("computed {} points (both wheels each) in {:.2f} s with {} thread{}: {:.0f} points/s, "
-                        "{:.3g} ms per point per thread\n",
-                        s.points_computed, s.seconds, s.threads, s.threads == 1 ? "" : "s", rate, 1e3 * per_point);
+                        "{:.3g} ms per point per thread{}\n",
+                        s.points_computed, s.seconds, s.threads, s.threads == 1 ? "" : "s", rate,
+                        1e3 * per_point * s.ranks, s.ranks > 1 ? fmt::format(" (each of {} MPI ranks)", s.ranks) : "");
     if (s.points_resumed > 0) *log << fmt::format("resumed {} points from the checkpoint\n", s.points_resumed);
     if (s.failures > 0) {
       *log << fmt::format("{} point(s) failed and are flagged failed; first: {}\n", s.failures,

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <ostream>
 
 #include "scene/scene.hpp"
@@ -24,15 +25,25 @@ struct GenerateOptions {
   std::ostream* log = nullptr;               // progress and summary; nullptr = silent
   bool terminal = false;                     // log is a terminal: draw a progress bar
   std::function<SweepKernel(const Scene&)> make_kernel;  // default: make_contact_kernel
+  // The engine that computes the table: run_sweep (threads of this process) when empty. The MPI
+  // engine (generator/distributed/) returns no table on ranks other than 0: they write nothing.
+  std::function<std::optional<SweepResult>(const Scene&, const SweepKernel&, const SweepOptions&)> engine;
+  // Keep finished blocks in OUTPUT.partial even without `resume` (a fresh run discards an old
+  // one): MPI runs always do, so a rank that dies leaves a resumable checkpoint.
+  bool always_checkpoint = false;
 };
 
 // The checkpoint file of a table: OUTPUT.partial.
 std::filesystem::path checkpoint_path(const std::filesystem::path& output);
 
+// True when this process was started by an MPI launcher (mpirun, mpiexec, srun with PMI/PMIx).
+bool launched_by_mpi();
+
 // Parse "I/N" (1 <= I <= N) of --shard; throws railtab::Error naming the text.
 std::pair<int, int> parse_shard(const std::string& text);
 
-// Run the whole generation. On interruption throws Interrupted after removing every temporary
+// Run the whole generation (on an MPI rank other than 0: compute only, write nothing, return an
+// empty summary). On interruption throws Interrupted after removing every temporary
 // file: no target is left (an existing target is not touched); with resume the checkpoint stays.
 SweepSummary generate_table(const GenerateOptions& options);
 

@@ -104,6 +104,8 @@ struct SweepOptions {
   int threads = 0;                          // worker threads; 0 = all cores
   int shard_index = 1;                      // this run computes shard shard_index of shard_count
   int shard_count = 1;                      //   (1-based, contiguous ranges of y)
+  std::vector<double> y_costs;              // estimated cost per y of the full grid: shards split
+                                            //   by it (shard_split.hpp); empty = equal counts
   std::filesystem::path checkpoint;         // resume file; empty = no checkpoint
   const std::atomic<bool>* interrupt = nullptr;  // polled; set = stop as soon as possible
   std::function<void(const SweepProgress&)> progress;  // called on the calling thread only
@@ -118,7 +120,8 @@ struct SweepSummary {
   std::size_t blocks_done = 0;      // y blocks complete (computed or resumed) [-]
   std::size_t failures = 0;         // columns/points where the core threw (see status) [-]
   std::string first_failure;        // message of the first of them (lowest column)
-  int threads = 1;                  // threads used [-]
+  int threads = 1;                  // threads used (per rank under MPI) [-]
+  int ranks = 1;                    // MPI ranks used [-]
   double seconds = 0.0;             // wall time of the computation [s]
   bool interrupted = false;         // stopped by the interrupt flag: the table is incomplete
   bool checkpoint_discarded = false;  // a checkpoint of another scene/build was found and reset

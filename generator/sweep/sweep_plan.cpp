@@ -7,6 +7,7 @@
 
 #include "core/check.hpp"
 #include "sweep/checkpoint.hpp"
+#include "sweep/shard_split.hpp"
 #include "table/version.hpp"
 
 namespace railtab {
@@ -46,7 +47,13 @@ bool tabulated(const Scene& scene, const std::string& axis) {
 
 SweepLayout make_layout(const Scene& scene, const SweepKernel& kernel, const SweepOptions& options) {
   SweepLayout l;
-  std::tie(l.y_begin, l.y_end) = shard_range(scene.grids.y.size(), options.shard_index, options.shard_count);
+  if (options.y_costs.empty()) {
+    std::tie(l.y_begin, l.y_end) = shard_range(scene.grids.y.size(), options.shard_index, options.shard_count);
+  } else {
+    RAILTAB_CHECK(options.y_costs.size() == scene.grids.y.size(), "sweep: {} column costs for {} y values",
+                  options.y_costs.size(), scene.grids.y.size());
+    std::tie(l.y_begin, l.y_end) = weighted_shard_range(options.y_costs, options.shard_index, options.shard_count);
+  }
   l.ny = l.y_end - l.y_begin;
   l.y_tabulated = scene.grids.y.size() > 1;
   l.roll_tabulated = tabulated(scene, "roll");
