@@ -1,6 +1,6 @@
-// railtab simulate: a small Hertz table generated here (a second or so), a wheelset run over it
-// through LookupContactModel, the direct model against the table at a grid node, and the
-// simulation scene's located errors.
+// railtab simulate: a small Hertz table generated here (a second or so), a wheelset and a bogie
+// run over it through LookupContactModel, the wear post-processors fed the same states, the direct
+// model against the table at a grid node, and the simulation scene's located errors.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

@@ -2,13 +2,13 @@
 // wheelset moves outwards in a curve: the diagnostic behind docs/simulation.md's direction check
 // (seed 001: STRIPES relocates wear towards the flange). Disabled: it prints a table, it asserts
 // nothing about the numbers. Run with
-//   test_generator --gtest_also_run_disabled_tests --gtest_filter='*WearCentroidAcrossY*'
+//   test_generator_simulate --gtest_also_run_disabled_tests --gtest_filter='*WearCentroidAcrossY*'
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <filesystem>
 
-#include "wear_accumulator.hpp"
+#include "simulate/wear_accumulator.hpp"
 
 namespace railtab {
 namespace {
