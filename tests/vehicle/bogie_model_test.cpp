@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <utility>
 #include <cstdio>
 #include <string>
 
@@ -105,6 +107,91 @@ TEST(BogieSimulation, LinearBogieInBalancedCurveMeetsItsClosedForm) {
   EXPECT_LT(x.wheelset[0].yaw, 0.0);
   EXPECT_GT(x.wheelset[1].yaw, 0.0);
   EXPECT_LT(std::abs(x.wheelset[0].lateral_velocity), 1e-6);
+}
+
+// The general linear statics of docs/vehicle-model.md ("The bogie"), with cant deficiency, load
+// transfer and the secondary springs, as six linear equations in (y0, psi0, y1, psi1, y_f, psi_f)
+// solved by Gaussian elimination:
+//   wheelset i:  2 f22 psi_i + 2 dQ tan(delta) - k_y (y_i - y_f - a_i psi_f + a_i^2 kappa / 2) - m a_u = 0
+//                -2 f11 q0 (lambda y_i / r0 + kappa q0) - k_psi (psi_i - psi_f + a_i kappa) = 0
+//   frame:       sum_i k_y (y_i - y_f - a_i psi_f + a_i^2 kappa / 2) - k_sy y_f - (M_c / 2 + m_f) a_u = 0
+//                sum_i (a_i k_y (...)_i + k_psi (psi_i - psi_f + a_i kappa)) - k_spsi (psi_f + L kappa) = 0
+std::array<double, 6> linear_bogie_statics(const BogieParameters& p, const LinearContact& c, double v,
+                                           double kappa, double cant_height) {
+  const WheelsetParameters& w = p.wheelset;
+  const double a_u = v * v * kappa - w.gravity * cant_height / 1.5;
+  const double dq = (p.carried_mass() * p.carried_cg_height() + w.mass * w.nominal_radius) * a_u /
+                    (2 * w.running_circle_q);
+  const double k_y = w.primary_lateral_stiffness, k_psi = w.primary_yaw_stiffness();
+  const double q0 = w.running_circle_q, a = w.semi_wheelbase, L = p.bogie_semi_spacing;
+  double m[6][7] = {};  // augmented matrix, unknowns y0 psi0 y1 psi1 yf psif
+  for (int i = 0; i < 2; ++i) {
+    const double ai = i == 0 ? a : -a;
+    double* lat = m[2 * i];
+    double* yaw = m[2 * i + 1];
+    lat[2 * i + 1] = 2 * c.f22;
+    lat[2 * i] = -k_y;
+    lat[4] = k_y;
+    lat[5] = k_y * ai;
+    lat[6] = -(2 * dq * std::tan(c.angle) - k_y * ai * ai * kappa / 2 - w.mass * a_u);
+    yaw[2 * i] = -2 * c.f11 * q0 * c.conicity / c.r0;
+    yaw[2 * i + 1] = -k_psi;
+    yaw[5] = k_psi;
+    yaw[6] = 2 * c.f11 * q0 * q0 * kappa + k_psi * ai * kappa;
+    // Frame: primary reactions.
+    m[4][2 * i] += k_y;
+    m[4][4] -= k_y;
+    m[4][5] -= k_y * ai;
+    m[4][6] -= k_y * ai * ai * kappa / 2;
+    m[5][2 * i] += ai * k_y;
+    m[5][4] -= ai * k_y;
+    m[5][5] -= ai * ai * k_y;
+    m[5][6] -= ai * k_y * ai * ai * kappa / 2;
+    m[5][2 * i + 1] += k_psi;
+    m[5][5] -= k_psi;
+    m[5][6] -= k_psi * ai * kappa;
+  }
+  m[4][4] -= p.secondary_lateral_stiffness;
+  m[4][6] += (p.body_mass / 2 + p.frame_mass) * a_u;
+  m[5][5] -= p.secondary_yaw_stiffness;
+  m[5][6] += p.secondary_yaw_stiffness * L * kappa;
+  for (int col = 0; col < 6; ++col) {  // elimination with partial pivoting
+    int pivot = col;
+    for (int r = col + 1; r < 6; ++r) {
+      if (std::abs(m[r][col]) > std::abs(m[pivot][col])) pivot = r;
+    }
+    std::swap(m[col], m[pivot]);
+    for (int r = 0; r < 6; ++r) {
+      if (r == col) continue;
+      const double f = m[r][col] / m[col][col];
+      for (int k = col; k < 7; ++k) m[r][k] -= f * m[col][k];
+    }
+  }
+  std::array<double, 6> x{};
+  for (int r = 0; r < 6; ++r) x[static_cast<std::size_t>(r)] = m[r][6] / m[r][r];
+  return x;
+}
+
+TEST(BogieSimulation, LinearBogieUnderCantDeficiencyMeetsItsLinearStatics) {
+  const double v = 20.0, radius = 300.0, cant = 0.1;
+  const TrackLayout track({{3000.0, 1.0 / radius, 1.0 / radius, cant, cant}}, {});
+  LinearContact contact;
+  BogieParameters p;
+  p.wheelset.primary_lateral_damping = 3.0e4;
+  p.secondary_yaw_damping = 5.0e4;
+  BogieSimulation sim(p, track, contact, v, 1e-3, {}, 10.0);
+  while (sim.time() < 30.0) sim.step();
+  const std::array<double, 6> e = linear_bogie_statics(p, contact, v, 1.0 / radius, cant);
+  const BogieState& x = sim.state();
+  const double got[6] = {x.wheelset[0].y, x.wheelset[0].yaw, x.wheelset[1].y,
+                         x.wheelset[1].yaw, x.frame.y, x.frame.yaw};
+  const char* names[6] = {"leading y", "leading yaw", "trailing y", "trailing yaw", "frame y",
+                          "frame yaw"};
+  for (int i = 0; i < 6; ++i) {
+    std::printf("  cant deficiency: %-12s %.6e (linear statics %.6e)\n", names[i], got[i],
+                e[static_cast<std::size_t>(i)]);
+    EXPECT_NEAR(got[i] / e[static_cast<std::size_t>(i)], 1.0, 0.01) << names[i];
+  }
 }
 
 TEST(BogieSimulation, CantDeficiencyTransfersTheCarriedWeightToTheOuterWheels) {
