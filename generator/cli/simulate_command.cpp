@@ -1,4 +1,4 @@
-// railtab simulate SCENE --out DIR [--threads N] [--direct] [--duration SECONDS] [--models M ...]
+// railtab simulate SCENE --out DIR [--threads N] [--direct] [--duration SECONDS] [--post-processors P ...]
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -16,7 +16,7 @@ void add_simulate_command(CLI::App& app) {
   auto scene_file = std::make_shared<std::string>();
   auto quiet = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand(
-      "simulate", "Run a wheelset over a route with the contact tables and accumulate wheel wear (docs/simulation.md)");
+      "simulate", "Run a bogie over a route with a contact table in the dynamics and accumulate wheel wear with each wear post-processor (docs/simulation.md)");
   cmd->add_option("scene", *scene_file, "Simulation scene (TOML, docs/simulation.md)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -28,19 +28,22 @@ void add_simulate_command(CLI::App& app) {
                 "Evaluate geometry, normal model and FASTSIM at every call instead of the table (reference, slow)");
   cmd->add_option("--duration", opt->duration, "Simulate at most this long per run [s] (speed measurements)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--models", opt->models, "Normal models to run instead of the scene's (e.g. hertz stripes-a)");
+  cmd->add_option("--post-processors", opt->post_processors,
+                  "Wear post-processors instead of the scene's (e.g. hertz stripes-a)");
   cmd->add_flag("--quiet", *quiet, "No progress lines");
   cmd->callback([opt, scene_file, quiet] {
     opt->log = *quiet ? nullptr : &std::cerr;
     const SimulationScene scene = load_simulation_scene(*scene_file);
     const SimulationSummary summary = run_simulation(scene, *opt);
-    std::cout << fmt::format("{}: {} ({})\n", summary.name, (summary.directory / "summary.json").string(),
-                             opt->direct ? "direct contact evaluation" : "table lookup");
+    std::cout << fmt::format("{}: {} ({} dynamics, {})\n", summary.name, (summary.directory / "summary.json").string(),
+                             summary.dynamics_model, opt->direct ? "direct contact evaluation" : "table lookup");
     for (const ModelSummary& m : summary.models) {
       const double total = m.steps.empty() ? 0.0 : m.steps.back().cumulative_worn_area;
       std::cout << fmt::format(
-          "  {:<12} worn area {:.4f} mm2 after {:.0f} km; wear centroid u = {:.2f} mm, peak {:.2f} um at u = {:.2f} mm\n",
-          m.model, total * 1e6, scene.running_distance / 1e3, m.centroid_u * 1e3, m.peak_depth * 1e6, m.peak_u * 1e3);
+          "  {:<14} worn area {:.4f} mm2 after {:.0f} km; wear centroid u = {:.2f} mm; at u < 0: {:.1f} %, at u < "
+          "-25 mm: {:.1f} %; peak {:.2f} um at u = {:.2f} mm\n",
+          m.model, total * 1e6, scene.running_distance / 1e3, m.centroid_u * 1e3, 100 * m.flange_side_share,
+          100 * m.flange_root_share, m.peak_depth * 1e6, m.peak_u * 1e3);
     }
     std::cout << fmt::format("  simulated seconds per wall-clock second: {:.2f}\n", simulation_speed(summary));
   });

@@ -1,5 +1,6 @@
-// A simulation scene for `railtab simulate`: which contact scene and normal models, the vehicle
-// (one wheelset of vehicle::WheelsetParameters), the route (tangent, transition and circular
+// A simulation scene for `railtab simulate`: which contact scene, the contact model of the
+// dynamics and the wear post-processors (seed 001: one dynamics, several wear models), the
+// vehicle (a bogie of vehicle::BogieParameters), the route (tangent, transition and circular
 // sections, lateral irregularity) and the wear loop (steps, running distance, lubrication,
 // smoothing). TOML, checked key by key like the contact scenes; docs/simulation.md.
 #pragma once
@@ -10,7 +11,7 @@
 #include <vector>
 
 #include "vehicle/track_layout.hpp"
-#include "vehicle/wheelset_model.hpp"
+#include "vehicle/bogie_model.hpp"
 
 namespace railtab {
 
@@ -19,8 +20,10 @@ struct SimulationScene {
   std::string description;                 // [simulation] description
   std::filesystem::path path;              // where it was read from (empty when parsed from a string)
   std::filesystem::path contact_scene;     // contact scene (docs/scenes.md), resolved against the file
-  std::vector<std::string> models;         // normal models to compare, checked names ("hertz", ...)
-  std::vector<std::string> positions;      // "leading" and/or "trailing" (semi_wheelbase sign)
+  std::string dynamics_model = "hertz";    // normal model of the dynamics' table (as Gensys: Hertz)
+  std::vector<std::string> wear_post_processors;  // wear contact models (wheel_wear.hpp names)
+  std::vector<std::string> positions;      // wheelsets of the bogie whose wear counts: "leading"
+                                           // and/or "trailing"
   double speed = 0.0;                      // forward speed [m/s]
   double time_step = 0.5e-3;               // fixed RK4 step [s]
   double initial_y = 0.0;                  // wheelset lateral displacement at the start [m]
@@ -29,13 +32,17 @@ struct SimulationScene {
   double lubrication_factor = 5.5;         // k_dry divisor: 5.5 natural, 11 lubricated [-]
   double profile_smoothing = 0.0;          // moving-average length of the wear depth [m]
   double trajectory_interval = 0.5;        // distance between trajectory CSV rows [m]
-  vehicle::WheelsetParameters vehicle;     // [vehicle]
+  vehicle::BogieParameters vehicle;        // [vehicle]
   std::vector<vehicle::TrackSection> route;  // [[route.section]], transitions resolved
   vehicle::Irregularity irregularity;      // [route.irregularity]; amplitude 0 = none
   double rail_centre_distance = 1.5;       // [route] rail_centre_distance, for the cant angle [m]
 
   double route_length() const;             // sum of section lengths [m]
 };
+
+// Throws railtab::Error naming the known wear post-processors (simulate/wheel_wear.hpp) for an
+// unknown name, and saying that "halfspace" (the exact half-space model) is not connected yet.
+void check_wear_post_processor(const std::string& name);
 
 // Read a simulation scene. Unknown keys, missing required keys, wrong types, non-finite or
 // out-of-range values throw railtab::Error naming the file, the dotted key and (where known) the

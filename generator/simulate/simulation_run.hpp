@@ -1,10 +1,12 @@
 // `railtab simulate` as a library call: the profile-evolution loop of seed 001 with the contact
-// tables in the time-stepping loop. Per normal model and wear step: write the step's contact scene
-// (current wheel profile, the model, the simulation speed and lubrication), generate its table in
-// parallel, run one wheelset over the route for every position (leading, trailing) with the table
-// (or the core directly, --direct), sample the wear once per wheel revolution, scale it to the
-// step's running distance, average left/right wheels and positions, and write the worn wheel
-// profile that the next step runs on. Outputs: docs/simulation.md.
+// tables in the time-stepping loop and the dynamics separated from the wear. Per wear step: write
+// the step's contact scene (current wheel profile, the DYNAMICS' normal model, the simulation
+// speed and lubrication), generate its table in parallel, run the bogie over the route with it (or
+// the core directly, --direct), hand each counted wheelset's state once per wheel revolution to
+// every wear post-processor (the same states for all: seed 001 changed only the wear model),
+// scale the wear to the step's running distance, average left/right wheels and wheelsets, and
+// write the worn wheel profile that the next step runs on. Step 0 is one shared run; later steps
+// run each post-processor on its own worn wheel. Outputs: docs/simulation.md.
 #pragma once
 
 #include <cstdint>
@@ -14,38 +16,21 @@
 #include <vector>
 
 #include "scene/simulation_scene.hpp"
+#include "simulate/bogie_run.hpp"
 
 namespace railtab {
+
+// Wear at u below this lies on the flange root and flange (S1002: the flange root starts about
+// 25 mm from the running circle) [m].
+inline constexpr double kFlangeRootU = -0.025;
 
 struct SimulationOptions {
   std::filesystem::path out;        // output directory; results go to OUT/<scene name>/
   int threads = 0;                  // table generation threads, 0 = all cores
   bool direct = false;              // evaluate geometry + normal + FASTSIM each call, no table
   double duration = 0.0;            // > 0: simulate at most this long per run [s] (speed checks)
-  std::vector<std::string> models;  // replaces the scene's models when not empty
+  std::vector<std::string> post_processors;  // replaces the scene's wear post-processors when not empty
   std::ostream* log = nullptr;      // progress lines; nullptr = silent
-};
-
-// One run of one wheelset position over the route.
-struct RunSummary {
-  std::string position;                    // "leading" or "trailing"
-  double simulated_seconds = 0.0;          // [s]
-  double distance = 0.0;                   // [m]
-  double dynamics_wall_seconds = 0.0;      // wall time of the RK4 steps only [s]
-  double wear_wall_seconds = 0.0;          // wall time of the wear samples [s]
-  double stable_time_step_estimate = 0.0;  // smallest estimate seen along the route [s]
-  double max_creep_force_ratio = 0.0;      // max over steps and slots of |(fx, fy)| / (mu N) [-]
-  double max_abs_y = 0.0;                  // largest |y - irregularity| [m]
-  std::uint64_t steps = 0;                 // RK4 steps [-]
-  std::uint64_t queries = 0;               // table queries (lookup only) [-]
-  std::uint64_t out_of_range = 0;          // of them flagged kOutOfRange [-]
-  std::uint64_t invalid_input = 0;         // of them flagged kInvalidInput [-]
-  std::uint64_t outside_axis[5] = {};      // per variable y, load, xi, eta, phi [-]
-  std::uint64_t contact_failures = 0;      // direct model: evaluations where the core threw [-]
-  int wear_samples = 0;                    // [-]
-  int wear_failures = 0;                   // wear samples that failed on a wheel [-]
-  double wear_clipped_area = 0.0;          // wear outside the wear grid, not added [m2]
-  std::uint32_t status = 0;                // OR of the snapshot status over the run
 };
 
 struct StepSummary {
@@ -54,11 +39,14 @@ struct StepSummary {
   double worn_area = 0.0;                  // mean of left/right and positions, this step [m2]
   double cumulative_worn_area = 0.0;       // after this step [m2]
   double generate_seconds = 0.0;           // table generation wall time [s] (0 with --direct)
-  std::vector<RunSummary> runs;            // one per position
+  std::vector<RunSummary> runs;            // the dynamics run this step's wear came from
+  int wear_failures = 0;                   // wear samples that failed on a wheel [-]
+  double wear_clipped_area = 0.0;          // wear outside the wear grid, not added [m2]
 };
 
+// One wear post-processor's results.
 struct ModelSummary {
-  std::string model;                       // normal model name
+  std::string model;                       // post-processor name (wheel_wear.hpp)
   std::vector<StepSummary> steps;
   std::vector<double> u;                   // wear bin centres [m]
   std::vector<double> cumulative_depth;    // radial depth after the last step, mean [m]
@@ -67,12 +55,16 @@ struct ModelSummary {
   double centroid_u = 0.0;                 // [m]
   double peak_u = 0.0;                     // [m]
   double peak_depth = 0.0;                 // [m]
+  double flange_side_share = 0.0;          // share of the worn area at u < 0 [-]
+  double flange_root_share = 0.0;          // share at u < kFlangeRootU [-]
 };
 
 struct SimulationSummary {
   std::string name;                        // scene name
   std::filesystem::path directory;         // OUT/<name>
-  std::vector<ModelSummary> models;
+  std::string dynamics_model;              // normal model of the dynamics' tables
+  std::vector<ModelSummary> models;        // one per wear post-processor
+  std::vector<RunSummary> runs;            // every dynamics run (step 0 once)
 };
 
 // Runs everything and writes the outputs. Throws railtab::Error (or lookup::LoadError) for bad

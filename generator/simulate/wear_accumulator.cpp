@@ -24,22 +24,15 @@ std::size_t bin_count(const WearGrid& grid) {
   return static_cast<std::size_t>(whole);
 }
 
-CreepConditions simulation_conditions(const Scene& scene) {
-  CreepConditions c = creep_conditions(scene);
-  c.speed = 0.0;  // set per sample from the motion: the KTH map depends on the slip velocity
-  return c;
-}
-
 }  // namespace
 
 WearAccumulator::WearAccumulator(const Scene& scene, const WearGrid& grid)
+    : WearAccumulator(scene, to_string(scene.normal.model), grid) {}
+
+WearAccumulator::WearAccumulator(const Scene& scene, const std::string& post_processor,
+                                 const WearGrid& grid)
     : solver_(make_geometry_solver(scene)),
-      material_(scene.material),
-      normal_(scene.normal),
-      fastsim_(fastsim_options(scene)),
-      conditions_(simulation_conditions(scene)),
-      wear_(wear_options(scene)),
-      running_circle_q_(scene.wheelset.back_to_back / 2.0 - scene.wheelset.flange_back_position),
+      wheel_wear_(make_wheel_wear(scene, post_processor)),
       grid_(grid) {
   const std::size_t n = bin_count(grid);
   u_.resize(n);
@@ -59,7 +52,6 @@ std::uint32_t WearAccumulator::sample(double y_relative, const double (&load)[ve
   }
   ++samples_;
   distance_ += distance;
-  conditions_.speed = motion.speed;
 
   StatusBits bits = 0;
   WheelsetContactGeometry geometry;
@@ -74,29 +66,9 @@ std::uint32_t WearAccumulator::sample(double y_relative, const double (&load)[ve
       bits |= status::kLiftOff;
       continue;
     }
-    const WheelContactGeometry& wheel = geometry.wheels[static_cast<std::size_t>(w)];
-    pending_.clear();
     try {
-      solve_normal_for_load(wheel, load[w], material_, normal_, normal_result_);
-      bits |= normal_result_.status;
-      for (const ContactPatch& patch : normal_result_.patches) {
-        if (!(patch.normal_force > 0.0)) continue;
-        vehicle::SlotContact slot;
-        slot.loaded = true;
-        slot.contact_angle = patch.contact_angle;
-        slot.rolling_radius = patch.rolling_radius;
-        slot.wheel_u = patch.wheel_u;
-        slot.normal_force = patch.normal_force;
-        slot.area = patch.area;
-        slot.status = patch.status;
-        const vehicle::SlotCreepage c = vehicle::creepage(motion, w, slot, running_circle_q_);
-        const FastsimResult force = fastsim_contact(wheel, patch, Creepage{c.xi, c.eta, c.phi}, conditions_,
-                                                    material_, fastsim_, workspace_);
-        const WearResult wear = archard_wear(workspace_, wear_, distribution_);
-        bits |= patch.status | force.status | wear.status;
-        // archard_wear sizes distribution_.strips to this solve's strips.
-        pending_.insert(pending_.end(), distribution_.strips.begin(), distribution_.strips.end());
-      }
+      bits |= wheel_wear_->wheel_wear(geometry.wheels[static_cast<std::size_t>(w)], w, load[w],
+                                      motion, pending_);
     } catch (const Error&) {
       ++failures_;
       bits |= status::kFailed;

@@ -11,10 +11,13 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "scene/scene.hpp"
 #include "vehicle/kinematics.hpp"
+#include "simulate/wheel_wear.hpp"
 
 namespace railtab {
 
@@ -27,12 +30,16 @@ struct WearGrid {
 class WearAccumulator {
  public:
   // Profiles, models, material, friction and wear settings come from `scene` (its wheel profile
-  // is the current, possibly worn, one). Throws railtab::Error for a bad scene or grid.
-  WearAccumulator(const Scene& scene, const WearGrid& grid = {});
+  // is the current, possibly worn, one); the contact model of the wear is `post_processor`
+  // (wheel_wear.hpp), by default the scene's normal model. Throws railtab::Error for a bad
+  // scene, post-processor or grid.
+  explicit WearAccumulator(const Scene& scene, const WearGrid& grid = {});
+  WearAccumulator(const Scene& scene, const std::string& post_processor,
+                  const WearGrid& grid = {});
 
   // One sample standing for `distance` [m] rolled at this state: wheelset lateral displacement
-  // relative to the rails `y_relative` [m] (roll at the kinematic equilibrium), vertical wheel
-  // loads [N], and the wheelset motion (speed, yaw, rates, curvature, spin speed) for the
+  // relative to the rails `y_relative` [m] (roll at the kinematic equilibrium), the vertical
+  // contact force of each wheel [N] (the normal problem is solved for it), and the wheelset motion (speed, yaw, rates, curvature, spin speed) for the
   // creepages. Returns the OR of the status bits of every patch solved. A failing solve is
   // counted (failures(), once per wheel) and adds no wear for that wheel; the returned bits then
   // carry kFailed. A wheel with zero load adds nothing (kLiftOff). Throws railtab::Error only for
@@ -56,12 +63,7 @@ class WearAccumulator {
   void add_strip(int wheel, double u_centre, double width_u, double depth);
 
   ContactGeometrySolver solver_;
-  Material material_;
-  NormalOptions normal_;
-  FastsimOptions fastsim_;
-  CreepConditions conditions_;
-  WearOptions wear_;
-  double running_circle_q_;  // q0 of vehicle::contact_lateral_position [m]
+  std::unique_ptr<WheelWear> wheel_wear_;
   WearGrid grid_;
   std::vector<double> u_;
   std::array<std::vector<double>, vehicle::kWheels> depth_;
@@ -69,10 +71,7 @@ class WearAccumulator {
   double distance_ = 0.0;
   int samples_ = 0;
   int failures_ = 0;
-  // Reused between samples (they only grow): one accumulator per running simulation.
-  WheelNormalResult normal_result_;
-  FastsimWorkspace workspace_;
-  WearDistribution distribution_;
+  // Reused between samples (it only grows): one accumulator per running simulation.
   std::vector<StripWear> pending_;  // one wheel's strips, added only when its whole chain succeeded
 };
 

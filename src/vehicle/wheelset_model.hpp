@@ -31,6 +31,7 @@ struct WheelsetParameters {
   double gravity = 9.81;                // [m/s2]
 
   double static_wheel_load() const;     // (mass + carried_mass) g / 2 [N]
+  double primary_yaw_stiffness() const; // 2 k_x b_x^2 [N m/rad]
 };
 
 struct WheelsetState {
@@ -49,6 +50,7 @@ struct ContactSnapshot {
   SlotForces forces[kWheels][kContactSlots];
   WheelsetMotion motion;          // incl. the spin speed from the torque balance
   double lateral_force[kWheels] = {};  // track-y force of each wheel's contacts on the wheelset [N]
+  double contact_yaw_moment = 0.0;        // sum of the contacts' moments about z [N m]
   double suspension_lateral_force = 0.0;  // [N]
   double suspension_yaw_moment = 0.0;     // [N m]
   double unbalanced_lateral_force = 0.0;  // carried mass's uncompensated centrifugal force [N]

@@ -1,6 +1,6 @@
-// railtab simulate: a small Hertz table generated here (a second or so), a wheelset run over it
-// through LookupContactModel, the direct model against the table at a grid node, and the
-// simulation scene's located errors.
+// railtab simulate: a small Hertz table generated here (a second or so), a wheelset and a bogie
+// run over it through LookupContactModel, the wear post-processors fed the same states, the direct
+// model against the table at a grid node, and the simulation scene's located errors.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -14,9 +14,11 @@
 #include "error_message.hpp"
 #include "scene/scene.hpp"
 #include "scene/simulation_scene.hpp"
+#include "simulate/bogie_run.hpp"
 #include "simulate/direct_contact_model.hpp"
 #include "simulate/lookup_contact_model.hpp"
 #include "simulate/simulation_run.hpp"
+#include "simulate/wear_accumulator.hpp"
 #include "sweep/generate.hpp"
 #include "vehicle/wheelset_model.hpp"
 
@@ -172,49 +174,120 @@ TEST_F(SimulateTest, LookupAndDirectAgreeAtAGridNode) {
   EXPECT_EQ(direct_model.failures(), 0u);
 }
 
-// The whole loop on a short route: two wear steps (table, run, wear, worn profile, next table).
+// A bogie with wheel loads inside the test table's 20-60 kN: (1500 + 20620 / 4 + 3000 / 2) g / 2
+// = 40.0 kN.
+constexpr const char* kLightVehicle = "[vehicle]\nbody_mass = 20620.0\n";
+
+// The whole loop on a short route: two wear steps (table, run, wear, worn profile, next table),
+// two post-processors: step 0 is one shared dynamics run, step 1 one run per post-processor on
+// its own worn wheel.
 TEST_F(SimulateTest, RunWritesEveryStepAndTheWornProfileFeedsTheNextStep) {
   std::ofstream(*dir_ / "sim.toml") << "[simulation]\nname = \"short\"\ncontact_scene = \"scene.toml\"\n"
-                                        "models = [\"hertz\"]\npositions = [\"leading\", \"trailing\"]\n"
+                                        "wear_post_processors = [\"hertz\", \"stripes-a\"]\n"
+                                        "positions = [\"leading\", \"trailing\"]\n"
                                         "speed = 20.0\nwear_steps = 2\nrunning_distance = 1.0e6\n"
                                         "profile_smoothing = 0.004\n"
-                                        "[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 20.0\n"
+                                     << kLightVehicle
+                                     << "[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 20.0\n"
                                         "[[route.section]]\nkind = \"transition\"\nlength = 20.0\n"
                                         "[[route.section]]\nkind = \"circular\"\nlength = 20.0\nradius = 1000.0\n";
   const SimulationScene sim = load_simulation_scene(*dir_ / "sim.toml");
+  EXPECT_EQ(sim.dynamics_model, "hertz");  // the default, as Gensys
   SimulationOptions options;
   options.out = *dir_ / "out";
   options.threads = 2;
   const SimulationSummary summary = run_simulation(sim, options);
-  ASSERT_EQ(summary.models.size(), 1u);
-  const ModelSummary& m = summary.models[0];
-  ASSERT_EQ(m.steps.size(), 2u);
-  for (const StepSummary& step : m.steps) {
-    SCOPED_TRACE(testing::Message() << "step " << step.step);
-    EXPECT_GT(step.worn_area, 0.0);
-    EXPECT_TRUE(std::isfinite(step.worn_area));
-    ASSERT_EQ(step.runs.size(), 2u);
-    for (const RunSummary& r : step.runs) {
-      EXPECT_NEAR(r.distance, 60.0, 0.02);
+  ASSERT_EQ(summary.models.size(), 2u);
+  ASSERT_EQ(summary.runs.size(), 3u);  // shared step 0, then one per post-processor
+  EXPECT_EQ(summary.runs[0].label, "shared");
+  for (const ModelSummary& m : summary.models) {
+    SCOPED_TRACE(m.model);
+    ASSERT_EQ(m.steps.size(), 2u);
+    EXPECT_EQ(m.steps[0].runs.at(0).label, "shared");
+    EXPECT_EQ(m.steps[1].runs.at(0).label, m.model);
+    for (const StepSummary& step : m.steps) {
+      SCOPED_TRACE(testing::Message() << "step " << step.step);
+      EXPECT_GT(step.worn_area, 0.0);
+      EXPECT_TRUE(std::isfinite(step.worn_area));
+      EXPECT_EQ(step.wear_failures, 0);
+      const RunSummary& r = step.runs.at(0);
+      EXPECT_NEAR(r.distance, 60.0 - 2 * sim.vehicle.wheelset.semi_wheelbase, 0.02);
       EXPECT_EQ(r.out_of_range, 0u);
-      EXPECT_EQ(r.wear_failures, 0);
       EXPECT_LT(r.max_creep_force_ratio, 1.0 + 1e-9);
+      EXPECT_GT(r.wear_samples, 15);
+    }
+    EXPECT_NEAR(m.steps[1].cumulative_worn_area, m.steps[0].worn_area + m.steps[1].worn_area,
+                1e-12 * m.steps[1].cumulative_worn_area);
+    EXPECT_GE(m.flange_side_share, 0.0);
+    EXPECT_LE(m.flange_side_share, 1.0);
+  }
+  // The same dynamics, a different wear model: different wear.
+  EXPECT_NE(summary.models[0].steps[0].worn_area, summary.models[1].steps[0].worn_area);
+  const fs::path out = *dir_ / "out" / "short";
+  EXPECT_TRUE(fs::exists(out / "shared" / "step0" / "table.h5"));
+  EXPECT_TRUE(fs::exists(out / "shared" / "step0" / "trajectory.csv"));
+  EXPECT_EQ(load_scene(out / "shared" / "step0" / "scene.toml").normal.model, NormalModel::hertz);
+  for (const char* p : {"hertz", "stripes-a"}) {
+    EXPECT_TRUE(fs::exists(out / p / "step0" / "wear.csv"));
+    EXPECT_TRUE(fs::exists(out / p / "step1" / "table.h5"));
+    // Step 1 ran on the worn wheel its own post-processor wrote in step 0, with the dynamics'
+    // (Hertz) table.
+    const Scene step1 = load_scene(out / p / "step1" / "scene.toml");
+    EXPECT_EQ(step1.wheel.file.filename(), "wheel_worn.txt");
+    EXPECT_EQ(step1.wheel.file.parent_path().filename(), "step1");
+    EXPECT_EQ(step1.normal.model, NormalModel::hertz);
+  }
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out / "summary.json"));
+  EXPECT_NEAR(j["post_processors"][0]["total_worn_area_m2"].get<double>(),
+              summary.models[0].steps[1].cumulative_worn_area, 1e-15);
+  EXPECT_EQ(j["dynamics_model"], "hertz");
+}
+
+// Every post-processor works from the same wheelset states: the states recorded during one
+// bogie run, fed again to fresh accumulators, give each post-processor's wear bit for bit.
+TEST_F(SimulateTest, WearPostProcessorsSeeTheSameWheelsetStates) {
+  const SimulationScene sim = parse_simulation_scene(
+      std::string("[simulation]\ncontact_scene = \"scene.toml\"\nwear_post_processors = [\"hertz\", \"stripes-a\", "
+                  "\"kik-piotrowski\"]\npositions = [\"leading\", \"trailing\"]\nspeed = 20.0\n"
+                  "running_distance = 1e6\n[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 10.0\n"
+                  "[[route.section]]\nkind = \"transition\"\nlength = 10.0\n"
+                  "[[route.section]]\nkind = \"circular\"\nlength = 20.0\nradius = 800.0\n"
+                  "[route.irregularity]\namplitude = 0.002\n") +
+          kLightVehicle,
+      "sim.toml", *dir_);
+  const Scene contact_scene = scene();
+  LookupContactModel contact(table());
+  WearPostProcessing wear(contact_scene, sim.wear_post_processors, sim.positions);
+  std::vector<WheelsetSample> recorded;
+  wear.record_samples(&recorded);
+  const RunSummary run = run_bogie(sim, contact, &contact, nullptr, 0.3, 0.0, *dir_ / "trajectory_same.csv", wear);
+  EXPECT_EQ(run.out_of_range, 0u);
+  ASSERT_GT(recorded.size(), 20u);
+  for (std::size_t p = 0; p < sim.wear_post_processors.size(); ++p) {
+    for (std::size_t i = 0; i < sim.positions.size(); ++i) {
+      SCOPED_TRACE(testing::Message() << sim.wear_post_processors[p] << " " << sim.positions[i]);
+      WearAccumulator replay(contact_scene, sim.wear_post_processors[p]);
+      for (const WheelsetSample& s : recorded) {
+        if (s.wheelset == static_cast<int>(i)) replay.sample(s.y_relative, s.vertical_force, s.motion, s.distance);
+      }
+      const WearAccumulator& live = wear.accumulator(p, i);
+      EXPECT_EQ(live.samples(), replay.samples());
+      EXPECT_EQ(live.samples(), wear.accumulator(0, i).samples());
+      EXPECT_EQ(live.distance(), wear.accumulator(0, i).distance());
+      for (int w = 0; w < vehicle::kWheels; ++w) EXPECT_EQ(live.depth(w), replay.depth(w)) << "wheel " << w;
+      EXPECT_GT(live.worn_area(0) + live.worn_area(1), 0.0);
     }
   }
-  EXPECT_NEAR(m.steps[1].cumulative_worn_area, m.steps[0].worn_area + m.steps[1].worn_area,
-              1e-12 * m.steps[1].cumulative_worn_area);
-  const fs::path out = *dir_ / "out" / "short" / "hertz";
-  EXPECT_TRUE(fs::exists(out / "step0" / "table.h5"));
-  EXPECT_TRUE(fs::exists(out / "step1" / "wheel_worn.txt"));
-  // Step 1 ran on the worn wheel written by step 0.
-  EXPECT_EQ(load_scene(out / "step1" / "scene.toml").wheel.file.filename(), "wheel_worn.txt");
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(*dir_ / "out" / "short" / "summary.json"));
-  EXPECT_NEAR(j["models"][0]["total_worn_area_m2"].get<double>(), m.steps[1].cumulative_worn_area, 1e-15);
+  // The samples carry the dynamics' vertical contact force, close to the static 40 kN per wheel
+  // (the curve transfers some of it to the outer wheel).
+  for (const WheelsetSample& s : recorded) {
+    EXPECT_NEAR(s.vertical_force[0] + s.vertical_force[1], 2 * 40.0e3, 0.02 * 80.0e3);
+  }
 }
 
 // A minimal valid simulation scene; `extra` is appended to [simulation].
 std::string simulation_text(const std::string& extra) {
-  return "[simulation]\ncontact_scene = \"scene.toml\"\nmodels = [\"hertz\"]\nspeed = 20.0\n"
+  return "[simulation]\ncontact_scene = \"scene.toml\"\nwear_post_processors = [\"hertz\"]\nspeed = 20.0\n"
          "running_distance = 1e6\n" +
          extra +
          "\n[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 100.0\n"
@@ -243,12 +316,27 @@ TEST_F(SimulateTest, BadSimulationSceneGivesALocatedError) {
             std::string::npos);
   std::string bad_model = simulation_text("");
   bad_model.replace(bad_model.find("[\"hertz\"]"), 9, "[\"hertzz\"]");
-  EXPECT_NE(error_of(bad_model, *dir_).find("sim.toml:3: simulation.models: unknown normal model"), std::string::npos)
+  EXPECT_NE(error_of(bad_model, *dir_).find("sim.toml:3: simulation.wear_post_processors: unknown wear post-processor"),
+            std::string::npos)
       << error_of(bad_model, *dir_);
+  std::string halfspace = simulation_text("");
+  halfspace.replace(halfspace.find("[\"hertz\"]"), 9, "[\"halfspace\"]");
+  EXPECT_NE(error_of(halfspace, *dir_).find("not connected"), std::string::npos) << error_of(halfspace, *dir_);
+  EXPECT_NE(error_of(simulation_text("dynamics_model = \"stripes\""), *dir_)
+                .find("sim.toml:6: simulation.dynamics_model: unknown normal model"),
+            std::string::npos)
+      << error_of(simulation_text("dynamics_model = \"stripes\""), *dir_);
+  // The old key says what replaced it; the single-wheelset's carried mass is derived now.
+  EXPECT_NE(error_of(simulation_text("models = [\"hertz\"]"), *dir_).find("replaced by dynamics_model"),
+            std::string::npos);
+  std::string carried = simulation_text("");
+  carried.insert(carried.find("[route]"), "[vehicle]\ncarried_mass = 1000.0\n");
+  EXPECT_NE(error_of(carried, *dir_).find("vehicle.carried_mass: the bogie vehicle derives"), std::string::npos)
+      << error_of(carried, *dir_);
   EXPECT_NE(error_of(simulation_text("positions = [\"middle\"]"), *dir_).find("sim.toml:6: simulation.positions"),
             std::string::npos);
   // Missing required key, and a contact scene that does not exist.
-  EXPECT_NE(error_of("[simulation]\ncontact_scene = \"scene.toml\"\nmodels = [\"hertz\"]\nspeed = 20.0\n", *dir_)
+  EXPECT_NE(error_of("[simulation]\ncontact_scene = \"scene.toml\"\nwear_post_processors = [\"hertz\"]\nspeed = 20.0\n", *dir_)
                 .find("simulation.running_distance: missing required key"),
             std::string::npos);
   EXPECT_NE(error_of(simulation_text(""), "/nonexistent").find("simulation.contact_scene: no such file"),

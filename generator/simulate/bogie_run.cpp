@@ -1,0 +1,202 @@
+// One bogie run over a route with the dynamics' contact model, feeding every wear post-processor.
+#include "simulate/bogie_run.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "core/check.hpp"
+#include "simulate/direct_contact_model.hpp"
+#include "simulate/lookup_contact_model.hpp"
+
+namespace railtab {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double slot_force_ratio(const vehicle::ContactSnapshot& snap, double mu) {
+  double worst = 0.0;
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    for (int s = 0; s < vehicle::kContactSlots; ++s) {
+      const vehicle::SlotContact& c = snap.contacts[w].slot[s];
+      if (!c.loaded) continue;
+      const double f = std::hypot(snap.forces[w][s].fx, snap.forces[w][s].fy);
+      worst = std::max(worst, f / (mu * c.normal_force));
+    }
+  }
+  return worst;
+}
+
+const char* kWheelsetNames[vehicle::kBogieWheelsets] = {"leading", "trailing"};
+
+std::string trajectory_header() {
+  std::string h = "s_m,t_s,frame_y_m,frame_yaw_rad";
+  for (const char* w : kWheelsetNames) {
+    h += fmt::format(
+        ",{0}_y_m,{0}_yaw_rad,{0}_y_relative_m,{0}_load_left_N,{0}_load_right_N,"
+        "{0}_n_left_tread_N,{0}_n_left_flange_N,{0}_n_right_tread_N,{0}_n_right_flange_N,"
+        "{0}_angle_left_tread_rad,{0}_angle_left_flange_rad,{0}_angle_right_tread_rad,{0}_angle_right_flange_rad,"
+        "{0}_fy_left_tread_N,{0}_fy_left_flange_N,{0}_fy_right_tread_N,{0}_fy_right_flange_N,"
+        "{0}_lateral_force_left_N,{0}_lateral_force_right_N,{0}_status",
+        w);
+  }
+  return h + "\n";
+}
+
+std::string trajectory_part(const vehicle::WheelsetState& x, const vehicle::ContactSnapshot& snap) {
+  const auto& c = snap.contacts;
+  return fmt::format(
+      ",{:.6e},{:.6e},{:.6e},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.5f},{:.5f},{:.5f},{:.5f},"
+      "{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{}",
+      x.y, x.yaw, snap.y_relative, snap.load[0], snap.load[1], c[0].slot[0].normal_force, c[0].slot[1].normal_force,
+      c[1].slot[0].normal_force, c[1].slot[1].normal_force, c[0].slot[0].contact_angle, c[0].slot[1].contact_angle,
+      c[1].slot[0].contact_angle, c[1].slot[1].contact_angle, snap.forces[0][0].fy, snap.forces[0][1].fy,
+      snap.forces[1][0].fy, snap.forces[1][1].fy, snap.lateral_force[0], snap.lateral_force[1], snap.status);
+}
+
+}  // namespace
+
+WheelsetSample wheelset_sample(int wheelset, const vehicle::ContactSnapshot& snapshot, double distance) {
+  WheelsetSample s;
+  s.wheelset = wheelset;
+  s.y_relative = snapshot.y_relative;
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    for (const vehicle::SlotContact& c : snapshot.contacts[w].slot) {
+      if (c.loaded) s.vertical_force[w] += c.normal_force * std::cos(c.contact_angle);
+    }
+  }
+  s.motion = snapshot.motion;
+  s.distance = distance;
+  return s;
+}
+
+WearPostProcessing::WearPostProcessing(const Scene& scene, const std::vector<std::string>& post_processors,
+                                       const std::vector<std::string>& positions, const WearGrid& grid)
+    : post_processors_(post_processors), positions_(positions) {
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const std::string& p = positions[i];
+    RAILTAB_CHECK(p == "leading" || p == "trailing", "wear position '{}': expected \"leading\" or \"trailing\"", p);
+    position_of_wheelset_[p == "leading" ? 0 : 1] = static_cast<int>(i);
+  }
+  for (const std::string& name : post_processors) {
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      accumulators_.push_back(std::make_unique<WearAccumulator>(scene, name, grid));
+    }
+  }
+}
+
+bool WearPostProcessing::counts(int wheelset) const {
+  return wheelset >= 0 && wheelset < 2 && position_of_wheelset_[static_cast<std::size_t>(wheelset)] >= 0;
+}
+
+void WearPostProcessing::sample(const WheelsetSample& sample) {
+  if (!counts(sample.wheelset)) return;
+  const auto t0 = Clock::now();
+  if (record_) record_->push_back(sample);
+  const auto position = static_cast<std::size_t>(position_of_wheelset_[static_cast<std::size_t>(sample.wheelset)]);
+  for (std::size_t p = 0; p < post_processors_.size(); ++p) {
+    accumulator(p, position).sample(sample.y_relative, sample.vertical_force, sample.motion, sample.distance);
+  }
+  wall_seconds_ += seconds_since(t0);
+}
+
+WearAccumulator& WearPostProcessing::accumulator(std::size_t post_processor, std::size_t position) {
+  RAILTAB_CHECK(post_processor < post_processors_.size() && position < positions_.size(),
+                "wear accumulator ({}, {}) out of range", post_processor, position);
+  return *accumulators_[post_processor * positions_.size() + position];
+}
+
+RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact, const LookupContactModel* lookup,
+                     const DirectContactModel* direct, double friction, double max_duration,
+                     const fs::path& trajectory_csv, WearPostProcessing& wear) {
+  const vehicle::TrackLayout track(sim.route, sim.irregularity, sim.rail_centre_distance);
+  vehicle::BogieParameters parameters = sim.vehicle;
+  const double a = parameters.wheelset.semi_wheelbase;
+  RAILTAB_CHECK(track.length() > 2.0 * a, "route of {} m is shorter than the bogie's wheelbase {} m", track.length(),
+                2.0 * a);
+  vehicle::BogieState initial;
+  initial.wheelset[0].y = initial.wheelset[1].y = initial.frame.y = sim.initial_y;
+  vehicle::BogieSimulation bogie(parameters, track, contact, sim.speed, sim.time_step, initial, a);
+  const LookupCounts counts_before = lookup ? lookup->counts() : LookupCounts{};
+  const std::uint64_t failures_before = direct ? direct->failures() : 0;
+  const double wear_before = wear.wall_seconds();
+
+  RunSummary r;
+  double duration = (track.length() - 2.0 * a) / sim.speed;
+  if (max_duration > 0.0) duration = std::min(duration, max_duration);
+  const auto steps = static_cast<std::uint64_t>(std::llround(duration / sim.time_step));
+  const double revolution = 2.0 * std::numbers::pi * parameters.wheelset.nominal_radius;
+  double next_row = 0.0, next_estimate = 0.0;
+  double next_wear[vehicle::kBogieWheelsets] = {0.0, 0.0};
+  r.stable_time_step_estimate = std::numeric_limits<double>::infinity();
+
+  std::ostringstream csv;
+  csv << trajectory_header();
+  for (std::uint64_t k = 0; k < steps; ++k) {
+    const vehicle::BogieState before = bogie.state();
+    const auto t0 = Clock::now();
+    bogie.step();
+    r.dynamics_wall_seconds += seconds_since(t0);
+    ++r.steps;
+    const vehicle::BogieSnapshot& snap = bogie.snapshot();
+    const double travelled = bogie.distance() - a - sim.speed * sim.time_step;  // the snapshot's, from the start
+    r.status |= snap.status;
+    for (int i = 0; i < vehicle::kBogieWheelsets; ++i) {
+      const vehicle::ContactSnapshot& w = snap.wheelset[i];
+      r.max_creep_force_ratio = std::max(r.max_creep_force_ratio, slot_force_ratio(w, friction));
+      r.max_abs_y[i] = std::max(r.max_abs_y[i], std::abs(w.y_relative));
+      r.max_abs_yaw[i] = std::max(r.max_abs_yaw[i], std::abs(before.wheelset[i].yaw));
+      if (wear.counts(i) && travelled >= next_wear[i]) {
+        wear.sample(wheelset_sample(i, w, revolution));
+        next_wear[i] += revolution;
+      }
+    }
+    if (travelled >= next_estimate) {  // every 50 m: the contact stiffens in the curve
+      r.stable_time_step_estimate = std::min(r.stable_time_step_estimate, bogie.stable_time_step_estimate());
+      next_estimate += 50.0;
+    }
+    if (travelled >= next_row) {
+      csv << fmt::format("{:.3f},{:.5f},{:.6e},{:.6e}", bogie.distance() - sim.speed * sim.time_step,
+                         bogie.time() - sim.time_step, before.frame.y, before.frame.yaw);
+      for (int i = 0; i < vehicle::kBogieWheelsets; ++i) csv << trajectory_part(before.wheelset[i], snap.wheelset[i]);
+      csv << "\n";
+      next_row += sim.trajectory_interval;
+    }
+  }
+  {
+    const fs::path tmp = trajectory_csv.string() + ".tmp";
+    std::ofstream out(tmp, std::ios::binary);
+    RAILTAB_CHECK(out.good(), "{}: cannot open for writing", tmp.string());
+    out << csv.str();
+    out.close();
+    RAILTAB_CHECK(out.good(), "{}: write failed", tmp.string());
+    fs::rename(tmp, trajectory_csv);
+  }
+
+  r.simulated_seconds = bogie.time();
+  r.distance = bogie.distance() - a;
+  r.wear_wall_seconds = wear.wall_seconds() - wear_before;
+  if (!wear.post_processors().empty() && !wear.positions().empty()) r.wear_samples = wear.accumulator(0, 0).samples();
+  if (!std::isfinite(r.stable_time_step_estimate)) r.stable_time_step_estimate = 0.0;
+  if (lookup) {
+    const LookupCounts& now = lookup->counts();
+    r.queries = now.queries - counts_before.queries;
+    r.out_of_range = now.out_of_range - counts_before.out_of_range;
+    r.invalid_input = now.invalid_input - counts_before.invalid_input;
+    for (std::size_t v = 0; v < 5; ++v) r.outside_axis[v] = now.outside_axis[v] - counts_before.outside_axis[v];
+  }
+  if (direct) r.contact_failures = direct->failures() - failures_before;
+  return r;
+}
+
+}  // namespace railtab
