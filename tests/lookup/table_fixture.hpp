@@ -66,6 +66,7 @@ struct FixtureSpec {
   // Variables neither on an axis nor in `fixed` (nor in fixed_text) are written to fixed_axes
   // at 0, as the generator does; false leaves them out (a malformed table).
   bool complete_fixed = true;
+  std::vector<std::pair<std::string, std::string>> extra_root_attributes;  // e.g. {"shard","1/4"}
   std::string fixed_text;          // extra raw "key":value members of fixed_axes, e.g. "\"roll\":\"equilibrium\""
   ValueFn value;                      // required
   StatusFn status = [](int, int, int, const double*) -> std::uint32_t { return 1u; };
@@ -179,6 +180,8 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
   string_attr(file, "scene_name", "fixture", fl);
   string_attr(file, "models", "{}", fl);
   string_attr(file, "fixed_axes", fixed_json, fl);
+  for (const auto& [name, value] : spec.extra_root_attributes)
+    string_attr(file, name.c_str(), value, fl);
 
   // Axes as dimension scales.
   const hid_t axes = check_id(H5Gcreate2(file, "axes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
