@@ -20,6 +20,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "railtab/lookup_export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -122,36 +124,36 @@ typedef struct railtab_lookup_table railtab_lookup_table; /* opaque */
  * railtab_lookup_close, on failure *table is NULL. A shard file (`railtab generate --shard`),
  * a corrupt file or one that fails a checksum is RAILTAB_LOOKUP_ERROR_LOAD. A table without
  * checksums (before format 1.1) loads with info.checksums_verified = 0. */
-int railtab_lookup_open(const char* path, int method, railtab_lookup_table** table);
+RAILTAB_LOOKUP_API int railtab_lookup_open(const char* path, int method, railtab_lookup_table** table);
 /* As railtab_lookup_open with option flags (RAILTAB_LOOKUP_REQUIRE_CHECKSUMS). */
-int railtab_lookup_open_options(const char* path, int method, unsigned flags,
+RAILTAB_LOOKUP_API int railtab_lookup_open_options(const char* path, int method, unsigned flags,
                                 railtab_lookup_table** table);
 
 /* One wheel: `wheel` is RAILTAB_LOOKUP_LEFT or RAILTAB_LOOKUP_RIGHT. Thread-safe, lock-free. */
-int railtab_lookup_query(const railtab_lookup_table* table, int wheel,
+RAILTAB_LOOKUP_API int railtab_lookup_query(const railtab_lookup_table* table, int wheel,
                          const railtab_lookup_state* state, railtab_lookup_result* result);
 
 /* One contact slot only (0 = tread, 1 = flange): *contact receives what railtab_lookup_query
  * would put in result->contact[slot] (query bits included in contact->status), reading only
  * that slot's data. RAILTAB_LOOKUP_ERROR_ARGUMENT for a slot outside 0 .. n_slots-1. */
-int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
+RAILTAB_LOOKUP_API int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
                               const railtab_lookup_state* state, int slot,
                               railtab_lookup_contact* contact);
 
 /* n states at once (e.g. both wheels of every wheelset): results[k] for wheels[k], states[k].
  * `results` must hold n results. */
-int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, const int* wheels,
+RAILTAB_LOOKUP_API int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, const int* wheels,
                                const railtab_lookup_state* states,
                                railtab_lookup_result* results);
 /* As railtab_lookup_query_batch with the capacity of `results`: n_results < n is
  * RAILTAB_LOOKUP_ERROR_BUFFER and nothing is written (never a silent truncation). */
-int railtab_lookup_query_batch_checked(const railtab_lookup_table* table, size_t n,
+RAILTAB_LOOKUP_API int railtab_lookup_query_batch_checked(const railtab_lookup_table* table, size_t n,
                                        const int* wheels, const railtab_lookup_state* states,
                                        railtab_lookup_result* results, size_t n_results);
 
 /* A state with the table's fixed (untabulated) variables at their fixed values, others 0:
  * start from it and set what the table tabulates. */
-int railtab_lookup_default_state(const railtab_lookup_table* table, railtab_lookup_state* state);
+RAILTAB_LOOKUP_API int railtab_lookup_default_state(const railtab_lookup_table* table, railtab_lookup_state* state);
 
 /* ---- Introspection. Strings and node arrays stay valid until railtab_lookup_close. ---- */
 
@@ -168,44 +170,44 @@ typedef struct railtab_lookup_table_info {
   size_t memory_bytes;         /* interpolation data in memory */
 } railtab_lookup_table_info;
 
-int railtab_lookup_info(const railtab_lookup_table* table, railtab_lookup_table_info* info);
+RAILTAB_LOOKUP_API int railtab_lookup_info(const railtab_lookup_table* table, railtab_lookup_table_info* info);
 
 /* Tabulated axis `index` (file order): name ("y", "roll", "load", "xi", "eta", "phi"), units
  * (the file's attribute, "" if absent), node count and nodes (strictly increasing, SI). Any of
  * the output pointers may be NULL. RAILTAB_LOOKUP_ERROR_RANGE for an index outside the axes. */
-int railtab_lookup_axis(const railtab_lookup_table* table, int index, const char** name,
+RAILTAB_LOOKUP_API int railtab_lookup_axis(const railtab_lookup_table* table, int index, const char** name,
                         const char** units, size_t* n_nodes, const double** nodes);
 
 /* Fixed (untabulated) variable `index`: name and its value, SI (roll following the
  * equilibrium is neither an axis nor fixed). */
-int railtab_lookup_fixed_axis(const railtab_lookup_table* table, int index, const char** name,
+RAILTAB_LOOKUP_API int railtab_lookup_fixed_axis(const railtab_lookup_table* table, int index, const char** name,
                               double* value);
 
 /* Static names (never NULL; "?" or "" for a value out of range): output dataset name and
  * units, the part an output belongs to (-1 if out of range), part group name, slot name
  * ("tread", "flange"). */
-const char* railtab_lookup_output_name(int output);
-const char* railtab_lookup_output_units(int output);
-int railtab_lookup_output_part(int output);
-const char* railtab_lookup_part_name(int part);
-const char* railtab_lookup_slot_name(int slot);
+RAILTAB_LOOKUP_API const char* railtab_lookup_output_name(int output);
+RAILTAB_LOOKUP_API const char* railtab_lookup_output_units(int output);
+RAILTAB_LOOKUP_API int railtab_lookup_output_part(int output);
+RAILTAB_LOOKUP_API const char* railtab_lookup_part_name(int part);
+RAILTAB_LOOKUP_API const char* railtab_lookup_slot_name(int slot);
 
 /* Name of one status bit ("converged", "two_point", ...; "unknown" if not a single defined bit). */
-const char* railtab_lookup_status_bit_name(uint32_t bit);
+RAILTAB_LOOKUP_API const char* railtab_lookup_status_bit_name(uint32_t bit);
 /* Comma-separated names of the set bits ("converged,two_point"; "none" for 0) into buf, NUL
  * terminated. Returns the length of the full text (as snprintf): a return >= size means buf was
  * too short and holds a truncated, still terminated, text. buf may be NULL when size is 0. */
-size_t railtab_lookup_status_text(uint32_t status, char* buf, size_t size);
+RAILTAB_LOOKUP_API size_t railtab_lookup_status_text(uint32_t status, char* buf, size_t size);
 
 /* Library version ("0.1.0") and the newest table format it reads ("1.1"). */
-const char* railtab_lookup_version(void);
-const char* railtab_lookup_format_version(void);
+RAILTAB_LOOKUP_API const char* railtab_lookup_version(void);
+RAILTAB_LOOKUP_API const char* railtab_lookup_format_version(void);
 
 /* Frees the table; NULL is allowed. */
-void railtab_lookup_close(railtab_lookup_table* table);
+RAILTAB_LOOKUP_API void railtab_lookup_close(railtab_lookup_table* table);
 
 /* Message of the last failed call on this thread ("" if none). Valid until the next call. */
-const char* railtab_lookup_last_error(void);
+RAILTAB_LOOKUP_API const char* railtab_lookup_last_error(void);
 
 #ifdef __cplusplus
 }

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "railtab/lookup_export.h"
+
 namespace railtab::lookup {
 
 using StatusBits = std::uint32_t;
@@ -48,10 +50,10 @@ inline constexpr int kNumBits = 14;                       // bits 0 .. kNumBits-
 
 // Name of one bit as in the table files and `railtab inspect` ("converged", "two_point", ...;
 // "unknown" for a value that is not a single defined bit).
-const char* bit_name(StatusBits bit) noexcept;
+RAILTAB_LOOKUP_API const char* bit_name(StatusBits bit) noexcept;
 // Comma-separated names of the set bits, e.g. "converged,two_point"; "none" for 0; undefined
 // bits as "bit20".
-std::string describe(StatusBits bits);
+RAILTAB_LOOKUP_API std::string describe(StatusBits bits);
 }  // namespace status
 
 // Contact slot limit. Format 1.0 writes 2 slots (0 = tread, 1 = flange); a table with more than
@@ -89,10 +91,10 @@ enum Output : int {
 };
 
 // Dataset name of an output in the table file ("contact_angle", ..., "wear_rate").
-const char* output_name(Output output);
+RAILTAB_LOOKUP_API const char* output_name(Output output);
 // Part of an output, and the part's group name in the file ("geometry", ...).
-Part output_part(Output output);
-const char* part_name(Part part);
+RAILTAB_LOOKUP_API Part output_part(Output output);
+RAILTAB_LOOKUP_API const char* part_name(Part part);
 
 // The state of one wheel-rail pair. A table tabulates some of these (its axes) and fixes the
 // others (root attribute fixed_axes); a fixed variable must be queried at its fixed value, else
@@ -149,7 +151,7 @@ struct LoadOptions {
 
 // Any problem while loading a table: missing/truncated/corrupt file, unknown major version,
 // missing dataset or attribute, wrong shape or type. what() names the file and the problem.
-class LoadError : public std::runtime_error {
+class RAILTAB_LOOKUP_API LoadError : public std::runtime_error {
  public:
   LoadError(std::string path, const std::string& problem);
   const std::string& path() const noexcept { return path_; }  // the file being loaded
@@ -167,13 +169,13 @@ struct AxisInfo {
 
 // SI units of an output ("rad", "m", "N", ...), of a state variable by name ("y" -> "m"; "" for
 // an unknown name), and the name of a contact slot (0 "tread", 1 "flange", else "slot<k>").
-const char* output_units(Output output);
-const char* state_units(const std::string& variable);
-std::string slot_name(int slot);
+RAILTAB_LOOKUP_API const char* output_units(Output output);
+RAILTAB_LOOKUP_API const char* state_units(const std::string& variable);
+RAILTAB_LOOKUP_API std::string slot_name(int slot);
 
 // Version of this library ("0.1.0"), and the newest table format it reads and writes ("1.1").
-const char* library_version() noexcept;
-const char* supported_format_version() noexcept;
+RAILTAB_LOOKUP_API const char* library_version() noexcept;
+RAILTAB_LOOKUP_API const char* supported_format_version() noexcept;
 
 namespace detail {
 struct TableData;  // internal, immutable after load (lookup/src/table_data.hpp)
@@ -181,7 +183,7 @@ struct TableData;  // internal, immutable after load (lookup/src/table_data.hpp)
 
 // A loaded table. Immutable: every const member is safe to call from any number of threads at
 // once without locks. Cheap to copy (shares the data).
-class Table {
+class RAILTAB_LOOKUP_API Table {
  public:
   // Reads the whole file into memory, laid out for the query path. Throws LoadError.
   static Table load(const std::string& path, const LoadOptions& options = {});
