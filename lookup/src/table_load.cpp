@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 #include "flat_json.hpp"
@@ -274,7 +275,9 @@ Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& a
 
 }  // namespace
 
-std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOptions& options) {
+namespace {
+
+std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptions& options) {
   if (options.method != Method::kLinear && options.method != Method::kCubic &&
       options.method != Method::kMonotoneCubic)
     throw LoadError(path, "unknown interpolation method " +
@@ -338,6 +341,22 @@ std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOp
     for (int b = 0; b < d->n_blocks; ++b) d->block[w][b] = make_block(groups[b], arrays, d->n_slots);
   }
   return d;
+}
+
+}  // namespace
+
+std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOptions& options) {
+  // Every extent is checked against the file before it is allocated, so running out of memory
+  // here means the machine is short of it for a valid table: still a LoadError (one type to
+  // catch, and nothing but LoadError leaves Table::load).
+  try {
+    return load_checked(path, options);
+  } catch (const std::bad_alloc&) {
+    throw LoadError(path, "out of memory while loading (Table::memory_bytes of a similar table "
+                          "says how much it needs)");
+  } catch (const std::length_error& e) {
+    throw LoadError(path, std::string("a size is out of range: ") + e.what());
+  }
 }
 
 }  // namespace railtab::lookup::detail
