@@ -97,9 +97,18 @@ std::vector<unsigned char> answers(railtab_lookup_table* t) {
   std::vector<unsigned char> out;
   railtab_lookup_state base;
   railtab_lookup_default_state(t, &base);
+  std::vector<railtab_lookup_state> states{base};
+#ifndef RAILTAB_LOOKUP_ERROR_RANGE
+  // Built against a lookup without introspection (before issue #16): y across the fixture.
+  for (int k = 0; k < 21; ++k) {
+    states.push_back(base);
+    states.back().y = -0.0095 + 0.00095 * k;
+    states.back().xi = 0.001 * (k % 5);
+  }
+  struct { int n_axes = 0, n_fixed = 0, n_slots = 0, checksums_verified = 0; } info;
+#else
   railtab_lookup_table_info info;
   railtab_lookup_info(t, &info);
-  std::vector<railtab_lookup_state> states{base};
   for (int a = 0; a < info.n_axes; ++a) {
     const char* name = nullptr;
     std::size_t n = 0;
@@ -114,6 +123,7 @@ std::vector<unsigned char> answers(railtab_lookup_table* t) {
       states.push_back(s);
     }
   }
+#endif
   for (const auto& s : states) {
     for (int w = 0; w < 2; ++w) {
       railtab_lookup_result r;
@@ -258,8 +268,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "the pristine table does not load: %s\n", railtab_lookup_last_error());
     return 2;
   }
+#ifdef RAILTAB_LOOKUP_ERROR_RANGE
   railtab_lookup_table_info info;
   railtab_lookup_info(t, &info);
+#else
+  struct { int checksums_verified = 0; } info;
+#endif
   const std::vector<unsigned char> reference = answers(t);
   railtab_lookup_close(t);
   // The pristine load's own largest allocation and the inspect baseline, for the report.
