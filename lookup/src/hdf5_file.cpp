@@ -158,6 +158,39 @@ std::optional<std::string> Hdf5File::string_attribute(const std::string& object,
   return out;
 }
 
+void Hdf5File::check_all_string_attributes() const {
+  // Objects first (names collected, then checked: no exception may unwind through libhdf5).
+  std::vector<std::string> objects{"/"};
+  const auto collect = [](hid_t, const char* name, const H5O_info_t*, void* out) -> herr_t {
+    if (std::string(name) != ".") static_cast<std::vector<std::string>*>(out)->push_back(std::string("/") + name);
+    return 0;
+  };
+  if (H5Ovisit(file_.get(), H5_INDEX_NAME, H5_ITER_NATIVE, collect, &objects) < 0)
+    fail(with_hdf5_message("cannot walk the objects of the file"));
+  constexpr std::size_t kMaxObjects = 100000;  // a table has a few hundred
+  if (objects.size() > kMaxObjects) fail("more than " + std::to_string(kMaxObjects) + " objects");
+  for (const std::string& object : objects) {
+    struct Found {
+      std::vector<std::string> names;
+    } found;
+    const auto strings = [](hid_t loc, const char* name, const H5A_info_t*, void* out) -> herr_t {
+      const hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+      if (a < 0) return -1;
+      const hid_t t = H5Aget_type(a);
+      if (t >= 0 && H5Tget_class(t) == H5T_STRING) static_cast<Found*>(out)->names.emplace_back(name);
+      if (t >= 0) H5Tclose(t);
+      H5Aclose(a);
+      return 0;
+    };
+    Hid obj(H5Oopen(file_.get(), object.c_str(), H5P_DEFAULT), H5Oclose);
+    if (obj.get() < 0) fail(with_hdf5_message("cannot open " + object));
+    hsize_t index = 0;
+    if (H5Aiterate2(obj.get(), H5_INDEX_NAME, H5_ITER_NATIVE, &index, strings, &found) < 0)
+      fail(with_hdf5_message("cannot list the attributes of " + object));
+    for (const std::string& name : found.names) string_attribute(object, name);
+  }
+}
+
 Hid Hdf5File::open_dataset(const std::string& dataset) const {
   if (!exists(dataset)) fail("missing dataset " + dataset);
   Hid d(H5Dopen2(file_.get(), dataset.c_str(), H5P_DEFAULT), H5Dclose);

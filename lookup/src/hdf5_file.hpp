@@ -66,6 +66,11 @@ class Hdf5File {
   // -> error.
   std::optional<std::string> string_attribute(const std::string& object,
                                               const std::string& name) const;
+  // Reads every string attribute of every object in the file through string_attribute (so each
+  // is checked as above), for readers that read more attributes than the lookup (`railtab
+  // inspect`). Only for files with checksummed metadata: listing the attributes makes libhdf5
+  // decode every attribute message, which it cannot do safely when they may be corrupt.
+  void check_all_string_attributes() const;
   // Variable-length string attributes are read only when allowed (legacy tables); the global
   // heap is checked once, before the first such read.
   void set_allow_variable_strings(bool allow) { allow_vlen_ = allow; }
