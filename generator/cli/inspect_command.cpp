@@ -5,6 +5,8 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "core/check.hpp"
+#include "railtab/lookup.hpp"
 #include "table/inspect.hpp"
 #include "table/table_io.hpp"
 
@@ -17,8 +19,20 @@ void add_inspect_command(CLI::App& app) {
   cmd->add_option("table", *path, "Table file (HDF5)")->required();
   cmd->add_flag("--scene", *scene, "Also print the scene text stored in the table");
   cmd->callback([path, scene] {
+    // The lookup's own checks first (docs/table-format.md, "What readers check"): inspect shows
+    // only a table a simulation could load, and a corrupt or crafted file is refused before the
+    // summary reader touches it (issue #19).
+    bool verified = false;
+    try {
+      verified = lookup::Table::load(*path).checksums_verified();
+    } catch (const lookup::LoadError& e) {
+      throw Error(e.what());
+    }
     Table table = read_table(*path);
     print_table_summary(table, *path, std::filesystem::file_size(*path), *scene, std::cout);
+    std::cout << (verified ? "integrity: checksums verified (every dataset and the metadata)\n"
+                           : "integrity: NO checksums (a table written before format 1.1): a damaged "
+                             "byte could change numbers unnoticed; regenerate it to get checksums\n");
   });
 }
 

@@ -66,13 +66,18 @@ Id string_type(const std::string& file) {
 
 void write_string_attribute(hid_t object, const std::string& name, const std::string& value,
                             const std::string& file) {
+  // Fixed length (format 1.1): the bytes live in the checksummed object header, not in the
+  // global heap (which has no checksum) as a variable-length string's would.
   std::string what = fmt::format("write attribute '{}'", name);
-  Id type = string_type(file);
+  Id type(check_id(H5Tcopy(H5T_C_S1), file, what), H5Tclose);
+  check(H5Tset_size(type, value.empty() ? 1 : value.size()), file, what);
+  check(H5Tset_strpad(type, H5T_STR_NULLPAD), file, what);
+  check(H5Tset_cset(type, H5T_CSET_UTF8), file, what);
   Id space(check_id(H5Screate(H5S_SCALAR), file, what), H5Sclose);
   Id attr(check_id(H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), file, what),
           H5Aclose);
-  const char* data = value.c_str();
-  check(H5Awrite(attr, type, &data), file, what);
+  const std::string padded = value.empty() ? std::string(1, '\0') : value;
+  check(H5Awrite(attr, type, padded.data()), file, what);
 }
 
 bool has_attribute(hid_t object, const std::string& name) {
@@ -95,8 +100,12 @@ std::string read_string_attribute(hid_t object, const std::string& name, const s
     return value;
   }
   std::size_t size = H5Tget_size(file_type);
+  RAILTAB_CHECK(size > 0 && size <= (std::size_t{64} << 20), "{}: attribute '{}' declares {} bytes", file, name,
+                size);
   Id mem(check_id(H5Tcopy(H5T_C_S1), file, what), H5Tclose);
   check(H5Tset_size(mem, size), file, what);
+  check(H5Tset_cset(mem, H5Tget_cset(file_type)), file, what);  // no ASCII <-> UTF-8 conversion
+  check(H5Tset_strpad(mem, H5T_STR_NULLPAD), file, what);  // NULLTERM would drop the last byte
   std::vector<char> buffer(size + 1, '\0');
   check(H5Aread(attr, mem, buffer.data()), file, what);
   return std::string(buffer.data());

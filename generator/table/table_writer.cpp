@@ -1,6 +1,7 @@
-// Writes a Table as an HDF5 file, format 1.0: /axes as dimension scales, every dataset with units,
+// Writes a Table as an HDF5 file, format 1.1: /axes as dimension scales, every dataset with units,
 // description and axes attributes and its dimensions attached to the scales, chunked + shuffle +
-// deflate above 64 KiB. Written to TARGET.tmp.<pid> and renamed only when complete.
+// deflate above 64 KiB, every dataset with a Fletcher32 checksum, HDF5 1.10 file format (metadata
+// checksums), fixed-length string attributes. Written to TARGET.tmp.<pid> and renamed only when complete.
 #include <hdf5_hl.h>
 #include <unistd.h>
 
@@ -61,7 +62,11 @@ class Writer {
     h5::Id fcpl(h5::check_id(H5Pcreate(H5P_FILE_CREATE), file_, "file creation properties"), H5Pclose);
     track_order(fcpl);
     check(H5Pset_attr_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), "attribute order");
-    hid_t raw = H5Fcreate(file_.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+    // Format 1.1 integrity (docs/table-format.md): the HDF5 1.10 file format checksums every
+    // metadata block (superblock, object headers with their attributes, chunk indexes).
+    h5::Id fapl(h5::check_id(H5Pcreate(H5P_FILE_ACCESS), file_, "file access properties"), H5Pclose);
+    check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_LATEST), "file format version");
+    hid_t raw = H5Fcreate(file_.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
     h5::Id file(h5::check_id(raw, file_, "create file"), H5Fclose);
     {
       for (const auto& [name, value] : table_.attributes) h5::write_string_attribute(file, name, value, file_);
@@ -117,6 +122,20 @@ class Writer {
     return current;
   }
 
+  // Creation properties of an uncompressed dataset with its checksum: one chunk holding it all,
+  // with HDF5's Fletcher32 filter (a filter needs a chunked layout). A scalar cannot be
+  // chunked: compact instead, its bytes inside the (checksummed) object header.
+  h5::Id checksummed_layout(const std::vector<hsize_t>& dims, const std::string& what) const {
+    h5::Id dcpl(h5::check_id(H5Pcreate(H5P_DATASET_CREATE), file_, what), H5Pclose);
+    if (dims.empty()) {
+      check(H5Pset_layout(dcpl, H5D_COMPACT), what + " (compact)");
+      return dcpl;
+    }
+    check(H5Pset_chunk(dcpl, static_cast<int>(dims.size()), dims.data()), what + " (chunk)");
+    check(H5Pset_fletcher32(dcpl), what + " (checksum)");
+    return dcpl;
+  }
+
   void write_axes(hid_t file) {
     h5::Id group = make_group(file, "axes");
     for (const TableAxis& axis : table_.axes) {
@@ -124,7 +143,8 @@ class Writer {
       hsize_t n = axis.values.size();
       h5::Id space(h5::check_id(H5Screate_simple(1, &n, nullptr), file_, what), H5Sclose);
       hid_t type = axis.integer ? H5T_STD_I32LE : H5T_IEEE_F64LE;
-      h5::Id ds(h5::check_id(H5Dcreate2(group, axis.name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT,
+      h5::Id dcpl = checksummed_layout({n}, what);
+      h5::Id ds(h5::check_id(H5Dcreate2(group, axis.name.c_str(), type, space, H5P_DEFAULT, dcpl,
                                         H5P_DEFAULT),
                              file_, what),
                 H5Dclose);
@@ -148,9 +168,11 @@ class Writer {
                                            : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                               file_, what),
                  H5Sclose);
-    h5::Id dcpl(h5::check_id(H5Pcreate(H5P_DATASET_CREATE), file_, what), H5Pclose);
     std::size_t element = d.is_status ? sizeof(std::uint32_t) : sizeof(double);
-    if (!dims.empty() && d.size() * element > kCompressAbove && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    const bool compress = !dims.empty() && d.size() * element > kCompressAbove && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0;
+    h5::Id dcpl = compress ? h5::Id(h5::check_id(H5Pcreate(H5P_DATASET_CREATE), file_, what), H5Pclose)
+                           : checksummed_layout(dims, what);
+    if (compress) {
       // Chunks span the fast dimensions whole; the slow ones are halved until a chunk fits.
       std::vector<hsize_t> chunk = dims;
       auto bytes = [&] {
@@ -164,6 +186,7 @@ class Writer {
       check(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), what + " (chunk)");
       check(H5Pset_shuffle(dcpl), what + " (shuffle)");
       check(H5Pset_deflate(dcpl, kDeflateLevel), what + " (deflate)");
+      check(H5Pset_fletcher32(dcpl), what + " (checksum)");
     }
     hid_t file_type = d.is_status ? H5T_STD_U32LE : H5T_IEEE_F64LE;
     h5::Id ds(h5::check_id(H5Dcreate2(parent, d.name.c_str(), file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),

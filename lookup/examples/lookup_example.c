@@ -14,6 +14,20 @@ int main(int argc, char** argv) {
     fprintf(stderr, "%s\n", railtab_lookup_last_error());
     return 1;
   }
+  /* What the table holds: its axes (name, units, range) and whether its checksums were verified. */
+  railtab_lookup_table_info info;
+  railtab_lookup_info(table, &info);
+  printf("%s: format %s, %d slots, checksums %s (railtab lookup %s)\n", info.path,
+         info.format_version, info.n_slots, info.checksums_verified ? "verified" : "absent",
+         railtab_lookup_version());
+  for (int a = 0; a < info.n_axes; ++a) {
+    const char* name;
+    const char* units;
+    size_t n;
+    const double* nodes;
+    railtab_lookup_axis(table, a, &name, &units, &n, &nodes);
+    printf("  axis %-4s [%s] %zu nodes, %g .. %g\n", name, units, n, nodes[0], nodes[n - 1]);
+  }
   /* Untabulated variables (e.g. roll, load) must sit at the table's fixed values. */
   railtab_lookup_state state;
   railtab_lookup_default_state(table, &state);
@@ -27,16 +41,17 @@ int main(int argc, char** argv) {
       return 1;
     }
     const railtab_lookup_contact* tread = &result.contact[0];
-    printf("y = %+.4f m  fx = %12.4f N  contact_angle = %+.5f rad  status = 0x%x%s\n", state.y,
-           tread->value[RAILTAB_LOOKUP_FX], tread->value[RAILTAB_LOOKUP_CONTACT_ANGLE],
-           (unsigned)tread->status,
+    char status[128]; /* e.g. "converged,out_of_range" */
+    railtab_lookup_status_text(tread->status, status, sizeof status);
+    printf("y = %+.4f m  fx = %12.4f N  contact_angle = %+.5f rad  status = %s%s\n", state.y,
+           tread->value[RAILTAB_LOOKUP_FX], tread->value[RAILTAB_LOOKUP_CONTACT_ANGLE], status,
            (result.status & RAILTAB_LOOKUP_OUT_OF_RANGE) ? " (clamped)" : "");
   }
   /* Both wheels in one call. */
   int wheels[2] = {RAILTAB_LOOKUP_LEFT, RAILTAB_LOOKUP_RIGHT};
   railtab_lookup_state states[2] = {state, state};
   railtab_lookup_result results[2];
-  if (railtab_lookup_query_batch(table, 2, wheels, states, results) != RAILTAB_LOOKUP_OK) {
+  if (railtab_lookup_query_batch_checked(table, 2, wheels, states, results, 2) != RAILTAB_LOOKUP_OK) {
     fprintf(stderr, "%s\n", railtab_lookup_last_error());
     railtab_lookup_close(table);
     return 1;

@@ -1,9 +1,14 @@
 /* railtab lookup, C API: load a wheel-rail contact table once, query it from any thread.
  *
- * Minimal surface over railtab::lookup (railtab/lookup.hpp): an opaque handle, open / query /
- * query batch / close, and a thread-local last-error string. Nothing throws across this
- * boundary: every function returns RAILTAB_LOOKUP_OK or an error code, and
- * railtab_lookup_last_error() says why (the file and the problem) on the calling thread.
+ * Surface over railtab::lookup (railtab/lookup.hpp): an opaque handle, open / query / query
+ * batch / close, introspection (axes, fixed axes, slots, parts, outputs, versions), status bit
+ * names, and a thread-local last-error string. Nothing throws across this boundary: every
+ * function returns RAILTAB_LOOKUP_OK or an error code, and railtab_lookup_last_error() says why
+ * (the file and the problem) on the calling thread.
+ *
+ * Link (docs/lookup.md): with CMake, find_package(railtab) and railtab::lookup; from plain C,
+ *   cc sim.c $(pkg-config --cflags --libs railtab_lookup)
+ * (the static library needs -lstdc++ -lm and HDF5; pkg-config lists them).
  *
  * Out-of-range and NaN/inf states are NOT errors: the query succeeds, clamps to the table edge
  * (RAILTAB_LOOKUP_OUT_OF_RANGE in status) or returns zeros (RAILTAB_LOOKUP_INVALID_INPUT).
@@ -15,6 +20,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "railtab/lookup_export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -24,6 +31,11 @@ extern "C" {
 #define RAILTAB_LOOKUP_ERROR_LOAD 1     /* table could not be loaded (see last error) */
 #define RAILTAB_LOOKUP_ERROR_ARGUMENT 2 /* null pointer, unknown wheel or method */
 #define RAILTAB_LOOKUP_ERROR_INTERNAL 3 /* unexpected failure, e.g. out of memory */
+#define RAILTAB_LOOKUP_ERROR_BUFFER 4   /* an output buffer is too short (nothing written) */
+#define RAILTAB_LOOKUP_ERROR_RANGE 5    /* an index (axis, fixed axis, slot) out of range */
+
+/* Load options for railtab_lookup_open_options (bit flags). */
+#define RAILTAB_LOOKUP_REQUIRE_CHECKSUMS 1u /* refuse tables without checksums (before 1.1) */
 
 /* Interpolation methods (railtab::lookup::Method). */
 #define RAILTAB_LOOKUP_LINEAR 0         /* multilinear, the default */
@@ -34,15 +46,23 @@ extern "C" {
 #define RAILTAB_LOOKUP_LEFT 0
 #define RAILTAB_LOOKUP_RIGHT 1
 
-/* Status bits (same values as src/core/status.hpp). */
-#define RAILTAB_LOOKUP_CONVERGED (1u << 0)
-#define RAILTAB_LOOKUP_NOT_CONVERGED (1u << 1)
-#define RAILTAB_LOOKUP_TWO_POINT (1u << 2)
-#define RAILTAB_LOOKUP_LIFT_OFF (1u << 3)
-#define RAILTAB_LOOKUP_FLANGE_CONTACT (1u << 7)
-#define RAILTAB_LOOKUP_FULL_SLIP (1u << 9)
-#define RAILTAB_LOOKUP_OUT_OF_RANGE (1u << 10)
-#define RAILTAB_LOOKUP_INVALID_INPUT (1u << 11)
+/* Status bits (same values as src/core/status.hpp and railtab::lookup::status); names as in
+ * the table files: railtab_lookup_status_bit_name / railtab_lookup_status_text. */
+#define RAILTAB_LOOKUP_CONVERGED (1u << 0)         /* solver met its tolerance (all corners) */
+#define RAILTAB_LOOKUP_NOT_CONVERGED (1u << 1)     /* iteration limit hit at some node */
+#define RAILTAB_LOOKUP_TWO_POINT (1u << 2)         /* more than one contact on this wheel */
+#define RAILTAB_LOOKUP_LIFT_OFF (1u << 3)          /* no contact at this load/approach */
+#define RAILTAB_LOOKUP_CURVATURE_CLIPPED (1u << 4) /* negative/small B clipped */
+#define RAILTAB_LOOKUP_CURVATURE_SHIFTED (1u << 5) /* negative/small B shifted upward */
+#define RAILTAB_LOOKUP_FALLBACK_MODEL (1u << 6)    /* the chosen model failed; a simpler ran */
+#define RAILTAB_LOOKUP_FLANGE_CONTACT (1u << 7)    /* contact angle beyond the tread range */
+#define RAILTAB_LOOKUP_NON_HERTZIAN (1u << 8)      /* A or B <= 0: Hertz invalid */
+#define RAILTAB_LOOKUP_FULL_SLIP (1u << 9)         /* tangential force saturated at mu*N */
+#define RAILTAB_LOOKUP_OUT_OF_RANGE (1u << 10)     /* query clamped to the table edge */
+#define RAILTAB_LOOKUP_INVALID_INPUT (1u << 11)    /* NaN/inf in the query: outputs are 0 */
+#define RAILTAB_LOOKUP_PROFILE_EDGE (1u << 12)     /* contact band reached a profile end */
+#define RAILTAB_LOOKUP_FAILED (1u << 13)           /* the core threw at a node: outputs 0 */
+#define RAILTAB_LOOKUP_NUM_STATUS_BITS 14
 
 /* Output indices into railtab_lookup_contact.value (railtab::lookup::Output). */
 enum {
@@ -68,6 +88,12 @@ enum {
 };
 #define RAILTAB_LOOKUP_MAX_SLOTS 4
 #define RAILTAB_LOOKUP_NUM_PARTS 4 /* geometry, normal, creep, wear */
+
+/* Parts (railtab::lookup::Part). */
+#define RAILTAB_LOOKUP_GEOMETRY 0
+#define RAILTAB_LOOKUP_NORMAL 1
+#define RAILTAB_LOOKUP_CREEP 2
+#define RAILTAB_LOOKUP_WEAR 3
 
 /* State of one wheel-rail pair, SI. Untabulated variables must hold the table's fixed value. */
 typedef struct railtab_lookup_state {
@@ -95,34 +121,93 @@ typedef struct railtab_lookup_result {
 typedef struct railtab_lookup_table railtab_lookup_table; /* opaque */
 
 /* Loads `path` with `method`; on success *table is a handle to close with
- * railtab_lookup_close, on failure *table is NULL. */
-int railtab_lookup_open(const char* path, int method, railtab_lookup_table** table);
+ * railtab_lookup_close, on failure *table is NULL. A shard file (`railtab generate --shard`),
+ * a corrupt file or one that fails a checksum is RAILTAB_LOOKUP_ERROR_LOAD. A table without
+ * checksums (before format 1.1) loads with info.checksums_verified = 0. */
+RAILTAB_LOOKUP_API int railtab_lookup_open(const char* path, int method, railtab_lookup_table** table);
+/* As railtab_lookup_open with option flags (RAILTAB_LOOKUP_REQUIRE_CHECKSUMS). */
+RAILTAB_LOOKUP_API int railtab_lookup_open_options(const char* path, int method, unsigned flags,
+                                railtab_lookup_table** table);
 
 /* One wheel: `wheel` is RAILTAB_LOOKUP_LEFT or RAILTAB_LOOKUP_RIGHT. Thread-safe, lock-free. */
-int railtab_lookup_query(const railtab_lookup_table* table, int wheel,
+RAILTAB_LOOKUP_API int railtab_lookup_query(const railtab_lookup_table* table, int wheel,
                          const railtab_lookup_state* state, railtab_lookup_result* result);
 
 /* One contact slot only (0 = tread, 1 = flange): *contact receives what railtab_lookup_query
  * would put in result->contact[slot] (query bits included in contact->status), reading only
  * that slot's data. RAILTAB_LOOKUP_ERROR_ARGUMENT for a slot outside 0 .. n_slots-1. */
-int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
+RAILTAB_LOOKUP_API int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
                               const railtab_lookup_state* state, int slot,
                               railtab_lookup_contact* contact);
 
-/* n states at once (e.g. both wheels of every wheelset): results[k] for wheels[k], states[k]. */
-int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, const int* wheels,
+/* n states at once (e.g. both wheels of every wheelset): results[k] for wheels[k], states[k].
+ * `results` must hold n results. */
+RAILTAB_LOOKUP_API int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, const int* wheels,
                                const railtab_lookup_state* states,
                                railtab_lookup_result* results);
+/* As railtab_lookup_query_batch with the capacity of `results`: n_results < n is
+ * RAILTAB_LOOKUP_ERROR_BUFFER and nothing is written (never a silent truncation). */
+RAILTAB_LOOKUP_API int railtab_lookup_query_batch_checked(const railtab_lookup_table* table, size_t n,
+                                       const int* wheels, const railtab_lookup_state* states,
+                                       railtab_lookup_result* results, size_t n_results);
 
 /* A state with the table's fixed (untabulated) variables at their fixed values, others 0:
  * start from it and set what the table tabulates. */
-int railtab_lookup_default_state(const railtab_lookup_table* table, railtab_lookup_state* state);
+RAILTAB_LOOKUP_API int railtab_lookup_default_state(const railtab_lookup_table* table, railtab_lookup_state* state);
+
+/* ---- Introspection. Strings and node arrays stay valid until railtab_lookup_close. ---- */
+
+typedef struct railtab_lookup_table_info {
+  const char* path;            /* file it was loaded from */
+  const char* format_version;  /* e.g. "1.1" */
+  const char* scene_name;      /* "" if absent */
+  int method;                  /* RAILTAB_LOOKUP_LINEAR, ... */
+  int n_axes;                  /* tabulated state variables: railtab_lookup_axis 0 .. n_axes-1 */
+  int n_fixed;                 /* fixed ones: railtab_lookup_fixed_axis 0 .. n_fixed-1 */
+  int n_slots;                 /* contact slots (0 = tread, 1 = flange) */
+  int has_part[RAILTAB_LOOKUP_NUM_PARTS]; /* 1 if the table holds geometry, normal, creep, wear */
+  int checksums_verified;      /* 1: every dataset and the metadata were checksum-verified */
+  size_t memory_bytes;         /* interpolation data in memory */
+} railtab_lookup_table_info;
+
+RAILTAB_LOOKUP_API int railtab_lookup_info(const railtab_lookup_table* table, railtab_lookup_table_info* info);
+
+/* Tabulated axis `index` (file order): name ("y", "roll", "load", "xi", "eta", "phi"), units
+ * (the file's attribute, "" if absent), node count and nodes (strictly increasing, SI). Any of
+ * the output pointers may be NULL. RAILTAB_LOOKUP_ERROR_RANGE for an index outside the axes. */
+RAILTAB_LOOKUP_API int railtab_lookup_axis(const railtab_lookup_table* table, int index, const char** name,
+                        const char** units, size_t* n_nodes, const double** nodes);
+
+/* Fixed (untabulated) variable `index`: name and its value, SI (roll following the
+ * equilibrium is neither an axis nor fixed). */
+RAILTAB_LOOKUP_API int railtab_lookup_fixed_axis(const railtab_lookup_table* table, int index, const char** name,
+                              double* value);
+
+/* Static names (never NULL; "?" or "" for a value out of range): output dataset name and
+ * units, the part an output belongs to (-1 if out of range), part group name, slot name
+ * ("tread", "flange"). */
+RAILTAB_LOOKUP_API const char* railtab_lookup_output_name(int output);
+RAILTAB_LOOKUP_API const char* railtab_lookup_output_units(int output);
+RAILTAB_LOOKUP_API int railtab_lookup_output_part(int output);
+RAILTAB_LOOKUP_API const char* railtab_lookup_part_name(int part);
+RAILTAB_LOOKUP_API const char* railtab_lookup_slot_name(int slot);
+
+/* Name of one status bit ("converged", "two_point", ...; "unknown" if not a single defined bit). */
+RAILTAB_LOOKUP_API const char* railtab_lookup_status_bit_name(uint32_t bit);
+/* Comma-separated names of the set bits ("converged,two_point"; "none" for 0) into buf, NUL
+ * terminated. Returns the length of the full text (as snprintf): a return >= size means buf was
+ * too short and holds a truncated, still terminated, text. buf may be NULL when size is 0. */
+RAILTAB_LOOKUP_API size_t railtab_lookup_status_text(uint32_t status, char* buf, size_t size);
+
+/* Library version ("0.1.0") and the newest table format it reads ("1.1"). */
+RAILTAB_LOOKUP_API const char* railtab_lookup_version(void);
+RAILTAB_LOOKUP_API const char* railtab_lookup_format_version(void);
 
 /* Frees the table; NULL is allowed. */
-void railtab_lookup_close(railtab_lookup_table* table);
+RAILTAB_LOOKUP_API void railtab_lookup_close(railtab_lookup_table* table);
 
 /* Message of the last failed call on this thread ("" if none). Valid until the next call. */
-const char* railtab_lookup_last_error(void);
+RAILTAB_LOOKUP_API const char* railtab_lookup_last_error(void);
 
 #ifdef __cplusplus
 }

@@ -14,6 +14,8 @@ struct railtab_lookup_table {
   railtab::lookup::Table table;  // the loaded table
 };
 
+
+
 namespace {
 
 namespace lk = railtab::lookup;
@@ -31,8 +33,22 @@ static_assert(int{RAILTAB_LOOKUP_NUM_OUTPUTS} == int{lk::kNumOutputs});
 static_assert(int{RAILTAB_LOOKUP_FX} == int{lk::kFx});
 static_assert(int{RAILTAB_LOOKUP_WEAR_RATE} == int{lk::kWearRate});
 static_assert(RAILTAB_LOOKUP_MAX_SLOTS == lk::kMaxSlots);
+static_assert(RAILTAB_LOOKUP_CONVERGED == lk::status::kConverged);
+static_assert(RAILTAB_LOOKUP_NOT_CONVERGED == lk::status::kNotConverged);
+static_assert(RAILTAB_LOOKUP_TWO_POINT == lk::status::kTwoPoint);
+static_assert(RAILTAB_LOOKUP_LIFT_OFF == lk::status::kLiftOff);
+static_assert(RAILTAB_LOOKUP_CURVATURE_CLIPPED == lk::status::kCurvatureClipped);
+static_assert(RAILTAB_LOOKUP_CURVATURE_SHIFTED == lk::status::kCurvatureShifted);
+static_assert(RAILTAB_LOOKUP_FALLBACK_MODEL == lk::status::kFallbackModel);
+static_assert(RAILTAB_LOOKUP_FLANGE_CONTACT == lk::status::kFlangeContact);
+static_assert(RAILTAB_LOOKUP_NON_HERTZIAN == lk::status::kNonHertzian);
+static_assert(RAILTAB_LOOKUP_FULL_SLIP == lk::status::kFullSlip);
 static_assert(RAILTAB_LOOKUP_OUT_OF_RANGE == lk::status::kOutOfRange);
 static_assert(RAILTAB_LOOKUP_INVALID_INPUT == lk::status::kInvalidInput);
+static_assert(RAILTAB_LOOKUP_PROFILE_EDGE == lk::status::kProfileEdge);
+static_assert(RAILTAB_LOOKUP_FAILED == lk::status::kFailed);
+static_assert(RAILTAB_LOOKUP_NUM_STATUS_BITS == lk::status::kNumBits);
+static_assert(RAILTAB_LOOKUP_WEAR == lk::kWear && RAILTAB_LOOKUP_NUM_PARTS == lk::kNumParts);
 
 thread_local std::string last_error;
 
@@ -56,14 +72,18 @@ void store(const lk::Result& r, railtab_lookup_result* out) noexcept {
 
 extern "C" {
 
-int railtab_lookup_open(const char* path, int method, railtab_lookup_table** table) {
+int railtab_lookup_open_options(const char* path, int method, unsigned flags,
+                                railtab_lookup_table** table) {
   if (table) *table = nullptr;
   if (!path || !table) return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_open: null argument");
   if (method < RAILTAB_LOOKUP_LINEAR || method > RAILTAB_LOOKUP_MONOTONE_CUBIC)
     return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_open: unknown interpolation method");
+  if (flags & ~RAILTAB_LOOKUP_REQUIRE_CHECKSUMS)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_open: unknown option flag");
   try {
     lk::LoadOptions options;
     options.method = static_cast<lk::Method>(method);
+    options.require_checksums = (flags & RAILTAB_LOOKUP_REQUIRE_CHECKSUMS) != 0;
     *table = new railtab_lookup_table{lk::Table::load(path, options)};
     last_error.clear();
     return RAILTAB_LOOKUP_OK;
@@ -76,6 +96,10 @@ int railtab_lookup_open(const char* path, int method, railtab_lookup_table** tab
   } catch (...) {
     return fail(RAILTAB_LOOKUP_ERROR_INTERNAL, "railtab_lookup_open: unknown error");
   }
+}
+
+int railtab_lookup_open(const char* path, int method, railtab_lookup_table** table) {
+  return railtab_lookup_open_options(path, method, 0u, table);
 }
 
 int railtab_lookup_query(const railtab_lookup_table* table, int wheel,
@@ -106,11 +130,14 @@ int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
   return RAILTAB_LOOKUP_OK;
 }
 
-int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, const int* wheels,
-                               const railtab_lookup_state* states,
-                               railtab_lookup_result* results) {
+int railtab_lookup_query_batch_checked(const railtab_lookup_table* table, size_t n,
+                                       const int* wheels, const railtab_lookup_state* states,
+                                       railtab_lookup_result* results, size_t n_results) {
   if (!table || (n > 0 && (!wheels || !states || !results)))
     return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_batch: null argument");
+  if (n_results < n)
+    return fail(RAILTAB_LOOKUP_ERROR_BUFFER,
+                "railtab_lookup_query_batch: the results buffer holds fewer results than states");
   for (size_t k = 0; k < n; ++k)
     if (wheels[k] != RAILTAB_LOOKUP_LEFT && wheels[k] != RAILTAB_LOOKUP_RIGHT)
       return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT,
@@ -123,6 +150,12 @@ int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, cons
   return RAILTAB_LOOKUP_OK;
 }
 
+int railtab_lookup_query_batch(const railtab_lookup_table* table, size_t n, const int* wheels,
+                               const railtab_lookup_state* states,
+                               railtab_lookup_result* results) {
+  return railtab_lookup_query_batch_checked(table, n, wheels, states, results, n);
+}
+
 int railtab_lookup_default_state(const railtab_lookup_table* table, railtab_lookup_state* state) {
   if (!table || !state)
     return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_default_state: null argument");
@@ -130,6 +163,96 @@ int railtab_lookup_default_state(const railtab_lookup_table* table, railtab_look
   *state = railtab_lookup_state{s.y, s.roll, s.load, s.xi, s.eta, s.phi};
   return RAILTAB_LOOKUP_OK;
 }
+
+int railtab_lookup_info(const railtab_lookup_table* table, railtab_lookup_table_info* info) {
+  if (!table || !info) return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_info: null argument");
+  const lk::Table& t = table->table;
+  info->path = t.path().c_str();
+  info->format_version = t.format_version().c_str();
+  info->scene_name = t.scene_name().c_str();
+  info->method = static_cast<int>(t.method());
+  info->n_axes = static_cast<int>(t.axes().size());
+  info->n_fixed = static_cast<int>(t.fixed_axes().size());
+  info->n_slots = t.n_slots();
+  for (int p = 0; p < lk::kNumParts; ++p) info->has_part[p] = t.has_part(static_cast<lk::Part>(p));
+  info->checksums_verified = t.checksums_verified() ? 1 : 0;
+  info->memory_bytes = t.memory_bytes();
+  return RAILTAB_LOOKUP_OK;
+}
+
+int railtab_lookup_axis(const railtab_lookup_table* table, int index, const char** name,
+                        const char** units, size_t* n_nodes, const double** nodes) {
+  if (!table) return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_axis: null table");
+  const auto& axes = table->table.axes();
+  if (index < 0 || static_cast<size_t>(index) >= axes.size())
+    return fail(RAILTAB_LOOKUP_ERROR_RANGE, "railtab_lookup_axis: index outside 0 .. n_axes-1");
+  const lk::AxisInfo& a = axes[static_cast<size_t>(index)];
+  if (name) *name = a.name.c_str();
+  if (units) *units = a.units.c_str();
+  if (n_nodes) *n_nodes = a.nodes.size();
+  if (nodes) *nodes = a.nodes.data();
+  return RAILTAB_LOOKUP_OK;
+}
+
+int railtab_lookup_fixed_axis(const railtab_lookup_table* table, int index, const char** name,
+                              double* value) {
+  if (!table) return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_fixed_axis: null table");
+  const auto& fixed = table->table.fixed_axes();
+  if (index < 0 || static_cast<size_t>(index) >= fixed.size())
+    return fail(RAILTAB_LOOKUP_ERROR_RANGE,
+                "railtab_lookup_fixed_axis: index outside 0 .. n_fixed-1");
+  if (name) *name = fixed[static_cast<size_t>(index)].first.c_str();
+  if (value) *value = fixed[static_cast<size_t>(index)].second;
+  return RAILTAB_LOOKUP_OK;
+}
+
+const char* railtab_lookup_output_name(int output) {
+  return lk::output_name(static_cast<lk::Output>(output));
+}
+
+const char* railtab_lookup_output_units(int output) {
+  return lk::output_units(static_cast<lk::Output>(output));
+}
+
+int railtab_lookup_output_part(int output) {
+  if (output < 0 || output >= lk::kNumOutputs) return -1;
+  return static_cast<int>(lk::output_part(static_cast<lk::Output>(output)));
+}
+
+const char* railtab_lookup_part_name(int part) { return lk::part_name(static_cast<lk::Part>(part)); }
+
+const char* railtab_lookup_slot_name(int slot) {
+  static const char* const names[RAILTAB_LOOKUP_MAX_SLOTS] = {"tread", "flange", "slot2", "slot3"};
+  return (slot >= 0 && slot < RAILTAB_LOOKUP_MAX_SLOTS) ? names[slot] : "?";
+}
+
+const char* railtab_lookup_status_bit_name(uint32_t bit) { return lk::status::bit_name(bit); }
+
+size_t railtab_lookup_status_text(uint32_t status, char* buf, size_t size) {
+  // Built without allocating (no exception can arise): names joined into buf as they fit.
+  size_t length = 0;
+  auto append = [&](const char* text) {
+    for (const char* c = text; *c; ++c, ++length)
+      if (buf && length + 1 < size) buf[length] = *c;
+  };
+  if (status == 0) append("none");
+  for (unsigned b = 0; b < 32; ++b) {
+    if (!(status & (1u << b))) continue;
+    if (length > 0) append(",");
+    if (b < static_cast<unsigned>(lk::status::kNumBits)) {
+      append(lk::status::bit_name(1u << b));
+    } else {
+      char name[8] = {'b', 'i', 't', static_cast<char>('0' + b / 10), static_cast<char>('0' + b % 10), 0};
+      append(name);
+    }
+  }
+  if (buf && size > 0) buf[length < size ? length : size - 1] = '\0';
+  return length;
+}
+
+const char* railtab_lookup_version(void) { return lk::library_version(); }
+
+const char* railtab_lookup_format_version(void) { return lk::supported_format_version(); }
 
 void railtab_lookup_close(railtab_lookup_table* table) { delete table; }
 

@@ -136,9 +136,11 @@ Result Table::query(Wheel wheel, const State& state) const noexcept {
   return r;
 }
 
-void Table::query(std::span<const Query> queries, std::span<Result> results) const noexcept {
-  const std::size_t n = std::min(queries.size(), results.size());
-  for (std::size_t k = 0; k < n; ++k) query(queries[k].wheel, queries[k].state, results[k]);
+bool Table::query(std::span<const Query> queries, std::span<Result> results) const noexcept {
+  if (results.size() < queries.size()) return false;
+  for (std::size_t k = 0; k < queries.size(); ++k)
+    query(queries[k].wheel, queries[k].state, results[k]);
+  return true;
 }
 
 const std::string& Table::path() const { return data_->path; }

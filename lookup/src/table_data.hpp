@@ -92,6 +92,7 @@ struct TableData {
   Block block[2][kNumParts];          // [wheel][block], same block structure for both wheels
   std::vector<AxisInfo> axes_info;    // public copy of the axes, file order
   std::vector<std::pair<std::string, double>> fixed_list;  // public copy of fixed_axes
+  bool checksums_verified = false;    // every dataset had Fletcher32, metadata checksummed
 };
 
 }  // namespace railtab::lookup::detail

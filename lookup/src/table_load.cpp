@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 #include "flat_json.hpp"
@@ -14,6 +15,11 @@ namespace railtab::lookup::detail {
 namespace {
 
 constexpr int kKnownMajor = 1;  // format major version this reader understands
+// Limits (docs/table-format.md, "Limits"), checked before anything is allocated: the generator
+// writes at most 1e6 nodes per axis; one part's grid at most 2^28 nodes (2 GiB per output
+// dataset and slot).
+constexpr std::size_t kMaxAxisNodes = 1'000'000;
+constexpr std::size_t kMaxTableValues = std::size_t{1} << 28;
 
 std::string shape_text(const std::vector<hsize_t>& dims) {
   std::string s = "[";
@@ -32,23 +38,78 @@ std::string without_spaces(const std::string& s) {
   return out;
 }
 
+// "MAJOR.MINOR", both plain decimal numbers of at most 6 digits, nothing else.
+bool parse_version(const std::string& v, int& major) {
+  const std::size_t dot = v.find('.');
+  if (dot == std::string::npos || dot == 0 || dot > 6 || v.size() - dot - 1 == 0 ||
+      v.size() - dot - 1 > 6)
+    return false;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (i != dot && (v[i] < '0' || v[i] > '9')) return false;
+  major = std::stoi(v.substr(0, dot));
+  return true;
+}
+
 void read_version(const Hdf5File& f, TableData& d) {
   const auto v = f.string_attribute("/", "format_version");
   if (!v) f.fail("missing root attribute format_version (not a railtab table?)");
   d.format_version = *v;
-  const std::size_t dot = v->find('.');
   int major = -1;
-  try {
-    std::size_t used = 0;
-    major = std::stoi(v->substr(0, dot), &used);
-    if (used != v->substr(0, dot).size() || dot == std::string::npos) major = -1;
-  } catch (const std::exception&) {
-    major = -1;
-  }
-  if (major < 0) f.fail("format_version '" + *v + "' is not of the form MAJOR.MINOR");
+  if (!parse_version(*v, major))
+    f.fail("format_version '" + *v + "' is not of the form MAJOR.MINOR (e.g. \"1.1\")");
   if (major != kKnownMajor)
     f.fail("unsupported format_version '" + *v + "': this reader knows major version " +
            std::to_string(kKnownMajor) + " (a newer railtab may read it)");
+}
+
+// A shard (`railtab generate --shard I/N`) covers part of y only: refused, it must be merged.
+void refuse_shard(const Hdf5File& f) {
+  if (!f.has_attribute("/", "shard")) return;
+  const auto which = f.string_attribute("/", "shard");
+  f.fail("it is shard " + which.value_or("?") + " of a table (root attribute 'shard'): join the " +
+         "shards with `railtab merge` and load the merged table");
+}
+
+// Checksums (docs/table-format.md, "Integrity"): a table either carries HDF5's Fletcher32
+// filter on every dataset and checksummed metadata (superblock >= 2), or is a legacy table
+// without any (loaded, flagged unverified, unless the caller requires checksums).
+void read_integrity(Hdf5File& f, TableData& d, const LoadOptions& options) {
+  if (!f.exists("/axes/slot")) f.fail("missing dataset /axes/slot");
+  d.checksums_verified = f.checksummed("/axes/slot");
+  if (d.checksums_verified) {
+    if (f.superblock_version() < 2)
+      f.fail("datasets carry checksums but the metadata do not (HDF5 superblock version " +
+             std::to_string(f.superblock_version()) + ", checksummed metadata need >= 2)");
+  } else if (options.require_checksums) {
+    f.fail("it has no checksums (a table written before format 1.1): regenerate it, or load it "
+           "without require_checksums");
+  }
+  f.set_allow_variable_strings(!d.checksums_verified);
+}
+
+void check_checksum(const Hdf5File& f, const TableData& d, const std::string& ds, bool has) {
+  if (has != d.checksums_verified)
+    f.fail(has ? "dataset " + ds + " has a checksum but /axes/slot has none"
+               : "dataset " + ds + " has no checksum but /axes/slot has one (a checksummed " +
+                     "table checksums every dataset)");
+}
+
+// An axis the query path can use: finite nodes, strictly increasing, every cell width and its
+// reciprocal finite (a subnormal width has an infinite reciprocal), and the mean spacing too
+// (the uniform-axis fast path multiplies by its reciprocal).
+void check_axis(const Hdf5File& f, const std::string& name, const std::vector<double>& x) {
+  if (x.size() < 2) f.fail("axis " + name + " has fewer than 2 nodes");
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(x[i])) f.fail("axis " + name + " holds a non-finite node");
+    if (i > 0 && !(x[i] > x[i - 1]))
+      f.fail("axis " + name + " is not strictly increasing at index " + std::to_string(i));
+    if (i > 0 && !(std::isfinite(x[i] - x[i - 1]) && std::isfinite(1.0 / (x[i] - x[i - 1]))))
+      f.fail("axis " + name + " has a cell width (index " + std::to_string(i - 1) + " to " +
+             std::to_string(i) + ") whose reciprocal is not finite");
+  }
+  const double h = (x.back() - x.front()) / static_cast<double>(x.size() - 1);
+  if (!(std::isfinite(h) && h > 0.0 && std::isfinite(1.0 / h)))
+    f.fail("axis " + name + " has a mean spacing whose reciprocal is not finite");
 }
 
 void read_axes(const Hdf5File& f, TableData& d) {
@@ -56,19 +117,16 @@ void read_axes(const Hdf5File& f, TableData& d) {
   for (int var = 0; var < kNumVars; ++var) {
     const std::string name = std::string("/axes/") + var_name(var);
     if (!f.exists(name)) continue;
-    auto a = f.read_doubles(name, H5T_FLOAT);
+    auto a = f.read_axis(name, kMaxAxisNodes);
+    check_checksum(f, d, name, a.checksummed);
     if (a.dims.size() != 1) f.fail("axis " + name + " is not 1-D, shape " + shape_text(a.dims));
-    if (a.values.size() < 2) f.fail("axis " + name + " has fewer than 2 nodes");
-    for (std::size_t i = 0; i < a.values.size(); ++i) {
-      if (!std::isfinite(a.values[i])) f.fail("axis " + name + " holds a non-finite node");
-      if (i > 0 && !(a.values[i] > a.values[i - 1]))
-        f.fail("axis " + name + " is not strictly increasing at index " + std::to_string(i));
-    }
+    check_axis(f, name, a.values);
     d.tabulated[var] = true;
-    d.axes_info.push_back({var_name(var), a.values});
+    d.axes_info.push_back({var_name(var), a.values, f.string_attribute(name, "units").value_or("")});
     d.axis[var] = Axis(std::move(a.values));
   }
-  const auto slot = f.read_int32("/axes/slot");
+  const auto slot = f.read_int32("/axes/slot", kMaxAxisNodes);
+  check_checksum(f, d, "/axes/slot", slot.checksummed);
   if (slot.dims.size() != 1 || slot.values.empty())
     f.fail("axis /axes/slot must be 1-D and non-empty, shape " + shape_text(slot.dims));
   for (std::size_t i = 0; i < slot.values.size(); ++i)
@@ -90,23 +148,34 @@ void read_fixed_axes(const Hdf5File& f, TableData& d) {
   } catch (const std::runtime_error& e) {
     f.fail(std::string("root attribute fixed_axes is not a flat JSON object: ") + e.what());
   }
+  bool listed[kNumVars] = {};
   for (const FlatJsonEntry& e : entries) {
-    for (int var = 0; var < kNumVars; ++var) {
-      if (e.key != var_name(var)) continue;  // other keys: a later minor version's business
-      if (d.tabulated[var]) f.fail("'" + e.key + "' is both an axis and in fixed_axes");
-      if (e.is_text) {
-        // Roll may follow the kinematic equilibrium at each y (root dataset /equilibrium_roll):
-        // then it is neither an axis nor an input, and queries ignore State::roll.
-        if (e.key == "roll" && e.text == "equilibrium") break;
-        f.fail("fixed_axes value of '" + e.key + "' must be a number (or \"equilibrium\" for roll), got \"" +
-               e.text + "\"");
-      }
-      if (!std::isfinite(e.number)) f.fail("fixed_axes value of '" + e.key + "' is not finite");
-      d.fixed[var] = true;
-      d.fixed_value[var] = e.number;
-      d.fixed_list.emplace_back(e.key, e.number);
+    int var = 0;
+    while (var < kNumVars && e.key != var_name(var)) ++var;
+    if (var == kNumVars)
+      f.fail("root attribute fixed_axes names '" + e.key + "', not a state variable (y, roll, " +
+             "load, xi, eta, phi)");
+    if (listed[var]) f.fail("root attribute fixed_axes lists '" + e.key + "' twice");
+    listed[var] = true;
+    if (d.tabulated[var]) f.fail("'" + e.key + "' is both an axis and in fixed_axes");
+    if (e.is_text) {
+      // Roll may follow the kinematic equilibrium at each y (root dataset /equilibrium_roll):
+      // then it is neither an axis nor an input, and queries ignore State::roll.
+      if (e.key == "roll" && e.text == "equilibrium") continue;
+      f.fail("fixed_axes value of '" + e.key + "' must be a number (or \"equilibrium\" for roll), got \"" +
+             e.text + "\"");
     }
+    if (!std::isfinite(e.number)) f.fail("fixed_axes value of '" + e.key + "' is not finite");
+    d.fixed[var] = true;
+    d.fixed_value[var] = e.number;
+    d.fixed_list.emplace_back(e.key, e.number);
   }
+  // Every state variable is either tabulated or fixed: a table that says nothing about one
+  // cannot tell the caller what value its numbers hold for.
+  for (int var = 0; var < kNumVars; ++var)
+    if (!d.tabulated[var] && !listed[var])
+      f.fail(std::string("state variable '") + var_name(var) + "' is neither an axis (/axes/" +
+             var_name(var) + ") nor in the root attribute fixed_axes");
 }
 
 // One part of one wheel as read from the file, checked.
@@ -126,26 +195,28 @@ PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& g
     if (!spec.uses[var] || !d.tabulated[var]) continue;
     p.vars.push_back(var);
     p.dims.push_back(static_cast<hsize_t>(d.axis[var].size()));
-    p.nodes *= static_cast<std::size_t>(d.axis[var].size());
+    p.nodes *= static_cast<std::size_t>(d.axis[var].size());  // axes <= kMaxAxisNodes: no wrap
+    if (p.nodes > kMaxTableValues)
+      f.fail("part " + group + " spans more than " + std::to_string(kMaxTableValues) +
+             " grid nodes (limit, docs/table-format.md)");
     axes_attr += std::string(var_name(var)) + ",";
   }
   std::vector<hsize_t> expected = p.dims;
   expected.push_back(static_cast<hsize_t>(d.n_slots));
   axes_attr += "slot";
 
-  auto check_shape = [&](const std::string& ds, const std::vector<hsize_t>& dims) {
-    if (dims != expected)
-      f.fail("dataset " + ds + " has shape " + shape_text(dims) + ", but the table's axes (" +
-             axes_attr + ") need " + shape_text(expected));
+  auto check_axes_attribute = [&](const std::string& ds) {
     const auto attr = f.string_attribute(ds, "axes");
     if (!attr) f.fail("dataset " + ds + " has no 'axes' attribute");
     if (without_spaces(*attr) != axes_attr)
       f.fail("dataset " + ds + " has axes='" + *attr + "', expected '" + axes_attr + "'");
   };
+  const std::string shape_source = "the table's axes (" + axes_attr + ")";
   for (int k = 0; k < spec.n_out; ++k) {
     const std::string ds = group + "/" + output_name(static_cast<Output>(spec.first_output + k));
-    auto v = f.read_doubles(ds, H5T_FLOAT);
-    check_shape(ds, v.dims);
+    auto v = f.read_doubles(ds, expected, shape_source);
+    check_checksum(f, d, ds, v.checksummed);
+    check_axes_attribute(ds);
     for (std::size_t i = 0; i < v.values.size(); ++i)
       if (!std::isfinite(v.values[i]))
         f.fail("dataset " + ds + " holds a non-finite value at flat index " + std::to_string(i) +
@@ -153,8 +224,9 @@ PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& g
     p.outputs.push_back(std::move(v.values));
   }
   const std::string ds = group + "/status";
-  auto st = f.read_uint32(ds);
-  check_shape(ds, st.dims);
+  auto st = f.read_uint32(ds, expected, shape_source);
+  check_checksum(f, d, ds, st.checksummed);
+  check_axes_attribute(ds);
   p.status = std::move(st.values);
   return p;
 }
@@ -203,7 +275,9 @@ Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& a
 
 }  // namespace
 
-std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOptions& options) {
+namespace {
+
+std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptions& options) {
   if (options.method != Method::kLinear && options.method != Method::kCubic &&
       options.method != Method::kMonotoneCubic)
     throw LoadError(path, "unknown interpolation method " +
@@ -213,7 +287,17 @@ std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOp
   auto d = std::make_shared<TableData>();
   d->path = path;
   d->method = options.method;
+  if (!f.has_attribute("/", "format_version"))
+    f.fail("missing root attribute format_version (not a railtab table?)");
+  read_integrity(f, *d, options);  // before any string is read: decides how strings are read
+  // Checksummed table: every string attribute of the file, not only those read below, so that a
+  // caller reading more of the file after a successful load (`railtab inspect`) meets no
+  // variable-length string (refused) and no oversized one. Not for a legacy table: libhdf5
+  // 1.10.8 itself crashes decoding some corrupt attribute messages that listing all of them
+  // would touch (measured: 5 in 1,000 single-byte changes), while the lookup alone reads none.
+  if (d->checksums_verified) f.check_all_string_attributes();
   read_version(f, *d);
+  refuse_shard(f);
   d->scene_name = f.string_attribute("/", "scene_name").value_or("");
   read_axes(f, *d);
   read_fixed_axes(f, *d);
@@ -263,6 +347,22 @@ std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOp
     for (int b = 0; b < d->n_blocks; ++b) d->block[w][b] = make_block(groups[b], arrays, d->n_slots);
   }
   return d;
+}
+
+}  // namespace
+
+std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOptions& options) {
+  // Every extent is checked against the file before it is allocated, so running out of memory
+  // here means the machine is short of it for a valid table: still a LoadError (one type to
+  // catch, and nothing but LoadError leaves Table::load).
+  try {
+    return load_checked(path, options);
+  } catch (const std::bad_alloc&) {
+    throw LoadError(path, "out of memory while loading (Table::memory_bytes of a similar table "
+                          "says how much it needs)");
+  } catch (const std::length_error& e) {
+    throw LoadError(path, std::string("a size is out of range: ") + e.what());
+  }
 }
 
 }  // namespace railtab::lookup::detail

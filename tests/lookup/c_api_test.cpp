@@ -75,3 +75,141 @@ TEST(CApi, QueriesMatchTheCppApi) {
 
 }  // namespace
 }  // namespace railtab::lookup
+
+namespace railtab::lookup {
+namespace {
+
+// Issue #16 item 5: every status bit of src/core/status.hpp in the C API (values checked at
+// compile time in c_api.cpp and against the core in status_bits_test.cpp), and their names.
+TEST(CApiComplete, StatusBitNamesAndText) {
+  const uint32_t bits[RAILTAB_LOOKUP_NUM_STATUS_BITS] = {
+      RAILTAB_LOOKUP_CONVERGED,         RAILTAB_LOOKUP_NOT_CONVERGED,
+      RAILTAB_LOOKUP_TWO_POINT,         RAILTAB_LOOKUP_LIFT_OFF,
+      RAILTAB_LOOKUP_CURVATURE_CLIPPED, RAILTAB_LOOKUP_CURVATURE_SHIFTED,
+      RAILTAB_LOOKUP_FALLBACK_MODEL,    RAILTAB_LOOKUP_FLANGE_CONTACT,
+      RAILTAB_LOOKUP_NON_HERTZIAN,      RAILTAB_LOOKUP_FULL_SLIP,
+      RAILTAB_LOOKUP_OUT_OF_RANGE,      RAILTAB_LOOKUP_INVALID_INPUT,
+      RAILTAB_LOOKUP_PROFILE_EDGE,      RAILTAB_LOOKUP_FAILED};
+  for (int b = 0; b < RAILTAB_LOOKUP_NUM_STATUS_BITS; ++b) {
+    EXPECT_EQ(bits[b], 1u << b);
+    EXPECT_STRNE(railtab_lookup_status_bit_name(bits[b]), "unknown");
+  }
+  EXPECT_STREQ(railtab_lookup_status_bit_name(RAILTAB_LOOKUP_FAILED), "failed");
+  EXPECT_STREQ(railtab_lookup_status_bit_name(3u), "unknown");
+  char buf[64];
+  const uint32_t s = RAILTAB_LOOKUP_CONVERGED | RAILTAB_LOOKUP_TWO_POINT | (1u << 20);
+  EXPECT_EQ(railtab_lookup_status_text(s, buf, sizeof buf), std::strlen("converged,two_point,bit20"));
+  EXPECT_STREQ(buf, "converged,two_point,bit20");
+  EXPECT_EQ(std::string(buf), status::describe(s));
+  EXPECT_EQ(railtab_lookup_status_text(0, buf, sizeof buf), 4u);
+  EXPECT_STREQ(buf, "none");
+  // Too short: truncated, terminated, and the full length returned (as snprintf).
+  char small[6];
+  EXPECT_EQ(railtab_lookup_status_text(s, small, sizeof small), 25u);
+  EXPECT_STREQ(small, "conve");
+  EXPECT_EQ(railtab_lookup_status_text(s, nullptr, 0), 25u);
+}
+
+TEST(CApiComplete, IntrospectionAndVersions) {
+  testing::TempFile file("info");
+  testing::write_fixture(file.path, testing::default_scene_spec());
+  railtab_lookup_table* t = nullptr;
+  ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK)
+      << railtab_lookup_last_error();
+  railtab_lookup_table_info info;
+  ASSERT_EQ(railtab_lookup_info(t, &info), RAILTAB_LOOKUP_OK);
+  EXPECT_EQ(std::string(info.path), file.path);
+  EXPECT_STREQ(info.format_version, "1.0");
+  EXPECT_STREQ(info.scene_name, "fixture");
+  EXPECT_EQ(info.n_axes, 4);   // y, xi, eta, phi
+  EXPECT_EQ(info.n_fixed, 2);  // roll, load
+  EXPECT_EQ(info.n_slots, 2);
+  for (int p = 0; p < RAILTAB_LOOKUP_NUM_PARTS; ++p) EXPECT_EQ(info.has_part[p], 1);
+  EXPECT_EQ(info.checksums_verified, 1);
+  EXPECT_GT(info.memory_bytes, 0u);
+
+  const char* name = nullptr;
+  const char* units = nullptr;
+  size_t n = 0;
+  const double* nodes = nullptr;
+  ASSERT_EQ(railtab_lookup_axis(t, 0, &name, &units, &n, &nodes), RAILTAB_LOOKUP_OK);
+  EXPECT_STREQ(name, "y");
+  EXPECT_STREQ(units, "m");
+  ASSERT_EQ(n, 41u);
+  EXPECT_EQ(nodes[0], -0.01);
+  EXPECT_EQ(nodes[40], 0.01);
+  ASSERT_EQ(railtab_lookup_axis(t, 3, &name, &units, nullptr, nullptr), RAILTAB_LOOKUP_OK);
+  EXPECT_STREQ(name, "phi");
+  EXPECT_STREQ(units, "rad/m");
+  EXPECT_EQ(railtab_lookup_axis(t, 4, &name, nullptr, nullptr, nullptr), RAILTAB_LOOKUP_ERROR_RANGE);
+  EXPECT_EQ(railtab_lookup_axis(t, -1, &name, nullptr, nullptr, nullptr), RAILTAB_LOOKUP_ERROR_RANGE);
+  double value = 0;
+  ASSERT_EQ(railtab_lookup_fixed_axis(t, 1, &name, &value), RAILTAB_LOOKUP_OK);
+  EXPECT_STREQ(name, "load");
+  EXPECT_EQ(value, 78500.0);
+  EXPECT_EQ(railtab_lookup_fixed_axis(t, 2, &name, &value), RAILTAB_LOOKUP_ERROR_RANGE);
+
+  EXPECT_STREQ(railtab_lookup_output_name(RAILTAB_LOOKUP_FX), "fx");
+  EXPECT_STREQ(railtab_lookup_output_units(RAILTAB_LOOKUP_MZ), "N m");
+  EXPECT_STREQ(railtab_lookup_output_units(RAILTAB_LOOKUP_WEAR_RATE), "m2/m");
+  EXPECT_EQ(railtab_lookup_output_part(RAILTAB_LOOKUP_SEMI_AXIS_B), RAILTAB_LOOKUP_NORMAL);
+  EXPECT_EQ(railtab_lookup_output_part(RAILTAB_LOOKUP_NUM_OUTPUTS), -1);
+  EXPECT_STREQ(railtab_lookup_part_name(RAILTAB_LOOKUP_CREEP), "creep");
+  EXPECT_STREQ(railtab_lookup_slot_name(1), "flange");
+  EXPECT_EQ(std::string(railtab_lookup_version()), library_version());
+  EXPECT_STREQ(railtab_lookup_format_version(), "1.1");
+  railtab_lookup_close(t);
+}
+
+// A short results buffer is an error code (nothing written), never a silent truncation; the C++
+// batch returns false.
+TEST(CApiComplete, ShortBatchBufferIsAnError) {
+  testing::TempFile file("batch");
+  testing::write_fixture(file.path, testing::default_scene_spec());
+  railtab_lookup_table* t = nullptr;
+  ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK);
+  railtab_lookup_state s;
+  railtab_lookup_default_state(t, &s);
+  const int wheels[3] = {0, 1, 0};
+  const railtab_lookup_state states[3] = {s, s, s};
+  railtab_lookup_result results[3];
+  results[0].n_slots = -7;
+  EXPECT_EQ(railtab_lookup_query_batch_checked(t, 3, wheels, states, results, 2),
+            RAILTAB_LOOKUP_ERROR_BUFFER);
+  EXPECT_EQ(results[0].n_slots, -7);
+  EXPECT_NE(std::string(railtab_lookup_last_error()).find("fewer results"), std::string::npos);
+  EXPECT_EQ(railtab_lookup_query_batch_checked(t, 3, wheels, states, results, 3), RAILTAB_LOOKUP_OK);
+  EXPECT_EQ(results[0].n_slots, 2);
+  railtab_lookup_close(t);
+
+  const Table cpp = Table::load(file.path);
+  std::vector<Query> q(3);
+  std::vector<Result> r(2);
+  r[0].n_slots = -7;
+  EXPECT_FALSE(cpp.query(q, r));
+  EXPECT_EQ(r[0].n_slots, -7);
+  r.resize(3);
+  EXPECT_TRUE(cpp.query(q, r));
+  EXPECT_EQ(r[0].n_slots, 2);
+}
+
+TEST(CApiComplete, RequireChecksumsFlag) {
+  testing::TempFile file("legacy");
+  testing::FixtureSpec spec = testing::default_scene_spec();
+  spec.checksums = false;
+  testing::write_fixture(file.path, spec);
+  railtab_lookup_table* t = nullptr;
+  ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK);
+  railtab_lookup_table_info info;
+  railtab_lookup_info(t, &info);
+  EXPECT_EQ(info.checksums_verified, 0);
+  railtab_lookup_close(t);
+  EXPECT_EQ(railtab_lookup_open_options(file.path.c_str(), RAILTAB_LOOKUP_LINEAR,
+                                        RAILTAB_LOOKUP_REQUIRE_CHECKSUMS, &t),
+            RAILTAB_LOOKUP_ERROR_LOAD);
+  EXPECT_NE(std::string(railtab_lookup_last_error()).find("no checksums"), std::string::npos);
+  EXPECT_EQ(railtab_lookup_open_options(file.path.c_str(), 0, 8u, &t), RAILTAB_LOOKUP_ERROR_ARGUMENT);
+}
+
+}  // namespace
+}  // namespace railtab::lookup

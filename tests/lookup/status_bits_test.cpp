@@ -22,12 +22,23 @@ TEST(StatusBits, MatchTheCore) {
   EXPECT_EQ(status::kOutOfRange, railtab::status::kOutOfRange);
   EXPECT_EQ(status::kInvalidInput, railtab::status::kInvalidInput);
   EXPECT_EQ(status::kProfileEdge, railtab::status::kProfileEdge);
+  EXPECT_EQ(status::kFailed, railtab::status::kFailed);
   EXPECT_EQ(RAILTAB_LOOKUP_CONVERGED, railtab::status::kConverged);
   EXPECT_EQ(RAILTAB_LOOKUP_LIFT_OFF, railtab::status::kLiftOff);
   EXPECT_EQ(RAILTAB_LOOKUP_FLANGE_CONTACT, railtab::status::kFlangeContact);
   EXPECT_EQ(RAILTAB_LOOKUP_FULL_SLIP, railtab::status::kFullSlip);
   EXPECT_EQ(RAILTAB_LOOKUP_OUT_OF_RANGE, railtab::status::kOutOfRange);
   EXPECT_EQ(RAILTAB_LOOKUP_INVALID_INPUT, railtab::status::kInvalidInput);
+  EXPECT_EQ(RAILTAB_LOOKUP_NOT_CONVERGED, railtab::status::kNotConverged);
+  EXPECT_EQ(RAILTAB_LOOKUP_TWO_POINT, railtab::status::kTwoPoint);
+  EXPECT_EQ(RAILTAB_LOOKUP_CURVATURE_CLIPPED, railtab::status::kCurvatureClipped);
+  EXPECT_EQ(RAILTAB_LOOKUP_CURVATURE_SHIFTED, railtab::status::kCurvatureShifted);
+  EXPECT_EQ(RAILTAB_LOOKUP_FALLBACK_MODEL, railtab::status::kFallbackModel);
+  EXPECT_EQ(RAILTAB_LOOKUP_NON_HERTZIAN, railtab::status::kNonHertzian);
+  EXPECT_EQ(RAILTAB_LOOKUP_PROFILE_EDGE, railtab::status::kProfileEdge);
+  EXPECT_EQ(RAILTAB_LOOKUP_FAILED, railtab::status::kFailed);
+  // The core defines no bit above kFailed: the lookup's count covers them all.
+  EXPECT_EQ(1u << (status::kNumBits - 1), railtab::status::kFailed);
 }
 
 }  // namespace

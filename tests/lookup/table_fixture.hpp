@@ -60,6 +60,13 @@ struct FixtureSpec {
   std::string omit_dataset;        // e.g. "/right/creep/fy": left out (bad-file tests)
   std::string wrong_axes_dataset;  // this dataset gets a wrong 'axes' attribute
   bool fixed_length_strings = false;  // fixed-length instead of variable-length string attributes
+  // Format 1.1 integrity (docs/table-format.md): Fletcher32 on every dataset, checksummed
+  // metadata (HDF5 1.10 file format), fixed-length strings. false: a legacy 1.0 table.
+  bool checksums = true;
+  // Variables neither on an axis nor in `fixed` (nor in fixed_text) are written to fixed_axes
+  // at 0, as the generator does; false leaves them out (a malformed table).
+  bool complete_fixed = true;
+  std::vector<std::pair<std::string, std::string>> extra_root_attributes;  // e.g. {"shard","1/4"}
   std::string fixed_text;          // extra raw "key":value members of fixed_axes, e.g. "\"roll\":\"equilibrium\""
   ValueFn value;                      // required
   StatusFn status = [](int, int, int, const double*) -> std::uint32_t { return 1u; };
@@ -96,13 +103,18 @@ inline void string_attr(hid_t obj, const char* name, const std::string& value, b
   H5Tclose(type);
 }
 
-// Creates a dataset (chunked + shuffle + deflate 4 above 64 KiB, as the format says).
+// Creates a dataset (chunked + shuffle + deflate 4 above 64 KiB, as the format says; with
+// `checksum` every dataset is chunked, whole when small, and gets Fletcher32).
 inline hid_t create_dataset(hid_t parent, const char* name, hid_t type,
-                            const std::vector<hsize_t>& dims, std::size_t elem_size) {
+                            const std::vector<hsize_t>& dims, std::size_t elem_size,
+                            bool checksum) {
   const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
   const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   std::size_t n = 1;
   for (hsize_t d : dims) n *= d;
+  if (checksum && n * elem_size <= 64 * 1024) {
+    check(H5Pset_chunk(dcpl, static_cast<int>(dims.size()), dims.data()), "chunk");
+  }
   if (n * elem_size > 64 * 1024) {
     std::vector<hsize_t> chunk = dims;
     // Chunk = trailing dimensions whole, leading ones 1, until ~64 KiB.
@@ -119,6 +131,7 @@ inline hid_t create_dataset(hid_t parent, const char* name, hid_t type,
     check(H5Pset_shuffle(dcpl), "shuffle");
     check(H5Pset_deflate(dcpl, 4), "deflate");
   }
+  if (checksum) check(H5Pset_fletcher32(dcpl), "fletcher32");
   const hid_t d =
       check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), name);
   H5Pclose(dcpl);
@@ -131,20 +144,33 @@ inline hid_t create_dataset(hid_t parent, const char* name, hid_t type,
 // Writes `spec` to `path` (overwriting). Throws std::runtime_error on HDF5 failure.
 inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
   using namespace fixture_detail;
-  const bool fl = spec.fixed_length_strings;
-  const hid_t file = check_id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+  const bool fl = spec.fixed_length_strings || spec.checksums;
+  const bool ck = spec.checksums;
+  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  if (ck) check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_LATEST), "libver");
+  const hid_t file = check_id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl),
                               path.c_str());
+  H5Pclose(fapl);
+  std::vector<std::pair<int, double>> fixed = spec.fixed;
+  if (spec.complete_fixed) {
+    for (int v = 0; v < 6; ++v) {
+      bool known = spec.fixed_text.find(std::string("\"") + kVarNames[v] + "\"") != std::string::npos;
+      for (const auto& a : spec.axes) known |= a.first == v;
+      for (const auto& f : spec.fixed) known |= f.first == v;
+      if (!known) fixed.emplace_back(v, 0.0);
+    }
+  }
   std::string fixed_json = "{";
-  for (std::size_t k = 0; k < spec.fixed.size(); ++k) {
+  for (std::size_t k = 0; k < fixed.size(); ++k) {
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.17g", spec.fixed[k].second);
+    std::snprintf(buf, sizeof buf, "%.17g", fixed[k].second);
     if (k) fixed_json += ',';
     fixed_json += '"';
-    fixed_json += kVarNames[spec.fixed[k].first];
+    fixed_json += kVarNames[fixed[k].first];
     fixed_json += "\":";
     fixed_json += buf;
   }
-  if (!spec.fixed_text.empty()) fixed_json += (spec.fixed.empty() ? "" : ",") + spec.fixed_text;
+  if (!spec.fixed_text.empty()) fixed_json += (fixed.empty() ? "" : ",") + spec.fixed_text;
   fixed_json += "}";
   string_attr(file, "format_version", spec.format_version, fl);
   string_attr(file, "railtab_version", "test-fixture", fl);
@@ -154,6 +180,8 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
   string_attr(file, "scene_name", "fixture", fl);
   string_attr(file, "models", "{}", fl);
   string_attr(file, "fixed_axes", fixed_json, fl);
+  for (const auto& [name, value] : spec.extra_root_attributes)
+    string_attr(file, name.c_str(), value, fl);
 
   // Axes as dimension scales.
   const hid_t axes = check_id(H5Gcreate2(file, "axes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
@@ -163,7 +191,7 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
   double x_fixed[6] = {0, 0, 0, 0, 0, 0};
   for (const auto& [var, value] : spec.fixed) x_fixed[var] = value;
   for (const auto& [var, nodes] : spec.axes) {
-    const hid_t d = create_dataset(axes, kVarNames[var], H5T_IEEE_F64LE, {nodes.size()}, 8);
+    const hid_t d = create_dataset(axes, kVarNames[var], H5T_IEEE_F64LE, {nodes.size()}, 8, ck);
     check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, nodes.data()), "axis");
     check(H5DSset_scale(d, kVarNames[var]), "set_scale");
     string_attr(d, "units", kVarUnits[var], fl);
@@ -173,7 +201,7 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
   {
     std::vector<std::int32_t> slots(static_cast<std::size_t>(spec.n_slots));
     for (int s = 0; s < spec.n_slots; ++s) slots[s] = s;
-    const hid_t d = create_dataset(axes, "slot", H5T_STD_I32LE, {slots.size()}, 4);
+    const hid_t d = create_dataset(axes, "slot", H5T_STD_I32LE, {slots.size()}, 4, ck);
     check(H5Dwrite(d, H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, slots.data()), "slot");
     check(H5DSset_scale(d, "slot"), "set_scale");
     string_attr(d, "units", "1", fl);
@@ -236,7 +264,7 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
           state_of(flat, x, slot);
           buf[flat] = spec.value(wheel, part, static_cast<int>(o), slot, x);
         }
-        const hid_t d = create_dataset(pg, pf.outputs[o], H5T_IEEE_F64LE, dims, 8);
+        const hid_t d = create_dataset(pg, pf.outputs[o], H5T_IEEE_F64LE, dims, 8, ck);
         check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()), "write");
         finish(d, full, pf.units[o], pf.outputs[o]);
       }
@@ -249,7 +277,7 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
           state_of(flat, x, slot);
           st[flat] = spec.status(wheel, part, slot, x);
         }
-        const hid_t d = create_dataset(pg, "status", H5T_STD_U32LE, dims, 4);
+        const hid_t d = create_dataset(pg, "status", H5T_STD_U32LE, dims, 4, ck);
         check(H5Dwrite(d, H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, st.data()), "status");
         finish(d, full, "1", "status bits (src/core/status.hpp)");
       }

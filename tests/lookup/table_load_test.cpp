@@ -36,15 +36,21 @@ void expect_load_error(const std::string& path, const std::string& problem) {
   }
 }
 
+// Legacy (format 1.0, no checksums) tables load with either string kind, flagged unverified.
 TEST(TableLoad, GoodTableLoadsWithEitherStringKind) {
   for (bool fixed_length : {false, true}) {
     TempFile file("good");
     FixtureSpec spec = tiny_spec();
+    spec.checksums = false;
     spec.fixed_length_strings = fixed_length;
     testing::write_fixture(file.path, spec);
     const Table t = Table::load(file.path);
     EXPECT_EQ(t.format_version(), "1.0");
     EXPECT_EQ(t.fixed_axes().size(), 4u);
+    EXPECT_FALSE(t.checksums_verified());
+    ASSERT_EQ(t.axes().size(), 2u);
+    EXPECT_EQ(t.axes()[0].units, "m");
+    EXPECT_EQ(t.axes()[1].units, "rad/m");
   }
 }
 
@@ -127,8 +133,12 @@ TEST(TableLoad, WrongShape) {
     const hsize_t n = 4;
     const double phi[4] = {-1, 0, 0.5, 1};
     const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t d = H5Dcreate2(f, "/axes/phi", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);  // as the fixture: checksummed
+    H5Pset_chunk(dcpl, 1, &n);
+    H5Pset_fletcher32(dcpl);
+    const hid_t d = H5Dcreate2(f, "/axes/phi", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl,
                                H5P_DEFAULT);
+    H5Pclose(dcpl);
     H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, phi);
     H5Dclose(d);
     H5Sclose(space);
@@ -169,6 +179,7 @@ TEST(TableLoad, EquilibriumRollLoadsAndIgnoresRoll) {
 TEST(TableLoad, FixedAxesTextOnlyForEquilibriumRoll) {
   TempFile file("fixed_text");
   FixtureSpec spec = tiny_spec();
+  spec.fixed = {{1, 0.0}, {3, 0.0}, {4, 0.0}};
   spec.fixed_text = "\"load\":\"heavy\"";
   testing::write_fixture(file.path, spec);
   expect_load_error(file.path, "fixed_axes value of 'load' must be a number");

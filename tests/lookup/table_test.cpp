@@ -179,10 +179,8 @@ TEST(TablePartial, AbsentPartsGiveZerosAndNoStatus) {
   EXPECT_FALSE(t.has_part(kCreep));
   Result r;
   r.contact[0].value[kFx] = 123.0;  // must be overwritten
-  State s;
+  State s = t.default_state();  // every untabulated variable is in fixed_axes (at 0 here)
   s.y = 0.001;
-  s.xi = std::numeric_limits<double>::quiet_NaN();  // neither tabulated nor fixed: ignored
-  s.load = 5e4;
   t.query(Wheel::kLeft, s, r);
   EXPECT_EQ(r.status, 0u);
   EXPECT_EQ(r.contact[0].value[kFx], 0.0);

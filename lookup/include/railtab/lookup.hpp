@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "railtab/lookup_export.h"
+
 namespace railtab::lookup {
 
 using StatusBits = std::uint32_t;
@@ -43,6 +45,15 @@ inline constexpr StatusBits kOutOfRange = 1u << 10;       // query clamped to th
                                                           // fixed axis queried off its value
 inline constexpr StatusBits kInvalidInput = 1u << 11;     // NaN/inf in the query: outputs are 0
 inline constexpr StatusBits kProfileEdge = 1u << 12;      // contact band reached a profile end
+inline constexpr StatusBits kFailed = 1u << 13;           // the core threw at a node: outputs 0
+inline constexpr int kNumBits = 14;                       // bits 0 .. kNumBits-1 are defined
+
+// Name of one bit as in the table files and `railtab inspect` ("converged", "two_point", ...;
+// "unknown" for a value that is not a single defined bit).
+RAILTAB_LOOKUP_API const char* bit_name(StatusBits bit) noexcept;
+// Comma-separated names of the set bits, e.g. "converged,two_point"; "none" for 0; undefined
+// bits as "bit20".
+RAILTAB_LOOKUP_API std::string describe(StatusBits bits);
 }  // namespace status
 
 // Contact slot limit. Format 1.0 writes 2 slots (0 = tread, 1 = flange); a table with more than
@@ -80,10 +91,10 @@ enum Output : int {
 };
 
 // Dataset name of an output in the table file ("contact_angle", ..., "wear_rate").
-const char* output_name(Output output);
+RAILTAB_LOOKUP_API const char* output_name(Output output);
 // Part of an output, and the part's group name in the file ("geometry", ...).
-Part output_part(Output output);
-const char* part_name(Part part);
+RAILTAB_LOOKUP_API Part output_part(Output output);
+RAILTAB_LOOKUP_API const char* part_name(Part part);
 
 // The state of one wheel-rail pair. A table tabulates some of these (its axes) and fixes the
 // others (root attribute fixed_axes); a fixed variable must be queried at its fixed value, else
@@ -133,11 +144,14 @@ enum class Method : int {
 
 struct LoadOptions {
   Method method = Method::kLinear;  // interpolation method for every part
+  // Refuse a table without checksums (written before format 1.1) instead of loading it with
+  // Table::checksums_verified() false. docs/table-format.md, "Integrity".
+  bool require_checksums = false;
 };
 
 // Any problem while loading a table: missing/truncated/corrupt file, unknown major version,
 // missing dataset or attribute, wrong shape or type. what() names the file and the problem.
-class LoadError : public std::runtime_error {
+class RAILTAB_LOOKUP_API LoadError : public std::runtime_error {
  public:
   LoadError(std::string path, const std::string& problem);
   const std::string& path() const noexcept { return path_; }  // the file being loaded
@@ -150,7 +164,18 @@ class LoadError : public std::runtime_error {
 struct AxisInfo {
   std::string name;            // "y", "roll", "load", "xi", "eta" or "phi"
   std::vector<double> nodes;   // strictly increasing grid nodes, SI units
+  std::string units;           // the axis's `units` attribute ("m", "rad", ...; "" if absent)
 };
+
+// SI units of an output ("rad", "m", "N", ...), of a state variable by name ("y" -> "m"; "" for
+// an unknown name), and the name of a contact slot (0 "tread", 1 "flange", else "slot<k>").
+RAILTAB_LOOKUP_API const char* output_units(Output output);
+RAILTAB_LOOKUP_API const char* state_units(const std::string& variable);
+RAILTAB_LOOKUP_API std::string slot_name(int slot);
+
+// Version of this library ("0.1.0"), and the newest table format it reads and writes ("1.1").
+RAILTAB_LOOKUP_API const char* library_version() noexcept;
+RAILTAB_LOOKUP_API const char* supported_format_version() noexcept;
 
 namespace detail {
 struct TableData;  // internal, immutable after load (lookup/src/table_data.hpp)
@@ -158,7 +183,7 @@ struct TableData;  // internal, immutable after load (lookup/src/table_data.hpp)
 
 // A loaded table. Immutable: every const member is safe to call from any number of threads at
 // once without locks. Cheap to copy (shares the data).
-class Table {
+class RAILTAB_LOOKUP_API Table {
  public:
   // Reads the whole file into memory, laid out for the query path. Throws LoadError.
   static Table load(const std::string& path, const LoadOptions& options = {});
@@ -177,9 +202,10 @@ class Table {
   void query_slot(Wheel wheel, const State& state, int slot, Contact& contact) const noexcept;
   Contact query_slot(Wheel wheel, const State& state, int slot) const noexcept;
 
-  // Batch: results[k] = query(queries[k]); results.size() must be >= queries.size()
-  // (extra results untouched).
-  void query(std::span<const Query> queries, std::span<Result> results) const noexcept;
+  // Batch: results[k] = query(queries[k]). Returns false, and touches nothing, when
+  // results.size() < queries.size() (a short buffer is an error, not a silent truncation);
+  // extra results are untouched.
+  bool query(std::span<const Query> queries, std::span<Result> results) const noexcept;
 
   const std::string& path() const;            // file it was loaded from
   Method method() const;                      // interpolation method
@@ -192,6 +218,10 @@ class Table {
   const std::string& format_version() const;  // e.g. "1.0"
   const std::string& scene_name() const;      // root attribute scene_name ("" if absent)
   std::size_t memory_bytes() const;           // size of the interpolation data
+  // Whether every dataset carried HDF5's Fletcher32 checksum and the metadata theirs (format
+  // 1.1 tables): then a corrupt byte is a load error. False for an older table, which loads
+  // unverified unless LoadOptions::require_checksums (docs/table-format.md, "Integrity").
+  bool checksums_verified() const;
 
  private:
   explicit Table(std::shared_ptr<const detail::TableData> data);

@@ -92,12 +92,14 @@ TEST(TableWriter, LargeDatasetsAreCompressed) {
   hid_t d = H5Dopen2(f, "/left/normal/area", H5P_DEFAULT);
   hid_t dcpl = H5Dget_create_plist(d);
   EXPECT_EQ(H5Pget_layout(dcpl), H5D_CHUNKED);
-  EXPECT_EQ(H5Pget_nfilters(dcpl), 2);  // shuffle + deflate
+  EXPECT_EQ(H5Pget_nfilters(dcpl), 3);  // shuffle + deflate + fletcher32 (format 1.1)
   H5Pclose(dcpl);
   H5Dclose(d);
   hid_t small = H5Dopen2(f, "/left/geometry/status", H5P_DEFAULT);
   dcpl = H5Dget_create_plist(small);
-  EXPECT_EQ(H5Pget_layout(dcpl), H5D_CONTIGUOUS);  // 24 KiB: not worth chunking
+  // 24 KiB: not worth compressing, but one chunk so that it carries its checksum (format 1.1).
+  EXPECT_EQ(H5Pget_layout(dcpl), H5D_CHUNKED);
+  EXPECT_EQ(H5Pget_nfilters(dcpl), 1);  // fletcher32 only
   H5Pclose(dcpl);
   H5Dclose(small);
   H5Fclose(f);
@@ -174,6 +176,89 @@ TEST(TableReader, RejectsMissingDatasetsAndForeignFiles) {
   t.remove_attribute("format_version");
   write_table(t, dir / "nover.h5");
   EXPECT_THROW(read_table(dir / "nover.h5"), Error);
+}
+
+}  // namespace
+}  // namespace railtab
+
+namespace railtab {
+namespace {
+
+// Format 1.1 integrity (issue #19 item 5): every dataset with HDF5's Fletcher32 checksum (a
+// scalar: compact, inside its checksummed object header), the HDF5 1.10 file format (metadata
+// checksums) and fixed-length string attributes.
+herr_t check_object(hid_t loc, const char* name, const H5O_info_t* info, void* failures) {
+  auto& out = *static_cast<std::vector<std::string>*>(failures);
+  if (info->type != H5O_TYPE_DATASET) return 0;
+  const hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+  const hid_t dcpl = H5Dget_create_plist(d);
+  const bool fletcher = H5Pget_filter_by_id2(dcpl, H5Z_FILTER_FLETCHER32, nullptr, nullptr, nullptr, 0,
+                                             nullptr, nullptr) >= 0;
+  if (!fletcher && H5Pget_layout(dcpl) != H5D_COMPACT) out.push_back(std::string(name) + ": no checksum");
+  H5Pclose(dcpl);
+  for (const char* attr : {"units", "description", "axes"}) {
+    if (H5Aexists(d, attr) <= 0) continue;
+    const hid_t a = H5Aopen(d, attr, H5P_DEFAULT);
+    const hid_t t = H5Aget_type(a);
+    if (H5Tis_variable_str(t) > 0) out.push_back(std::string(name) + "/" + attr + ": variable-length");
+    H5Tclose(t);
+    H5Aclose(a);
+  }
+  H5Dclose(d);
+  return 0;
+}
+
+TEST(TableWriter, EveryDatasetAndTheMetadataAreChecksummed) {
+  testing::TempDir dir("writer_checksums");
+  Table t = small_table();
+  TableDataset scalar{"scalar", "rad", "a scalar root dataset", {}, {}, {0.25}, {}, false, 0};
+  t.groups.push_back(TableGroup{"", {scalar}});
+  write_table(t, dir / "t.h5");
+  const hid_t f = H5Fopen((dir / "t.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  H5F_info2_t info{};
+  ASSERT_GE(H5Fget_info2(f, &info), 0);
+  EXPECT_GE(info.super.version, 2u);  // superblock 2+: checksummed metadata
+  std::vector<std::string> failures;
+  ASSERT_GE(H5Ovisit(f, H5_INDEX_NAME, H5_ITER_NATIVE, check_object, &failures), 0);
+  EXPECT_TRUE(failures.empty()) << failures.front();
+  const hid_t a = H5Aopen(f, "fixed_axes", H5P_DEFAULT);
+  const hid_t type = H5Aget_type(a);
+  EXPECT_EQ(H5Tis_variable_str(type), 0);
+  H5Tclose(type);
+  H5Aclose(a);
+  H5Fclose(f);
+  Table r = read_table(dir / "t.h5");  // fixed-length UTF-8 strings read back exactly
+  EXPECT_EQ(r.attributes, t.attributes);
+  testing::expect_same_datasets(t, r);
+}
+
+// A flipped byte in a dataset's data is a read error, never a different table.
+TEST(TableWriter, FlippedDataByteFailsTheChecksum) {
+  testing::TempDir dir("writer_flip");
+  write_table(small_table(), dir / "t.h5");
+  const std::string path = (dir / "t.h5").string();
+  haddr_t addr = HADDR_UNDEF;
+  {
+    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(f, "/left/geometry/contact_angle", H5P_DEFAULT);
+    hsize_t origin[2] = {0, 0};
+    unsigned mask = 0;
+    hsize_t size = 0;
+    H5Dget_chunk_info_by_coord(d, origin, &mask, &addr, &size);
+    H5Dclose(d);
+    H5Fclose(f);
+  }
+  ASSERT_NE(addr, HADDR_UNDEF);
+  {
+    std::fstream io(path, std::ios::in | std::ios::out | std::ios::binary);
+    io.seekg(static_cast<std::streamoff>(addr + 5));
+    char c = 0;
+    io.get(c);
+    io.seekp(static_cast<std::streamoff>(addr + 5));
+    io.put(static_cast<char>(c ^ 0x01));
+  }
+  EXPECT_THROW(read_table(dir / "t.h5"), Error);
 }
 
 }  // namespace
