@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <utility>
 
 #include "part_spec.hpp"
+#include "weighted_sum.hpp"
 
 namespace railtab::lookup::detail {
 namespace {
@@ -29,86 +31,29 @@ inline void store_values(const Block& b, const double* values, Contact& c) noexc
   }
 }
 
-// Two doubles in one SSE2 register (GCC/Clang vector extension; x86-64 baseline).
-typedef double V2 __attribute__((vector_size(16)));
-
-inline V2 load2(const double* p) noexcept {
-  V2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-// Running sums of NV values in (NV+1)/2 registers; for an odd NV the last one is half filled:
-// the double after the last value holds statuses, which must not enter the arithmetic.
-template <int NV>
-struct Sums {
-  static constexpr int kPairs = (NV + 1) / 2;
-  V2 acc[kPairs];
-
-  __attribute__((always_inline)) void add(V2 w, const double* r) noexcept {
-#pragma GCC unroll 16
-    for (int k = 0; k < NV / 2; ++k) acc[k] += w * load2(r + 2 * k);
-    if constexpr (NV % 2 != 0) acc[kPairs - 1] += w * V2{r[NV - 1], 0.0};
-  }
-  void store(double* out) const noexcept {
-    double all[2 * kPairs];
-    std::memcpy(all, acc, sizeof all);
-    std::memcpy(out, all, NV * sizeof(double));
-  }
-};
-
-// The 2^D corners of the cell depth first: dimension d splits the weight w of the corners
-// below it into w (1 - t_d) at the lower node and w t_d at the upper one (stride[d] further), so
-// only D partial weights and addresses are live at a time and nothing goes through memory.
-template <int D, int NV, int d>
-__attribute__((always_inline)) inline void walk_corners(const double* p, V2 w, const V2* t,
-                                                         const V2* u,
-                                                         const std::size_t* stride,
-                                                         Sums<NV>& sums) noexcept {
-  if constexpr (d == D) {
-    sums.add(w, p);
-  } else {
-    walk_corners<D, NV, d + 1>(p, w * u[d], t, u, stride, sums);
-    walk_corners<D, NV, d + 1>(p + stride[d], w * t[d], t, u, stride, sums);
-  }
-}
-
-// Multilinear sum over the cell's 2^D corners (corner 0 at `p`) for records of NV values, both
-// fixed at compile time: the corner walk unrolls completely and the sums stay in registers.
-// Not inlined into the slot loop on purpose: inlined, GCC hoists all 2^D corner addresses out of
-// it and spills them.
-template <int D, int NV>
-__attribute__((noinline)) void corner_sum(const double* p, const V2* t, const V2* u,
-                                          const std::size_t* stride, double* out) noexcept {
-  Sums<NV> sums;
-#pragma GCC unroll 16
-  for (int k = 0; k < Sums<NV>::kPairs; ++k) sums.acc[k] = V2{0.0, 0.0};
-  walk_corners<D, NV, 0>(p, V2{1.0, 1.0}, t, u, stride, sums);
-  sums.store(out);
-}
-
 // Multilinear over the cell's 2^D corners, the fractions once for all slots; the status is the
-// cell's, one read (query layout).
-template <int D, int NV>
+// cell's, one read (query layout). kAvx2: the AVX2 corner sum (same results, chosen at load).
+template <int D, int NV, bool kAvx2>
 void linear_kernel(const Block& b, const AxisLoc* loc, int slot_begin, int slot_end,
                    Contact* contact) noexcept {
-  V2 t[D > 0 ? D : 1], u[D > 0 ? D : 1];
+  double t[D > 0 ? D : 1], u[D > 0 ? D : 1];
   std::size_t base = 0;
 #pragma GCC unroll 8
   for (int d = 0; d < D; ++d) {
     const AxisLoc& l = loc[b.var[d]];
     base += static_cast<std::size_t>(l.i) * b.stride[d];
-    t[d] = V2{l.t, l.t};
-    u[d] = V2{1.0 - l.t, 1.0 - l.t};
+    t[d] = l.t;
+    u[d] = 1.0 - l.t;
   }
+  const auto sum = kAvx2 ? &corner_sum_avx2<D, NV> : &corner_sum_sse2<D, NV>;
   for (int s = slot_begin; s < slot_end; ++s) {
     const double* data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size + base;
     Contact& c = contact[s - slot_begin];
     if (b.first_output >= 0) {
-      corner_sum<D, NV>(data, t, u, b.stride, c.value + b.first_output);
+      sum(data, t, u, b.stride, c.value + b.first_output);
     } else {
       double values[NV];
-      corner_sum<D, NV>(data, t, u, b.stride, values);
+      sum(data, t, u, b.stride, values);
       store_values(b, values, c);
     }
     store_status(b, data, c);
@@ -226,11 +171,9 @@ AxisWeights cubic_weights(const CubicAxis& a) noexcept {
 // Tensor cubic Hermite as one weighted sum: the weights of the axes but the last multiplied out
 // into a list (at most 4^(kMaxDims-1) entries), the last (fastest, unit-stride records) axis in
 // the inner loop. NV values per record, fixed at compile time as in the linear kernel.
-template <int NV>
+template <int NV, bool kAvx2>
 void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot_begin,
                   int slot_end, Contact* contact) noexcept {
-  constexpr int kPairs = NV / 2;
-  constexpr bool kOdd = NV % 2 != 0;
   constexpr int kMaxOuter = 1 << (2 * (kMaxDims - 1));
   const int n_dims = b.n_dims;
   std::size_t base = 0, cell = 0;
@@ -263,24 +206,11 @@ void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot
     inner = aw[n_dims - 1];
     inner_stride = b.stride[n_dims - 1];
   }
+  const auto sum = kAvx2 ? &stencil_sum_avx2<NV> : &stencil_sum_sse2<NV>;
   for (int s = slot_begin; s < slot_end; ++s) {
     const double* data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size;
-    V2 acc[kPairs > 0 ? kPairs : 1];
-    for (int k = 0; k < kPairs; ++k) acc[k] = V2{0.0, 0.0};
-    double tail = 0.0;
-    for (int o = 0; o < n_outer; ++o) {
-      const double* r = data + base + outer_off[o];
-      for (int j = 0; j < inner.count; ++j, r += inner_stride) {
-        const double w = outer_w[o] * inner.w[j];
-        const V2 wv = V2{w, w};
-#pragma GCC unroll 16
-        for (int k = 0; k < kPairs; ++k) acc[k] += wv * load2(r + 2 * k);
-        if constexpr (kOdd) tail += w * r[NV - 1];
-      }
-    }
     double values[NV];
-    std::memcpy(values, acc, kPairs * sizeof(V2));
-    if constexpr (kOdd) values[NV - 1] = tail;
+    sum(data + base, outer_w, outer_off, n_outer, inner.w, inner.count, inner_stride, values);
     store_values(b, values, contact[s - slot_begin]);
     store_status(b, data + cell, contact[s - slot_begin]);
   }
@@ -322,31 +252,42 @@ void monotone_recurse(const MonotoneContext& c, int d, std::size_t offset, doubl
 
 }  // namespace
 
-// Kernels for every (D, value count) pair, looked up once at load.
-template <int D, int... V>
+// Kernels for every (D, value count) pair and instruction set, looked up once at load.
+template <int D, bool kAvx2, int... V>
 constexpr std::array<LinearKernel, sizeof...(V)> kernels_for_d(
     std::integer_sequence<int, V...>) noexcept {
-  return {&linear_kernel<D, V + 1>...};
+  return {&linear_kernel<D, V + 1, kAvx2>...};
 }
-template <int... D>
+template <bool kAvx2, int... D>
 constexpr std::array<std::array<LinearKernel, kMaxSlotValues>, sizeof...(D)> kernel_table(
     std::integer_sequence<int, D...>) noexcept {
-  return {kernels_for_d<D>(std::make_integer_sequence<int, kMaxSlotValues>())...};
+  return {kernels_for_d<D, kAvx2>(std::make_integer_sequence<int, kMaxSlotValues>())...};
 }
-constexpr auto kLinearKernels = kernel_table(std::make_integer_sequence<int, kMaxDims + 1>());
+constexpr auto kLinearSse2 = kernel_table<false>(std::make_integer_sequence<int, kMaxDims + 1>());
+constexpr auto kLinearAvx2 = kernel_table<true>(std::make_integer_sequence<int, kMaxDims + 1>());
 
-template <int... V>
+template <bool kAvx2, int... V>
 constexpr std::array<CubicKernel, sizeof...(V)> cubic_table(
     std::integer_sequence<int, V...>) noexcept {
-  return {&cubic_kernel<V + 1>...};
+  return {&cubic_kernel<V + 1, kAvx2>...};
 }
-constexpr auto kCubicKernels = cubic_table(std::make_integer_sequence<int, kMaxSlotValues>());
+constexpr auto kCubicSse2 = cubic_table<false>(std::make_integer_sequence<int, kMaxSlotValues>());
+constexpr auto kCubicAvx2 = cubic_table<true>(std::make_integer_sequence<int, kMaxSlotValues>());
+
+bool use_avx2() noexcept {
+  if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_AVX2"); env && *env && *env != '0')
+    return false;
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
 
 LinearKernel linear_kernel_for(int n_dims, int n_values) noexcept {
-  return kLinearKernels[n_dims][n_values - 1];
+  return (use_avx2() ? kLinearAvx2 : kLinearSse2)[n_dims][n_values - 1];
 }
 
-CubicKernel cubic_kernel_for(int n_values) noexcept { return kCubicKernels[n_values - 1]; }
+CubicKernel cubic_kernel_for(int n_values) noexcept {
+  return (use_avx2() ? kCubicAvx2 : kCubicSse2)[n_values - 1];
+}
 
 void interpolate_monotone_cubic(const Block& block, const Axis* axes, const AxisLoc* loc,
                                 int slot_begin, int slot_end, Contact* contact) noexcept {
