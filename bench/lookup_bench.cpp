@@ -26,11 +26,11 @@
 #include <vector>
 
 #include "../tests/lookup/table_fixture.hpp"
-#include "contact_kernel.hpp"
+#include "sweep/contact_kernel.hpp"
 #include "railtab/lookup.hpp"
-#include "scene.hpp"
-#include "sweep.hpp"
-#include "table_io.hpp"
+#include "scene/scene.hpp"
+#include "sweep/sweep.hpp"
+#include "table/table_io.hpp"
 
 namespace {
 
