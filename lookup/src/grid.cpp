@@ -24,6 +24,20 @@ Axis::Axis(std::vector<double> nodes) : x_(std::move(nodes)) {
   front_ = x_.front();
   back_ = x_.back();
   last_cell_ = static_cast<int>(n) - 2;
+  if (uniform_) return;
+  double min_width = h;
+  for (std::size_t i = 0; i + 1 < n; ++i) min_width = std::min(min_width, x_[i + 1] - x_[i]);
+  const double buckets = std::ceil(4.0 * (back_ - front_) / min_width);
+  if (!(buckets <= kMaxBuckets)) return;
+  const int nb = std::max(1, static_cast<int>(buckets));
+  inv_bucket_ = static_cast<double>(nb) / (back_ - front_);
+  last_bucket_ = nb - 1;
+  bucket_cell_.resize(static_cast<std::size_t>(nb));
+  for (int k = 0; k < nb; ++k) {
+    AxisLoc loc;
+    locate(front_ + static_cast<double>(k) / inv_bucket_, loc);
+    bucket_cell_[static_cast<std::size_t>(k)] = loc.i;
+  }
 }
 
 }  // namespace railtab::lookup::detail

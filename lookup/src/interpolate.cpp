@@ -4,127 +4,59 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <utility>
 
 #include "part_spec.hpp"
+#include "weighted_sum.hpp"
 
 namespace railtab::lookup::detail {
 namespace {
 
-// Status of a cell: trouble bits from ANY corner, kConverged only if ALL corners converged.
-// A record's statuses are 4 uint32 (padded with 0), folded as two 64-bit words per corner.
-class StatusFold {
- public:
-  // `statuses` points at a record's packed uint32 statuses (after the padded values).
-  void add(const double* statuses) noexcept {
-    std::uint64_t w[2];
-    std::memcpy(w, statuses, sizeof w);
-    any_[0] |= w[0], any_[1] |= w[1];
-    all_[0] &= w[0], all_[1] &= w[1];
-  }
-  void write(StatusBits* status) const noexcept {
-    std::uint64_t out[2];
-    for (int j = 0; j < 2; ++j) out[j] = (any_[j] & ~kConverged2) | (all_[j] & kConverged2);
-    std::memcpy(status, out, sizeof out);
-  }
+// Copies the cell's part statuses (query layout: n_parts uint32 after the values of the cell's
+// corner-0 record) into `c`.
+inline void store_status(const Block& b, const double* cell_record, Contact& c) noexcept {
+  const auto* st = reinterpret_cast<const unsigned char*>(cell_record + b.status_offset);
+  for (int p = 0; p < b.n_parts; ++p)
+    std::memcpy(&c.part_status[b.part[p]], st + p * sizeof(StatusBits), sizeof(StatusBits));
+}
 
- private:
-  static constexpr std::uint64_t kConverged2 =
-      std::uint64_t{status::kConverged} | (std::uint64_t{status::kConverged} << 32);
-  std::uint64_t any_[2] = {0, 0};     // OR over corners
-  std::uint64_t all_[2] = {~0ull, ~0ull};  // AND over corners
-};
-static_assert(kStatusDoubles * sizeof(double) == 4 * sizeof(StatusBits), "4 statuses per record");
-
-// Copies one slot's values (record order: parts, outputs) and its part statuses into `c`.
-void store_slot(const Block& b, const double* values, const StatusBits* status,
-                Contact& c) noexcept {
+// Copies one slot's values (record order: parts, outputs) into `c`, part by part.
+inline void store_values(const Block& b, const double* values, Contact& c) noexcept {
   for (int k = 0; k < b.n_parts; ++k) {
     const PartSpec& spec = kPartSpecs[b.part[k]];
     for (int o = 0; o < spec.n_out; ++o) c.value[spec.first_output + o] = values[o];
     values += spec.n_out;
-    c.part_status[b.part[k]] = status[k];
   }
 }
 
-// Corner weights and record offsets of the 2^D corners of the cell (bit d of the corner index
-// = upper node along dimension d), and the offset of corner 0.
-template <int D>
-struct Corners {
-  static constexpr int kCount = 1 << D;
-  double w[kCount];
-  std::size_t off[kCount];
-  std::size_t base = 0;
-
-  Corners(const Block& b, const AxisLoc* loc) noexcept {
-    w[0] = 1.0;
-    off[0] = 0;
-#pragma GCC unroll 8
-    for (int d = 0; d < D; ++d) {
-      const AxisLoc& l = loc[b.var[d]];
-      base += static_cast<std::size_t>(l.i) * b.stride[d];
-      const int half = 1 << d;
-#pragma GCC unroll 64
-      for (int c = 0; c < half; ++c) {
-        w[c + half] = w[c] * l.t;
-        off[c + half] = off[c] + b.stride[d];
-        w[c] *= 1.0 - l.t;
-      }
-    }
-  }
-};
-
-// Two doubles in one SSE2 register (GCC/Clang vector extension; x86-64 baseline).
-typedef double V2 __attribute__((vector_size(16)));
-
-inline V2 load2(const double* p) noexcept {
-  V2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-// Multilinear over the 2^D corners for records of NVP (even) values, both fixed at compile time
-// so the corner loop unrolls and the NVP/2 sums stay in registers: per corner, NVP/2 packed
-// multiply-adds over one contiguous run of the record, then its 4 statuses folded. Sums are
-// formed corner by corner in index order (split chains or a summation tree measured slower:
-// more registers, spills). Values go straight into the contact's outputs.
-template <int D, int NVP>
+// Multilinear over the cell's 2^D corners, the fractions once for all slots; the status is the
+// cell's, one read (query layout). kAvx2: the AVX2 corner sum (same results, chosen at load).
+template <int D, int NV, bool kAvx2>
 void linear_kernel(const Block& b, const AxisLoc* loc, int slot_begin, int slot_end,
                    Contact* contact) noexcept {
-  constexpr int kCorners = 1 << D;
-  constexpr int kPairs = NVP / 2;
-  const Corners<D> corners(b, loc);
-  const int nv = b.n_values;  // NVP - 1 or NVP
+  double t[D > 0 ? D : 1], u[D > 0 ? D : 1];
+  std::size_t base = 0;
+#pragma GCC unroll 8
+  for (int d = 0; d < D; ++d) {
+    const AxisLoc& l = loc[b.var[d]];
+    base += static_cast<std::size_t>(l.i) * b.stride[d];
+    t[d] = l.t;
+    u[d] = 1.0 - l.t;
+  }
+  const auto sum = kAvx2 ? &corner_sum_avx2<D, NV> : &corner_sum_sse2<D, NV>;
   for (int s = slot_begin; s < slot_end; ++s) {
-    const double* data =
-        b.data.data() + static_cast<std::size_t>(s) * b.slot_size + corners.base;
-    V2 acc[kPairs];
-#pragma GCC unroll 16
-    for (int k = 0; k < kPairs; ++k) acc[k] = V2{0.0, 0.0};
-    StatusFold fold;
-#pragma GCC unroll 64
-    for (int c = 0; c < kCorners; ++c) {
-      const double* r = data + corners.off[c];
-      const V2 wc = V2{corners.w[c], corners.w[c]};
-#pragma GCC unroll 16
-      for (int k = 0; k < kPairs; ++k) acc[k] += wc * load2(r + 2 * k);
-      fold.add(r + NVP);
-    }
-    Contact& out_contact = contact[s - slot_begin];
-    double tmp[NVP];
-    std::memcpy(tmp, acc, sizeof tmp);
-    StatusBits st[4];
-    fold.write(st);
+    const double* data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size + base;
+    Contact& c = contact[s - slot_begin];
     if (b.first_output >= 0) {
-      double* out = out_contact.value + b.first_output;
-#pragma GCC unroll 16
-      for (int k = 0; k < NVP - 1; ++k) out[k] = tmp[k];
-      if (nv == NVP) out[NVP - 1] = tmp[NVP - 1];
-      for (int p = 0; p < b.n_parts; ++p) out_contact.part_status[b.part[p]] = st[p];
+      sum(data, t, u, b.stride, c.value + b.first_output);
     } else {
-      store_slot(b, tmp, st, out_contact);
+      double values[NV];
+      sum(data, t, u, b.stride, values);
+      store_values(b, values, c);
     }
+    store_status(b, data, c);
   }
 }
 
@@ -218,82 +150,161 @@ double hermite(const CubicAxis& a, const double f[4], bool monotone) noexcept {
   return a.h00 * f[1] + a.h01 * f[2] + a.h10 * m0 + a.h11 * m1;
 }
 
-struct CubicContext {
+// The cubic Hermite of one axis as weights on the 2-4 consecutive nodes of its stencil.
+struct AxisWeights {
+  int first = 0;      // first stencil node
+  int count = 0;      // stencil nodes (2..4)
+  double w[4] = {};   // their weights
+};
+
+AxisWeights cubic_weights(const CubicAxis& a) noexcept {
+  AxisWeights out;
+  const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
+  out.first = static_cast<int>(a.idx[lo]);
+  out.count = hi - lo + 1;
+  for (int j = lo; j <= hi; ++j)
+    out.w[j - lo] = (j == 1 ? a.h00 : 0.0) + (j == 2 ? a.h01 : 0.0) + a.h10 * a.c0[j] +
+                    a.h11 * a.c1[j];
+  return out;
+}
+
+// Tensor cubic Hermite as one weighted sum: the weights of the axes but the last multiplied out
+// into a list (at most 4^(kMaxDims-1) entries), the last (fastest, unit-stride records) axis in
+// the inner loop. NV values per record, fixed at compile time as in the linear kernel.
+template <int NV, bool kAvx2>
+void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot_begin,
+                  int slot_end, Contact* contact) noexcept {
+  constexpr int kMaxOuter = 1 << (2 * (kMaxDims - 1));
+  const int n_dims = b.n_dims;
+  std::size_t base = 0, cell = 0;
+  AxisWeights aw[kMaxDims];
+  for (int d = 0; d < n_dims; ++d) {
+    const AxisLoc& l = loc[b.var[d]];
+    aw[d] = cubic_weights(make_cubic_axis(axes[b.var[d]], l, b.stride[d]));
+    base += static_cast<std::size_t>(aw[d].first) * b.stride[d];
+    cell += static_cast<std::size_t>(l.i) * b.stride[d];
+  }
+  double outer_w[kMaxOuter];
+  std::size_t outer_off[kMaxOuter];
+  int n_outer = 1;
+  outer_w[0] = 1.0;
+  outer_off[0] = 0;
+  for (int d = 0; d + 1 < n_dims; ++d) {
+    // Expand in place, highest stencil node first so entries 0..n_outer-1 are read last.
+    for (int j = aw[d].count - 1; j >= 0; --j)
+      for (int o = n_outer - 1; o >= 0; --o) {
+        outer_w[j * n_outer + o] = outer_w[o] * aw[d].w[j];
+        outer_off[j * n_outer + o] = outer_off[o] + static_cast<std::size_t>(j) * b.stride[d];
+      }
+    n_outer *= aw[d].count;
+  }
+  AxisWeights inner;  // the last axis (none: one node of weight 1)
+  inner.count = 1;
+  inner.w[0] = 1.0;
+  std::size_t inner_stride = 0;
+  if (n_dims > 0) {
+    inner = aw[n_dims - 1];
+    inner_stride = b.stride[n_dims - 1];
+  }
+  const auto sum = kAvx2 ? &stencil_sum_avx2<NV> : &stencil_sum_sse2<NV>;
+  for (int s = slot_begin; s < slot_end; ++s) {
+    const double* data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size;
+    double values[NV];
+    sum(data + base, outer_w, outer_off, n_outer, inner.w, inner.count, inner_stride, values);
+    store_values(b, values, contact[s - slot_begin]);
+    store_status(b, data + cell, contact[s - slot_begin]);
+  }
+}
+
+struct MonotoneContext {
   const double* data;       // record of node 0 of the first slot's grid
   int n_slots;              // slots interpolated together, grids slot_size doubles apart
   std::size_t slot_size;    // doubles per slot grid
   int n_dims;               // D
   int n_values;             // interpolated doubles per record
-  int status_offset;        // doubles before the packed statuses in a record
   const CubicAxis* axes;    // per dimension
-  bool monotone;            // limit slopes
 };
 
-// Successive 1-D Hermite passes: interpolate the sub-grid of each stencil node along the
+// Successive 1-D limited Hermite passes: interpolate the sub-grid of each stencil node along the
 // remaining axes, then combine the (up to) 4 results along this axis. All slots in one walk
 // (out[slot * n_values + k]), so the stencil recursion runs once per query. Depth <= 6, at most
-// 2.3 KB of stack per level; statuses only from nodes inside the cell (j = 1, 2 on every axis).
-void cubic_recurse(const CubicContext& c, int d, std::size_t offset, bool inner, double* out,
-                   StatusFold* fold) noexcept {
+// 2.3 KB of stack per level.
+void monotone_recurse(const MonotoneContext& c, int d, std::size_t offset, double* out) noexcept {
   const int nv = c.n_values * c.n_slots;
   if (d == c.n_dims) {
     for (int s = 0; s < c.n_slots; ++s) {
       const double* rec = c.data + static_cast<std::size_t>(s) * c.slot_size + offset;
       for (int k = 0; k < c.n_values; ++k) out[s * c.n_values + k] = rec[k];
-      if (inner) fold[s].add(rec + c.status_offset);
     }
     return;
   }
   const CubicAxis& a = c.axes[d];
   const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
   double sub[4][kMaxSlots * kMaxSlotValues];
-  for (int j = lo; j <= hi; ++j)
-    cubic_recurse(c, d + 1, offset + a.idx[j] * a.stride, inner && (j == 1 || j == 2), sub[j],
-                  fold);
+  for (int j = lo; j <= hi; ++j) monotone_recurse(c, d + 1, offset + a.idx[j] * a.stride, sub[j]);
   for (int k = 0; k < nv; ++k) {
     double f[4] = {0.0, sub[1][k], sub[2][k], 0.0};
     if (a.has_left) f[0] = sub[0][k];
     if (a.has_right) f[3] = sub[3][k];
-    out[k] = hermite(a, f, c.monotone);
+    out[k] = hermite(a, f, true);
   }
 }
 
 }  // namespace
 
-// Kernels for every (D, padded value count) pair, looked up once at load.
-template <int D, int... P>
-constexpr std::array<LinearKernel, sizeof...(P)> kernels_for_d(
-    std::integer_sequence<int, P...>) noexcept {
-  return {&linear_kernel<D, 2 * (P + 1)>...};
+// Kernels for every (D, value count) pair and instruction set, looked up once at load.
+template <int D, bool kAvx2, int... V>
+constexpr std::array<LinearKernel, sizeof...(V)> kernels_for_d(
+    std::integer_sequence<int, V...>) noexcept {
+  return {&linear_kernel<D, V + 1, kAvx2>...};
 }
-template <int... D>
-constexpr std::array<std::array<LinearKernel, kMaxSlotValues / 2>, sizeof...(D)> kernel_table(
+template <bool kAvx2, int... D>
+constexpr std::array<std::array<LinearKernel, kMaxSlotValues>, sizeof...(D)> kernel_table(
     std::integer_sequence<int, D...>) noexcept {
-  return {kernels_for_d<D>(std::make_integer_sequence<int, kMaxSlotValues / 2>())...};
+  return {kernels_for_d<D, kAvx2>(std::make_integer_sequence<int, kMaxSlotValues>())...};
 }
-constexpr auto kLinearKernels = kernel_table(std::make_integer_sequence<int, kMaxDims + 1>());
-static_assert(kMaxSlotValues % 2 == 0, "the table covers every even padded count");
+constexpr auto kLinearSse2 = kernel_table<false>(std::make_integer_sequence<int, kMaxDims + 1>());
+constexpr auto kLinearAvx2 = kernel_table<true>(std::make_integer_sequence<int, kMaxDims + 1>());
 
-LinearKernel linear_kernel_for(int n_dims, int values_padded) noexcept {
-  return kLinearKernels[n_dims][values_padded / 2 - 1];
+template <bool kAvx2, int... V>
+constexpr std::array<CubicKernel, sizeof...(V)> cubic_table(
+    std::integer_sequence<int, V...>) noexcept {
+  return {&cubic_kernel<V + 1, kAvx2>...};
+}
+constexpr auto kCubicSse2 = cubic_table<false>(std::make_integer_sequence<int, kMaxSlotValues>());
+constexpr auto kCubicAvx2 = cubic_table<true>(std::make_integer_sequence<int, kMaxSlotValues>());
+
+bool use_avx2() noexcept {
+  if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_AVX2"); env && *env && *env != '0')
+    return false;
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
 }
 
-void interpolate_cubic(const Block& block, const Axis* axes, const AxisLoc* loc, bool monotone,
-                       int slot_begin, int slot_end, Contact* contact) noexcept {
+LinearKernel linear_kernel_for(int n_dims, int n_values) noexcept {
+  return (use_avx2() ? kLinearAvx2 : kLinearSse2)[n_dims][n_values - 1];
+}
+
+CubicKernel cubic_kernel_for(int n_values) noexcept {
+  return (use_avx2() ? kCubicAvx2 : kCubicSse2)[n_values - 1];
+}
+
+void interpolate_monotone_cubic(const Block& block, const Axis* axes, const AxisLoc* loc,
+                                int slot_begin, int slot_end, Contact* contact) noexcept {
   CubicAxis ax[kMaxDims];
-  for (int d = 0; d < block.n_dims; ++d)
+  std::size_t cell = 0;
+  for (int d = 0; d < block.n_dims; ++d) {
     ax[d] = make_cubic_axis(axes[block.var[d]], loc[block.var[d]], block.stride[d]);
+    cell += static_cast<std::size_t>(loc[block.var[d]].i) * block.stride[d];
+  }
   const int n = slot_end - slot_begin;
-  const CubicContext c{block.data.data() + static_cast<std::size_t>(slot_begin) * block.slot_size,
-                       n, block.slot_size, block.n_dims, block.n_values, block.values_padded, ax,
-                       monotone};
-  StatusFold fold[kMaxSlots];
+  const double* first = block.data.data() + static_cast<std::size_t>(slot_begin) * block.slot_size;
+  const MonotoneContext c{first, n, block.slot_size, block.n_dims, block.n_values, ax};
   double values[kMaxSlots * kMaxSlotValues];
-  cubic_recurse(c, 0, 0, true, values, fold);
+  monotone_recurse(c, 0, 0, values);
   for (int s = 0; s < n; ++s) {
-    StatusBits st[4];
-    fold[s].write(st);
-    store_slot(block, values + s * block.n_values, st, contact[s]);
+    store_values(block, values + s * block.n_values, contact[s]);
+    store_status(block, first + static_cast<std::size_t>(s) * block.slot_size + cell, contact[s]);
   }
 }
 

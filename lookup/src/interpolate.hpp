@@ -8,21 +8,25 @@
 namespace railtab::lookup::detail {
 
 // The multilinear kernel for a block of `n_dims` tabulated axes (0..kMaxDims) and records of
-// `values_padded` values (even, 2..kMaxSlotValues), chosen once at load. It interpolates the block's values of slots [slot_begin, slot_end) at the cells
-// loc[var] (indexed by state variable) straight into contact[slot - slot_begin].value, and
-// combines the statuses of the cell's 2^D corner nodes into .part_status[part]: every bit but
-// kConverged ORed, kConverged ANDed. The corner weights and offsets are computed once for all
-// slots; both counts are template parameters so the corner loop unrolls and the sums stay in
-// registers.
-LinearKernel linear_kernel_for(int n_dims, int values_padded) noexcept;
+// `n_values` values (1..kMaxSlotValues), chosen once at load. It interpolates the block's
+// values of slots [slot_begin, slot_end) at the cells loc[var] (indexed by state variable)
+// straight into contact[slot - slot_begin].value, and copies the cell's status (query layout,
+// table_data.hpp: every bit but kConverged ORed over the 2^D corners, kConverged ANDed) into
+// .part_status[part]. The corner weights and offsets are computed once for all slots; both
+// counts are template parameters so the corner loop unrolls and the sums stay in registers.
+LinearKernel linear_kernel_for(int n_dims, int n_values) noexcept;
 
 // Tensor-product cubic Hermite, 4 nodes per axis (fewer at the table edge), slopes from the
-// parabola through 3 neighbouring nodes (exact for quadratics); with `monotone`, slopes limited
-// per node so that 0 <= slope / secant <= 3 on both sides (Fritsch-Carlson sufficient condition;
-// zero slope at a data extremum), which keeps the result C1 and free of overshoot. Status as in
-// the linear kernel (corners of the cell only, not the outer stencil nodes). Slots
-// [slot_begin, slot_end) into contact[slot - slot_begin]; the per-axis stencils once for all.
-void interpolate_cubic(const Block& block, const Axis* axes, const AxisLoc* loc, bool monotone,
-                       int slot_begin, int slot_end, Contact* contact) noexcept;
+// parabola through 3 neighbouring nodes (exact for quadratics). Linear in the node values, so
+// each axis reduces to 2-4 weights on consecutive nodes and the query is one weighted sum over
+// the stencil's records (576 for the default scene's 5-D creep block, whose load and phi axes
+// have 3 nodes). Status as in the linear kernel (the cell's). Chosen at load by `n_values`.
+CubicKernel cubic_kernel_for(int n_values) noexcept;
+
+// As the cubic with slopes limited per node so that 0 <= slope / secant <= 3 on both sides
+// (Fritsch-Carlson sufficient condition; zero slope at a data extremum), which keeps the result
+// C1 and free of overshoot. Nonlinear in the data: successive 1-D passes over the 4^D stencil.
+void interpolate_monotone_cubic(const Block& block, const Axis* axes, const AxisLoc* loc,
+                                int slot_begin, int slot_end, Contact* contact) noexcept;
 
 }  // namespace railtab::lookup::detail

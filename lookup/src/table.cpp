@@ -76,9 +76,10 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
     const Block& block = d.block[w][b];
     if (d.method == Method::kLinear) {
       block.linear(block, loc, slot_begin, slot_end, contact);
+    } else if (d.method == Method::kCubic) {
+      block.cubic(block, d.axis, loc, slot_begin, slot_end, contact);
     } else {
-      interpolate_cubic(block, d.axis, loc, d.method == Method::kMonotoneCubic, slot_begin,
-                        slot_end, contact);
+      interpolate_monotone_cubic(block, d.axis, loc, slot_begin, slot_end, contact);
     }
   }
   for (int s = 0; s < n; ++s) {

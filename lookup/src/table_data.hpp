@@ -4,15 +4,24 @@
 // normal when load is not swept) share one BLOCK, so a query walks each set of corners once.
 // A block is SLOT-MAJOR: one grid per contact slot, one after the other, so a query for one
 // slot (Table::query_slot) touches only that slot's outputs. Each slot grid stores its nodes in
-// C order (first axis slowest, the file's order without the slot axis), one RECORD per node:
+// C order (first axis slowest, the file's order without the slot axis), one RECORD per node.
 //
-//   record = [ part a: out_0 .. out_{n-1} | part b: .. | zero padding to an even count |
-//              statuses as uint32: part a, part b, .., padded with 0 to 4 uint32 (2 doubles) ]
-//
-// The default creep + wear block has 5 values + 1 pad + 2 status doubles = 64 bytes: one cache
-// line per node, and the two corners along the fastest axis are two adjacent lines. A
-// multilinear query reads 2^D records per slot, each with unit stride; statuses are folded with
-// two 64-bit OR/AND per corner. The data start on a 64-byte boundary.
+// Two record layouts, one after the other:
+// - NODE layout, as make_block (table_load.cpp) fills it from the file:
+//     [ values of part a, part b, .. | zero padding to an even count |
+//       the node's statuses as uint32: part a, part b, .., padded with 0 to 4 uint32 ]
+// - QUERY layout, what prepare_query_layout (block_layout.cpp) turns it into at load:
+//     [ values of part a, part b, .. | CELL statuses as uint32: part a, part b, .. |
+//       zero padding to an even count of doubles ]
+//   where the cell status of a node is the status of the interpolation cell whose lowest corner
+//   it is: every bit but kConverged ORed over the cell's 2^D corner nodes, kConverged ANDed
+//   (docs/lookup.md). A query reads the statuses of one record (the cell's corner 0) instead of
+//   folding 2^D of them, with the same result. Nodes on the last node of an axis start no
+//   cell; they keep their own status.
+// The default creep + wear record is 5 values + 2 statuses = 6 doubles = 48 bytes (64 in the
+// node layout): 4 records per 3 cache lines, 0.86 MB per wheel and slot for the default scene,
+// so the tread grids of both wheels fit a 2 MB L2. Records start on 16-byte boundaries (SSE2
+// pairs), the data on a 64-byte boundary.
 #pragma once
 
 #include <cstddef>
@@ -28,7 +37,7 @@ namespace railtab::lookup::detail {
 
 inline constexpr int kMaxDims = kNumVars;  // a block tabulates at most y, roll, load, xi, eta, phi
 inline constexpr int kMaxSlotValues = kNumOutputs;  // values in one slot record, at most
-inline constexpr int kStatusDoubles = 2;  // 4 uint32 statuses (one per part, at most) per record
+inline constexpr int kStatusDoubles = 2;  // node layout: 4 uint32 statuses (one per part, at most)
 static_assert(kNumParts * sizeof(StatusBits) <= kStatusDoubles * sizeof(double),
               "every part's status fits in a record");
 
@@ -48,27 +57,37 @@ struct CacheAligned {
 };
 
 struct Block;
-// Multilinear kernel for one block, chosen at load by the block's dimension count: writes the
-// values and part statuses of slots [slot_begin, slot_end) into contact[slot - slot_begin]
-// (interpolate.hpp).
+// Multilinear kernel for one block, chosen at load by the block's dimension and value counts:
+// writes the values and part statuses of slots [slot_begin, slot_end) into
+// contact[slot - slot_begin] (interpolate.hpp).
 using LinearKernel = void (*)(const Block& block, const AxisLoc* loc, int slot_begin,
                               int slot_end, Contact* contact) noexcept;
+// Cubic (tensor Hermite) kernel, chosen at load by the block's value count (interpolate.hpp).
+using CubicKernel = void (*)(const Block& block, const Axis* axes, const AxisLoc* loc,
+                             int slot_begin, int slot_end, Contact* contact) noexcept;
 
 struct Block {
   int n_dims = 0;                     // tabulated axes (slot excluded), 0..kMaxDims
   int var[kMaxDims] = {};             // state variable (Var) of each dimension, in file order
+  int size[kMaxDims] = {};            // nodes along each dimension (set by prepare_query_layout)
   std::size_t stride[kMaxDims] = {};  // doubles between neighbouring nodes along each dimension
   int n_parts = 0;                    // parts stored in this block
   int part[kNumParts] = {};           // which (Part), in file order
   int n_values = 0;                   // values per slot record: sum over its parts of outputs
-  int values_padded = 0;              // n_values rounded up to an even count
-  int record = 0;                     // doubles per node: values_padded + kStatusDoubles
+  int values_padded = 0;              // node layout: n_values rounded up to an even count
+  int record = 0;                     // doubles per node (node layout, then query layout)
+  int status_offset = 0;              // query layout: doubles before the cell statuses (n_values)
   int first_output = -1;              // Output of value 0 when the parts' outputs are one
                                       // contiguous run of Contact::value (always in format 1.0)
   std::size_t slot_size = 0;          // doubles per slot grid (nodes x record)
-  LinearKernel linear = nullptr;      // multilinear kernel for n_dims
-  std::vector<double, CacheAligned<double>> data;  // n_slots grids, see the layout above
+  LinearKernel linear = nullptr;      // multilinear kernel (query layout)
+  CubicKernel cubic = nullptr;        // tensor cubic Hermite kernel (query layout)
+  std::vector<double, CacheAligned<double>> data;  // n_slots grids, see the layouts above
 };
+
+// Rewrites a block filled in the node layout (make_block) into the query layout: cell statuses,
+// records without the status padding, strides, sizes and kernels (block_layout.cpp).
+void prepare_query_layout(Block& block, int n_slots);
 
 struct TableData {
   std::string path;                   // file loaded

@@ -253,7 +253,6 @@ Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& a
     stride *= static_cast<std::size_t>(first.dims[k]);
   }
   b.slot_size = stride;  // nodes x record
-  b.linear = linear_kernel_for(b.n_dims, b.values_padded);
   const std::size_t ns = static_cast<std::size_t>(n_slots);
   b.data.assign(ns * b.slot_size, 0.0);
   for (std::size_t s = 0; s < ns; ++s) {
@@ -270,6 +269,7 @@ Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& a
       }
     }
   }
+  prepare_query_layout(b, n_slots);  // block_layout.cpp: the layout the query path reads
   return b;
 }
 

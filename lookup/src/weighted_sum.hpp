@@ -1,0 +1,165 @@
+// Weighted sums of records (a record = NV consecutive doubles of a node, query layout in
+// table_data.hpp), the inner loop of every interpolator. Two instruction sets with the same
+// arithmetic: SSE2 (the x86-64 baseline, pairs of doubles) and AVX2 (quads, chosen at load when
+// the CPU has it, no FMA). Every lane does the same multiplies and adds in the same order in both,
+// so the results are bit-identical whichever runs.
+#pragma once
+
+#include <cstddef>
+#include <cstring>
+
+namespace railtab::lookup::detail {
+
+typedef double V2 __attribute__((vector_size(16)));
+typedef double V4 __attribute__((vector_size(32)));
+
+inline V2 load2(const double* p) noexcept {
+  V2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// Running sums of NV values in SSE2 registers: NV/2 pairs, then for an odd NV a half-filled one
+// (the double after a record's last value holds statuses, which must not enter the arithmetic).
+template <int NV>
+struct SumsSse2 {
+  static constexpr int kPairs = (NV + 1) / 2;
+  V2 acc[kPairs];
+
+  __attribute__((always_inline)) void zero() noexcept {
+#pragma GCC unroll 16
+    for (int k = 0; k < kPairs; ++k) acc[k] = V2{0.0, 0.0};
+  }
+  __attribute__((always_inline)) void add(double weight, const double* r) noexcept {
+    const V2 w = V2{weight, weight};
+#pragma GCC unroll 16
+    for (int k = 0; k < NV / 2; ++k) acc[k] += w * load2(r + 2 * k);
+    if constexpr (NV % 2 != 0) acc[kPairs - 1] += w * V2{r[NV - 1], 0.0};
+  }
+  __attribute__((always_inline)) void store(double* out) const noexcept {
+    double all[2 * kPairs];
+    std::memcpy(all, acc, sizeof all);
+    std::memcpy(out, all, NV * sizeof(double));
+  }
+};
+
+#define RAILTAB_AVX2 __attribute__((target("avx2"), always_inline))
+
+// The same in AVX2 registers: NV/4 quads, then a pair and a half-filled pair as needed.
+template <int NV>
+struct SumsAvx2 {
+  static constexpr int kQuads = NV / 4;
+  static constexpr bool kPair = NV % 4 >= 2;
+  static constexpr bool kSingle = NV % 2 != 0;
+  V4 quad[kQuads > 0 ? kQuads : 1];
+  V2 pair, single;
+
+  RAILTAB_AVX2 void zero() noexcept {
+#pragma GCC unroll 8
+    for (int k = 0; k < kQuads; ++k) quad[k] = V4{0.0, 0.0, 0.0, 0.0};
+    pair = single = V2{0.0, 0.0};
+  }
+  RAILTAB_AVX2 void add(double weight, const double* r) noexcept {
+    const V4 w4 = V4{weight, weight, weight, weight};
+    const V2 w2 = V2{weight, weight};
+#pragma GCC unroll 8
+    for (int k = 0; k < kQuads; ++k) {
+      V4 v;
+      std::memcpy(&v, r + 4 * k, sizeof v);
+      quad[k] += w4 * v;
+    }
+    if constexpr (kPair) pair += w2 * load2(r + 4 * kQuads);
+    if constexpr (kSingle) single += w2 * V2{r[NV - 1], 0.0};
+  }
+  RAILTAB_AVX2 void store(double* out) const noexcept {
+    double all[4 * (kQuads > 0 ? kQuads : 1) + 4];
+    std::memcpy(all, quad, kQuads * sizeof(V4));
+    std::memcpy(all + 4 * kQuads, &pair, sizeof pair);
+    std::memcpy(all + 4 * kQuads + (kPair ? 2 : 0), &single, sizeof single);
+    std::memcpy(out, all, NV * sizeof(double));
+  }
+};
+
+// The 2^D corners of a cell depth first: dimension d splits the weight w of the corners below
+// it into w (1 - t_d) at the lower node and w t_d at the upper one (stride[d] further), so only D
+// partial weights and addresses are live at a time and nothing goes through memory. Defined
+// twice, for each instruction set (GCC inlines AVX2 code only into AVX2 functions).
+#define RAILTAB_WALK_CORNERS(NAME, ATTRIBUTES)                                                   \
+  template <int D, int d, class Sums>                                                           \
+  ATTRIBUTES inline void NAME(const double* p, double w, const double* t, const double* u,      \
+                              const std::size_t* stride, Sums& sums) noexcept {                 \
+    if constexpr (d == D) {                                                                     \
+      sums.add(w, p);                                                                           \
+    } else {                                                                                    \
+      NAME<D, d + 1>(p, w * u[d], t, u, stride, sums);                                          \
+      NAME<D, d + 1>(p + stride[d], w * t[d], t, u, stride, sums);                              \
+    }                                                                                           \
+  }
+RAILTAB_WALK_CORNERS(walk_corners_sse2, __attribute__((always_inline)))
+RAILTAB_WALK_CORNERS(walk_corners_avx2, RAILTAB_AVX2)
+#undef RAILTAB_WALK_CORNERS
+
+// Sum over a cubic stencil: n_outer runs (weight, offset) of `count` records along the last
+// axis, inner_stride apart, each record weighted by outer weight x inner weight.
+#define RAILTAB_WALK_STENCIL(NAME, ATTRIBUTES)                                                   \
+  template <class Sums>                                                                         \
+  ATTRIBUTES inline void NAME(const double* p, const double* outer_w,                           \
+                              const std::size_t* outer_off, int n_outer,                        \
+                              const double* inner_w, int count, std::size_t inner_stride,       \
+                              Sums& sums) noexcept {                                            \
+    for (int o = 0; o < n_outer; ++o) {                                                         \
+      const double* r = p + outer_off[o];                                                       \
+      for (int j = 0; j < count; ++j, r += inner_stride) sums.add(outer_w[o] * inner_w[j], r);  \
+    }                                                                                           \
+  }
+RAILTAB_WALK_STENCIL(walk_stencil_sse2, __attribute__((always_inline)))
+RAILTAB_WALK_STENCIL(walk_stencil_avx2, RAILTAB_AVX2)
+#undef RAILTAB_WALK_STENCIL
+
+// Multilinear sum over the cell's 2^D corners (corner 0 at `p`; t = fractions, u = 1 - t) into
+// out[0..NV-1]: the corner walk unrolls completely and the sums stay in registers. Not inlined
+// into the caller's slot loop on purpose: inlined, GCC hoists all 2^D corner addresses out of
+// it and spills them.
+template <int D, int NV>
+__attribute__((noinline)) void corner_sum_sse2(const double* p, const double* t, const double* u,
+                                               const std::size_t* stride, double* out) noexcept {
+  SumsSse2<NV> sums;
+  sums.zero();
+  walk_corners_sse2<D, 0>(p, 1.0, t, u, stride, sums);
+  sums.store(out);
+}
+
+template <int D, int NV>
+__attribute__((noinline, target("avx2"))) void corner_sum_avx2(const double* p, const double* t,
+                                                               const double* u,
+                                                               const std::size_t* stride,
+                                                               double* out) noexcept {
+  SumsAvx2<NV> sums;
+  sums.zero();
+  walk_corners_avx2<D, 0>(p, 1.0, t, u, stride, sums);
+  sums.store(out);
+}
+
+// Cubic stencil sums (see walk_stencil) into out[0..NV-1].
+template <int NV>
+__attribute__((noinline)) void stencil_sum_sse2(const double* p, const double* outer_w,
+                                                const std::size_t* outer_off, int n_outer,
+                                                const double* inner_w, int count,
+                                                std::size_t inner_stride, double* out) noexcept {
+  SumsSse2<NV> sums;
+  sums.zero();
+  walk_stencil_sse2(p, outer_w, outer_off, n_outer, inner_w, count, inner_stride, sums);
+  sums.store(out);
+}
+
+template <int NV>
+__attribute__((noinline, target("avx2"))) void stencil_sum_avx2(
+    const double* p, const double* outer_w, const std::size_t* outer_off, int n_outer,
+    const double* inner_w, int count, std::size_t inner_stride, double* out) noexcept {
+  SumsAvx2<NV> sums;
+  sums.zero();
+  walk_stencil_avx2(p, outer_w, outer_off, n_outer, inner_w, count, inner_stride, sums);
+  sums.store(out);
+}
+
+}  // namespace railtab::lookup::detail

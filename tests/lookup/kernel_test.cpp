@@ -1,0 +1,175 @@
+// The query path's internals against brute force (issue 15 speed-ups): the bucket search on
+// non-uniform axes finds exactly the cells of the binary search, the per-cell statuses of the
+// query layout equal the fold over the cell's corner nodes, and the AVX2 and SSE2 kernels give
+// the same bytes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "grid.hpp"
+#include "lookup/lookup_test_util.hpp"
+#include "lookup/table_fixture.hpp"
+#include "railtab/lookup.hpp"
+
+namespace railtab::lookup {
+namespace {
+
+using testing::FixtureSpec;
+using testing::linspace;
+using testing::TempFile;
+
+// Probes over and beyond an axis: random, every node, and a few ulps either side of each node.
+std::vector<double> probes(const std::vector<double>& x, unsigned seed) {
+  std::vector<double> p;
+  const double w = x.back() - x.front();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(x.front() - 0.1 * w, x.back() + 0.1 * w);
+  for (int k = 0; k < 5000; ++k) p.push_back(u(rng));
+  for (double node : x) {
+    double lo = node, hi = node;
+    for (int k = 0; k < 4; ++k) {
+      p.push_back(lo);
+      p.push_back(hi);
+      lo = std::nextafter(lo, -1e300);
+      hi = std::nextafter(hi, 1e300);
+    }
+  }
+  return p;
+}
+
+TEST(Kernel, BucketSearchFindsTheCellsOfTheBinarySearch) {
+  // The default scene's y axis (0.25 mm steps at the ends, 0.5 mm between), a geometric axis
+  // (spacings over a factor 30), three unequal nodes (the default load axis) and xi.
+  std::vector<double> y;
+  for (int i = 0; i <= 16; ++i) y.push_back(-0.010 + 0.00025 * i);
+  for (int i = 0; i <= 22; ++i) y.push_back(-0.0055 + 0.0005 * i);
+  for (int i = 0; i <= 16; ++i) y.push_back(0.006 + 0.00025 * i);
+  std::vector<double> geometric = {0.0};
+  for (int i = 0; i < 12; ++i) geometric.push_back(geometric.back() + 1e-3 * std::pow(1.35, i));
+  const std::vector<std::vector<double>> axes = {
+      y, geometric, {60e3, 78.5e3, 100e3}, {-0.004, -0.002, -0.001, 0.0, 0.001, 0.002, 0.004}};
+  unsigned seed = 1;
+  for (const auto& x : axes) {
+    const detail::Axis a(x);
+    for (double q : probes(x, seed++)) {
+      detail::AxisLoc exact, fast;
+      const bool clamped = a.locate(q, exact);
+      ASSERT_EQ(a.locate_fast(q, fast), clamped) << q;
+      ASSERT_EQ(fast.i, exact.i) << q;
+      ASSERT_EQ(fast.t, exact.t) << q;
+    }
+  }
+}
+
+// Status bits that differ from node to node (a hash of the node's coordinates).
+std::uint32_t node_status(int wheel, int part, int slot, const double* x) {
+  std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint64_t>(wheel * 7 + part * 3 + slot);
+  for (int v = 0; v < 6; ++v) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x[v], sizeof bits);
+    h = (h ^ bits) * 1099511628211ull;
+  }
+  h ^= h >> 29;
+  // Mostly converged (so the AND matters), sometimes a trouble bit or two.
+  std::uint32_t s = (h & 7) ? status::kConverged : 0u;
+  if ((h >> 3) % 5 == 0) s |= status::kFullSlip;
+  if ((h >> 7) % 7 == 0) s |= status::kTwoPoint;
+  if ((h >> 11) % 11 == 0) s |= status::kNotConverged;
+  return s;
+}
+
+FixtureSpec status_spec() {
+  FixtureSpec spec;
+  spec.axes = {{0, {-0.01, -0.007, -0.002, 0.0, 0.0045, 0.01}},
+               {2, {60e3, 78.5e3, 100e3}},
+               {3, {-0.004, -0.001, 0.0, 0.002, 0.004}},
+               {5, linspace(-0.3, 0.3, 3)}};
+  spec.fixed = {{1, 0.0}, {4, 0.001}};
+  spec.status = node_status;
+  spec.value = [](int, int, int, int, const double*) { return 1.0; };
+  return spec;
+}
+
+TEST(Kernel, CellStatusIsTheFoldOfItsCornerNodes) {
+  TempFile file("cell_status");
+  const FixtureSpec spec = status_spec();
+  testing::write_fixture(file.path, spec);
+  const Table t = Table::load(file.path);
+  std::mt19937 rng(5);
+  for (int k = 0; k < 3000; ++k) {
+    double x[6] = {0, 0, 0, 0, 0, 0};
+    for (const auto& [var, value] : spec.fixed) x[var] = value;
+    for (const auto& [var, nodes] : spec.axes)
+      x[var] = std::uniform_real_distribution<double>(nodes.front(), nodes.back())(rng);
+    const State s{x[0], x[1], x[2], x[3], x[4], x[5]};
+    const int wheel = k % 2;
+    const Result r = t.query(static_cast<Wheel>(wheel), s);
+    for (int part = 0; part < kNumParts; ++part) {
+      const auto& pf = testing::part_formats()[part];
+      // The part's cell: lower node index along each of its axes, then the 2^D corners.
+      std::vector<std::pair<int, std::vector<double>>> cell;
+      for (const auto& [var, nodes] : spec.axes) {
+        if (!pf.uses[var]) continue;
+        const int i = static_cast<int>(
+            std::upper_bound(nodes.begin() + 1, nodes.end() - 1, x[var]) - nodes.begin() - 1);
+        cell.push_back({var, {nodes[i], nodes[i + 1]}});
+      }
+      for (int slot = 0; slot < spec.n_slots; ++slot) {
+        std::uint32_t any = 0, all = ~0u;
+        for (int c = 0; c < (1 << cell.size()); ++c) {
+          double corner[6] = {0, 0, 0, 0, 0, 0};  // the fixture evaluates unused axes at 0
+          for (const auto& [var, value] : spec.fixed) corner[var] = value;
+          for (const auto& [var, nodes] : spec.axes)
+            if (!pf.uses[var]) corner[var] = 0.0;
+          for (std::size_t d = 0; d < cell.size(); ++d)
+            corner[cell[d].first] = cell[d].second[(c >> d) & 1];
+          const std::uint32_t st = node_status(wheel, part, slot, corner);
+          any |= st;
+          all &= st;
+        }
+        const std::uint32_t expected =
+            (any & ~status::kConverged) | (all & status::kConverged);
+        ASSERT_EQ(r.contact[slot].part_status[part], expected)
+            << "part " << part << " slot " << slot << " query " << k;
+      }
+    }
+  }
+}
+
+TEST(Kernel, Avx2AndSse2KernelsGiveTheSameBytes) {
+  // The kernels are chosen at load; RAILTAB_LOOKUP_NO_AVX2 forces SSE2. On a CPU without AVX2
+  // both loads run SSE2 and the test compares SSE2 with itself.
+  TempFile file("simd");
+  FixtureSpec spec = status_spec();
+  spec.value = [](int wheel, int part, int out, int slot, const double* x) {
+    return std::sin(1.0 + wheel + 0.3 * part + 0.7 * out + slot + 50.0 * x[0] + 1e-5 * x[2] +
+                    300.0 * x[3]) * std::exp(2.0 * x[5]);
+  };
+  testing::write_fixture(file.path, spec);
+  for (Method method : {Method::kLinear, Method::kCubic, Method::kMonotoneCubic}) {
+    ::setenv("RAILTAB_LOOKUP_NO_AVX2", "1", 1);
+    const Table sse2 = Table::load(file.path, {method});
+    ::unsetenv("RAILTAB_LOOKUP_NO_AVX2");
+    const Table best = Table::load(file.path, {method});
+    std::mt19937 rng(9);
+    for (int k = 0; k < 500; ++k) {
+      State s = best.default_state();
+      s.y = std::uniform_real_distribution<double>(-0.011, 0.011)(rng);
+      s.load = std::uniform_real_distribution<double>(55e3, 105e3)(rng);
+      s.xi = std::uniform_real_distribution<double>(-0.005, 0.005)(rng);
+      s.phi = std::uniform_real_distribution<double>(-0.35, 0.35)(rng);
+      const Result a = sse2.query(static_cast<Wheel>(k % 2), s);
+      const Result b = best.query(static_cast<Wheel>(k % 2), s);
+      ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "method " << static_cast<int>(method);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace railtab::lookup
