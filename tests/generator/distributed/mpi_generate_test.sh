@@ -18,16 +18,29 @@ same_datasets single.h5 mpi.h5 || fail "mpirun -n 3 table differs from the singl
 [ ! -e mpi.h5.partial ] || fail "checkpoint left after a complete MPI run"
 echo "ok: mpirun -n 3 gives the single-process datasets"
 
-# Kill one rank (not rank 0's process necessarily: any of them) once a block is in the checkpoint.
+# Kill a worker rank mid-run. Race-free: once rank 0 has created the checkpoint (every rank is past
+# MPI_Init), rank 2 is stopped (SIGSTOP); rank 0 cannot finish the table without it, so the run is
+# frozen short of completion while ranks 0 and 1 fill the checkpoint; then rank 2 gets SIGKILL.
 mpirun -n 3 "$railtab" generate "$scene" -o killed.h5 --threads 1 --quiet > run.log 2>&1 &
 launcher=$!
-for _ in $(seq 1 1000); do
+rank_pid() {  # the pid of MPI rank $1 under the launcher
+  local pid
+  for pid in $(pgrep -P "$launcher"); do
+    if tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$1"; then
+      echo "$pid"
+      return
+    fi
+  done
+}
+for _ in $(seq 1 3000); do [ -e killed.h5.partial ] && break; sleep 0.01; done
+victim=$(rank_pid 2)
+[ -n "$victim" ] || fail "rank 2 not found under mpirun (did the run end before the kill?)"
+kill -STOP "$victim"
+[ ! -e killed.h5 ] || fail "the run completed before rank 2 could be stopped; use a larger scene"
+for _ in $(seq 1 3000); do
   [ "$(stat -c %s killed.h5.partial 2>/dev/null || echo 0)" -gt 4096 ] && break
   sleep 0.01
 done
-ranks=$(pgrep -P "$launcher" -f "railtab generate" || true)
-[ -n "$ranks" ] || fail "no rank process found under mpirun (did the run end before the kill?)"
-victim=$(echo "$ranks" | tail -n 1)
 kill -KILL "$victim"
 if wait "$launcher"; then fail "mpirun exited 0 after one of its ranks was killed"; fi
 [ ! -e killed.h5 ] || fail "a table file exists after a rank was killed"
