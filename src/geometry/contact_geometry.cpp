@@ -97,11 +97,13 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
   pose.zc += out.wheel_drop;
   out.points.reserve(found.minima.size());
   for (const detail::RawContact& m : found.minima) {
-    const ProfileSample ew = wheel.eval(m.wheel_u);
-    const detail::RailPoint rp = rail.point(m.rail_u);
+    const CurveSample ew = wheel.curve(m.wheel_t);
+    const detail::RailPoint rp = rail.point(m.rail_t);
     ContactPoint cp{};
-    cp.wheel_u = m.wheel_u;
-    cp.rail_u = m.rail_u;
+    cp.wheel_u = ew.y;
+    cp.rail_u = rp.u;
+    cp.wheel_t = m.wheel_t;
+    cp.rail_t = m.rail_t;
     cp.y_track = sigma * rp.p.q;
     cp.z_track = rp.p.z;
     cp.contact_angle_side = rp.angle;
@@ -111,8 +113,8 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
     // Meusnier: the circumferential curvature of the wheel is cos(g_w)/r with g_w the normal's
     // angle to the wheel's own radial plane, i.e. the side-frame angle minus the wheel's roll.
     cp.curvature_a = 0.5 * std::cos(rp.angle - pose.theta) / cp.rolling_radius;
-    const double slope_term = 1.0 + ew.dz * ew.dz;
-    const double k_wheel = ew.d2z / (slope_term * std::sqrt(slope_term));  // convex: d2z_w > 0
+    const double slope_term = detail::speed_squared(ew);
+    const double k_wheel = detail::curvature_numerator(ew) / (slope_term * std::sqrt(slope_term));  // convex: > 0
     cp.curvature_b = 0.5 * (k_wheel + rp.curvature);
     cp.status = 0;
     if (cp.contact_angle_side > settings_.flange_angle) cp.status |= status::kFlangeContact;
