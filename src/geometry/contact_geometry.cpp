@@ -7,6 +7,7 @@
 
 #include "core/check.hpp"
 #include "geometry/placement.hpp"
+#include "profile/profile_checks.hpp"
 
 namespace railtab {
 
@@ -23,6 +24,20 @@ void check_profile(const ProfilePtr& p, ProfileKind kind, const char* what) {
 void check_positive(double value, const char* name) {
   RAILTAB_CHECK(std::isfinite(value) && value > 0.0, "contact geometry: {} = {} must be finite and > 0",
                 name, value);
+}
+
+constexpr double kMaxCurveLength = 4.0;  // [m]; readers limit coordinates to 1 m
+
+// A rail file that already holds the cant (MBench_UIC60_v3.prr) would be inclined twice. A head
+// that is mirror-symmetric (to 0.02 mm) about an axis tilted by more than 0.005 rad, and clearly
+// not (by 0.1 mm or more) about the vertical, is such a file.
+void check_not_canted_twice(const Profile& rail, double inclination) {
+  const ApparentCant cant = apparent_cant(rail);
+  RAILTAB_CHECK(!(cant.asymmetry < 2e-5 && cant.asymmetry_as_given > 1e-4 && std::abs(cant.beta) > 5e-3),
+                "contact geometry: rail profile '{}' is already inclined (its head is symmetric about "
+                "an axis tilted by {:.5f} rad, 1:{:.1f}); track.rail_inclination = {} would cant it "
+                "twice: set rail_inclination = 0 for a pre-inclined rail, or give the uninclined profile",
+                rail.name(), cant.beta, 1.0 / std::tan(std::abs(cant.beta)), inclination);
 }
 
 }  // namespace
@@ -61,6 +76,18 @@ ContactGeometrySolver::ContactGeometrySolver(ProfilePtr wheel_left, ProfilePtr r
   check_positive(settings_.band_max_gap, "settings.band_max_gap");
   RAILTAB_CHECK(std::isfinite(settings_.flange_angle),
                 "contact geometry: settings.flange_angle = {} is not finite", settings_.flange_angle);
+
+  // Sizes before any table is allocated: a profile wider than a few metres is a unit error, and
+  // its tables would take gigabytes (docs/profiles.md "Limits").
+  for (const ProfilePtr& p : {wheel_[0], wheel_[1], rail_[0], rail_[1]}) {
+    RAILTAB_CHECK(p->t_max() - p->t_min() <= kMaxCurveLength,
+                  "contact geometry: profile '{}' is {} m long along its curve, more than the limit "
+                  "of {} m: wrong length unit?",
+                  p->name(), p->t_max() - p->t_min(), kMaxCurveLength);
+  }
+  if (track_.rail_inclination != 0.0) {
+    for (const ProfilePtr& p : {rail_[0], rail_[1]}) check_not_canted_twice(*p, track_.rail_inclination);
+  }
 
   // The rail table must resolve the coarse search and the band; half their step is plenty for
   // cubic Hermite interpolation, and a floor keeps absurd settings from exhausting memory.

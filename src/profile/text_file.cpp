@@ -1,0 +1,73 @@
+#include "profile/text_file.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "core/check.hpp"
+#include "profile/profile_limits.hpp"
+
+namespace railtab::detail {
+namespace {
+
+// Closes the descriptor on every path out.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+[[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
+  throw Error(fmt::format("{}: {}", file.string(), problem));
+}
+
+}  // namespace
+
+TextFile read_text_file(const std::filesystem::path& file) {
+  // O_NONBLOCK: opening a FIFO without a writer must not wait; fstat then refuses it.
+  const Descriptor d{::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  if (d.fd < 0) fail(file, fmt::format("cannot open the profile file for reading ({})", std::strerror(errno)));
+  struct stat st {};
+  if (::fstat(d.fd, &st) != 0) fail(file, fmt::format("cannot stat the profile file ({})", std::strerror(errno)));
+  if (!S_ISREG(st.st_mode)) fail(file, "not a regular file (a device, FIFO, socket or directory): refused");
+  if (st.st_size < 0 || static_cast<std::size_t>(st.st_size) > limits::kMaxProfileFileBytes) {
+    fail(file, fmt::format("{} bytes, more than the limit of {} bytes for a profile file",
+                           static_cast<long long>(st.st_size), limits::kMaxProfileFileBytes));
+  }
+  // Read at most the limit plus one byte, whatever the size said (the file may grow meanwhile).
+  std::string text;
+  text.resize(static_cast<std::size_t>(st.st_size) + 1);
+  std::size_t have = 0;
+  while (have < text.size()) {
+    const ssize_t n = ::read(d.fd, text.data() + have, text.size() - have);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail(file, fmt::format("read error ({})", std::strerror(errno)));
+    if (n == 0) break;
+    have += static_cast<std::size_t>(n);
+  }
+  if (have > static_cast<std::size_t>(st.st_size)) fail(file, "the file grew while it was read");
+  text.resize(have);
+
+  TextFile out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    if (out.lines.size() >= limits::kMaxProfileLines) {
+      fail(file, fmt::format("more than {} lines: not a profile", limits::kMaxProfileLines));
+    }
+    if (end == std::string::npos) {
+      out.lines.push_back(text.substr(start));
+      out.ends_with_newline = false;
+      break;
+    }
+    out.lines.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+}  // namespace railtab::detail
