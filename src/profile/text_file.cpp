@@ -27,18 +27,23 @@ struct Descriptor {
 
 }  // namespace
 
-TextFile read_text_file(const std::filesystem::path& file) {
+}  // namespace railtab::detail
+
+namespace railtab {
+
+std::string read_regular_file(const std::filesystem::path& file, std::size_t max_bytes) {
+  using detail::fail;
   // O_NONBLOCK: opening a FIFO without a writer must not wait; fstat then refuses it.
-  const Descriptor d{::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
-  if (d.fd < 0) fail(file, fmt::format("cannot open the profile file for reading ({})", std::strerror(errno)));
+  const detail::Descriptor d{::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  if (d.fd < 0) fail(file, fmt::format("cannot open the file for reading ({})", std::strerror(errno)));
   struct stat st {};
-  if (::fstat(d.fd, &st) != 0) fail(file, fmt::format("cannot stat the profile file ({})", std::strerror(errno)));
+  if (::fstat(d.fd, &st) != 0) fail(file, fmt::format("cannot stat the file ({})", std::strerror(errno)));
   if (!S_ISREG(st.st_mode)) fail(file, "not a regular file (a device, FIFO, socket or directory): refused");
-  if (st.st_size < 0 || static_cast<std::size_t>(st.st_size) > limits::kMaxProfileFileBytes) {
-    fail(file, fmt::format("{} bytes, more than the limit of {} bytes for a profile file",
-                           static_cast<long long>(st.st_size), limits::kMaxProfileFileBytes));
+  if (st.st_size < 0 || static_cast<std::size_t>(st.st_size) > max_bytes) {
+    fail(file, fmt::format("{} bytes, more than the limit of {} bytes", static_cast<long long>(st.st_size),
+                           max_bytes));
   }
-  // Read at most the limit plus one byte, whatever the size said (the file may grow meanwhile).
+  // Read at most the size plus one byte, whatever the size said (the file may grow meanwhile).
   std::string text;
   text.resize(static_cast<std::size_t>(st.st_size) + 1);
   std::size_t have = 0;
@@ -51,7 +56,15 @@ TextFile read_text_file(const std::filesystem::path& file) {
   }
   if (have > static_cast<std::size_t>(st.st_size)) fail(file, "the file grew while it was read");
   text.resize(have);
+  return text;
+}
 
+}  // namespace railtab
+
+namespace railtab::detail {
+
+TextFile read_text_file(const std::filesystem::path& file) {
+  const std::string text = read_regular_file(file, limits::kMaxProfileFileBytes);
   TextFile out;
   std::size_t start = 0;
   while (start < text.size()) {
