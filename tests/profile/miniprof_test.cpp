@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "error_message.hpp"
+#include "profile/parametric_profile.hpp"
 #include "profile/profile_io.hpp"
 #include "profile/s1002.hpp"
 #include "profile/uic60.hpp"
@@ -134,6 +135,45 @@ TEST(MiniProf, ErrorsNameFileAndLine) {
   // Old style without the blank line that ends the free header: no data at all.
   auto [f6, m6] = message("#MINIPROF\nMINIPROF 2020\n" + rail, "_no_blank");
   EXPECT_TRUE(contains(m6, "too few profile points: 0")) << m6;
+}
+
+
+
+std::filesystem::path testbank_file(const std::string& name) {
+  return std::filesystem::path(RAILTAB_SOURCE_DIR) / "tests" / "data" / "profiles" / name;
+}
+
+// CONTACT testbank's avg_HR.BAN as shipped: keyed header, quoted keys, X towards the gauge face,
+// Y up, four columns, and one point that steps back by 0.01 mm (29.27 -> 29.26): a curve.
+TEST(MiniProf, TestbankRailAvgHrAsShipped) {
+  const ProfilePtr p = read_profile(testbank_file("avg_HR.BAN"), ProfileKind::rail);
+  EXPECT_TRUE(p->parametric());
+  EXPECT_NEAR(p->u_min(), -0.04659, 1e-9);  // the gauge face (file X = +46.59) on the track side
+  EXPECT_NEAR(p->u_max(), 0.01173, 1e-9);
+  const CurveSample gauge_end = p->curve(p->t_min());
+  EXPECT_NEAR(gauge_end.z, -0.02542, 1e-9);  // Y up kept: 25.42 mm below the file origin
+  EXPECT_NEAR(p->eval(-0.0036).z, -0.00021, 2e-5);  // the top, near file X = 3.6 mm
+}
+
+// CONTACT testbank's Car7216_0001r.whl as shipped: old style, X from the flange back, Y down, a
+// vertical back face (X goes back and forth by 0.1 mm) and seven points out of order at the
+// flange tip: a curve.
+TEST(MiniProf, TestbankWheelCar7216AsShipped) {
+  const ProfilePtr p = read_profile(testbank_file("Car7216_0001r.whl"), ProfileKind::wheel);
+  ASSERT_TRUE(p->parametric());
+  const auto* curve = dynamic_cast<const ParametricProfile*>(p.get());
+  ASSERT_TRUE(curve != nullptr);
+  // Innermost point X = -0.1571 mm goes to u = -70 mm; the tread at u = 0 (X = 69.8429 mm) has
+  // Y = 0.10212 mm, so the flange tip (X = 15.8950, Y = 27.8119, file line 222) is 27.7098 mm down.
+  EXPECT_NEAR(p->u_min(), -0.070, 1e-12);
+  EXPECT_NEAR(p->eval(0.0).z, 0.0, 1e-7);  // zero on the chord between the points around u = 0
+  CurveSample tip = p->curve(curve->knots().front());
+  for (double s : curve->knots()) {  // the knot nearest the tip's lateral position
+    const CurveSample c = p->curve(s);
+    if (std::abs(c.y + 0.0539479) < std::abs(tip.y + 0.0539479)) tip = c;
+  }
+  EXPECT_NEAR(tip.y, (15.8950 + 0.1571 - 70.0) * 1e-3, 1e-12);
+  EXPECT_NEAR(tip.z, -(27.8119 - 0.102116) * 1e-3, 2e-8);
 }
 
 }  // namespace
