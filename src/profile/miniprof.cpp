@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace railtab::detail {
 namespace {
@@ -13,6 +14,7 @@ namespace {
 constexpr double kMPerMm = 1e-3;
 constexpr double kWheelBackToRunningCircle = 70.0;  // [mm] taping line from the flange back (EN 13715)
 constexpr double kMinPointDistance = 1e-4;          // [mm] closer consecutive points are dropped
+constexpr double kMaxGlitchStep = 0.05;             // [mm] smaller steps backwards are dropped
 
 struct RawPoint {
   double x;  // file X [mm]
@@ -158,6 +160,19 @@ std::vector<FilePoint> read_miniprof(const std::vector<std::string>& lines, cons
     fail(file, static_cast<int>(lines.size()),
          fmt::format("too few profile points: {} (a spline needs at least 4)", raw.size()));
   }
+  // A point that steps back against the measuring direction by less than the instrument's
+  // resolution where the surface is flatter than 45 degrees is noise (avg_HR.BAN: X = 29.27 then 29.26 at the same Y); kept, it would fold the
+  // curve into a tiny loop that hides the rest of the surface. A real overhang turns back over
+  // many points and survives (each step is compared with the last point kept).
+  const double direction = raw.back().x >= raw.front().x ? 1.0 : -1.0;
+  std::vector<RawPoint> kept{raw.front()};
+  for (std::size_t i = 1; i < raw.size(); ++i) {
+    const double step = direction * (raw[i].x - kept.back().x);
+    const bool flat = std::abs(raw[i].y - kept.back().y) < -step;  // flatter than 45 deg
+    if (step < 0.0 && step > -kMaxGlitchStep && flat && i + 1 < raw.size()) continue;
+    kept.push_back(raw[i]);
+  }
+  raw = std::move(kept);
   for (const RawPoint& p : raw) {  // before any arithmetic on them (docs/profiles.md "Limits")
     if (std::abs(p.x) * kMPerMm > limits::kMaxProfileCoordinate ||
         std::abs(p.y) * kMPerMm > limits::kMaxProfileCoordinate) {
