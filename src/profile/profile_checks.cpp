@@ -58,6 +58,13 @@ void check_wheel(const Profile& p, const std::vector<Sample>& s, const std::stri
   });
   const std::size_t i_high = index_of_max_z(s);
   const bool high_inside = i_high > s.size() / 50 && i_high + s.size() / 50 < s.size() - 1;
+  const bool flange_on_inner_part = lowest->u - p.u_min() < p.u_max() - lowest->u;
+  RAILTAB_CHECK(lowest->u < 0.0 || !flange_on_inner_part,
+                "{}: the flange (lowest point, u = {:.2f} mm) lies on the field side of u = 0 "
+                "although it is on the inner part of the profile [{:.2f}, {:.2f}] mm: the lateral "
+                "origin is not on the running circle (measured from the flange back?); shift the "
+                "profile so that u = 0 is on the running circle",
+                what, lowest->u / kMm, p.u_min() / kMm, p.u_max() / kMm);
   const double flange = z0 - lowest->z;
   if (flange < 10 * kMm && high_inside && s[i_high].z - z0 >= 10 * kMm) {
     throw Error(fmt::format("{}: the flange points up ({:.2f} mm above the running circle at u = "

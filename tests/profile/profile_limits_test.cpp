@@ -123,6 +123,16 @@ TEST(ProfilePlausibility, MirroredWheelIsRefused) {
   EXPECT_TRUE(contains(m, "is on the field side of the running circle")) << m;
 }
 
+// A wheel whose origin lies near its flange back (60 mm from the running circle; CONTACT's
+// worn_high_mileage.prw): the flange is on the correct side, the origin is not.
+TEST(ProfilePlausibility, WheelOriginOffTheRunningCircleIsRefused) {
+  std::vector<test::Point> pts = test::s1002_points();
+  for (test::Point& p : pts) p.y += 60.0;  // u = 0 on the flange back face
+  const fs::path f = write_test_file(test::columns(pts, 1.0, -1.0), ".txt");
+  const std::string m = error_message([&] { read_profile(f, ProfileKind::wheel); });
+  EXPECT_TRUE(contains(m, "the lateral origin is not on the running circle")) << m;
+}
+
 TEST(ProfilePlausibility, UpsideDownRailIsRefused) {
   const fs::path f = write_test_file(test::columns(test::uic60_points(), 1.0, 1.0), ".txt");
   const std::string m = error_message([&] { read_profile(f, ProfileKind::rail); });
