@@ -10,7 +10,7 @@
 #include "core/check.hpp"
 #include "profile/profile_limits.hpp"
 
-namespace railtab::detail {
+namespace railtab {
 namespace {
 
 // Closes the descriptor on every path out.
@@ -27,14 +27,9 @@ struct Descriptor {
 
 }  // namespace
 
-}  // namespace railtab::detail
-
-namespace railtab {
-
 std::string read_regular_file(const std::filesystem::path& file, std::size_t max_bytes) {
-  using detail::fail;
   // O_NONBLOCK: opening a FIFO without a writer must not wait; fstat then refuses it.
-  const detail::Descriptor d{::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  const Descriptor d{::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (d.fd < 0) fail(file, fmt::format("cannot open the file for reading ({})", std::strerror(errno)));
   struct stat st {};
   if (::fstat(d.fd, &st) != 0) fail(file, fmt::format("cannot stat the file ({})", std::strerror(errno)));
@@ -59,9 +54,7 @@ std::string read_regular_file(const std::filesystem::path& file, std::size_t max
   return text;
 }
 
-}  // namespace railtab
-
-namespace railtab::detail {
+namespace detail {
 
 TextFile read_text_file(const std::filesystem::path& file) {
   const std::string text = read_regular_file(file, limits::kMaxProfileFileBytes);
@@ -83,4 +76,5 @@ TextFile read_text_file(const std::filesystem::path& file) {
   return out;
 }
 
-}  // namespace railtab::detail
+}  // namespace detail
+}  // namespace railtab
