@@ -57,7 +57,11 @@ ProfilePtr wheel_profile(const Scene& scene) {
                   scene.wheel.name);
     return make_s1002_profile();
   }
-  return read_profile(scene.wheel.file, ProfileKind::wheel, scene.wheel.smoothing_length);
+  ProfileReadOptions options;
+  options.smoothing_length = scene.wheel.smoothing_length;
+  options.mirror_y = scene.wheel.mirror_y;
+  options.mirror_z = scene.wheel.mirror_z;
+  return read_profile(scene.wheel.file, ProfileKind::wheel, options);
 }
 
 // The step's contact scene: the simulation's contact scene with the current wheel profile, the

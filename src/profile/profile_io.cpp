@@ -225,6 +225,11 @@ ProfilePtr read_profile(const fs::path& file, ProfileKind kind, const ProfileRea
   } else {
     points = read_two_column(lines, file);
   }
+  if (!is_miniprof(file, lines) &&
+      (options.mirror_y != AxisMirror::automatic || options.mirror_z != AxisMirror::automatic)) {
+    fail(file, 0, "mirror_y / mirror_z apply to MiniProf files only (SIMPACK files carry mirror.y / "
+                  "mirror.z, two-column files have a fixed orientation)");
+  }
   const int last_line = static_cast<int>(lines.size());
   if (points.size() < 4) {
     fail(file, last_line, fmt::format("too few profile points: {} (a spline needs at least 4)", points.size()));

@@ -116,6 +116,14 @@ TEST(MiniProf, ExplicitMirrorKeysOverrideTheAutomatic) {
   EXPECT_TRUE(contains(n, "flange points up") || contains(n, "no flange")) << n;
 }
 
+TEST(MiniProf, MirrorKeysRefusedForOtherFormats) {
+  const std::filesystem::path f = write_test_file(test::columns(test::s1002_points(), 1.0, -1.0), ".txt");
+  ProfileReadOptions o;
+  o.mirror_y = AxisMirror::yes;
+  const std::string m = error_message([&] { read_profile(f, ProfileKind::wheel, o); });
+  EXPECT_TRUE(contains(m, "apply to MiniProf files only")) << m;
+}
+
 TEST(MiniProf, ErrorsNameFileAndLine) {
   const std::string rail = test::columns(test::uic60_points(1.0), -1.0, 1.0);
   auto message = [](const std::string& text, const std::string& suffix) {

@@ -191,6 +191,20 @@ TEST(Scene, MissingFileNamesIt) {
   }
 }
 
+TEST(Scene, MiniProfMirrorKeys) {
+  std::string text = kMinimal;
+  text.replace(text.find("rail = \"uic60\"\n"), 15, "rail = \"uic60\"\nwheel_mirror_y = \"yes\"\nrail_mirror_z = \"no\"\n");
+  const Scene s = parse_scene(text, "mirror.toml");
+  EXPECT_EQ(s.wheel.mirror_y, AxisMirror::yes);
+  EXPECT_EQ(s.wheel.mirror_z, AxisMirror::automatic);
+  EXPECT_EQ(s.rail.mirror_z, AxisMirror::no);
+  std::string bad = kMinimal;
+  bad.replace(bad.find("rail = \"uic60\"\n"), 15, "rail = \"uic60\"\nrail_mirror_y = \"maybe\"\n");
+  const std::string m = error_of(bad);
+  EXPECT_NE(m.find("profiles.rail_mirror_y"), std::string::npos) << m;
+  EXPECT_NE(m.find("not one of auto, no, yes"), std::string::npos) << m;
+}
+
 // Issue 19, finding 3: a device or FIFO given as a scene used to be read without limit
 // (/dev/zero) or to block forever (a FIFO without a writer).
 TEST(Scene, DeviceOrFifoIsRefusedWithoutReading) {
