@@ -222,6 +222,14 @@ std::vector<NormalModel> parse_model_choice(const Section& s, const toml::node& 
   return models;
 }
 
+// "auto" | "no" | "yes" (MiniProf axis orientation, docs/profiles.md).
+AxisMirror parse_axis_mirror(const std::string& text) {
+  if (text == "auto") return AxisMirror::automatic;
+  if (text == "no") return AxisMirror::no;
+  if (text == "yes") return AxisMirror::yes;
+  throw Error(fmt::format("'{}' is not one of auto, no, yes", text));
+}
+
 ProfileSource parse_profile(const Section& s, const std::string& key, const std::filesystem::path& base_dir,
                             double smoothing) {
   const toml::node& n = s.required(key);
@@ -267,10 +275,16 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   if (scene.name.empty()) fail(ctx, sc.required("name").source(), "scene.name", "must not be empty");
   scene.description = sc.string("description").value_or("");
 
-  Section pr = section(ctx, root, "profiles", {"wheel", "rail", "smoothing"});
+  Section pr = section(ctx, root, "profiles",
+                       {"wheel", "rail", "smoothing", "wheel_mirror_y", "wheel_mirror_z", "rail_mirror_y",
+                        "rail_mirror_z"});
   double smoothing = pr.number("smoothing", 0.0, non_negative, ">= 0 [m]");
   scene.wheel = parse_profile(pr, "wheel", base_dir, smoothing);
   scene.rail = parse_profile(pr, "rail", base_dir, smoothing);
+  scene.wheel.mirror_y = pr.parse_string("wheel_mirror_y", parse_axis_mirror).value_or(AxisMirror::automatic);
+  scene.wheel.mirror_z = pr.parse_string("wheel_mirror_z", parse_axis_mirror).value_or(AxisMirror::automatic);
+  scene.rail.mirror_y = pr.parse_string("rail_mirror_y", parse_axis_mirror).value_or(AxisMirror::automatic);
+  scene.rail.mirror_z = pr.parse_string("rail_mirror_z", parse_axis_mirror).value_or(AxisMirror::automatic);
 
   Section tr = section(ctx, root, "track", {"gauge", "gauge_measuring_depth", "rail_inclination"});
   scene.track.gauge = tr.number("gauge", scene.track.gauge, positive, "> 0 [m]");

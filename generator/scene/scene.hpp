@@ -10,6 +10,7 @@
 #include "core/material.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
+#include "profile/profile_io.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "wear/archard.hpp"
 
@@ -19,6 +20,8 @@ struct ProfileSource {
   std::string name;        // built-in name ("s1002", "uic60") or a file path as written in the scene
   std::filesystem::path file;  // resolved file path (relative to the scene file); empty for built-ins
   double smoothing_length = 0.0;  // smoothing of measured profiles, 0 = interpolate [m]
+  AxisMirror mirror_y = AxisMirror::automatic;  // MiniProf lateral axis (profile/profile_io.hpp)
+  AxisMirror mirror_z = AxisMirror::automatic;  // MiniProf vertical axis
 };
 
 struct TangentialSettings {

@@ -20,7 +20,11 @@ ProfilePtr make_profile(const ProfileSource& source, ProfileKind kind) {
     throw Error(fmt::format("unknown built-in profile '{}'", source.name));
   }
 #ifdef RAILTAB_HAVE_PROFILE_IO
-  return read_profile(source.file, kind, source.smoothing_length);
+  ProfileReadOptions options;
+  options.smoothing_length = source.smoothing_length;
+  options.mirror_y = source.mirror_y;
+  options.mirror_z = source.mirror_z;
+  return read_profile(source.file, kind, options);
 #else
   throw Error(fmt::format("{}: reading profile files is not available in this build", source.file.string()));
 #endif

@@ -5,10 +5,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
+
+#include "profile/text_file.hpp"
 
 namespace railtab::scene_toml {
+
+namespace {
+// A scene lists its grids explicitly at most; 4 MiB is thousands of times the shipped ones.
+constexpr std::size_t kMaxSceneFileBytes = 4u << 20;
+}  // namespace
 
 void fail(const Context& ctx, const toml::source_region& where, const std::string& key,
           const std::string& message) {
@@ -127,12 +132,12 @@ const toml::table* table_at(const Context& ctx, const toml::table& parent, const
 }
 
 std::string read_text(const std::filesystem::path& path, const char* what) {
-  std::ifstream in(path, std::ios::binary);
-  RAILTAB_CHECK(in.good(), "{}: cannot open {}", path.string(), what);
-  std::ostringstream text;
-  text << in.rdbuf();
-  RAILTAB_CHECK(!in.bad(), "{}: cannot read {}", path.string(), what);
-  return text.str();
+  // Regular files only, size-limited, without blocking on a FIFO (src/profile/text_file.hpp).
+  try {
+    return read_regular_file(path, kMaxSceneFileBytes);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{} ({})", e.what(), what));
+  }
 }
 
 toml::table parse(std::string_view text, const std::string& source_name) {

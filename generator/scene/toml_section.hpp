@@ -73,6 +73,7 @@ class Section {
 const toml::table* table_at(const Context& ctx, const toml::table& parent, const std::string& key,
                             const std::string& dotted_name);
 // The whole text of a scene file; `what` names the kind of file in the error ("scene file").
+// Only a regular file of at most 4 MiB: a device or FIFO is refused at once (no read, no block).
 std::string read_text(const std::filesystem::path& path, const char* what);
 // Parses TOML text; a syntax error names the file, line and column.
 toml::table parse(std::string_view text, const std::string& source_name);

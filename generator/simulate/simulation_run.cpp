@@ -20,6 +20,7 @@
 #include "profile/profile_io.hpp"
 #include "profile/s1002.hpp"
 #include "scene/scene.hpp"
+#include "scene/toml_section.hpp"
 #include "simulate/bogie_run.hpp"
 #include "simulate/direct_contact_model.hpp"
 #include "simulate/lookup_contact_model.hpp"
@@ -56,7 +57,11 @@ ProfilePtr wheel_profile(const Scene& scene) {
                   scene.wheel.name);
     return make_s1002_profile();
   }
-  return read_profile(scene.wheel.file, ProfileKind::wheel, scene.wheel.smoothing_length);
+  ProfileReadOptions options;
+  options.smoothing_length = scene.wheel.smoothing_length;
+  options.mirror_y = scene.wheel.mirror_y;
+  options.mirror_z = scene.wheel.mirror_z;
+  return read_profile(scene.wheel.file, ProfileKind::wheel, options);
 }
 
 // The step's contact scene: the simulation's contact scene with the current wheel profile, the
@@ -65,7 +70,8 @@ ProfilePtr wheel_profile(const Scene& scene) {
 // with `railtab generate` / `railtab eval`.
 std::string step_scene_text(const SimulationScene& sim, const Scene& contact, const std::string& model,
                             const fs::path& worn_wheel, const fs::path& step_dir, const std::string& name) {
-  toml::table root = toml::parse_file(sim.contact_scene.string());
+  toml::table root = scene_toml::parse(scene_toml::read_text(sim.contact_scene, "contact scene"),
+                                       sim.contact_scene.string());
   auto section = [&](const char* key) -> toml::table& {
     if (!root.contains(key)) root.insert(key, toml::table{});
     return *root[key].as_table();

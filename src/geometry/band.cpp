@@ -14,22 +14,22 @@ namespace {
 
 enum class Facing { ok, wheel_edge, failed };
 
-// Wheel parameter u on the normal line through rail point rp; u holds the start value.
+// Wheel curve parameter u on the normal line through rail point rp; u holds the start value.
 Facing facing_wheel_point(const Profile& wheel, const WheelPose& pose, const RailPoint& rp,
                           const Point2& n, double& u) {
   int clamped = 0;
   for (int it = 0; it < 40; ++it) {
-    const ProfileSample e = wheel.eval(u);
-    const Point2 w = pose.place(u, e.z);
+    const CurveSample e = wheel.curve(u);
+    const Point2 w = pose.place(e.y, e.z);
     const Point2 d{w.q - rp.p.q, w.z - rp.p.z};
     const double f = cross(d, n);
-    const double df = cross(pose.tangent(e.dz), n);
+    const double df = cross(pose.tangent(e.dy, e.dz), n);
     if (!(std::abs(df) > 1e-6)) return Facing::failed;  // normal tangent to the wheel
     double step = -f / df;
     step = std::clamp(step, -5e-3, 5e-3);
     double next = u + step;
-    if (next < wheel.u_min() || next > wheel.u_max()) {
-      next = std::clamp(next, wheel.u_min(), wheel.u_max());
+    if (next < wheel.t_min() || next > wheel.t_max()) {
+      next = std::clamp(next, wheel.t_min(), wheel.t_max());
       if (++clamped > 2) return Facing::wheel_edge;
     }
     const bool done = std::abs(next - u) < 1e-13;
@@ -44,10 +44,10 @@ Facing facing_wheel_point(const Profile& wheel, const WheelPose& pose, const Rai
 bool build_band(const PlacedRail& rail, const Profile& wheel, const WheelPose& pose,
                 const GeometrySettings& settings, WheelContactGeometry& out) {
   const double h = settings.band_step;
-  const double s_primary = rail.s_at_u(out.points.front().rail_u);
+  const double s_primary = rail.s_at_t(out.points.front().rail_t);
   double s_first = s_primary, s_last = s_primary;
   for (ContactPoint& cp : out.points) {
-    const double s = rail.s_at_u(cp.rail_u);
+    const double s = rail.s_at_t(cp.rail_t);
     cp.band_s = s - s_primary;
     s_first = std::min(s_first, s);
     s_last = std::max(s_last, s);
@@ -65,13 +65,13 @@ bool build_band(const PlacedRail& rail, const Profile& wheel, const WheelPose& p
 
   // Walk from the primary contact in direction dir; returns the last k kept.
   auto walk = [&](long k_begin, long k_end, long dir) {
-    double u = out.points.front().wheel_u;
+    double u = out.points.front().wheel_t;
     const double s_cut = dir > 0 ? s_last - s_primary : s_first - s_primary;
     long kept = k_begin - dir;
     for (long k = k_begin; dir > 0 ? k <= k_end : k >= k_end; k += dir) {
       const double s_rel = static_cast<double>(k) * h;
       const double s_abs = std::clamp(s_primary + s_rel, 0.0, rail.s_hi());
-      const RailPoint rp = rail.point(std::clamp(rail.u_at_s(s_abs), rail.u_lo(), rail.u_hi()));
+      const RailPoint rp = rail.point(std::clamp(rail.t_at_s(s_abs), rail.t_lo(), rail.t_hi()));
       const double norm = std::hypot(rp.tangent.q, rp.tangent.z);
       const Point2 n{-rp.tangent.z / norm, rp.tangent.q / norm};
       const Facing facing = facing_wheel_point(wheel, pose, rp, n, u);
@@ -83,22 +83,22 @@ bool build_band(const PlacedRail& rail, const Profile& wheel, const WheelPose& p
         }
         break;
       }
-      const ProfileSample e = wheel.eval(u);
-      const Point2 w = pose.place(u, e.z);
+      const CurveSample e = wheel.curve(u);
+      const Point2 w = pose.place(e.y, e.z);
       const double gap = (w.q - rp.p.q) * n.q + (w.z - rp.p.z) * n.z;
       const bool beyond = dir > 0 ? s_rel > s_cut : s_rel < s_cut;
       if (beyond && gap > settings.band_max_gap) break;
-      const double slope_term = 1.0 + e.dz * e.dz;
+      const double slope_term = speed_squared(e);
       BandSample& b = out.band[static_cast<std::size_t>(k - k_lo)];
       b.s = s_rel;
       b.rail_u = rp.u;
-      b.wheel_u = u;
+      b.wheel_u = e.y;
       b.q = rp.p.q;
       b.z = rp.p.z;
       b.contact_angle = rp.angle;
       b.gap = gap;
       b.rolling_radius = pose.r0 - e.z;
-      b.curvature_wheel = e.d2z / (slope_term * std::sqrt(slope_term));  // convex: d2z_w > 0
+      b.curvature_wheel = curvature_numerator(e) / (slope_term * std::sqrt(slope_term));  // convex: > 0
       b.curvature_rail = rp.curvature;
       kept = k;
     }

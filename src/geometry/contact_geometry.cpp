@@ -7,6 +7,7 @@
 
 #include "core/check.hpp"
 #include "geometry/placement.hpp"
+#include "profile/profile_checks.hpp"
 
 namespace railtab {
 
@@ -23,6 +24,20 @@ void check_profile(const ProfilePtr& p, ProfileKind kind, const char* what) {
 void check_positive(double value, const char* name) {
   RAILTAB_CHECK(std::isfinite(value) && value > 0.0, "contact geometry: {} = {} must be finite and > 0",
                 name, value);
+}
+
+constexpr double kMaxCurveLength = 4.0;  // [m]; readers limit coordinates to 1 m
+
+// A rail file that already holds the cant (MBench_UIC60_v3.prr) would be inclined twice. A head
+// that is mirror-symmetric (to 0.02 mm) about an axis tilted by more than 0.005 rad, and clearly
+// not (by 0.1 mm or more) about the vertical, is such a file.
+void check_not_canted_twice(const Profile& rail, double inclination) {
+  const ApparentCant cant = apparent_cant(rail);
+  RAILTAB_CHECK(!(cant.asymmetry < 2e-5 && cant.asymmetry_as_given > 1e-4 && std::abs(cant.beta) > 5e-3),
+                "contact geometry: rail profile '{}' is already inclined (its head is symmetric about "
+                "an axis tilted by {:.5f} rad, 1:{:.1f}); track.rail_inclination = {} would cant it "
+                "twice: set rail_inclination = 0 for a pre-inclined rail, or give the uninclined profile",
+                rail.name(), cant.beta, 1.0 / std::tan(std::abs(cant.beta)), inclination);
 }
 
 }  // namespace
@@ -62,6 +77,18 @@ ContactGeometrySolver::ContactGeometrySolver(ProfilePtr wheel_left, ProfilePtr r
   RAILTAB_CHECK(std::isfinite(settings_.flange_angle),
                 "contact geometry: settings.flange_angle = {} is not finite", settings_.flange_angle);
 
+  // Sizes before any table is allocated: a profile wider than a few metres is a unit error, and
+  // its tables would take gigabytes (docs/profiles.md "Limits").
+  for (const ProfilePtr& p : {wheel_[0], wheel_[1], rail_[0], rail_[1]}) {
+    RAILTAB_CHECK(p->t_max() - p->t_min() <= kMaxCurveLength,
+                  "contact geometry: profile '{}' is {} m long along its curve, more than the limit "
+                  "of {} m: wrong length unit?",
+                  p->name(), p->t_max() - p->t_min(), kMaxCurveLength);
+  }
+  if (track_.rail_inclination != 0.0) {
+    for (const ProfilePtr& p : {rail_[0], rail_[1]}) check_not_canted_twice(*p, track_.rail_inclination);
+  }
+
   // The rail table must resolve the coarse search and the band; half their step is plenty for
   // cubic Hermite interpolation, and a floor keeps absurd settings from exhausting memory.
   const double table_step = std::max(0.5 * std::min(settings_.search_step, settings_.band_step), 2e-6);
@@ -97,11 +124,13 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
   pose.zc += out.wheel_drop;
   out.points.reserve(found.minima.size());
   for (const detail::RawContact& m : found.minima) {
-    const ProfileSample ew = wheel.eval(m.wheel_u);
-    const detail::RailPoint rp = rail.point(m.rail_u);
+    const CurveSample ew = wheel.curve(m.wheel_t);
+    const detail::RailPoint rp = rail.point(m.rail_t);
     ContactPoint cp{};
-    cp.wheel_u = m.wheel_u;
-    cp.rail_u = m.rail_u;
+    cp.wheel_u = ew.y;
+    cp.rail_u = rp.u;
+    cp.wheel_t = m.wheel_t;
+    cp.rail_t = m.rail_t;
     cp.y_track = sigma * rp.p.q;
     cp.z_track = rp.p.z;
     cp.contact_angle_side = rp.angle;
@@ -111,8 +140,8 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
     // Meusnier: the circumferential curvature of the wheel is cos(g_w)/r with g_w the normal's
     // angle to the wheel's own radial plane, i.e. the side-frame angle minus the wheel's roll.
     cp.curvature_a = 0.5 * std::cos(rp.angle - pose.theta) / cp.rolling_radius;
-    const double slope_term = 1.0 + ew.dz * ew.dz;
-    const double k_wheel = ew.d2z / (slope_term * std::sqrt(slope_term));  // convex: d2z_w > 0
+    const double slope_term = detail::speed_squared(ew);
+    const double k_wheel = detail::curvature_numerator(ew) / (slope_term * std::sqrt(slope_term));  // convex: > 0
     cp.curvature_b = 0.5 * (k_wheel + rp.curvature);
     cp.status = 0;
     if (cp.contact_angle_side > settings_.flange_angle) cp.status |= status::kFlangeContact;

@@ -83,6 +83,8 @@ struct ContactPoint {
   double curvature_b;       // principal relative curvature, lateral direction, B [1/m]
   double band_s;            // arc length of this point in the wheel's band [m]
   StatusBits status;        // kFlangeContact, kNonHertzian (A or B <= 0), kProfileEdge
+  double wheel_t;           // wheel curve parameter (Profile::curve; = wheel_u for z(u) profiles) [m]
+  double rail_t;            // rail curve parameter (= rail_u for z(u) profiles) [m]
 };
 
 struct WheelContactGeometry {

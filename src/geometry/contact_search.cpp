@@ -1,6 +1,7 @@
 // Rigid contact search of one wheel on its rail: local minima of the vertical gap.
 //
-// Coarse stage: the wheel nodes (uniform in wheel u, step search_step) are placed in the side
+// Both profiles are parametric curves (t = u for function profiles; placement.hpp).
+// Coarse stage: the wheel nodes (uniform in wheel t, step search_step) are placed in the side
 // frame and compared with the tabulated rail (cubic Hermite in q); every local minimum of the
 // sampled gap is a candidate, so a second (flange) contact is never hidden behind the first.
 // Fine stage: each candidate is refined on the exact curves by a safeguarded Newton iteration
@@ -18,29 +19,29 @@ namespace {
 struct GapEval {
   double g;       // vertical gap wheel - rail at drop 0 [m]
   double phi;     // tangent angle wheel - rail; sign of dg/dq [rad]
-  double dphi;    // d(phi)/du_wheel [1/m]
-  double rail_u;  // rail point below the wheel point [m]
+  double dphi;    // d(phi)/dt_wheel [1/m]
+  double rail_t;  // rail point below the wheel point (curve parameter) [m]
 };
 
 GapEval eval_gap(const PlacedRail& rail, const Profile& wheel, const WheelPose& pose, double u) {
-  const ProfileSample e = wheel.eval(u);
-  const Point2 w = pose.place(u, e.z);
+  const CurveSample e = wheel.curve(u);
+  const Point2 w = pose.place(e.y, e.z);
   const double q = std::clamp(w.q, rail.q_lo(), rail.q_hi());
-  const double ur = rail.u_at_q(q);
+  const double ur = rail.t_at_q(q);
   const RailPoint rp = rail.point(ur);
-  const Point2 tw = pose.tangent(e.dz);
+  const Point2 tw = pose.tangent(e.dy, e.dz);
   GapEval r;
   r.g = w.z - rp.p.z;
-  r.phi = pose.theta + std::atan(e.dz) - rp.angle;
-  r.dphi = e.d2z / (1.0 + e.dz * e.dz) - rp.dangle_du * (tw.q / rp.tangent.q);
-  r.rail_u = ur;
+  r.phi = pose.theta + tangent_angle(e.dy, e.dz) - rp.angle;
+  r.dphi = curvature_numerator(e) / speed_squared(e) - rp.dangle_dt * (tw.q / rp.tangent.q);
+  r.rail_t = ur;
   return r;
 }
 
 // Minimum of the gap inside [a, b] (wheel u): safeguarded Newton on phi, or golden section.
 RawContact refine(const PlacedRail& rail, const Profile& wheel, const WheelPose& pose, double a,
                   double b, double start) {
-  constexpr double kTol = 1e-11;  // [m] in wheel u
+  constexpr double kTol = 1e-11;  // [m] in wheel t
   const GapEval fa = eval_gap(rail, wheel, pose, a);
   const GapEval fb = eval_gap(rail, wheel, pose, b);
   if (fa.phi < 0.0 && fb.phi > 0.0) {
@@ -56,7 +57,7 @@ RawContact refine(const PlacedRail& rail, const Profile& wheel, const WheelPose&
       f = eval_gap(rail, wheel, pose, u);
       if (step < kTol || hi - lo < kTol) break;
     }
-    return {u, f.rail_u, f.g, false};
+    return {u, f.rail_t, f.g, false};
   }
   // No sign change (cusp or very flat gap): golden section on the gap.
   const double ratio = 0.5 * (3.0 - std::sqrt(5.0));
@@ -74,7 +75,7 @@ RawContact refine(const PlacedRail& rail, const Profile& wheel, const WheelPose&
     }
   }
   const GapEval f = eval_gap(rail, wheel, pose, 0.5 * (a + b));
-  return {0.5 * (a + b), f.rail_u, f.g, false};
+  return {0.5 * (a + b), f.rail_t, f.g, false};
 }
 
 struct Candidate {
@@ -91,8 +92,8 @@ SearchResult search_contacts(const PlacedRail& rail, const Profile& wheel,
   const int n = samples.size();
   // Branch of the wheel around its running circle on which q increases with u: beyond a fold
   // (the flange back turned by the roll) the wheel surface faces away from the rail.
-  const int i0 = std::clamp(static_cast<int>(std::lround(-samples.u0 / samples.h)), 0, n - 1);
-  auto dq_du = [&](int i) { return pose.cos_t - pose.sin_t * samples.dz[i]; };
+  const int i0 = samples.i_running;
+  auto dq_du = [&](int i) { return pose.cos_t * samples.dy[i] - pose.sin_t * samples.dz[i]; };
   int lo = i0, hi = i0;
   while (lo > 0 && dq_du(lo - 1) > 1e-3) --lo;
   while (hi < n - 1 && dq_du(hi + 1) > 1e-3) ++hi;
@@ -116,7 +117,7 @@ SearchResult search_contacts(const PlacedRail& rail, const Profile& wheel,
     }
   };
   for (int i = lo; i <= hi; ++i) {
-    const Point2 w = pose.place(samples.u(i), samples.z[i]);
+    const Point2 w = pose.place(samples.y[i], samples.z[i]);
     if (w.q < rail.q_lo()) continue;
     if (w.q > rail.q_hi()) break;
     const double g = w.z - rail.z_at_q_table(w.q, hint);
@@ -149,14 +150,15 @@ SearchResult search_contacts(const PlacedRail& rail, const Profile& wheel,
     if (c.g - g_min > max_separation + coarse_margin) continue;
     RawContact rc;
     if (c.edge) {
-      const double u = samples.u(c.i);
+      const double u = samples.t(c.i);
       const GapEval f = eval_gap(rail, wheel, pose, u);
-      rc = {u, f.rail_u, f.g, true};
+      rc = {u, f.rail_t, f.g, true};
     } else {
-      rc = refine(rail, wheel, pose, samples.u(c.i - 1), samples.u(c.i + 1), samples.u(c.i));
+      rc = refine(rail, wheel, pose, samples.t(c.i - 1), samples.t(c.i + 1), samples.t(c.i));
     }
+    if (!std::isfinite(rc.gap)) continue;  // absurd coordinates (checked by the readers too)
     const bool duplicate = std::any_of(result.minima.begin(), result.minima.end(), [&](const RawContact& m) {
-      return std::abs(m.wheel_u - rc.wheel_u) < 1e-9;
+      return std::abs(m.wheel_t - rc.wheel_t) < 1e-9;
     });
     if (duplicate) continue;
     result.minima.push_back(rc);
@@ -165,6 +167,10 @@ SearchResult search_contacts(const PlacedRail& rail, const Profile& wheel,
   std::erase_if(result.minima, [&](const RawContact& m) {
     return m.gap - result.gap_min > max_separation;
   });
+  RAILTAB_CHECK(!result.minima.empty(),
+                "wheel '{}' on its rail: no contact point found (wheelset shift {} m, roll {} rad in "
+                "the side frame); are the profile coordinates plausible?",
+                wheel.name(), pose.qc, pose.theta);
   return result;
 }
 

@@ -28,12 +28,18 @@ PlacedRail::PlacedRail(ProfilePtr profile, const TrackGeometry& track, double ta
       cos_a_(std::cos(alpha_)),
       sin_a_(std::sin(alpha_)) {
   const Profile& p = *profile_;
-  const double a = p.u_min();
-  const double b = p.u_max();
+  const double a = p.t_min();
+  const double b = p.t_max();
   const int n_scan = std::max(2, static_cast<int>(std::ceil((b - a) / table_step)));
   const double h_scan = (b - a) / n_scan;
-  auto z_rot = [&](double u) { return sin_a_ * u + cos_a_ * p.eval(u).z; };
-  auto q_rot = [&](double u) { return cos_a_ * u - sin_a_ * p.eval(u).z; };
+  auto z_rot = [&](double t) {
+    const CurveSample c = p.curve(t);
+    return sin_a_ * c.y + cos_a_ * c.z;
+  };
+  auto q_rot = [&](double t) {
+    const CurveSample c = p.curve(t);
+    return cos_a_ * c.y - sin_a_ * c.z;
+  };
 
   auto node = [&](int i) { return i == n_scan ? b : a + h_scan * i; };
 
@@ -49,9 +55,9 @@ PlacedRail::PlacedRail(ProfilePtr profile, const TrackGeometry& track, double ta
   }
   double u_top = node(i_top);
   for (int it = 0; it < 30 && i_top > 0 && i_top < n_scan; ++it) {
-    const ProfileSample e = p.eval(u_top);
-    const double f = sin_a_ + cos_a_ * e.dz;
-    const double df = cos_a_ * e.d2z;
+    const CurveSample e = p.curve(u_top);
+    const double f = sin_a_ * e.dy + cos_a_ * e.dz;
+    const double df = sin_a_ * e.d2y + cos_a_ * e.d2z;
     if (!(df < 0.0)) break;  // not a maximum in the Newton sense: keep the node
     const double next = std::clamp(u_top - f / df, node(i_top - 1), node(i_top + 1));
     const bool done = std::abs(next - u_top) < 1e-14;
@@ -62,7 +68,10 @@ PlacedRail::PlacedRail(ProfilePtr profile, const TrackGeometry& track, double ta
 
   // Upper surface: the branch around the top on which q increases with u. Beyond a fold
   // (an overhanging face) the surface is hidden from a wheel coming from above.
-  auto dq_du = [&](double u) { return cos_a_ - sin_a_ * p.eval(u).dz; };
+  auto dq_du = [&](double t) {
+    const CurveSample c = p.curve(t);
+    return cos_a_ * c.dy - sin_a_ * c.dz;
+  };
   int i_lo = i_top;
   while (i_lo > 0 && dq_du(node(i_lo - 1)) > 1e-3) --i_lo;
   int i_hi = i_top;
@@ -101,7 +110,7 @@ PlacedRail::PlacedRail(ProfilePtr profile, const TrackGeometry& track, double ta
   // Tables on the upper branch.
   const int n = std::max(2, static_cast<int>(std::ceil((u_hi - u_lo) / table_step)));
   const double h = (u_hi - u_lo) / n;
-  u_.resize(n + 1);
+  t_.resize(n + 1);
   q_.resize(n + 1);
   z_.resize(n + 1);
   slope_.resize(n + 1);
@@ -109,14 +118,11 @@ PlacedRail::PlacedRail(ProfilePtr profile, const TrackGeometry& track, double ta
   ds_.resize(n + 1);
   // 3-point Gauss-Legendre per interval for the arc length.
   const double gl_x = std::sqrt(0.6);
-  auto ds_du = [&](double u) {
-    const double d = p.eval(u).dz;
-    return std::sqrt(1.0 + d * d);
-  };
+  auto ds_du = [&](double t) { return std::sqrt(speed_squared(p.curve(t))); };
   for (int i = 0; i <= n; ++i) {
     const double u = i == n ? u_hi : u_lo + h * i;
     const RailPoint rp = point(u);
-    u_[i] = u;
+    t_[i] = u;
     q_[i] = rp.p.q;
     z_[i] = rp.p.z;
     slope_[i] = rp.tangent.z / rp.tangent.q;
@@ -124,28 +130,30 @@ PlacedRail::PlacedRail(ProfilePtr profile, const TrackGeometry& track, double ta
     if (i == 0) {
       s_[i] = 0.0;
     } else {
-      const double m = 0.5 * (u_[i - 1] + u);
-      const double r = 0.5 * (u - u_[i - 1]);
+      const double m = 0.5 * (t_[i - 1] + u);
+      const double r = 0.5 * (u - t_[i - 1]);
       s_[i] = s_[i - 1] + r * (5.0 / 9.0 * ds_du(m - r * gl_x) + 8.0 / 9.0 * ds_du(m) +
                                5.0 / 9.0 * ds_du(m + r * gl_x));
     }
   }
   for (int i = 1; i <= n; ++i) {
-    RAILTAB_CHECK(q_[i] > q_[i - 1], "rail profile '{}': lateral position not monotone near u = {} m",
-                  p.name(), u_[i]);
+    RAILTAB_CHECK(q_[i] > q_[i - 1], "rail profile '{}': lateral position not monotone near t = {} m",
+                  p.name(), t_[i]);
   }
 }
 
-RailPoint PlacedRail::point(double u) const {
-  const ProfileSample e = profile_->eval(u);
+RailPoint PlacedRail::point(double t) const {
+  const CurveSample e = profile_->curve(t);
   RailPoint r;
-  r.u = u;
-  r.p = {cos_a_ * u - sin_a_ * e.z + offset_q_, sin_a_ * u + cos_a_ * e.z + offset_z_};
-  r.tangent = {cos_a_ - sin_a_ * e.dz, sin_a_ + cos_a_ * e.dz};
-  r.angle = alpha_ + std::atan(e.dz);
-  const double w = 1.0 + e.dz * e.dz;
-  r.dangle_du = e.d2z / w;
-  r.curvature = -e.d2z / (w * std::sqrt(w));  // the profile counts a convex crown negative
+  r.t = t;
+  r.u = e.y;
+  r.p = {cos_a_ * e.y - sin_a_ * e.z + offset_q_, sin_a_ * e.y + cos_a_ * e.z + offset_z_};
+  r.tangent = {cos_a_ * e.dy - sin_a_ * e.dz, sin_a_ * e.dy + cos_a_ * e.dz};
+  r.angle = alpha_ + tangent_angle(e.dy, e.dz);
+  const double w = speed_squared(e);
+  const double k = curvature_numerator(e);
+  r.dangle_dt = k / w;
+  r.curvature = -k / (w * std::sqrt(w));  // the profile counts a convex crown negative
   return r;
 }
 
@@ -164,17 +172,17 @@ double PlacedRail::z_at_q_table(double q, int& hint) const {
   return hermite(q_[j], q_[j + 1], z_[j], z_[j + 1], slope_[j], slope_[j + 1], q);
 }
 
-double PlacedRail::u_at_q(double q) const {
+double PlacedRail::t_at_q(double q) const {
   const int j = interval_of(q_, q);
-  const double lo = u_[j];
-  const double hi = u_[j + 1];
+  const double lo = t_[j];
+  const double hi = t_[j + 1];
   double u = lo + (hi - lo) * (q - q_[j]) / (q_[j + 1] - q_[j]);
   for (int it = 0; it < 30; ++it) {
-    const ProfileSample e = profile_->eval(u);
-    const double f = cos_a_ * u - sin_a_ * e.z + offset_q_ - q;
-    const double df = cos_a_ - sin_a_ * e.dz;
-    const double next = std::clamp(u - f / df, std::max(u_lo(), lo - (hi - lo)),
-                                   std::min(u_hi(), hi + (hi - lo)));
+    const CurveSample e = profile_->curve(u);
+    const double f = cos_a_ * e.y - sin_a_ * e.z + offset_q_ - q;
+    const double df = cos_a_ * e.dy - sin_a_ * e.dz;
+    const double next = std::clamp(u - f / df, std::max(t_lo(), lo - (hi - lo)),
+                                   std::min(t_hi(), hi + (hi - lo)));
     const bool done = std::abs(next - u) < 1e-14;
     u = next;
     if (done) break;
@@ -182,27 +190,41 @@ double PlacedRail::u_at_q(double q) const {
   return u;
 }
 
-double PlacedRail::s_at_u(double u) const {
-  const int j = interval_of(u_, u);
-  return hermite(u_[j], u_[j + 1], s_[j], s_[j + 1], ds_[j], ds_[j + 1], u);
+double PlacedRail::s_at_t(double t) const {
+  const int j = interval_of(t_, t);
+  return hermite(t_[j], t_[j + 1], s_[j], s_[j + 1], ds_[j], ds_[j + 1], t);
 }
 
-double PlacedRail::u_at_s(double s) const {
+double PlacedRail::t_at_s(double s) const {
   const int j = interval_of(s_, s);
-  return hermite(s_[j], s_[j + 1], u_[j], u_[j + 1], 1.0 / ds_[j], 1.0 / ds_[j + 1], s);
+  return hermite(s_[j], s_[j + 1], t_[j], t_[j + 1], 1.0 / ds_[j], 1.0 / ds_[j + 1], s);
 }
 
 WheelSamples::WheelSamples(const Profile& wheel, double step) {
-  const int n = std::max(2, static_cast<int>(std::ceil((wheel.u_max() - wheel.u_min()) / step)));
-  u0 = wheel.u_min();
-  h = (wheel.u_max() - wheel.u_min()) / n;
+  const int n = std::max(2, static_cast<int>(std::ceil((wheel.t_max() - wheel.t_min()) / step)));
+  t0 = wheel.t_min();
+  h = (wheel.t_max() - wheel.t_min()) / n;
+  t_end = wheel.t_max();
+  y.resize(n + 1);
   z.resize(n + 1);
+  dy.resize(n + 1);
   dz.resize(n + 1);
   for (int i = 0; i <= n; ++i) {
-    const ProfileSample e = wheel.eval(i == n ? wheel.u_max() : u0 + h * i);
-    u_end = wheel.u_max();
+    const CurveSample e = wheel.curve(i == n ? t_end : t0 + h * i);
+    y[i] = e.y;
     z[i] = e.z;
+    dy[i] = e.dy;
     dz[i] = e.dz;
+  }
+  if (!wheel.parametric()) {
+    i_running = std::clamp(static_cast<int>(std::lround(-t0 / h)), 0, n);
+  } else {
+    // The node nearest y = 0 among those on a part of the curve that runs towards the field side.
+    i_running = -1;
+    for (int i = 0; i <= n; ++i) {
+      if (dy[i] > 0.0 && (i_running < 0 || std::abs(y[i]) < std::abs(y[i_running]))) i_running = i;
+    }
+    RAILTAB_CHECK(i_running >= 0, "wheel profile '{}': no part runs towards the field side", wheel.name());
   }
 }
 

@@ -1,7 +1,11 @@
 // Internal to the geometry layer: the rail and wheel curves placed in a side frame (q outward,
 // z up; docs/conventions.md "Side frame"), with the tables that make the hot loop cheap.
 //
-// Rail: the profile (u, z_r(u)) rotated counter-clockwise in the (q, z) plane by
+// Both profiles are used as parametric curves t -> (y(t), z(t)) (Profile::curve; t = u for a
+// function profile, the arc length for a ParametricProfile), so overhangs and undercuts need no
+// special case: only the branch that faces the other body is searched (q increasing with t).
+//
+// Rail: the profile (y, z_r) rotated counter-clockwise in the (q, z) plane by
 // alpha = atan(rail_inclination), so that the crown slope dz/dq at u = 0 becomes +inclination:
 // the head leans towards the track centre and its normal tilts inwards, like the coned wheel
 // tread. Then translated so that the gauge point (innermost point gauge_measuring_depth below the
@@ -13,6 +17,7 @@
 // theta = sigma*roll about C and placed with C = (sigma*y, r0 + drop).
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "geometry/contact_geometry.hpp"
@@ -28,11 +33,12 @@ inline double cross(const Point2& a, const Point2& b) { return a.q * b.z - a.z *
 
 // One rail point with everything the search and the band need.
 struct RailPoint {
-  double u;          // rail-profile coordinate [m]
+  double t;          // rail curve parameter [m]
+  double u;          // rail-profile lateral coordinate y(t) [m]
   Point2 p;          // placed point [m]
   Point2 tangent;    // unnormalised tangent dP/du [-]
   double angle;      // angle of the outward normal from vertical, + towards the track centre [rad]
-  double dangle_du;  // d(angle)/du = z_r''/(1 + z_r'^2) [1/m]
+  double dangle_dt;  // d(angle)/dt = (y'z'' - z'y'')/(y'^2 + z'^2) [1/m]
   double curvature;  // lateral curvature, + convex (crown) [1/m]
 };
 
@@ -41,23 +47,23 @@ class PlacedRail {
  public:
   PlacedRail(ProfilePtr profile, const TrackGeometry& track, double table_step);
 
-  RailPoint point(double u) const;  // exact, u in [u_lo, u_hi]
+  RailPoint point(double t) const;  // exact, t in [t_lo, t_hi]
 
   // Height of the rail at lateral q from the table (cubic Hermite in q): the coarse search only.
   // hint: table interval to start from (updated), for monotone sweeps.
   double z_at_q_table(double q, int& hint) const;
 
-  // Exact rail-profile coordinate at lateral q (Newton, started from the table).
-  double u_at_q(double q) const;
+  // Exact rail curve parameter at lateral q on the upper branch (Newton, started from the table).
+  double t_at_q(double q) const;
 
-  // Arc length from u_lo (cubic Hermite on the tabulated arc length) and its inverse.
-  double s_at_u(double u) const;
-  double u_at_s(double s) const;
+  // Arc length from t_lo (cubic Hermite on the tabulated arc length) and its inverse.
+  double s_at_t(double t) const;
+  double t_at_s(double s) const;
 
   double q_lo() const { return q_.front(); }  // [m]
   double q_hi() const { return q_.back(); }   // [m]
-  double u_lo() const { return u_.front(); }  // [m]
-  double u_hi() const { return u_.back(); }   // [m]
+  double t_lo() const { return t_.front(); }  // [m]
+  double t_hi() const { return t_.back(); }   // [m]
   double s_hi() const { return s_.back(); }   // [m]
   double offset_q() const { return offset_q_; }  // side-frame q of the rail-profile origin [m]
   double offset_z() const { return offset_z_; }  // side-frame z of the rail-profile origin [m]
@@ -70,26 +76,39 @@ class PlacedRail {
   ProfilePtr profile_;
   double alpha_, cos_a_, sin_a_;
   double offset_q_ = 0.0, offset_z_ = 0.0;
-  // Table on the branch of the rail whose q increases with u (the upper surface), step h in u.
-  std::vector<double> u_;      // nodes [m]
+  // Table on the branch of the rail whose q increases with t (the upper surface), step h in t.
+  std::vector<double> t_;      // nodes [m]
   std::vector<double> q_;      // placed q at the nodes, strictly increasing [m]
   std::vector<double> z_;      // placed z at the nodes [m]
   std::vector<double> slope_;  // dz/dq at the nodes [-]
   std::vector<double> s_;      // arc length from the first node [m]
-  std::vector<double> ds_;     // ds/du = sqrt(1 + z_r'^2) at the nodes [-]
+  std::vector<double> ds_;     // ds/dt = sqrt(y'^2 + z'^2) at the nodes [-]
 };
 
-// Wheel profile samples on a uniform u grid (the coarse search walks them).
+// Wheel profile samples on a uniform grid of the curve parameter t (the coarse search walks them).
 struct WheelSamples {
-  double u0;                // first node [m]
+  double t0;                // first node [m]
   double h;                 // node spacing [m]
+  std::vector<double> y;    // lateral profile coordinate at the nodes [m]
   std::vector<double> z;    // z_w at the nodes [m]
-  std::vector<double> dz;   // dz_w/du at the nodes [-]
+  std::vector<double> dy;   // dy/dt at the nodes [-]
+  std::vector<double> dz;   // dz_w/dt at the nodes [-]
+  int i_running;            // node nearest the running circle (y = 0) on the part facing the rail
   WheelSamples(const Profile& wheel, double step);
-  double u_end;             // last node = wheel u_max [m]
-  double u(int i) const { return i + 1 == size() ? u_end : u0 + h * i; }
+  double t_end;             // last node = wheel t_max [m]
+  double t(int i) const { return i + 1 == size() ? t_end : t0 + h * i; }
   int size() const { return static_cast<int>(z.size()); }
 };
+
+// Angle of the curve tangent (dy, dz) from the lateral axis [rad]: atan(dz/dy) where dy > 0,
+// which is atan(dz) exactly for a function profile (dy = 1).
+inline double tangent_angle(double dy, double dz) {
+  return dy > 0.0 ? std::atan(dz / dy) : std::atan2(dz, dy);
+}
+
+// Signed curvature numerator y'z'' - z'y'' (d2z for a function profile) and |r'|^2.
+inline double curvature_numerator(const CurveSample& c) { return c.dy * c.d2z - c.dz * c.d2y; }
+inline double speed_squared(const CurveSample& c) { return c.dy * c.dy + c.dz * c.dz; }
 
 // Pose of one wheel in its side frame.
 struct WheelPose {
@@ -101,20 +120,22 @@ struct WheelPose {
   double q0;      // lateral distance axle centre -> running circle, back_to_back/2 - flange_back [m]
   double r0;      // nominal radius [m]
 
-  Point2 place(double u, double z_w) const {
-    const double a = q0 + u;
+  Point2 place(double y_w, double z_w) const {
+    const double a = q0 + y_w;
     const double b = z_w - r0;
     return {qc + cos_t * a - sin_t * b, zc + sin_t * a + cos_t * b};
   }
-  Point2 tangent(double dz_w) const { return {cos_t - sin_t * dz_w, sin_t + cos_t * dz_w}; }
+  Point2 tangent(double dy_w, double dz_w) const {
+    return {cos_t * dy_w - sin_t * dz_w, sin_t * dy_w + cos_t * dz_w};
+  }
 };
 
 WheelPose make_pose(Side side, const WheelsetState& state, const WheelsetGeometry& wheelset);
 
 // Rigid contact search result of one wheel (before the band).
 struct RawContact {
-  double wheel_u;  // [m]
-  double rail_u;   // [m]
+  double wheel_t;  // wheel curve parameter [m]
+  double rail_t;   // rail curve parameter [m]
   double gap;      // vertical gap with the wheel at drop 0 [m]
   bool edge;       // minimum sits at the end of the searchable range
 };

@@ -19,6 +19,18 @@ ProfileSample Profile::eval(double u) const {
   return eval_unchecked(u);
 }
 
+CurveSample Profile::curve(double t) const {
+  RAILTAB_CHECK(t >= t_min() && t <= t_max(),
+                "profile '{}': curve parameter t = {} m is outside its range [{}, {}] m", name_, t,
+                t_min(), t_max());
+  return curve_unchecked(t);
+}
+
+CurveSample Profile::curve_unchecked(double t) const {
+  const ProfileSample p = eval_unchecked(t);
+  return {t, p.z, 1.0, p.dz, 0.0, p.d2z};
+}
+
 double Profile::curvature(double u) const {
   const ProfileSample p = eval(u);
   const double slope_term = 1.0 + p.dz * p.dz;

@@ -1,9 +1,7 @@
 #include "profile/profile_io.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -12,83 +10,17 @@
 #include <vector>
 
 #include "core/check.hpp"
+#include "profile/miniprof.hpp"
+#include "profile/parametric_profile.hpp"
+#include "profile/parse_util.hpp"
+#include "profile/profile_checks.hpp"
 #include "profile/spline_profile.hpp"
+#include "profile/text_file.hpp"
 
 namespace railtab {
 namespace {
 
-namespace fs = std::filesystem;
-
-// One profile point as it goes through the file's processing options.
-struct FilePoint {
-  double y;  // lateral, towards the field side once oriented [file length unit, then m]
-  double z;  // vertical, positive downwards [file length unit, then m]
-  int line;  // 1-based line of the file it came from
-};
-
-[[noreturn]] void fail(const fs::path& file, int line, const std::string& message) {
-  if (line > 0) throw Error(fmt::format("{}:{}: {}", file.string(), line, message));
-  throw Error(fmt::format("{}: {}", file.string(), message));
-}
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r\n");
-  return s.substr(first, last - first + 1);
-}
-
-// Cuts the line at the first comment character outside single or double quotes.
-std::string_view strip_comment(std::string_view s, std::string_view comment_chars) {
-  char quote = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const char c = s[i];
-    if (quote != 0) {
-      if (c == quote) quote = 0;
-    } else if (c == '\'' || c == '"') {
-      quote = c;
-    } else if (comment_chars.find(c) != std::string_view::npos) {
-      return s.substr(0, i);
-    }
-  }
-  return s;
-}
-
-// Fields separated by white space and/or commas.
-std::vector<std::string_view> split_fields(std::string_view s) {
-  std::vector<std::string_view> fields;
-  std::size_t i = 0;
-  auto is_sep = [](char c) { return c == ' ' || c == '\t' || c == ',' || c == ';' || c == '\r'; };
-  while (i < s.size()) {
-    while (i < s.size() && is_sep(s[i])) ++i;
-    const std::size_t start = i;
-    while (i < s.size() && !is_sep(s[i])) ++i;
-    if (i > start) fields.push_back(s.substr(start, i - start));
-  }
-  return fields;
-}
-
-double parse_number(std::string_view token, const fs::path& file, int line, std::string_view what) {
-  std::string_view digits = token;
-  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);  // from_chars rejects '+'
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (ec != std::errc() || end != digits.data() + digits.size() || digits.empty()) {
-    fail(file, line, fmt::format("malformed number '{}' for {}", token, what));
-  }
-  if (!std::isfinite(value)) fail(file, line, fmt::format("{} is not finite ('{}')", what, token));
-  return value;
-}
-
-std::vector<std::string> read_lines(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) fail(file, 0, "cannot open the profile file for reading");
-  std::vector<std::string> lines;
-  std::string line;
-  while (std::getline(in, line)) lines.push_back(std::move(line));
-  if (in.bad()) fail(file, 0, "read error");
-  return lines;
-}
+using namespace detail;  // the readers' shared helpers (parse_util.hpp, text_file.hpp, miniprof.hpp)
 
 // A key = value option of a SIMPACK header or spline block.
 struct Option {
@@ -140,6 +72,7 @@ std::vector<FilePoint> read_simpack(const std::vector<std::string>& lines, const
       }
       points.push_back({parse_number(fields[0], file, line, "y"),
                         parse_number(fields[1], file, line, "z"), line});
+      check_point_count(points.size(), file, line);
       if (fields.size() == 3) parse_number(fields[2], file, line, "weight");
       continue;
     }
@@ -224,13 +157,19 @@ std::vector<FilePoint> read_two_column(const std::vector<std::string>& lines, co
     }
     points.push_back({parse_number(fields[0], file, line, "lateral coordinate") * kMPerMm,
                       parse_number(fields[1], file, line, "vertical coordinate") * kMPerMm, line});
+    check_point_count(points.size(), file, line);
   }
   return points;
 }
 
-bool is_simpack(const fs::path& file, const std::vector<std::string>& lines) {
+std::string lower_extension(const fs::path& file) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool is_simpack(const fs::path& file, const std::vector<std::string>& lines) {
+  const std::string ext = lower_extension(file);
   if (ext == ".prw" || ext == ".prr") return true;
   for (const std::string& l : lines) {
     const std::string_view s = trim(strip_comment(l, "!"));
@@ -239,22 +178,70 @@ bool is_simpack(const fs::path& file, const std::vector<std::string>& lines) {
   return false;
 }
 
+bool is_miniprof(const fs::path& file, const std::vector<std::string>& lines) {
+  const std::string ext = lower_extension(file);
+  return ext == ".whl" || ext == ".ban" || ext == ".mpt" || looks_like_miniprof(lines);
+}
+
+// A cut file: its last line holds data but no line end, so its last number may be incomplete.
+void check_not_cut(const TextFile& text, const fs::path& file) {
+  if (text.ends_with_newline || text.lines.empty()) return;
+  const std::string_view last = trim(strip_comment(text.lines.back(), "#%!\""));
+  if (!last.empty() && (std::isdigit(static_cast<unsigned char>(last.front())) ||
+                        last.front() == '-' || last.front() == '+' || last.front() == '.')) {
+    fail(file, static_cast<int>(text.lines.size()),
+         "the last line has no line end: the file looks cut off (its last number may be incomplete)");
+  }
+}
+
+void check_coordinates(const std::vector<FilePoint>& points, const fs::path& file) {
+  for (const FilePoint& p : points) {
+    if (!(std::abs(p.y) <= limits::kMaxProfileCoordinate && std::abs(p.z) <= limits::kMaxProfileCoordinate)) {
+      fail(file, p.line,
+           fmt::format("point ({:.6g}, {:.6g}) m is beyond the coordinate limit of {} m (wrong "
+                       "length unit?)",
+                       p.y, p.z, limits::kMaxProfileCoordinate));
+    }
+  }
+}
+
 }  // namespace
 
 ProfilePtr read_profile(const fs::path& file, ProfileKind kind, double smoothing_length) {
-  const std::vector<std::string> lines = read_lines(file);
-  std::vector<FilePoint> points =
-      is_simpack(file, lines) ? read_simpack(lines, file, kind) : read_two_column(lines, file);
+  ProfileReadOptions options;
+  options.smoothing_length = smoothing_length;
+  return read_profile(file, kind, options);
+}
+
+ProfilePtr read_profile(const fs::path& file, ProfileKind kind, const ProfileReadOptions& options) {
+  const TextFile text = read_text_file(file);
+  const std::vector<std::string>& lines = text.lines;
+  check_not_cut(text, file);
+  std::vector<FilePoint> points;
+  if (is_simpack(file, lines)) {
+    points = read_simpack(lines, file, kind);
+  } else if (is_miniprof(file, lines)) {
+    points = read_miniprof(lines, file, kind, {options.mirror_y, options.mirror_z});
+  } else {
+    points = read_two_column(lines, file);
+  }
+  if (!is_miniprof(file, lines) &&
+      (options.mirror_y != AxisMirror::automatic || options.mirror_z != AxisMirror::automatic)) {
+    fail(file, 0, "mirror_y / mirror_z apply to MiniProf files only (SIMPACK files carry mirror.y / "
+                  "mirror.z, two-column files have a fixed orientation)");
+  }
   const int last_line = static_cast<int>(lines.size());
   if (points.size() < 4) {
     fail(file, last_line, fmt::format("too few profile points: {} (a spline needs at least 4)", points.size()));
   }
-  // Our frames: u = lateral (towards the field side), z = -vertical (up); ascending u.
+  check_coordinates(points, file);
+  // Our frames: u = lateral (towards the field side), z = -vertical (up); ascending u at the ends.
   if (points.back().y < points.front().y) std::reverse(points.begin(), points.end());
   std::vector<double> u;
   std::vector<double> z;
   u.reserve(points.size());
   z.reserve(points.size());
+  bool single_valued = true;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const FilePoint& p = points[i];
     if (i > 0) {
@@ -263,20 +250,21 @@ ProfilePtr read_profile(const fs::path& file, ProfileKind kind, double smoothing
         fail(file, p.line, fmt::format("duplicate point ({} mm, {} mm), same as on line {}",
                                        p.y * 1e3, p.z * 1e3, q.line));
       }
-      if (!(p.y > q.y)) {
-        fail(file, p.line,
-             fmt::format("lateral coordinate not monotonic: {} mm after {} mm on line {} (the "
-                         "profile must be a function z(u))",
-                         p.y * 1e3, q.y * 1e3, q.line));
-      }
+      single_valued = single_valued && p.y > q.y;
     }
     u.push_back(p.y);
     z.push_back(-p.z);
   }
-  RAILTAB_CHECK(std::isfinite(smoothing_length) && smoothing_length >= 0.0,
-                "{}: smoothing length {} m must be finite and >= 0", file.string(), smoothing_length);
-  return std::make_shared<const SplineProfile>(file.stem().string(), kind, std::move(u), std::move(z),
-                                               smoothing_length);
+  RAILTAB_CHECK(std::isfinite(options.smoothing_length) && options.smoothing_length >= 0.0,
+                "{}: smoothing length {} m must be finite and >= 0", file.string(), options.smoothing_length);
+  // Overhangs, undercuts and vertical faces make a curve that is not a function z(u): parametric.
+  ProfilePtr profile =
+      single_valued ? ProfilePtr(std::make_shared<const SplineProfile>(file.stem().string(), kind, std::move(u),
+                                                                       std::move(z), options.smoothing_length))
+                    : ProfilePtr(std::make_shared<const ParametricProfile>(
+                          file.stem().string(), kind, std::move(u), std::move(z), options.smoothing_length));
+  if (options.check_plausibility) check_plausible_profile(*profile, file.string());
+  return profile;
 }
 
 }  // namespace railtab

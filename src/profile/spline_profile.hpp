@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "profile/cubic_spline.hpp"
 #include "profile/profile.hpp"
 
 namespace railtab {
@@ -23,17 +24,15 @@ class SplineProfile final : public Profile {
   SplineProfile(std::string name, ProfileKind kind, std::vector<double> u, std::vector<double> z,
                 double smoothing_length = 0.0);
 
-  const std::vector<double>& knots() const { return u_; }          // knot positions u_i [m]
-  const std::vector<double>& knot_values() const { return z_; }    // spline values at the knots [m]
+  const std::vector<double>& knots() const { return spline_.x; }        // knot positions u_i [m]
+  const std::vector<double>& knot_values() const { return spline_.f; }  // spline values at the knots [m]
   double smoothing_length() const { return smoothing_length_; }    // L_filt, 0 = interpolating [m]
 
  protected:
   ProfileSample eval_unchecked(double u) const override;
 
  private:
-  std::vector<double> u_;     // knots, strictly increasing [m]
-  std::vector<double> z_;     // spline values at the knots (smoothed if L_filt > 0) [m]
-  std::vector<double> d2z_;   // spline second derivatives at the knots [1/m]
+  detail::CubicSpline spline_;  // z(u): knots, values (smoothed if L_filt > 0), second derivatives
   double smoothing_length_;   // L_filt [m]
 };
 

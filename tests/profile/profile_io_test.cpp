@@ -9,6 +9,7 @@
 
 #include "core/check.hpp"
 #include "mbench_files.hpp"
+#include "profile/parametric_profile.hpp"
 #include "profile/s1002.hpp"
 #include "profile/spline_profile.hpp"
 
@@ -16,6 +17,14 @@ namespace railtab {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The tests of the file formats use small shapes, not wheels or rails: no plausibility checks.
+ProfileReadOptions format_only(double smoothing_length = 0.0) {
+  ProfileReadOptions o;
+  o.smoothing_length = smoothing_length;
+  o.check_plausibility = false;
+  return o;
+}
 
 // Writes `text` to a fresh file in the temp directory, named after the running test.
 fs::path write_temp(const std::string& text, const std::string& extension) {
@@ -61,7 +70,7 @@ TEST(ReadProfile, TwoColumnMmZDownToProfileFrame) {
   const fs::path f = write_temp("# lateral vertical [mm]\n% another comment\n\n" +
                                     parabola_points(false) + "! end\n",
                                 ".txt");
-  const ProfilePtr p = read_profile(f, ProfileKind::rail);
+  const ProfilePtr p = read_profile(f, ProfileKind::rail, format_only());
   EXPECT_EQ(p->name(), "TwoColumnMmZDownToProfileFrame");
   EXPECT_EQ(p->kind(), ProfileKind::rail);
   EXPECT_NEAR(p->u_min(), -0.006, 1e-15);
@@ -77,7 +86,7 @@ TEST(ReadProfile, TwoColumnDescendingAndCommasAccepted) {
     const int y = 6 - i;
     text += std::to_string(y) + ", " + std::to_string(0.5 + 0.02 * y) + "\n";
   }
-  const ProfilePtr p = read_profile(write_temp(text, ".csv"), ProfileKind::wheel);
+  const ProfilePtr p = read_profile(write_temp(text, ".csv"), ProfileKind::wheel, format_only());
   EXPECT_NEAR(p->eval(0.001).z, -(0.5 + 0.02) * 1e-3, 1e-15);
   EXPECT_NEAR(p->eval(0.001).dz, -0.02, 1e-12);
 }
@@ -91,7 +100,8 @@ TEST(ReadProfile, SimpackOptionsApplied) {
   }
   const std::string options =
       "    mirror.y = 1\n    mirror.z = 1\n    inversion = 1\n    units.len.f = +1.0e+02\n";
-  const ProfilePtr p = read_profile(write_temp(simpack(1, options, points), ".prw"), ProfileKind::wheel);
+  const ProfilePtr p = read_profile(write_temp(simpack(1, options, points), ".prw"), ProfileKind::wheel,
+                                    format_only());
   EXPECT_NEAR(p->u_min(), -0.005, 1e-15);
   EXPECT_NEAR(p->u_max(), 0.005, 1e-15);
   // After mirroring: z_down = 0.02 u^2 [mm] -> z = -20 u^2 [m].
@@ -104,7 +114,8 @@ TEST(ReadProfile, SimpackShiftAndRotate) {
   for (int i = 0; i <= 8; ++i) points += fmt::format("{} 0\n", -4 + i);
   const std::string options =
       "    shift.z = 1\n    rotate = 5.729577951308232\n    units.ang.f = 57.29577951308232\n";
-  const ProfilePtr p = read_profile(write_temp(simpack(0, options, points), ".prr"), ProfileKind::rail);
+  const ProfilePtr p = read_profile(write_temp(simpack(0, options, points), ".prr"), ProfileKind::rail,
+                                    format_only());
   // SIMPACK rotates (y, z) by [c -s; s c]: z' = s y + c z -> slope dz_down/dy = tan(0.1).
   EXPECT_NEAR(p->eval(0.0).dz, -std::tan(0.1), 1e-12);
   // The shifted line's foot point (0, 1 mm) goes to (-sin, cos) mm.
@@ -113,7 +124,7 @@ TEST(ReadProfile, SimpackShiftAndRotate) {
 
 TEST(ReadProfile, SmoothingLengthPassedOn) {
   const fs::path f = write_temp(parabola_points(false), ".txt");
-  const auto p = std::dynamic_pointer_cast<const SplineProfile>(read_profile(f, ProfileKind::rail, 0.002));
+  const auto p = std::dynamic_pointer_cast<const SplineProfile>(read_profile(f, ProfileKind::rail, format_only(0.002)));
   ASSERT_TRUE(p != nullptr);
   EXPECT_EQ(p->smoothing_length(), 0.002);
   EXPECT_EQ(p->eval(p->u_min()).d2z, 0.0);  // natural end of the smoothing spline
@@ -155,12 +166,26 @@ TEST(ReadProfile, TooFewPoints) {
   expect_error(g, ProfileKind::rail, {g.string(), "too few profile points: 0"});
 }
 
-TEST(ReadProfile, NonMonotonicLateral) {
+TEST(ReadProfile, NonMonotonicLateralGivesParametricCurve) {
+  // An overhang: the lateral coordinate turns back (3 -> 2.5 mm). Read as a curve through the
+  // points in their order (it used to be refused as "not monotonic").
   const fs::path f = write_temp("1 2\n2 3\n3 4\n2.5 5\n5 6\n", ".txt");
-  expect_error(f, ProfileKind::rail, {f.string() + ":4:", "not monotonic", "line 3"});
-  // Descending files are fine, but must stay descending.
+  const ProfilePtr p = read_profile(f, ProfileKind::rail, format_only());
+  ASSERT_TRUE(p->parametric());
+  const auto* curve = dynamic_cast<const ParametricProfile*>(p.get());
+  ASSERT_TRUE(curve != nullptr);
+  const double expected[5][2] = {{1, -2}, {2, -3}, {3, -4}, {2.5, -5}, {5, -6}};
+  for (std::size_t i = 0; i < 5; ++i) {
+    const CurveSample c = p->curve(curve->knots()[i]);
+    EXPECT_NEAR(c.y, expected[i][0] * 1e-3, 1e-15) << i;
+    EXPECT_NEAR(c.z, expected[i][1] * 1e-3, 1e-15) << i;
+  }
+  // A descending file that turns back is reversed first, then kept as a curve.
   const fs::path g = write_temp("5 2\n4 3\n4.5 4\n2 5\n1 6\n", ".txt");
-  expect_error(g, ProfileKind::rail, {g.string(), "not monotonic"});
+  const ProfilePtr q = read_profile(g, ProfileKind::rail, format_only());
+  EXPECT_TRUE(q->parametric());
+  EXPECT_NEAR(q->curve(q->t_min()).y, 0.001, 1e-15);
+  EXPECT_NEAR(q->curve(q->t_max()).y, 0.005, 1e-15);
 }
 
 TEST(ReadProfile, DuplicatePoints) {

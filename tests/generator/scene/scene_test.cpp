@@ -2,6 +2,8 @@
 #include "scene/scene.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -43,7 +45,7 @@ TEST(Scene, MinimalSceneGetsDefaults) {
 }
 
 TEST(Scene, ShippedScenesParse) {
-  for (const char* name : {"default.toml", "flange.toml"}) {
+  for (const char* name : {"default.toml", "flange.toml", "worn_rail.toml", "worn_miniprof.toml"}) {
     Scene s = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / name);
     EXPECT_FALSE(s.name.empty()) << name;
     EXPECT_GE(s.grids.y.size(), 20u) << name;
@@ -187,6 +189,37 @@ TEST(Scene, MissingFileNamesIt) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/x.toml"), std::string::npos);
   }
+}
+
+TEST(Scene, MiniProfMirrorKeys) {
+  std::string text = kMinimal;
+  text.replace(text.find("rail = \"uic60\"\n"), 15, "rail = \"uic60\"\nwheel_mirror_y = \"yes\"\nrail_mirror_z = \"no\"\n");
+  const Scene s = parse_scene(text, "mirror.toml");
+  EXPECT_EQ(s.wheel.mirror_y, AxisMirror::yes);
+  EXPECT_EQ(s.wheel.mirror_z, AxisMirror::automatic);
+  EXPECT_EQ(s.rail.mirror_z, AxisMirror::no);
+  std::string bad = kMinimal;
+  bad.replace(bad.find("rail = \"uic60\"\n"), 15, "rail = \"uic60\"\nrail_mirror_y = \"maybe\"\n");
+  const std::string m = error_of(bad);
+  EXPECT_NE(m.find("profiles.rail_mirror_y"), std::string::npos) << m;
+  EXPECT_NE(m.find("not one of auto, no, yes"), std::string::npos) << m;
+}
+
+// Issue 19, finding 3: a device or FIFO given as a scene used to be read without limit
+// (/dev/zero) or to block forever (a FIFO without a writer).
+TEST(Scene, DeviceOrFifoIsRefusedWithoutReading) {
+  for (const char* dev : {"/dev/zero", "/dev/urandom"}) {
+    if (!std::filesystem::exists(dev)) continue;
+    const std::string m = test::error_message([&] { load_scene(dev); });
+    EXPECT_NE(m.find("not a regular file"), std::string::npos) << m;
+  }
+  const std::filesystem::path fifo =
+      std::filesystem::temp_directory_path() / ("railtab_scene_fifo_" + std::to_string(::getpid()));
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string m = test::error_message([&] { load_scene(fifo); });
+  std::filesystem::remove(fifo);
+  EXPECT_NE(m.find("not a regular file"), std::string::npos) << m;
 }
 
 }  // namespace
