@@ -17,41 +17,44 @@ const Spectrum& Workspace::normal_kernel(const Grid& grid, const Material& mater
   return k_nn_;
 }
 
-void Workspace::tangential_kernels(const Grid& grid, const Material& material, int window,
-                                   const Spectrum** xx, const Spectrum** xy, const Spectrum** yy,
-                                   const SteadyKernel** near) {
+TangentialKernels Workspace::tangential_kernels(const Grid& grid, const Material& material,
+                                                int window) {
   const Key key = key_of(grid, material, window);
   fft.resize(grid.nx, grid.ny);
-  if (!(key == tangential_key_) || k_xx_.empty()) {
+  if (!(key == tangential_key_) || k_bxx_.empty()) {
     const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy, dx = grid.dx;
-    auto steady = [&](int di, int dj) {
-      const TangentialInfluence a = tangential_influence(di * dx, dj * grid.dy, hx, hy, material);
-      const TangentialInfluence b =
-          tangential_influence((di + 1) * dx, dj * grid.dy, hx, hy, material);
-      return TangentialInfluence{(a.xx - b.xx) / dx, (a.xy - b.xy) / dx, (a.yy - b.yy) / dx};
+    auto a = [&](int di, int dj) {
+      const TangentialInfluence c = tangential_influence(di * dx, dj * grid.dy, hx, hy, material);
+      return TangentialInfluence{c.xx / dx, c.xy / dx, c.yy / dx};
     };
-    fft.kernel_spectrum([&](int di, int dj) { return steady(di, dj).xx; }, k_xx_);
-    fft.kernel_spectrum([&](int di, int dj) { return steady(di, dj).xy; }, k_xy_);
-    fft.kernel_spectrum([&](int di, int dj) { return steady(di, dj).yy; }, k_yy_);
-    near_.wx = near_.wy = window;
+    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xx - a(di + 1, dj).xx; }, k_bxx_);
+    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xy - a(di + 1, dj).xy; }, k_bxy_);
+    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).yy - a(di + 1, dj).yy; }, k_byy_);
+    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xx; }, k_axx_);
+    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xy; }, k_axy_);
+    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).yy; }, k_ayy_);
+    near_.w = near_b_.w = window;
     const int n = (2 * window + 1) * (2 * window + 1);
-    near_.xx.assign(n, 0.0);
-    near_.xy.assign(n, 0.0);
-    near_.yy.assign(n, 0.0);
+    for (NearKernel* nk : {&near_, &near_b_}) {
+      nk->xx.assign(n, 0.0);
+      nk->xy.assign(n, 0.0);
+      nk->yy.assign(n, 0.0);
+    }
     for (int dj = -window; dj <= window; ++dj)
       for (int di = -window; di <= window; ++di) {
-        const TangentialInfluence b = steady(di, dj);
+        const TangentialInfluence c = a(di, dj);
         const int k = (dj + window) * (2 * window + 1) + (di + window);
-        near_.xx[k] = b.xx;
-        near_.xy[k] = b.xy;
-        near_.yy[k] = b.yy;
+        near_.xx[k] = c.xx;
+        near_.xy[k] = c.xy;
+        near_.yy[k] = c.yy;
+        const TangentialInfluence t1 = a(di + 1, dj);
+        near_b_.xx[k] = c.xx - t1.xx;
+        near_b_.xy[k] = c.xy - t1.xy;
+        near_b_.yy[k] = c.yy - t1.yy;
       }
     tangential_key_ = key;
   }
-  *xx = &k_xx_;
-  *xy = &k_xy_;
-  *yy = &k_yy_;
-  *near = &near_;
+  return {&k_bxx_, &k_bxy_, &k_byy_, &k_axx_, &k_axy_, &k_ayy_, &near_, &near_b_};
 }
 
 }  // namespace railtab::halfspace

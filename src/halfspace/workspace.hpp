@@ -11,28 +11,35 @@
 
 namespace railtab::halfspace {
 
-// The steady-rolling kernel of the tangential problem at element offset (di, dj):
-// B(di, dj) = (A(di dx, dj dy) - A((di + 1) dx, dj dy)) / dx, A the tangential influence
-// coefficients; the slip of element I is w_I + sum_J B(I - J) p_J (tangential_solver.hpp).
-struct SteadyKernel {
-  std::vector<double> xx, xy, yy;  // (2 wx + 1) * (2 wy + 1) values of the near window
-  int wx = 0, wy = 0;              // window half-widths in elements
+// Kernels of the tangential problem (tangential_solver.hpp), A the tangential influence
+// coefficients at element offset (di, dj) = field minus source:
+//  - steady B(di, dj) = (A(di dx, dj dy) - A((di + 1) dx, dj dy)) / dx: the slip of element I is
+//    w_I + sum_J B(I - J) p_J;
+//  - A / dx: the change of the slip when tractions change with the previous displacements frozen.
+struct NearKernel {  // A / dx on the window |di| <= w, |dj| <= w
+  std::vector<double> xx, xy, yy;
+  int w = 0;
   double at(const std::vector<double>& k, int di, int dj) const {
-    return k[(dj + wy) * (2 * wx + 1) + (di + wx)];
+    return k[(dj + w) * (2 * w + 1) + (di + w)];
   }
+};
+struct TangentialKernels {
+  const Spectrum *bxx, *bxy, *byy;  // steady kernel spectra
+  const Spectrum *axx, *axy, *ayy;  // A / dx spectra
+  const NearKernel* near;    // A / dx
+  const NearKernel* near_b;  // B
 };
 
 class Workspace {
  public:
   // Normal-kernel spectrum for this grid and material (cached).
   const Spectrum& normal_kernel(const Grid& grid, const Material& material);
-  // Steady-rolling kernel spectra (xx, xy, yy) and its near window (cached).
-  void tangential_kernels(const Grid& grid, const Material& material, int window,
-                          const Spectrum** xx, const Spectrum** xy, const Spectrum** yy,
-                          const SteadyKernel** near);
+  // Tangential kernel spectra and the near window of A / dx (cached).
+  TangentialKernels tangential_kernels(const Grid& grid, const Material& material, int window);
 
   FftConvolver fft;
   Spectrum field_a, field_b;                 // spectra of the current fields
+  std::vector<double> cx, cy, ax, ay;        // tangential-solver scratch (grid size)
   std::vector<double> u, g, t, r, p_old;     // normal-solver scratch (grid size)
   std::vector<double> sx, sy;                // tangential-solver scratch (grid size)
 
@@ -47,8 +54,8 @@ class Workspace {
     return {g.nx, g.ny, g.dx, g.dy, m.youngs_modulus, m.poisson_ratio, window};
   }
   Key normal_key_, tangential_key_;
-  Spectrum k_nn_, k_xx_, k_xy_, k_yy_;
-  SteadyKernel near_;
+  Spectrum k_nn_, k_bxx_, k_bxy_, k_byy_, k_axx_, k_axy_, k_ayy_;
+  NearKernel near_, near_b_;
 };
 
 }  // namespace railtab::halfspace
