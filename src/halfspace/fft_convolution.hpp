@@ -1,5 +1,6 @@
 // Discrete convolution of grid fields with influence kernels by FFT, DC-FFT style (Liu, Wang &
-// Liu, Wear 243 (2000)): the field is zero-padded to twice its size in each direction and the
+// Liu, Wear 243 (2000)): the field is zero-padded to at least twice its size in each direction
+// (the next length with prime factors 2, 3, 5, 7 only, where FFTW is fast) and the
 // kernel is laid out on the same doubled grid by offset (wrap-around order), so the cyclic
 // convolution of the FFT equals the linear one of the boundary-element method exactly (to
 // rounding): no aliasing, no approximation of the influence coefficients.
@@ -45,7 +46,7 @@ class FftConvolver {
  private:
   void release();
   int nx_ = 0, ny_ = 0;     // field size
-  int px_ = 0, py_ = 0;     // padded size (2 nx, 2 ny)
+  int px_ = 0, py_ = 0;     // padded size (>= 2 nx, >= 2 ny)
   double* real_ = nullptr;  // px * py, fftw_malloc'd
   void* spec_ = nullptr;    // py * (px / 2 + 1) fftw_complex, fftw_malloc'd
   void* plan_r2c_ = nullptr;

@@ -1,0 +1,85 @@
+// The exact half-space model on the central S1002/UIC60 case (y = 0, no roll, 78.5 kN vertical,
+// E = 210 GPa, nu = 0.28, elements 0.3 mm): one wheel's normal problem, and normal plus steady
+// rolling at one creepage (block C e_combined: xi 0.003, eta 0.002, phi 0.1 rad/m, mu 0.3).
+// Goal (issue 13): median <= 20 ms for normal + tangential. The workspace (FFT plans, kernel
+// spectra) is kept between iterations as in a table sweep; no warm start of the solution.
+// Arguments: element size in micrometres.
+#include <benchmark/benchmark.h>
+
+#include "geometry/contact_geometry.hpp"
+#include "halfspace/wheel_rail.hpp"
+#include "profile/s1002.hpp"
+#include "profile/uic60.hpp"
+
+namespace {
+
+struct Central {
+  railtab::WheelContactGeometry geometry;
+  railtab::Material material;
+  Central() {
+    railtab::ProfilePtr w = railtab::make_s1002_profile();
+    railtab::ProfilePtr r = railtab::make_uic60_profile();
+    const railtab::ContactGeometrySolver solver(w, r, w, r, railtab::TrackGeometry{},
+                                                railtab::WheelsetGeometry{});
+    geometry = solver.solve_wheel(railtab::Side::right, {0.0, 0.0});
+    material.poisson_ratio = 0.28;
+  }
+};
+
+const Central& central() {
+  static const Central c;
+  return c;
+}
+
+void BM_HalfspaceNormal(benchmark::State& state) {
+  const Central& c = central();
+  railtab::halfspace::HalfspaceOptions opt;
+  opt.element_size = state.range(0) * 1e-6;
+  railtab::halfspace::Workspace ws;
+  railtab::halfspace::WheelHalfspaceResult r;
+  for (auto _ : state) {
+    r = railtab::halfspace::solve_halfspace_for_load(c.geometry, 78.5e3, c.material, opt, ws);
+    benchmark::DoNotOptimize(r.vertical_approach);
+  }
+  if (!r.patches.empty()) {
+    state.counters["nx"] = r.patches[0].grid.nx;
+    state.counters["ny"] = r.patches[0].grid.ny;
+    state.counters["bccg_iterations"] = r.patches[0].normal.iterations;
+  }
+}
+BENCHMARK(BM_HalfspaceNormal)->Arg(300)->Unit(benchmark::kMillisecond);
+
+void BM_HalfspaceNormalTangential(benchmark::State& state) {
+  const Central& c = central();
+  railtab::halfspace::HalfspaceOptions opt;
+  opt.element_size = state.range(0) * 1e-6;
+  railtab::halfspace::Workspace ws;
+  int steps = 0;
+  for (auto _ : state) {
+    auto r = railtab::halfspace::solve_halfspace_for_load(c.geometry, 78.5e3, c.material, opt, ws);
+    railtab::halfspace::solve_halfspace_tangential(r, {0.003, 0.002, 0.1}, 0.3, c.material, opt,
+                                                   ws);
+    steps = r.patches.empty() ? 0 : r.patches[0].tangential.sweeps;
+    benchmark::DoNotOptimize(r.patches.data());
+  }
+  state.counters["tangential_steps"] = steps;
+}
+BENCHMARK(BM_HalfspaceNormalTangential)->Arg(300)->Unit(benchmark::kMillisecond);
+
+// Pure longitudinal creepage 0.001 (partial slip: the slow case of the fixed point).
+void BM_HalfspaceNormalTangentialPartialSlip(benchmark::State& state) {
+  const Central& c = central();
+  railtab::halfspace::HalfspaceOptions opt;
+  opt.element_size = state.range(0) * 1e-6;
+  railtab::halfspace::Workspace ws;
+  for (auto _ : state) {
+    auto r = railtab::halfspace::solve_halfspace_for_load(c.geometry, 78.5e3, c.material, opt, ws);
+    railtab::halfspace::solve_halfspace_tangential(r, {0.001, 0.0, 0.0}, 0.3, c.material, opt, ws);
+    benchmark::DoNotOptimize(r.patches.data());
+  }
+}
+BENCHMARK(BM_HalfspaceNormalTangentialPartialSlip)->Arg(300)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
