@@ -3,8 +3,14 @@
 // rolling at one creepage (block C e_combined: xi 0.003, eta 0.002, phi 0.1 rad/m, mu 0.3).
 // Goal (issue 13): median <= 20 ms for normal + tangential. The workspace (FFT plans, kernel
 // spectra) is kept between iterations as in a table sweep; no warm start of the solution.
-// Arguments: element size in micrometres.
+// Arguments: element size in micrometres. BM_BlockC/*: every case of CONTACT's block C (below).
 #include <benchmark/benchmark.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "geometry/contact_geometry.hpp"
 #include "halfspace/wheel_rail.hpp"
@@ -80,6 +86,63 @@ void BM_HalfspaceNormalTangentialPartialSlip(benchmark::State& state) {
 }
 BENCHMARK(BM_HalfspaceNormalTangentialPartialSlip)->Arg(300)->Unit(benchmark::kMillisecond);
 
+// Every case of ../shared/reference/blockC_sweep_integer_dy.csv (when present): normal +
+// tangential at CONTACT's creepages, 0.3 mm as CONTACT's grid there. Counter contact_wall_s is
+// CONTACT's time for the case; the ratio is taken from the JSON output (docs/validation/halfspace.md).
+std::vector<std::map<std::string, std::string>> read_block_c() {
+  std::vector<std::map<std::string, std::string>> rows;
+  std::ifstream in(std::string(RAILTAB_SOURCE_DIR) + "/../shared/reference/blockC_sweep_integer_dy.csv");
+  std::string line;
+  if (!std::getline(in, line)) return rows;
+  std::vector<std::string> names;
+  {
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) names.push_back(cell);
+  }
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string cell;
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; std::getline(ss, cell, ',') && i < names.size(); ++i) row[names[i]] = cell;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+void register_block_c() {
+  for (const auto& row : read_block_c()) {
+    const double dy = std::stod(row.at("dy_mm"));
+    const double cksi = std::stod(row.at("cksi")), ceta = std::stod(row.at("ceta"));
+    const double cphi = std::stod(row.at("cphi_rad_per_m")), mu = std::stod(row.at("mu"));
+    const double wall = std::stod(row.at("wall_s"));
+    const std::string name = "BM_BlockC/dy" + row.at("dy_mm") + "/" + row.at("creep_set");
+    benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
+      railtab::ProfilePtr w = railtab::make_s1002_profile();
+      railtab::ProfilePtr r = railtab::make_uic60_profile();
+      const railtab::ContactGeometrySolver solver(w, r, w, r, railtab::TrackGeometry{},
+                                                  railtab::WheelsetGeometry{});
+      const auto g = solver.solve_wheel(railtab::Side::right, {-dy * 1e-3, 0.0});
+      railtab::Material m;
+      m.poisson_ratio = 0.28;
+      railtab::halfspace::HalfspaceOptions opt;
+      railtab::halfspace::Workspace ws;
+      for (auto _ : state) {
+        auto res = railtab::halfspace::solve_halfspace_for_load(g, 78.5e3, m, opt, ws);
+        railtab::halfspace::solve_halfspace_tangential(res, {-cksi, ceta, cphi}, mu, m, opt, ws);
+        benchmark::DoNotOptimize(res.patches.data());
+      }
+      state.counters["contact_wall_s"] = wall;
+    })->Unit(benchmark::kMillisecond)->Iterations(3);
+  }
+}
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  register_block_c();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

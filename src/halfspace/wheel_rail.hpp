@@ -39,7 +39,7 @@ namespace railtab::halfspace {
 
 struct HalfspaceOptions {
   double element_size = 0.3e-3;       // element length and width [m]
-  double margin = 0.25;               // potential area beyond the rigid overlap, relative [-]
+  double margin = 0.1;                // potential area beyond the rigid overlap, relative [-]
   int max_growth = 3;                 // enlargements when the contact reaches the edge [-]
   double planar_angle_limit = 0.2;    // contact-angle variation flagged kNotPlanar [rad]
   double load_tolerance = 1e-6;       // several patches: relative vertical-load tolerance [-]
