@@ -231,6 +231,49 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& c,
   }
 }
 
+WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
+                                             double vertical_load, const Creepage& creepage,
+                                             double mu, const Material& material,
+                                             const HalfspaceOptions& o, Workspace& ws) {
+  WheelHalfspaceResult r;
+  auto tangential_vertical = [](const WheelHalfspaceResult& res) {
+    double tz = 0.0;
+    for (const HalfspacePatch& hp : res.patches) tz += hp.tangential.fy * std::sin(hp.contact_angle);
+    return tz;
+  };
+  // One round: normal for the load F_z - tz, then tangential; returns the new tz.
+  auto round = [&](double tz) {
+    WheelHalfspaceResult next =
+        solve_halfspace_for_load(geometry, std::max(0.0, vertical_load - tz), material, o, ws);
+    if (next.patches.size() == r.patches.size())  // warm start from the previous round
+      for (size_t k = 0; k < next.patches.size(); ++k)
+        if (next.patches[k].grid.nx == r.patches[k].grid.nx &&
+            next.patches[k].grid.ny == r.patches[k].grid.ny)
+          next.patches[k].tangential = std::move(r.patches[k].tangential);
+    solve_halfspace_tangential(next, creepage, mu, material, o, ws);
+    r = std::move(next);
+    return tangential_vertical(r);
+  };
+  double t0 = 0.0, g0 = round(t0) - t0;  // fixed point tz = T(tz): root of g = T(tz) - tz
+  if (r.patches.empty()) return r;
+  double t1 = t0 + g0, g1 = round(t1) - t1;
+  bool ok = std::abs(g1) <= 1e-4 * vertical_load;
+  for (int it = 0; it < 18 && !ok; ++it) {
+    const double t2 = g1 != g0 ? t1 - g1 * (t1 - t0) / (g1 - g0) : t1 + g1;
+    t0 = t1;
+    g0 = g1;
+    t1 = t2;
+    g1 = round(t1) - t1;
+    ok = std::abs(g1) <= 1e-4 * vertical_load;
+  }
+  if (!ok) {
+    r.status = (r.status & ~status::kConverged) | status::kNotConverged;
+    for (HalfspacePatch& hp : r.patches)
+      hp.status = (hp.status & ~status::kConverged) | status::kNotConverged;
+  }
+  return r;
+}
+
 double archard_wear_per_pass(const HalfspacePatch& hp, double speed, const WearOptions& wear,
                              std::vector<double>& depth) {
   const Grid& g = hp.grid;

@@ -82,6 +82,19 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
                                 const Material& material, const HalfspaceOptions& options,
                                 Workspace& workspace);
 
+// Normal and tangential together, as CONTACT's wheel-rail module: the prescribed VERTICAL load is
+// carried by the normal forces AND the vertical components of the lateral creep forces,
+// F_z = sum_k (N_k cos g_k + fy_k sin g_k) (g_k the track-frame contact angle; s = (0, cos g,
+// sin g) in track axes), which matters in flange contact (g about 1.1 rad: a lateral force of
+// 0.3 N changes N by half). The normal load sum N_k cos g_k = F_z - sum fy_k sin g_k is found by
+// the secant method on the tangential vertical part (at most 20 rounds; kNotConverged if not
+// within 1e-4 F_z). Each round warm-starts the tangential solve from the previous one.
+WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
+                                             double vertical_load, const Creepage& creepage,
+                                             double mu, const Material& material,
+                                             const HalfspaceOptions& options,
+                                             Workspace& workspace);
+
 // Archard wear with the KTH map per element of one solved patch: depth per pass removed from the
 // wheel material crossing each element, k(p, V|s|) p |s| dx / H [m] (elements in slip only);
 // returns the worn cross-section per pass, sum of depth * dy [m2].

@@ -88,16 +88,20 @@ Errors run_block(const std::string& file, double element, bool flange_rows) {
     if (cksi == 0.0 && ceta == 0.0 && std::abs(cphi) < 1e-3 && std::abs(cksi) < 1e-6) continue;
     if (std::abs(cksi) < 1e-5 && ceta == 0.0 && std::abs(cphi) < 1e-3) continue;  // no creepage
     const double mu = num(row, "mu");
-    halfspace::solve_halfspace_tangential(r, {-cksi, ceta, cphi}, mu, mat, opt, ws);
-    const auto& t = r.patches[0].tangential;
+    const halfspace::WheelHalfspaceResult rolled = halfspace::solve_halfspace_rolling(
+        solver.solve_wheel(Side::right, {-dy * 1e-3, 0.0}), fz, {-cksi, ceta, cphi}, mu, mat, opt,
+        ws);
+    if (rolled.patches.size() != 1) continue;
+    const auto& t = rolled.patches[0].tangential;
     const double muN = mu * num(row, "fn_N");
     const double fx_ref = -num(row, "fx_N"), fy_ref = num(row, "fs_N");
     const double err = std::hypot(t.fx - fx_ref, t.fy - fy_ref) / muN;
     e.creep.push_back(err);
+    const double fn_err = rolled.patches[0].normal.normal_force / num(row, "fn_N") - 1;
     std::printf("[measured] %s dy %+5.1f %-12s mu %.1f: fx %8.0f (CONTACT %8.0f) fy %8.0f (%8.0f)"
-                " |dF|/muN %.2f%% steps %d %s\n", file.c_str(), dy, row.at("creep_set").c_str(),
-                mu, t.fx, fx_ref, t.fy, fy_ref, 100 * err, t.sweeps,
-                status::describe(t.status).c_str());
+                " |dF|/muN %.2f%% fn %+.2f%% steps %d %s\n", file.c_str(), dy,
+                row.at("creep_set").c_str(), mu, t.fx, fx_ref, t.fy, fy_ref, 100 * err,
+                100 * fn_err, t.sweeps, status::describe(rolled.patches[0].status).c_str());
   }
   return e;
 }
