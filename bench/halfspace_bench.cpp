@@ -141,7 +141,7 @@ void register_block_c() {
         }
       }
       state.counters["contact_wall_s"] = wall;
-    })->Unit(benchmark::kMillisecond)->Iterations(3);
+    })->Unit(benchmark::kMillisecond)->Iterations(1);
   }
 }
 
