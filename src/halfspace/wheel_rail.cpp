@@ -114,6 +114,77 @@ double angle_spread(const HalfspacePatch& hp, const std::vector<PlaneSample>& sa
   return hi >= lo ? hi - lo : 0.0;
 }
 
+// The tangential problem on the bounding box of the contact only (tractions vanish outside it,
+// and the slip matters only inside): a smaller FFT than the potential area's, the same numbers.
+// Results are copied back to the patch's grid; the warm start comes from there too.
+void solve_on_contact_box(HalfspacePatch& hp, const RollingCreepage& c, double mu,
+                          const Material& material, const TangentialSolverOptions& o,
+                          Workspace& ws) {
+  const Grid& g = hp.grid;
+  int i0 = g.nx, i1 = -1, j0 = g.ny, j1 = -1;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      if (hp.normal.pressure[g.index(i, j)] > 0.0) {
+        i0 = std::min(i0, i);
+        i1 = std::max(i1, i);
+        j0 = std::min(j0, j);
+        j1 = std::max(j1, j);
+      }
+  TangentialSolution& full = hp.tangential;
+  const bool warm = full.traction_x.size() == static_cast<size_t>(g.size());
+  if (i1 < 0) {  // no contact: no traction
+    solve_tangential(g, hp.normal.pressure, c, mu, material, o, ws, full);
+    return;
+  }
+  Grid box;
+  box.nx = std::max(2, i1 - i0 + 1);
+  box.ny = std::max(2, j1 - j0 + 1);
+  i0 = std::min(i0, g.nx - box.nx);
+  j0 = std::min(j0, g.ny - box.ny);
+  box.dx = g.dx;
+  box.dy = g.dy;
+  box.x0 = g.x(i0);
+  box.y0 = g.y(j0);
+  std::vector<double> pressure(box.size());
+  TangentialSolution part;
+  if (warm) {
+    part.traction_x.resize(box.size());
+    part.traction_y.resize(box.size());
+  }
+  for (int j = 0; j < box.ny; ++j)
+    for (int i = 0; i < box.nx; ++i) {
+      const int k = g.index(i0 + i, j0 + j), b = box.index(i, j);
+      pressure[b] = hp.normal.pressure[k];
+      if (warm) {
+        part.traction_x[b] = full.traction_x[k];
+        part.traction_y[b] = full.traction_y[k];
+      }
+    }
+  solve_tangential(box, pressure, c, mu, material, o, ws, part);
+  full.traction_x.assign(g.size(), 0.0);
+  full.traction_y.assign(g.size(), 0.0);
+  full.slip_x.assign(g.size(), 0.0);
+  full.slip_y.assign(g.size(), 0.0);
+  full.state.assign(g.size(), 0);
+  if (part.traction_x.size() == static_cast<size_t>(box.size()))
+    for (int j = 0; j < box.ny; ++j)
+      for (int i = 0; i < box.nx; ++i) {
+        const int k = g.index(i0 + i, j0 + j), b = box.index(i, j);
+        full.traction_x[k] = part.traction_x[b];
+        full.traction_y[k] = part.traction_y[b];
+        full.slip_x[k] = part.slip_x[b];
+        full.slip_y[k] = part.slip_y[b];
+        full.state[k] = part.state[b];
+      }
+  full.fx = part.fx;
+  full.fy = part.fy;
+  full.mz = part.mz;
+  full.slip_area = part.slip_area;
+  full.frictional_work = part.frictional_work;
+  full.sweeps = part.sweeps;
+  full.status = part.status;
+}
+
 }  // namespace
 
 WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,
@@ -219,8 +290,7 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& c,
                                 const Material& material, const HalfspaceOptions& o,
                                 Workspace& ws) {
   for (HalfspacePatch& hp : result.patches) {
-    solve_tangential(hp.grid, hp.normal.pressure, {c.xi, c.eta, c.phi}, mu, material,
-                     o.tangential, ws, hp.tangential);
+    solve_on_contact_box(hp, {c.xi, c.eta, c.phi}, mu, material, o.tangential, ws);
     const StatusBits t = hp.tangential.status;
     hp.status = (hp.status & ~(status::kConverged | status::kNotConverged | status::kFullSlip)) |
                 (t & (status::kNotConverged | status::kFullSlip | status::kInvalidInput));
