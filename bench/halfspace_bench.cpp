@@ -71,7 +71,13 @@ void BM_HalfspaceNormalTangential(benchmark::State& state) {
   }
   state.counters["tangential_steps"] = steps;
 }
-BENCHMARK(BM_HalfspaceNormalTangential)->Arg(300)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HalfspaceNormalTangential)
+    ->Arg(600)
+    ->Arg(400)
+    ->Arg(300)
+    ->Arg(200)
+    ->Arg(150)
+    ->Unit(benchmark::kMillisecond);
 
 // Pure longitudinal creepage 0.001 (partial slip: the slow case of the fixed point).
 void BM_HalfspaceNormalTangentialPartialSlip(benchmark::State& state) {

@@ -62,11 +62,6 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
   out.state.assign(n, 0);
   std::vector<double>& sx = out.slip_x;
   std::vector<double>& sy = out.slip_y;
-  w.cx.resize(n);
-  w.cy.resize(n);
-  w.ax.resize(n);
-  w.ay.resize(n);
-  w.p_old.resize(2 * n);
   double force_bound = 0.0;
   for (int k = 0; k < n; ++k) {
     if (!(pressure[k] > 0.0)) px[k] = py[k] = 0.0;  // warm start on a changed contact

@@ -22,6 +22,7 @@ std::vector<PlaneSample> plane_samples(const WheelContactGeometry& g, double s_r
                                        double s_lo, double s_hi) {
   const double sigma = outward_sign(g.side);
   const int nb = static_cast<int>(g.band.size());
+  if (nb < 2) return {};
   // Reference point on the rail surface, interpolated in s.
   const double t = (s_ref - g.band.front().s) / g.band_step;
   const int k0 = std::clamp(static_cast<int>(std::floor(t)), 0, nb - 2);

@@ -15,7 +15,8 @@
 //  - normal approach of the plane: delta_z cos(g_ref) for the vertical approach delta_z.
 // Potential area: the rigid overlap of the patch at the first approach (h < delta_n), widened by
 // `margin` on every side, on square elements of `element_size` (default 0.3 mm: CONTACT's grid
-// of block C; finer costs as the fourth power in time, coarser misses narrow flange patches).
+// of block C, and the size at which the tread results are within 1 % of mu N of CONTACT; error and
+// time against element size: docs/validation/halfspace.md).
 // When the contact reaches the edge of the grid the area grows by half and the patch is solved
 // again (up to `max_growth` times; then kAreaTooSmall stays set).
 // Load control: one patch: N = F_z / cos(g_ref); several: one vertical approach for all, found by

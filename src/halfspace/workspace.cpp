@@ -30,9 +30,6 @@ TangentialKernels Workspace::tangential_kernels(const Grid& grid, const Material
     fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xx - a(di + 1, dj).xx; }, k_bxx_);
     fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xy - a(di + 1, dj).xy; }, k_bxy_);
     fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).yy - a(di + 1, dj).yy; }, k_byy_);
-    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xx; }, k_axx_);
-    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xy; }, k_axy_);
-    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).yy; }, k_ayy_);
     near_.w = near_b_.w = window;
     const int n = (2 * window + 1) * (2 * window + 1);
     for (NearKernel* nk : {&near_, &near_b_}) {
@@ -54,7 +51,7 @@ TangentialKernels Workspace::tangential_kernels(const Grid& grid, const Material
       }
     tangential_key_ = key;
   }
-  return {&k_bxx_, &k_bxy_, &k_byy_, &k_axx_, &k_axy_, &k_ayy_, &near_, &near_b_};
+  return {&k_bxx_, &k_bxy_, &k_byy_, &near_, &near_b_};
 }
 
 }  // namespace railtab::halfspace

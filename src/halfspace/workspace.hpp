@@ -15,8 +15,9 @@ namespace railtab::halfspace {
 // coefficients at element offset (di, dj) = field minus source:
 //  - steady B(di, dj) = (A(di dx, dj dy) - A((di + 1) dx, dj dy)) / dx: the slip of element I is
 //    w_I + sum_J B(I - J) p_J;
-//  - A / dx: the change of the slip when tractions change with the previous displacements frozen.
-struct NearKernel {  // A / dx on the window |di| <= w, |dj| <= w
+//  - A / dx: the change of the slip when tractions change with the previous displacements frozen
+//    (only in the near window, for the optional Gauss-Seidel coupling of the solver).
+struct NearKernel {  // a kernel on the window |di| <= w, |dj| <= w
   std::vector<double> xx, xy, yy;
   int w = 0;
   double at(const std::vector<double>& k, int di, int dj) const {
@@ -25,7 +26,6 @@ struct NearKernel {  // A / dx on the window |di| <= w, |dj| <= w
 };
 struct TangentialKernels {
   const Spectrum *bxx, *bxy, *byy;  // steady kernel spectra
-  const Spectrum *axx, *axy, *ayy;  // A / dx spectra
   const NearKernel* near;    // A / dx
   const NearKernel* near_b;  // B
 };
@@ -39,7 +39,6 @@ class Workspace {
 
   FftConvolver fft;
   Spectrum field_a, field_b;                 // spectra of the current fields
-  std::vector<double> cx, cy, ax, ay;        // tangential-solver scratch (grid size)
   std::vector<double> u, g, t, r, p_old;     // normal-solver scratch (grid size)
   std::vector<double> sx, sy;                // tangential-solver scratch (grid size)
 
@@ -54,7 +53,7 @@ class Workspace {
     return {g.nx, g.ny, g.dx, g.dy, m.youngs_modulus, m.poisson_ratio, window};
   }
   Key normal_key_, tangential_key_;
-  Spectrum k_nn_, k_bxx_, k_bxy_, k_byy_, k_axx_, k_axy_, k_ayy_;
+  Spectrum k_nn_, k_bxx_, k_bxy_, k_byy_;
   NearKernel near_, near_b_;
 };
 

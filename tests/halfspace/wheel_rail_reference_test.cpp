@@ -156,5 +156,43 @@ TEST(HalfspaceReference, FlangeRowsReported) {
   EXPECT_FALSE(c.fn.empty());
 }
 
+// Grid convergence against CONTACT (block C, 0.3 mm there): three tread cases, two creepage sets,
+// element sizes 0.6 to 0.15 mm. Prints the table of docs/validation/halfspace.md; asserts only
+// that every case is solved. Run with --gtest_also_run_disabled_tests (about 2 min).
+TEST(HalfspaceReference, DISABLED_ElementSizeConvergence) {
+  const auto rows = test::read_csv(std::string(RAILTAB_SHARED_DIR) +
+                                   "/reference/blockC_sweep_integer_dy.csv");
+  if (rows.empty()) GTEST_SKIP() << RAILTAB_SHARED_DIR "/reference absent";
+  const ContactGeometrySolver solver = manchester();
+  const Material mat = reference_material();
+  for (const auto& row : rows) {
+    const double dy = num(row, "dy_mm");
+    const std::string set = row.at("creep_set");
+    if ((dy != -3.0 && dy != 0.0 && dy != 3.0) || (set != "c_lat0.001" && set != "e_combined"))
+      continue;
+    const WheelContactGeometry g = solver.solve_wheel(Side::right, {-dy * 1e-3, 0.0});
+    for (const double h : {0.6e-3, 0.4e-3, 0.3e-3, 0.2e-3, 0.15e-3}) {
+      halfspace::HalfspaceOptions opt;
+      opt.element_size = h;
+      halfspace::Workspace ws;
+      const auto r = halfspace::solve_halfspace_rolling(
+          g, num(row, "fz_prescribed_N"),
+          {-num(row, "cksi"), num(row, "ceta"), num(row, "cphi_rad_per_m")}, num(row, "mu"), mat,
+          opt, ws);
+      ASSERT_EQ(r.patches.size(), 1u);
+      const auto& p = r.patches[0];
+      const double muN = num(row, "mu") * num(row, "fn_N");
+      const double err = std::hypot(p.tangential.fx + num(row, "fx_N"),
+                                    p.tangential.fy - num(row, "fs_N")) / muN;
+      std::printf("[measured] convergence dy %+.0f %-11s h %.2f mm: area %+.2f%% pmax %+.2f%%"
+                  " |dF|/muN %.2f%% grid %dx%d steps %d\n", dy, set.c_str(), h * 1e3,
+                  100 * (p.normal.area / (num(row, "area_mm2") * 1e-6) - 1),
+                  100 * (p.normal.max_pressure / (num(row, "pmax_MPa") * 1e6) - 1), 100 * err,
+                  p.grid.nx, p.grid.ny, p.tangential.sweeps);
+      EXPECT_TRUE(p.status & status::kConverged);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace railtab
