@@ -188,9 +188,26 @@ void solve_on_contact_box(HalfspacePatch& hp, const RollingCreepage& c, double m
 
 }  // namespace
 
+namespace {
+
+WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double vertical_load,
+                                    const Material& material, const HalfspaceOptions& o,
+                                    Workspace& ws, const WheelHalfspaceResult* previous);
+
+}  // namespace
+
 WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,
                                               double vertical_load, const Material& material,
                                               const HalfspaceOptions& o, Workspace& ws) {
+  return solve_for_load(geometry, vertical_load, material, o, ws, nullptr);
+}
+
+namespace {
+
+// previous: a result of the same geometry whose pressures start the solve where the grids match.
+WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double vertical_load,
+                                    const Material& material, const HalfspaceOptions& o,
+                                    Workspace& ws, const WheelHalfspaceResult* previous) {
   RAILTAB_CHECK(std::isfinite(vertical_load) && vertical_load >= 0.0,
                 "halfspace: vertical load must be finite and >= 0, got {}", vertical_load);
   RAILTAB_CHECK(o.element_size > 0.0 && std::isfinite(o.element_size),
@@ -216,6 +233,10 @@ WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geomet
     hp.rolling_radius = np.rolling_radius;
     hp.wheel_u = np.wheel_u;
     hp.rail_u = np.rail_u;
+    if (previous && previous->patches.size() == first.patches.size()) {
+      hp.grid = previous->patches[k].grid;  // kept (warm start) when the new grid is the same
+      hp.normal.pressure = previous->patches[k].normal.pressure;
+    }
     r.patches.push_back(std::move(hp));
   }
   const int np = static_cast<int>(r.patches.size());
@@ -287,6 +308,8 @@ WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geomet
   return r;
 }
 
+}  // namespace
+
 void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& c, double mu,
                                 const Material& material, const HalfspaceOptions& o,
                                 Workspace& ws) {
@@ -314,8 +337,8 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
   };
   // One round: normal for the load F_z - tz, then tangential; returns the new tz.
   auto round = [&](double tz) {
-    WheelHalfspaceResult next =
-        solve_halfspace_for_load(geometry, std::max(0.0, vertical_load - tz), material, o, ws);
+    WheelHalfspaceResult next = solve_for_load(geometry, std::max(0.0, vertical_load - tz),
+                                               material, o, ws, r.patches.empty() ? nullptr : &r);
     if (next.patches.size() == r.patches.size())  // warm start from the previous round
       for (size_t k = 0; k < next.patches.size(); ++k)
         if (next.patches[k].grid.nx == r.patches[k].grid.nx &&
