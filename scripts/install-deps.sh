@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev            # linear algebra (core)
+  libfftw3-dev             # FFT of the half-space convolutions (src/halfspace)
   libtbb-dev               # oneTBB parallel sweep (generator)
   libhdf5-dev hdf5-tools   # table files; h5dump for inspection
   libgtest-dev libgmock-dev

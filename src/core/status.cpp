@@ -6,7 +6,7 @@
 namespace railtab::status {
 
 std::string describe(StatusBits bits) {
-  static constexpr std::array<std::pair<StatusBits, const char*>, 14> kNames{{
+  static constexpr std::array<std::pair<StatusBits, const char*>, 16> kNames{{
       {kConverged, "converged"},
       {kNotConverged, "not_converged"},
       {kTwoPoint, "two_point"},
@@ -21,6 +21,8 @@ std::string describe(StatusBits bits) {
       {kInvalidInput, "invalid_input"},
       {kProfileEdge, "profile_edge"},
       {kFailed, "failed"},
+      {kAreaTooSmall, "area_too_small"},
+      {kNotPlanar, "not_planar"},
   }};
   std::string out;
   for (const auto& [bit, name] : kNames) {

@@ -1,0 +1,309 @@
+#include "halfspace/tangential_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace railtab::halfspace {
+namespace {
+
+// Local problem of one element in slip: s = s0 - g D e, e = s/|s|, D = diag(dxx, dyy) > 0.
+// s_i = s0_i sigma / (sigma + g d_i) with sigma = |s| the root of
+// sum s0_i^2 / (sigma + g d_i)^2 = 1 (decreasing and convex in sigma); Newton from a lower bound
+// converges monotonically. Returns the traction p = -g s / sigma.
+void slip_traction(double s0x, double s0y, double g, double dxx, double dyy, double* px,
+                   double* py) {
+  const double s0 = std::hypot(s0x, s0y);
+  double sigma = std::max(0.0, s0 - g * std::max(dxx, dyy));
+  for (int k = 0; k < 60; ++k) {
+    const double ax = sigma + g * dxx, ay = sigma + g * dyy;
+    const double fx = s0x / ax, fy = s0y / ay;
+    const double f = fx * fx + fy * fy - 1.0;
+    const double df = -2.0 * (fx * fx / ax + fy * fy / ay);
+    const double step = -f / df;
+    sigma += step;
+    if (!(std::abs(step) > 1e-14 * (sigma + g * dxx))) break;
+  }
+  *px = -g * s0x / (sigma + g * dxx);
+  *py = -g * s0y / (sigma + g * dyy);
+}
+
+}  // namespace
+
+void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
+                      const RollingCreepage& creepage, double mu, const Material& material,
+                      const TangentialSolverOptions& options, Workspace& w,
+                      TangentialSolution& out) {
+  const int n = grid.size();
+  out.status = 0;
+  out.sweeps = 0;
+  out.fx = out.fy = out.mz = out.slip_area = out.frictional_work = 0.0;
+  const bool ok = pressure.size() == static_cast<size_t>(n) && n > 0 && std::isfinite(mu) &&
+                  mu >= 0.0 && std::isfinite(creepage.xi) && std::isfinite(creepage.eta) &&
+                  std::isfinite(creepage.phi) &&
+                  std::all_of(pressure.begin(), pressure.end(),
+                              [](double p) { return std::isfinite(p) && p >= 0.0; });
+  if (!ok) {
+    out.status = status::kInvalidInput;
+    return;
+  }
+  // The Gauss-Seidel sweeps use A / dx between every pair of contact elements (exact).
+  const TangentialKernels K = w.tangential_kernels(
+      grid, material, options.window < 0 ? std::max(grid.nx, grid.ny) : options.window);
+  const NearKernel& near = options.steady_sweep ? *K.near_b : *K.near;
+  const double dxx = near.at(near.xx, 0, 0), dyy = near.at(near.yy, 0, 0);
+  std::vector<double>& px = out.traction_x;
+  std::vector<double>& py = out.traction_y;
+  if (px.size() != static_cast<size_t>(n) || py.size() != static_cast<size_t>(n)) {
+    px.assign(n, 0.0);
+    py.assign(n, 0.0);
+  }
+  out.slip_x.resize(n);
+  out.slip_y.resize(n);
+  out.state.assign(n, 0);
+  std::vector<double>& sx = out.slip_x;
+  std::vector<double>& sy = out.slip_y;
+  double force_bound = 0.0;
+  for (int k = 0; k < n; ++k) {
+    if (!(pressure[k] > 0.0)) px[k] = py[k] = 0.0;  // warm start on a changed contact
+    force_bound += mu * pressure[k];
+  }
+  Spectrum& spx = w.field_a;
+  Spectrum& spy = w.field_b;
+  auto convolve = [&](const Spectrum* kxx, const Spectrum* kxy, const Spectrum* kyy, double* ox,
+                      double* oy) {
+    const Spectrum* f[2] = {&spx, &spy};
+    const Spectrum* k1[2] = {kxx, kxy};
+    w.fft.convolve(k1, f, 2, ox);
+    const Spectrum* k2[2] = {kxy, kyy};
+    w.fft.convolve(k2, f, 2, oy);
+  };
+  // Contact elements in sweep order: row by row, each from the leading edge backwards.
+  std::vector<int> list;
+  for (int j = 0; j < grid.ny; ++j)
+    for (int i = grid.nx - 1; i >= 0; --i)
+      if (pressure[grid.index(i, j)] > 0.0) list.push_back(grid.index(i, j));
+  const int m = static_cast<int>(list.size());
+  std::vector<int> pos(n, -1);  // grid index -> position in list
+  for (int a = 0; a < m; ++a) pos[list[a]] = a;
+  const int W = options.window;
+  std::vector<double> lsx(m), lsy(m), lpx(m), lpy(m);
+  // One rolling step Phi: the tractions p (list order) -> the tractions p' that satisfy the
+  // element conditions with the displacements of p at the previous position frozen,
+  // s = w + B p + A (p' - p) / dx, by Gauss-Seidel (convex: converges).
+  int slipping_now = 0, slipping_before = -1;
+  auto rolling_step = [&](std::vector<double>& qx, std::vector<double>& qy) {
+    std::fill(px.begin(), px.end(), 0.0);
+    std::fill(py.begin(), py.end(), 0.0);
+    for (int a = 0; a < m; ++a) {
+      px[list[a]] = qx[a];
+      py[list[a]] = qy[a];
+    }
+    w.fft.forward(px.data(), spx);
+    w.fft.forward(py.data(), spy);
+    convolve(K.bxx, K.bxy, K.byy, sx.data(), sy.data());
+    for (int a = 0; a < m; ++a) {
+      const int k = list[a], i = k % grid.nx, j = k / grid.nx;
+      lsx[a] = sx[k] + creepage.xi - creepage.phi * grid.y(j);
+      lsy[a] = sy[k] + creepage.eta + creepage.phi * grid.x(i);
+    }
+    double total = 0.0;
+    for (int sweep = 0; sweep < options.max_inner_sweeps; ++sweep) {
+      slipping_now = 0;
+      double change = 0.0;
+      total = 0.0;
+      for (int a = 0; a < m; ++a) {
+        const int k = list[a];
+        const double g = mu * pressure[k];
+        const double s0x = lsx[a] - dxx * qx[a], s0y = lsy[a] - dyy * qy[a];
+        double nx = -s0x / dxx, ny = -s0y / dyy;  // adhesion: s = 0
+        if (nx * nx + ny * ny > g * g) {
+          slip_traction(s0x, s0y, g, dxx, dyy, &nx, &ny);
+          ++slipping_now;
+        }
+        const double dpx = nx - qx[a], dpy = ny - qy[a];
+        qx[a] = nx;
+        qy[a] = ny;
+        total += std::abs(nx) + std::abs(ny);
+        if (dpx == 0.0 && dpy == 0.0) continue;
+        change += std::abs(dpx) + std::abs(dpy);
+        const int i = k % grid.nx, j = k / grid.nx;
+        if (W < 0) {
+          for (int b = 0; b < m; ++b) {
+            const int kb = list[b];
+            const int di = kb % grid.nx - i, dj = kb / grid.nx - j;
+            const double axx = near.at(near.xx, di, dj), axy = near.at(near.xy, di, dj);
+            const double ayy = near.at(near.yy, di, dj);
+            lsx[b] += axx * dpx + axy * dpy;
+            lsy[b] += axy * dpx + ayy * dpy;
+          }
+        } else {
+          for (int jj = std::max(0, j - W); jj <= std::min(grid.ny - 1, j + W); ++jj)
+            for (int ii = std::max(0, i - W); ii <= std::min(grid.nx - 1, i + W); ++ii) {
+              const int b = pos[grid.index(ii, jj)];
+              if (b < 0) continue;
+              const double axx = near.at(near.xx, ii - i, jj - j);
+              const double axy = near.at(near.xy, ii - i, jj - j);
+              const double ayy = near.at(near.yy, ii - i, jj - j);
+              lsx[b] += axx * dpx + axy * dpy;
+              lsy[b] += axy * dpx + ayy * dpy;
+            }
+        }
+      }
+      if (change <= options.inner_tolerance * total) break;
+    }
+  };
+  // Fixed point p = Phi(p) (the steady state), accelerated by Anderson mixing (depth 5): the
+  // plain iteration is transient rolling, which forgets its start only as material crosses the
+  // patch.
+  const int depth = options.anderson_depth;
+  std::vector<double> x(2 * m, 0.0), fx(2 * m), x_prev, f_prev;
+  std::vector<std::vector<double>> dX, dF, gram;  // gram = dF^T dF
+  for (int a = 0; a < m; ++a) {
+    x[a] = px[list[a]];
+    x[m + a] = py[list[a]];
+  }
+  bool converged = force_bound <= 0.0 || m == 0;  // no friction or no load: no traction
+  std::vector<double> qx(m), qy(m);
+  for (int step = 1; step <= options.max_steps && !converged; ++step) {
+    out.sweeps = step;
+    for (int a = 0; a < m; ++a) {
+      qx[a] = x[a];
+      qy[a] = x[m + a];
+    }
+    rolling_step(qx, qy);
+    double fnorm = 0.0, pnorm = 0.0;
+    for (int a = 0; a < m; ++a) {
+      fx[a] = qx[a] - x[a];
+      fx[m + a] = qy[a] - x[m + a];
+      fnorm += std::abs(fx[a]) + std::abs(fx[m + a]);
+      pnorm += std::abs(qx[a]) + std::abs(qy[a]);
+    }
+    if (fnorm <= options.tolerance * pnorm) {
+      converged = true;
+      x.assign(qx.begin(), qx.end());
+      x.insert(x.end(), qy.begin(), qy.end());
+      break;
+    }
+    // A change of the slip set changes the map: the history no longer describes it.
+    if (options.restart_on_slip_change && slipping_now != slipping_before) {
+      dX.clear();
+      dF.clear();
+      gram.clear();
+      x_prev.clear();
+    }
+    slipping_before = slipping_now;
+    if (!x_prev.empty()) {
+      std::vector<double> ddx(2 * m), ddf(2 * m);
+      for (int k = 0; k < 2 * m; ++k) {
+        ddx[k] = x[k] - x_prev[k];
+        ddf[k] = fx[k] - f_prev[k];
+      }
+      if (static_cast<int>(dX.size()) == depth) {  // drop the oldest
+        dX.erase(dX.begin());
+        dF.erase(dF.begin());
+        gram.erase(gram.begin());
+        for (auto& row : gram) row.erase(row.begin());
+      }
+      std::vector<double> row(dF.size() + 1);
+      for (size_t a = 0; a < dF.size(); ++a) {
+        double sum = 0.0;
+        for (int k = 0; k < 2 * m; ++k) sum += dF[a][k] * ddf[k];
+        row[a] = sum;
+        gram[a].push_back(sum);
+      }
+      double self = 0.0;
+      for (int k = 0; k < 2 * m; ++k) self += ddf[k] * ddf[k];
+      row.back() = self;
+      gram.push_back(std::move(row));
+      dX.push_back(std::move(ddx));
+      dF.push_back(std::move(ddf));
+    }
+    x_prev = x;
+    f_prev = fx;
+    const int h = static_cast<int>(dF.size());
+    std::vector<double> gamma(h, 0.0);
+    if (h > 0) {  // least squares min |f - dF gamma| by the normal equations
+      std::vector<double> M(h * h), rhs(h);
+      for (int a = 0; a < h; ++a) {
+        for (int b = 0; b < h; ++b) M[a * h + b] = gram[a][b];
+        double sum = 0.0;
+        for (int k = 0; k < 2 * m; ++k) sum += dF[a][k] * fx[k];
+        rhs[a] = sum;
+        M[a * h + a] *= 1.0 + 1e-10;
+      }
+      for (int c = 0; c < h; ++c) {  // Gaussian elimination with partial pivoting
+        int piv = c;
+        for (int r = c + 1; r < h; ++r)
+          if (std::abs(M[r * h + c]) > std::abs(M[piv * h + c])) piv = r;
+        for (int b = 0; b < h; ++b) std::swap(M[c * h + b], M[piv * h + b]);
+        std::swap(rhs[c], rhs[piv]);
+        if (M[c * h + c] == 0.0) continue;
+        for (int r = c + 1; r < h; ++r) {
+          const double f = M[r * h + c] / M[c * h + c];
+          for (int b = c; b < h; ++b) M[r * h + b] -= f * M[c * h + b];
+          rhs[r] -= f * rhs[c];
+        }
+      }
+      for (int c = h - 1; c >= 0; --c) {
+        double sum = rhs[c];
+        for (int b = c + 1; b < h; ++b) sum -= M[c * h + b] * gamma[b];
+        gamma[c] = M[c * h + c] != 0.0 ? sum / M[c * h + c] : 0.0;
+      }
+    }
+    for (int k = 0; k < 2 * m; ++k) {
+      double v = x[k] + options.mixing * fx[k];
+      for (int a = 0; a < h; ++a) v -= gamma[a] * (dX[a][k] + options.mixing * dF[a][k]);
+      x[k] = v;
+    }
+  }
+  if (!converged) {  // keep a feasible state: one more rolling step from the last iterate
+    for (int a = 0; a < m; ++a) {
+      qx[a] = x[a];
+      qy[a] = x[m + a];
+    }
+    if (m > 0 && force_bound > 0.0) rolling_step(qx, qy);
+    x.assign(qx.begin(), qx.end());
+    x.insert(x.end(), qy.begin(), qy.end());
+  }
+  std::fill(px.begin(), px.end(), 0.0);
+  std::fill(py.begin(), py.end(), 0.0);
+  for (int a = 0; a < m; ++a) {
+    px[list[a]] = x[a];
+    py[list[a]] = x[m + a];
+  }
+  // Final slip from the final tractions (exact), forces and states.
+  w.fft.forward(px.data(), spx);
+  w.fft.forward(py.data(), spy);
+  convolve(K.bxx, K.bxy, K.byy, sx.data(), sy.data());
+  const double dA = grid.element_area();
+  int loaded = 0, slipping = 0;
+  for (int j = 0; j < grid.ny; ++j)
+    for (int i = 0; i < grid.nx; ++i) {
+      const int k = grid.index(i, j);
+      sx[k] += creepage.xi - creepage.phi * grid.y(j);
+      sy[k] += creepage.eta + creepage.phi * grid.x(i);
+      if (!(pressure[k] > 0.0)) {
+        sx[k] = sy[k] = 0.0;
+        continue;
+      }
+      ++loaded;
+      const double g = mu * pressure[k];
+      // Slip when the traction sits on the bound (to rounding); adhesion elements have s = 0.
+      const bool slip = std::hypot(px[k], py[k]) >= g * (1.0 - 1e-9);
+      out.state[k] = slip ? 2 : 1;
+      if (slip) {
+        ++slipping;
+      } else {
+        sx[k] = sy[k] = 0.0;
+      }
+      out.fx += px[k] * dA;
+      out.fy += py[k] * dA;
+      out.mz += (grid.x(i) * py[k] - grid.y(j) * px[k]) * dA;
+      out.frictional_work -= (px[k] * sx[k] + py[k] * sy[k]) * dA;
+    }
+  out.slip_area = slipping * dA;
+  out.status |= converged ? status::kConverged : status::kNotConverged;
+  if (loaded > 0 && slipping == loaded) out.status |= status::kFullSlip;
+}
+
+}  // namespace railtab::halfspace

@@ -1,0 +1,388 @@
+#include "halfspace/wheel_rail.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.hpp"
+#include "normal/normal_model.hpp"
+#include "wear/kth_wear_map.hpp"
+
+namespace railtab::halfspace {
+namespace {
+
+struct PlaneSample {  // one band sample seen in the patch's tangent plane
+  double y;           // contact-frame lateral coordinate [m]
+  double h;           // gap along the reference normal [m]
+  double A;           // rolling-direction relative curvature [1/m]
+  double angle;       // side-frame contact angle [rad]
+};
+
+// Band samples of [s_lo, s_hi] in the plane of the reference (index i_ref interpolated at s_ref).
+std::vector<PlaneSample> plane_samples(const WheelContactGeometry& g, double s_ref, double g_ref,
+                                       double s_lo, double s_hi) {
+  const double sigma = outward_sign(g.side);
+  const int nb = static_cast<int>(g.band.size());
+  if (nb < 2) return {};
+  // Reference point on the rail surface, interpolated in s.
+  const double t = (s_ref - g.band.front().s) / g.band_step;
+  const int k0 = std::clamp(static_cast<int>(std::floor(t)), 0, nb - 2);
+  const double f = std::clamp(t - k0, 0.0, 1.0);
+  const double q_ref = (1 - f) * g.band[k0].q + f * g.band[k0 + 1].q;
+  const double z_ref = (1 - f) * g.band[k0].z + f * g.band[k0 + 1].z;
+  const double tq = std::cos(g_ref), tz = std::sin(g_ref);  // tangent towards the field side
+  std::vector<PlaneSample> out;
+  for (const BandSample& b : g.band) {
+    if (b.s < s_lo || b.s > s_hi) continue;
+    PlaneSample p;
+    p.y = sigma * ((b.q - q_ref) * tq + (b.z - z_ref) * tz);
+    p.h = b.gap / std::cos(b.contact_angle - g_ref);
+    p.A = std::cos(b.contact_angle - g.wheel_roll) / (2.0 * b.rolling_radius);
+    p.angle = b.contact_angle;
+    out.push_back(p);
+  }
+  std::sort(out.begin(), out.end(), [](const PlaneSample& a, const PlaneSample& b) {
+    return a.y < b.y;
+  });
+  return out;
+}
+
+// Linear interpolation of the samples at y; false outside their range.
+bool sample_at(const std::vector<PlaneSample>& s, double y, PlaneSample* out) {
+  if (s.size() < 2 || y < s.front().y || y > s.back().y) return false;
+  auto it = std::lower_bound(s.begin(), s.end(), y,
+                             [](const PlaneSample& a, double v) { return a.y < v; });
+  if (it == s.begin()) ++it;
+  const PlaneSample& b = *it;
+  const PlaneSample& a = *(it - 1);
+  const double f = b.y > a.y ? (y - a.y) / (b.y - a.y) : 0.0;
+  *out = {y, a.h + f * (b.h - a.h), a.A + f * (b.A - a.A), a.angle + f * (b.angle - a.angle)};
+  return true;
+}
+
+// Grid and gap of a patch: rigid overlap at the normal approach delta_n, widened by `grow`.
+void build_grid(const WheelContactGeometry& geometry, const ContactPatch& np, double delta_n,
+                double grow, const HalfspaceOptions& o, HalfspacePatch& hp,
+                std::vector<PlaneSample>& samples) {
+  const double width = std::max(np.s_end - np.s_start, 4 * o.element_size);
+  const double pad = grow * width + 2 * o.element_size;
+  samples = plane_samples(geometry, np.band_s, hp.contact_angle_side, np.s_start - pad,
+                          np.s_end + pad);
+  // Lateral extent: where the rigid overlap is positive, widened.
+  double ylo = 0, yhi = 0, half_length = 0;
+  bool any = false;
+  for (const PlaneSample& p : samples) {
+    if (p.h >= delta_n) continue;
+    ylo = any ? std::min(ylo, p.y) : p.y;
+    yhi = any ? std::max(yhi, p.y) : p.y;
+    half_length = std::max(half_length, std::sqrt((delta_n - p.h) / p.A));
+    any = true;
+  }
+  if (!any) {  // no overlap at this approach: a small area around the reference
+    ylo = -2 * o.element_size;
+    yhi = 2 * o.element_size;
+    half_length = 2 * o.element_size;
+  }
+  const double wy = yhi - ylo;
+  ylo -= grow * wy + o.element_size;
+  yhi += grow * wy + o.element_size;
+  half_length = half_length * (1 + grow) + o.element_size;
+  Grid& gr = hp.grid;
+  gr.dx = gr.dy = o.element_size;
+  gr.nx = 2 * static_cast<int>(std::ceil(half_length / gr.dx)) + 1;
+  gr.ny = std::max(3, static_cast<int>(std::ceil((yhi - ylo) / gr.dy)) + 1);
+  gr.x0 = -(gr.nx / 2) * gr.dx;
+  gr.y0 = ylo;
+  hp.gap.assign(gr.size(), 1.0);  // outside the band: far apart
+  for (int j = 0; j < gr.ny; ++j) {
+    PlaneSample p;
+    if (!sample_at(samples, gr.y(j), &p)) continue;
+    for (int i = 0; i < gr.nx; ++i) hp.gap[gr.index(i, j)] = p.h + p.A * gr.x(i) * gr.x(i);
+  }
+}
+
+// Contact-angle spread over the lateral extent of the contact.
+double angle_spread(const HalfspacePatch& hp, const std::vector<PlaneSample>& samples) {
+  double lo = 1e9, hi = -1e9;
+  for (int j = 0; j < hp.grid.ny; ++j) {
+    bool loaded = false;
+    for (int i = 0; i < hp.grid.nx && !loaded; ++i)
+      loaded = hp.normal.pressure[hp.grid.index(i, j)] > 0.0;
+    PlaneSample p;
+    if (!loaded || !sample_at(samples, hp.grid.y(j), &p)) continue;
+    lo = std::min(lo, p.angle);
+    hi = std::max(hi, p.angle);
+  }
+  return hi >= lo ? hi - lo : 0.0;
+}
+
+// The tangential problem on the bounding box of the contact only (tractions vanish outside it,
+// and the slip matters only inside): a smaller FFT than the potential area's, the same numbers.
+// Results are copied back to the patch's grid; the warm start comes from there too.
+void solve_on_contact_box(HalfspacePatch& hp, const RollingCreepage& c, double mu,
+                          const Material& material, const TangentialSolverOptions& o,
+                          Workspace& ws) {
+  const Grid& g = hp.grid;
+  int i0 = g.nx, i1 = -1, j0 = g.ny, j1 = -1;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      if (hp.normal.pressure[g.index(i, j)] > 0.0) {
+        i0 = std::min(i0, i);
+        i1 = std::max(i1, i);
+        j0 = std::min(j0, j);
+        j1 = std::max(j1, j);
+      }
+  TangentialSolution& full = hp.tangential;
+  const bool warm = full.traction_x.size() == static_cast<size_t>(g.size());
+  if (i1 < 0) {  // no contact: no traction
+    solve_tangential(g, hp.normal.pressure, c, mu, material, o, ws, full);
+    return;
+  }
+  Grid box;
+  box.nx = std::max(2, i1 - i0 + 1);
+  box.ny = std::max(2, j1 - j0 + 1);
+  i0 = std::min(i0, g.nx - box.nx);
+  j0 = std::min(j0, g.ny - box.ny);
+  box.dx = g.dx;
+  box.dy = g.dy;
+  box.x0 = g.x(i0);
+  box.y0 = g.y(j0);
+  std::vector<double> pressure(box.size());
+  TangentialSolution part;
+  if (warm) {
+    part.traction_x.resize(box.size());
+    part.traction_y.resize(box.size());
+  }
+  for (int j = 0; j < box.ny; ++j)
+    for (int i = 0; i < box.nx; ++i) {
+      const int k = g.index(i0 + i, j0 + j), b = box.index(i, j);
+      pressure[b] = hp.normal.pressure[k];
+      if (warm) {
+        part.traction_x[b] = full.traction_x[k];
+        part.traction_y[b] = full.traction_y[k];
+      }
+    }
+  solve_tangential(box, pressure, c, mu, material, o, ws, part);
+  full.traction_x.assign(g.size(), 0.0);
+  full.traction_y.assign(g.size(), 0.0);
+  full.slip_x.assign(g.size(), 0.0);
+  full.slip_y.assign(g.size(), 0.0);
+  full.state.assign(g.size(), 0);
+  if (part.traction_x.size() == static_cast<size_t>(box.size()))
+    for (int j = 0; j < box.ny; ++j)
+      for (int i = 0; i < box.nx; ++i) {
+        const int k = g.index(i0 + i, j0 + j), b = box.index(i, j);
+        full.traction_x[k] = part.traction_x[b];
+        full.traction_y[k] = part.traction_y[b];
+        full.slip_x[k] = part.slip_x[b];
+        full.slip_y[k] = part.slip_y[b];
+        full.state[k] = part.state[b];
+      }
+  full.fx = part.fx;
+  full.fy = part.fy;
+  full.mz = part.mz;
+  full.slip_area = part.slip_area;
+  full.frictional_work = part.frictional_work;
+  full.sweeps = part.sweeps;
+  full.status = part.status;
+}
+
+}  // namespace
+
+namespace {
+
+WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double vertical_load,
+                                    const Material& material, const HalfspaceOptions& o,
+                                    Workspace& ws, const WheelHalfspaceResult* previous);
+
+}  // namespace
+
+WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,
+                                              double vertical_load, const Material& material,
+                                              const HalfspaceOptions& o, Workspace& ws) {
+  return solve_for_load(geometry, vertical_load, material, o, ws, nullptr);
+}
+
+namespace {
+
+// previous: a result of the same geometry whose pressures start the solve where the grids match.
+WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double vertical_load,
+                                    const Material& material, const HalfspaceOptions& o,
+                                    Workspace& ws, const WheelHalfspaceResult* previous) {
+  RAILTAB_CHECK(std::isfinite(vertical_load) && vertical_load >= 0.0,
+                "halfspace: vertical load must be finite and >= 0, got {}", vertical_load);
+  RAILTAB_CHECK(o.element_size > 0.0 && std::isfinite(o.element_size),
+                "halfspace: element_size must be > 0, got {}", o.element_size);
+  WheelHalfspaceResult r;
+  NormalOptions no;
+  no.model = NormalModel::stripes_ab;
+  no.combine_patches = true;
+  const WheelNormalResult first = solve_normal_for_load(geometry, vertical_load, material, no);
+  r.vertical_approach = first.vertical_approach;
+  if (first.patches.empty() || vertical_load == 0.0) {
+    r.status = status::kLiftOff | (first.status & status::kInvalidInput);
+    return r;
+  }
+  const double sigma = outward_sign(geometry.side);
+  std::vector<std::vector<PlaneSample>> samples(first.patches.size());
+  for (size_t k = 0; k < first.patches.size(); ++k) {
+    const ContactPatch& np = first.patches[k];
+    HalfspacePatch hp;
+    hp.band_s = np.band_s;
+    hp.contact_angle = np.contact_angle;
+    hp.contact_angle_side = sigma * np.contact_angle;
+    hp.rolling_radius = np.rolling_radius;
+    hp.wheel_u = np.wheel_u;
+    hp.rail_u = np.rail_u;
+    if (previous && previous->patches.size() == first.patches.size()) {
+      hp.grid = previous->patches[k].grid;  // kept (warm start) when the new grid is the same
+      hp.normal.pressure = previous->patches[k].normal.pressure;
+    }
+    r.patches.push_back(std::move(hp));
+  }
+  const int np = static_cast<int>(r.patches.size());
+  // Solve every patch at the vertical approach dz (approach control), or the single patch for its
+  // share of the load; grow a grid whose edge the contact reaches.
+  auto solve_all = [&](double dz, bool single_load) {
+    for (int k = 0; k < np; ++k) {
+      HalfspacePatch& hp = r.patches[k];
+      const double c = std::cos(hp.contact_angle_side);
+      for (int growth = 0; growth <= o.max_growth; ++growth) {
+        const double grow = o.margin * std::pow(1.5, growth) + (growth > 0 ? 0.5 * growth : 0.0);
+        const Grid before = hp.grid;
+        build_grid(geometry, first.patches[k], dz * c, grow, o, hp, samples[k]);
+        if (!(before.nx == hp.grid.nx && before.ny == hp.grid.ny)) hp.normal.pressure.clear();
+        if (single_load)
+          solve_normal_for_force(hp.grid, hp.gap, vertical_load / c, material, o.normal, ws,
+                                 hp.normal);
+        else
+          solve_normal_for_approach(hp.grid, hp.gap, dz * c, material, o.normal, ws, hp.normal);
+        if (!(hp.normal.status & status::kAreaTooSmall)) break;
+      }
+    }
+  };
+  auto load_of = [&] {
+    double fz = 0.0;
+    for (const HalfspacePatch& hp : r.patches)
+      fz += hp.normal.normal_force * std::cos(hp.contact_angle_side);
+    return fz;
+  };
+  StatusBits solver = status::kConverged;
+  if (np == 1) {
+    solve_all(first.vertical_approach, true);
+    r.vertical_approach = r.patches[0].normal.approach / std::cos(r.patches[0].contact_angle_side);
+  } else {  // secant on the common vertical approach
+    double d0 = first.vertical_approach, d1 = 1.02 * first.vertical_approach;
+    solve_all(d0, false);
+    double f0 = load_of() - vertical_load;
+    solve_all(d1, false);
+    double f1 = load_of() - vertical_load;
+    bool ok = false;
+    for (int it = 0; it < 30; ++it) {
+      if (std::abs(f1) <= o.load_tolerance * vertical_load) {
+        ok = true;
+        break;
+      }
+      if (f1 == f0) break;
+      const double d2 = std::max(0.5 * d1, d1 - f1 * (d1 - d0) / (f1 - f0));
+      d0 = d1;
+      f0 = f1;
+      d1 = d2;
+      solve_all(d1, false);
+      f1 = load_of() - vertical_load;
+    }
+    r.vertical_approach = d1;
+    if (!ok) solver = status::kNotConverged;
+  }
+  r.vertical_load = load_of();
+  r.status = solver;
+  for (int k = 0; k < np; ++k) {
+    HalfspacePatch& hp = r.patches[k];
+    hp.contact_angle_spread = angle_spread(hp, samples[k]);
+    hp.status = hp.normal.status;
+    if (hp.contact_angle_spread > o.planar_angle_limit) hp.status |= status::kNotPlanar;
+    if (hp.contact_angle_side > 0.35) hp.status |= status::kFlangeContact;  // as GeometrySettings
+    r.status |= hp.status & ~status::kConverged;
+    if (!(hp.normal.status & status::kConverged)) r.status &= ~status::kConverged;
+  }
+  if (np > 1) r.status |= status::kTwoPoint;
+  return r;
+}
+
+}  // namespace
+
+void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& c, double mu,
+                                const Material& material, const HalfspaceOptions& o,
+                                Workspace& ws) {
+  for (HalfspacePatch& hp : result.patches) {
+    solve_on_contact_box(hp, {c.xi, c.eta, c.phi}, mu, material, o.tangential, ws);
+    const StatusBits t = hp.tangential.status;
+    hp.status = (hp.status & ~(status::kConverged | status::kNotConverged | status::kFullSlip)) |
+                (t & (status::kNotConverged | status::kFullSlip | status::kInvalidInput));
+    if ((hp.normal.status & status::kConverged) && (t & status::kConverged))
+      hp.status |= status::kConverged;
+    else
+      hp.status |= status::kNotConverged;
+  }
+}
+
+WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
+                                             double vertical_load, const Creepage& creepage,
+                                             double mu, const Material& material,
+                                             const HalfspaceOptions& o, Workspace& ws) {
+  WheelHalfspaceResult r;
+  auto tangential_vertical = [](const WheelHalfspaceResult& res) {
+    double tz = 0.0;
+    for (const HalfspacePatch& hp : res.patches) tz += hp.tangential.fy * std::sin(hp.contact_angle);
+    return tz;
+  };
+  // One round: normal for the load F_z - tz, then tangential; returns the new tz.
+  auto round = [&](double tz) {
+    WheelHalfspaceResult next = solve_for_load(geometry, std::max(0.0, vertical_load - tz),
+                                               material, o, ws, r.patches.empty() ? nullptr : &r);
+    if (next.patches.size() == r.patches.size())  // warm start from the previous round
+      for (size_t k = 0; k < next.patches.size(); ++k)
+        if (next.patches[k].grid.nx == r.patches[k].grid.nx &&
+            next.patches[k].grid.ny == r.patches[k].grid.ny)
+          next.patches[k].tangential = std::move(r.patches[k].tangential);
+    solve_halfspace_tangential(next, creepage, mu, material, o, ws);
+    r = std::move(next);
+    return tangential_vertical(r);
+  };
+  double t0 = 0.0, g0 = round(t0) - t0;  // fixed point tz = T(tz): root of g = T(tz) - tz
+  if (r.patches.empty()) return r;
+  double t1 = t0 + g0, g1 = round(t1) - t1;
+  bool ok = std::abs(g1) <= 1e-4 * vertical_load;
+  for (int it = 0; it < 18 && !ok; ++it) {
+    const double t2 = g1 != g0 ? t1 - g1 * (t1 - t0) / (g1 - g0) : t1 + g1;
+    t0 = t1;
+    g0 = g1;
+    t1 = t2;
+    g1 = round(t1) - t1;
+    ok = std::abs(g1) <= 1e-4 * vertical_load;
+  }
+  if (!ok) {
+    r.status = (r.status & ~status::kConverged) | status::kNotConverged;
+    for (HalfspacePatch& hp : r.patches)
+      hp.status = (hp.status & ~status::kConverged) | status::kNotConverged;
+  }
+  return r;
+}
+
+double archard_wear_per_pass(const HalfspacePatch& hp, double speed, const WearOptions& wear,
+                             std::vector<double>& depth) {
+  const Grid& g = hp.grid;
+  depth.assign(g.size(), 0.0);
+  double section = 0.0;
+  if (hp.tangential.slip_x.size() != static_cast<size_t>(g.size())) return 0.0;
+  for (int k = 0; k < g.size(); ++k) {
+    const double p = hp.normal.pressure[k];
+    const double s = std::hypot(hp.tangential.slip_x[k], hp.tangential.slip_y[k]);
+    if (!(p > 0.0) || !(s > 0.0)) continue;
+    const double kw = kth_wear_coefficient(wear.map, p, speed * s, wear.lubrication);
+    depth[k] = kw * p * s * g.dx / wear.map.hardness;
+    section += depth[k] * g.dy;
+  }
+  return section;
+}
+
+}  // namespace railtab::halfspace

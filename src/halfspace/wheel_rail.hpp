@@ -1,0 +1,105 @@
+// The exact half-space model on a wheel-rail contact: one planar patch per loaded region, as
+// CONTACT's wheel-rail module does by default, built from the same data as the fast models.
+//
+// Patches: the normal layer (normal_model.hpp, STRIPES A&B with CONTACT's patch combination,
+// runs within 8 mm merged) finds the loaded overlap runs, their overlap reference (position and
+// interpenetration-weighted contact angle g_ref, as CONTACT places its reference) and a first
+// vertical approach. Each patch is then solved on its own grid in the tangent plane at the
+// reference point (x rolling, y = contact frame lateral, origin at the reference point):
+//  - lateral coordinate of band sample s: y = sigma (P(s) - P_ref) . t_ref, t_ref the tangent
+//    of the reference plane towards the field side, sigma = +1 left / -1 right wheel (the
+//    contact frame's s axis, docs/conventions.md);
+//  - undeformed gap along the reference normal: h(x, y) = gap(s) / cos(g(s) - g_ref)
+//    + A(s) x^2, A(s) = cos(g(s) - wheel_roll) / (2 r(s)) (the wheel's rolling-direction
+//    curvature, Meusnier), interpolated linearly between band samples;
+//  - normal approach of the plane: delta_z cos(g_ref) for the vertical approach delta_z.
+// Potential area: the rigid overlap of the patch at the first approach (h < delta_n), widened by
+// `margin` on every side, on square elements of `element_size` (default 0.3 mm: CONTACT's grid
+// of block C, and the size at which the tread results are within 1 % of mu N of CONTACT; error and
+// time against element size: docs/validation/halfspace.md).
+// When the contact reaches the edge of the grid the area grows by half and the patch is solved
+// again (up to `max_growth` times; then kAreaTooSmall stays set).
+// Load control: one patch: N = F_z / cos(g_ref); several: one vertical approach for all, found by
+// the secant method on sum N_k cos(g_k) = F_z.
+// kNotPlanar: the contact angle varies by more than `planar_angle_limit` (default 0.2 rad,
+// 11.5 deg) over the lateral extent of the contact: the planar half-space is strained (flange
+// root, two-point contact merged into one patch).
+#pragma once
+
+#include <vector>
+
+#include "core/material.hpp"
+#include "core/status.hpp"
+#include "geometry/contact_geometry.hpp"
+#include "halfspace/normal_solver.hpp"
+#include "halfspace/tangential_solver.hpp"
+#include "tangential/fastsim.hpp"
+#include "wear/archard.hpp"
+
+namespace railtab::halfspace {
+
+struct HalfspaceOptions {
+  double element_size = 0.3e-3;       // element length and width [m]
+  double margin = 0.1;                // potential area beyond the rigid overlap, relative [-]
+  int max_growth = 3;                 // enlargements when the contact reaches the edge [-]
+  double planar_angle_limit = 0.2;    // contact-angle variation flagged kNotPlanar [rad]
+  double load_tolerance = 1e-6;       // several patches: relative vertical-load tolerance [-]
+  NormalSolverOptions normal;
+  TangentialSolverOptions tangential;
+};
+
+struct HalfspacePatch {
+  // Reference point (the overlap reference of the normal layer's patch).
+  double band_s = 0.0;          // [m]
+  double contact_angle = 0.0;   // track frame (ISO sign) [rad]
+  double contact_angle_side = 0.0;  // side frame [rad]
+  double rolling_radius = 0.0;  // undeformed wheel radius at the reference [m]
+  double wheel_u = 0.0, rail_u = 0.0;  // [m]
+  Grid grid;                    // potential contact area (origin = reference point)
+  std::vector<double> gap;      // undeformed gap h per element [m]
+  NormalSolution normal;        // pressure, normal force, area, approach
+  TangentialSolution tangential;  // traction, slip, forces (after solve_patch_tangential)
+  double contact_angle_spread = 0.0;  // max - min contact angle over the contact's extent [rad]
+  StatusBits status = 0;
+};
+
+struct WheelHalfspaceResult {
+  std::vector<HalfspacePatch> patches;  // ascending band_s, as the normal layer's
+  double vertical_approach = 0.0;       // [m]
+  double vertical_load = 0.0;           // sum N_k cos(g_k) [N]
+  StatusBits status = 0;                // union of the patch flags; kLiftOff when none
+};
+
+// Normal problem for a prescribed vertical wheel load [N].
+WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,
+                                              double vertical_load, const Material& material,
+                                              const HalfspaceOptions& options,
+                                              Workspace& workspace);
+
+// Steady rolling on every patch with the creepages of each patch's reference point (contact
+// frame, wheel minus rail, docs/conventions.md); mu >= 0. Warm-starts from the tractions held in
+// the patches.
+void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& creepage, double mu,
+                                const Material& material, const HalfspaceOptions& options,
+                                Workspace& workspace);
+
+// Normal and tangential together, as CONTACT's wheel-rail module: the prescribed VERTICAL load is
+// carried by the normal forces AND the vertical components of the lateral creep forces,
+// F_z = sum_k (N_k cos g_k + fy_k sin g_k) (g_k the track-frame contact angle; s = (0, cos g,
+// sin g) in track axes), which matters in flange contact (g about 1.1 rad: a lateral force of
+// 0.3 N changes N by half). The normal load sum N_k cos g_k = F_z - sum fy_k sin g_k is found by
+// the secant method on the tangential vertical part (at most 20 rounds; kNotConverged if not
+// within 1e-4 F_z). Each round warm-starts the tangential solve from the previous one.
+WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
+                                             double vertical_load, const Creepage& creepage,
+                                             double mu, const Material& material,
+                                             const HalfspaceOptions& options,
+                                             Workspace& workspace);
+
+// Archard wear with the KTH map per element of one solved patch: depth per pass removed from the
+// wheel material crossing each element, k(p, V|s|) p |s| dx / H [m] (elements in slip only);
+// returns the worn cross-section per pass, sum of depth * dy [m2].
+double archard_wear_per_pass(const HalfspacePatch& patch, double speed, const WearOptions& wear,
+                             std::vector<double>& element_depth);
+
+}  // namespace railtab::halfspace

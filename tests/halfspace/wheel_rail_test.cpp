@@ -1,0 +1,105 @@
+// The half-space model on the built-in S1002/UIC60 pair (no ../shared needed): load control,
+// left/right mirror, wear per element.
+#include "halfspace/wheel_rail.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/check.hpp"
+#include "geometry/contact_geometry.hpp"
+#include "profile/s1002.hpp"
+#include "profile/uic60.hpp"
+
+namespace railtab {
+namespace {
+
+const ContactGeometrySolver& solver() {
+  static const ContactGeometrySolver s = [] {
+    ProfilePtr w = make_s1002_profile();
+    ProfilePtr r = make_uic60_profile();
+    return ContactGeometrySolver(w, r, w, r, TrackGeometry{}, WheelsetGeometry{});
+  }();
+  return s;
+}
+
+Material steel() {
+  Material m;
+  m.poisson_ratio = 0.28;
+  return m;
+}
+
+TEST(HalfspaceWheelRail, VerticalLoadIsCarried) {
+  halfspace::Workspace ws;
+  const auto g = solver().solve_wheel(Side::left, {0.002, 0.0});
+  const auto r = halfspace::solve_halfspace_for_load(g, 78.5e3, steel(), {}, ws);
+  ASSERT_EQ(r.patches.size(), 1u);
+  EXPECT_TRUE(r.status & status::kConverged) << status::describe(r.status);
+  EXPECT_FALSE(r.status & status::kAreaTooSmall);
+  EXPECT_NEAR(r.vertical_load / 78.5e3, 1.0, 1e-9);
+  const auto& p = r.patches[0];
+  EXPECT_NEAR(p.normal.normal_force * std::cos(p.contact_angle_side), 78.5e3, 1e-6 * 78.5e3);
+  EXPECT_GT(p.normal.area, 50e-6);  // a tread patch of 78.5 kN: 100-200 mm2
+  EXPECT_LT(p.normal.area, 300e-6);
+}
+
+// (y, roll) -> (-y, -roll) swaps the wheels: the right wheel's patch mirrors the left one's, so
+// normal results agree, fx agrees for the same creepages and fy, mz agree too (contact frames
+// are mirror images with s close to +y for both wheels, conventions.md) when eta and phi are
+// given in each wheel's own contact frame. The geometry layer mirrors to about 1e-8 rad (its
+// searches are not bit-symmetric), and the grid is placed at the edge of the rigid overlap, so
+// the two grids may differ by a row of elements: normal force within 1e-4, area within 2 %,
+// creep forces within 0.2 % of mu N.
+TEST(HalfspaceWheelRail, LeftRightMirror) {
+  halfspace::Workspace ws;
+  const Material m = steel();
+  const auto gl = solver().solve_wheel(Side::left, {0.003, 0.0});
+  const auto gr = solver().solve_wheel(Side::right, {-0.003, 0.0});
+  auto l = halfspace::solve_halfspace_rolling(gl, 78.5e3, {0.001, 0.001, 0.1}, 0.3, m, {}, ws);
+  auto r = halfspace::solve_halfspace_rolling(gr, 78.5e3, {0.001, -0.001, -0.1}, 0.3, m, {}, ws);
+  ASSERT_EQ(l.patches.size(), 1u);
+  ASSERT_EQ(r.patches.size(), 1u);
+  const auto& a = l.patches[0];
+  const auto& b = r.patches[0];
+  EXPECT_NEAR(a.normal.normal_force, b.normal.normal_force, 1e-4 * a.normal.normal_force);
+  EXPECT_NEAR(a.normal.area, b.normal.area, 0.02 * a.normal.area);
+  EXPECT_NEAR(a.contact_angle, -b.contact_angle, 1e-7);
+  const double muN = 0.3 * a.normal.normal_force;
+  EXPECT_NEAR(a.tangential.fx, b.tangential.fx, 2e-3 * muN);
+  EXPECT_NEAR(a.tangential.fy, -b.tangential.fy, 2e-3 * muN);
+  EXPECT_GT(std::abs(a.tangential.fy), 0.05 * muN);
+}
+
+// Archard/KTH wear per element: none in adhesion, more with more creepage, only where slipping.
+TEST(HalfspaceWheelRail, WearOnlyWhereSlipping) {
+  halfspace::Workspace ws;
+  const Material m = steel();
+  const auto g = solver().solve_wheel(Side::left, {0.0, 0.0});
+  WearOptions wear;
+  std::vector<double> depth;
+  double last = 0.0;
+  for (const double xi : {0.0005, 0.002, 0.01}) {
+    auto r = halfspace::solve_halfspace_rolling(g, 78.5e3, {xi, 0.0, 0.0}, 0.3, m, {}, ws);
+    ASSERT_EQ(r.patches.size(), 1u);
+    const auto& p = r.patches[0];
+    const double section = halfspace::archard_wear_per_pass(p, 20.0, wear, depth);
+    for (int k = 0; k < p.grid.size(); ++k) {
+      if (p.tangential.state[k] != 2) {
+        EXPECT_EQ(depth[k], 0.0);
+      }
+    }
+    EXPECT_GT(section, last) << xi;
+    last = section;
+  }
+}
+
+TEST(HalfspaceWheelRail, BadLoadThrowsNamingIt) {
+  halfspace::Workspace ws;
+  const auto g = solver().solve_wheel(Side::left, {0.0, 0.0});
+  EXPECT_THROW(halfspace::solve_halfspace_for_load(g, std::nan(""), steel(), {}, ws), Error);
+  const auto r = halfspace::solve_halfspace_for_load(g, 0.0, steel(), {}, ws);
+  EXPECT_TRUE(r.status & status::kLiftOff);
+}
+
+}  // namespace
+}  // namespace railtab
