@@ -62,7 +62,9 @@ extern "C" {
 #define RAILTAB_LOOKUP_INVALID_INPUT (1u << 11)    /* NaN/inf in the query: outputs are 0 */
 #define RAILTAB_LOOKUP_PROFILE_EDGE (1u << 12)     /* contact band reached a profile end */
 #define RAILTAB_LOOKUP_FAILED (1u << 13)           /* the core threw at a node: outputs 0 */
-#define RAILTAB_LOOKUP_NUM_STATUS_BITS 14
+#define RAILTAB_LOOKUP_AREA_TOO_SMALL (1u << 14)   /* half-space: contact reached the potential area's edge */
+#define RAILTAB_LOOKUP_NOT_PLANAR (1u << 15)       /* half-space: contact angle varies across the patch */
+#define RAILTAB_LOOKUP_NUM_STATUS_BITS 16
 
 /* Output indices into railtab_lookup_contact.value (railtab::lookup::Output). */
 enum {

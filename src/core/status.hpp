@@ -24,7 +24,7 @@ inline constexpr StatusBits kOutOfRange = 1u << 10;       // query clamped to th
 inline constexpr StatusBits kInvalidInput = 1u << 11;     // NaN/inf or otherwise unusable input
 inline constexpr StatusBits kProfileEdge = 1u << 12;      // contact band reached a profile end
 inline constexpr StatusBits kFailed = 1u << 13;           // the core threw here: outputs are zero
-// Half-space model (src/halfspace). Not yet mirrored in lookup/ (no table carries them yet).
+// Half-space model (src/halfspace).
 inline constexpr StatusBits kAreaTooSmall = 1u << 14;     // contact reaches the potential area's edge
 inline constexpr StatusBits kNotPlanar = 1u << 15;        // contact angle varies across the patch
                                                           //   beyond the planar limit

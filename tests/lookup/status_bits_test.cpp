@@ -37,8 +37,15 @@ TEST(StatusBits, MatchTheCore) {
   EXPECT_EQ(RAILTAB_LOOKUP_NON_HERTZIAN, railtab::status::kNonHertzian);
   EXPECT_EQ(RAILTAB_LOOKUP_PROFILE_EDGE, railtab::status::kProfileEdge);
   EXPECT_EQ(RAILTAB_LOOKUP_FAILED, railtab::status::kFailed);
-  // The core defines no bit above kFailed: the lookup's count covers them all.
-  EXPECT_EQ(1u << (status::kNumBits - 1), railtab::status::kFailed);
+  EXPECT_EQ(status::kAreaTooSmall, railtab::status::kAreaTooSmall);
+  EXPECT_EQ(status::kNotPlanar, railtab::status::kNotPlanar);
+  EXPECT_EQ(RAILTAB_LOOKUP_AREA_TOO_SMALL, railtab::status::kAreaTooSmall);
+  EXPECT_EQ(RAILTAB_LOOKUP_NOT_PLANAR, railtab::status::kNotPlanar);
+  // Every bit has the core's name, and the core names no bit beyond the lookup's count.
+  for (int b = 0; b < status::kNumBits; ++b) {
+    EXPECT_EQ(status::bit_name(1u << b), railtab::status::describe(1u << b)) << "bit " << b;
+  }
+  EXPECT_EQ(railtab::status::describe(1u << status::kNumBits), "none");
 }
 
 }  // namespace
