@@ -13,7 +13,11 @@
 namespace railtab::lookup::detail {
 namespace {
 
-constexpr int kKnownMajor = 1;  // format major version this reader understands
+// Format major versions this reader understands. 2 differs from 1 only in how fixed variables
+// are stored: scalar datasets /axes/<name> (typed, with units) instead of the JSON root
+// attribute fixed_axes (docs/table-format.md, "Version history").
+constexpr int kOldestMajor = 1;
+constexpr int kNewestMajor = 2;
 
 std::string shape_text(const std::vector<hsize_t>& dims) {
   std::string s = "[";
@@ -32,7 +36,8 @@ std::string without_spaces(const std::string& s) {
   return out;
 }
 
-void read_version(const Hdf5File& f, TableData& d) {
+// Returns the major version.
+int read_version(const Hdf5File& f, TableData& d) {
   const auto v = f.string_attribute("/", "format_version");
   if (!v) f.fail("missing root attribute format_version (not a railtab table?)");
   d.format_version = *v;
@@ -46,17 +51,26 @@ void read_version(const Hdf5File& f, TableData& d) {
     major = -1;
   }
   if (major < 0) f.fail("format_version '" + *v + "' is not of the form MAJOR.MINOR");
-  if (major != kKnownMajor)
-    f.fail("unsupported format_version '" + *v + "': this reader knows major version " +
-           std::to_string(kKnownMajor) + " (a newer railtab may read it)");
+  if (major < kOldestMajor || major > kNewestMajor)
+    f.fail("unsupported format_version '" + *v + "': this reader knows major versions " +
+           std::to_string(kOldestMajor) + " to " + std::to_string(kNewestMajor) +
+           " (a newer railtab may read it)");
+  return major;
 }
 
-void read_axes(const Hdf5File& f, TableData& d) {
+void read_axes(const Hdf5File& f, TableData& d, int major) {
   if (!f.exists("/axes")) f.fail("missing group /axes");
   for (int var = 0; var < kNumVars; ++var) {
     const std::string name = std::string("/axes/") + var_name(var);
     if (!f.exists(name)) continue;
     auto a = f.read_doubles(name, H5T_FLOAT);
+    if (major >= 2 && a.dims.empty()) {  // format 2: a scalar dataset is a fixed variable
+      if (!std::isfinite(a.values[0])) f.fail("fixed variable " + name + " is not finite");
+      d.fixed[var] = true;
+      d.fixed_value[var] = a.values[0];
+      d.fixed_list.emplace_back(var_name(var), a.values[0]);
+      continue;
+    }
     if (a.dims.size() != 1) f.fail("axis " + name + " is not 1-D, shape " + shape_text(a.dims));
     if (a.values.size() < 2) f.fail("axis " + name + " has fewer than 2 nodes");
     for (std::size_t i = 0; i < a.values.size(); ++i) {
@@ -213,10 +227,10 @@ std::shared_ptr<TableData> load_table_data(const std::string& path, const LoadOp
   auto d = std::make_shared<TableData>();
   d->path = path;
   d->method = options.method;
-  read_version(f, *d);
+  const int major = read_version(f, *d);
   d->scene_name = f.string_attribute("/", "scene_name").value_or("");
-  read_axes(f, *d);
-  read_fixed_axes(f, *d);
+  read_axes(f, *d, major);
+  if (major == 1) read_fixed_axes(f, *d);  // format 2 stores them in /axes (read_axes)
   for (int var = 0; var < kNumVars; ++var) {
     if (d->tabulated[var]) d->tabulated_var[d->n_tabulated++] = var;
     if (d->fixed[var]) d->fixed_var[d->n_fixed++] = var;

@@ -61,6 +61,7 @@ struct FixtureSpec {
   std::string wrong_axes_dataset;  // this dataset gets a wrong 'axes' attribute
   bool fixed_length_strings = false;  // fixed-length instead of variable-length string attributes
   std::string fixed_text;          // extra raw "key":value members of fixed_axes, e.g. "\"roll\":\"equilibrium\""
+  bool fixed_as_datasets = false;  // format 2: fixed variables as scalar /axes/<name>, no fixed_axes JSON
   ValueFn value;                      // required
   StatusFn status = [](int, int, int, const double*) -> std::uint32_t { return 1u; };
 };
@@ -153,7 +154,7 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
   string_attr(file, "scene", "# fixture written by tests/lookup/table_fixture.hpp\n", fl);
   string_attr(file, "scene_name", "fixture", fl);
   string_attr(file, "models", "{}", fl);
-  string_attr(file, "fixed_axes", fixed_json, fl);
+  if (!spec.fixed_as_datasets) string_attr(file, "fixed_axes", fixed_json, fl);
 
   // Axes as dimension scales.
   const hid_t axes = check_id(H5Gcreate2(file, "axes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
@@ -169,6 +170,17 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
     string_attr(d, "units", kVarUnits[var], fl);
     string_attr(d, "description", std::string("axis ") + kVarNames[var], fl);
     scale[var] = d;
+  }
+  if (spec.fixed_as_datasets) {
+    for (const auto& [var, value] : spec.fixed) {
+      const hid_t space = H5Screate(H5S_SCALAR);
+      const hid_t d = check_id(H5Dcreate2(axes, kVarNames[var], H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                          H5P_DEFAULT, H5P_DEFAULT), "fixed");
+      check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), "fixed");
+      string_attr(d, "units", kVarUnits[var], fl);
+      H5Dclose(d);
+      H5Sclose(space);
+    }
   }
   {
     std::vector<std::int32_t> slots(static_cast<std::size_t>(spec.n_slots));
