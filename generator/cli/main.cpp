@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   railtab::add_eval_command(app);
   railtab::add_generate_command(app);
   railtab::add_inspect_command(app);
+  railtab::add_query_command(app);
   railtab::add_merge_command(app);
   railtab::add_chart_commands(app);
   railtab::add_simulate_command(app);
