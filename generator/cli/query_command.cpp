@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "core/check.hpp"
 #include "core/status.hpp"
 #include "railtab/lookup.hpp"
