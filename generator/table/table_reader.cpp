@@ -100,45 +100,39 @@ class Reader {
                              "cannot open (truncated or damaged file?)"),
                 H5Fclose);
     Table table;
-    const int major = read_version(file);
+    read_version(file);
     for (const std::string& name : attribute_names(file, file_)) {
       h5::Id attr(h5::check_id(H5Aopen(file, name.c_str(), H5P_DEFAULT), file_, "open attribute " + name),
                   H5Aclose);
       h5::Id type(h5::check_id(H5Aget_type(attr), file_, "attribute type " + name), H5Tclose);
-      if (major == 1) {
-        if (H5Tget_class(type) != H5T_STRING) continue;  // only string attributes belong to format 1
-        table.attributes.emplace_back(name, h5::read_string_attribute(file, name, file_));
-      } else if (name != "roll_mode") {
-        table.attributes.emplace_back(name, h5::read_attribute_as_text(file, name, file_));
-      }
+      // Format 1 has string attributes only; format 2 also numbers (as text in the Table).
+      if (name != "roll_mode") table.attributes.emplace_back(name, h5::read_attribute_as_text(file, name, file_));
     }
-    if (major >= 2) {
-      for (const char* name : kObjectAttributes) {
-        if (H5Lexists(file, name, H5P_DEFAULT) <= 0) continue;
-        h5::Id g(h5::check_id(H5Gopen2(file, name, H5P_DEFAULT), file_, fmt::format("open /{}", name)), H5Gclose);
-        table.attributes.emplace_back(name, h5::read_json_object(g, file_).dump());
-      }
+    for (const char* name : kObjectAttributes) {  // format 2: JSON objects as groups
+      if (H5Lexists(file, name, H5P_DEFAULT) <= 0) continue;
+      h5::Id g(h5::check_id(H5Gopen2(file, name, H5P_DEFAULT), file_, fmt::format("open /{}", name)), H5Gclose);
+      table.attributes.emplace_back(name, h5::read_json_object(g, file_).dump());
     }
 
     RAILTAB_CHECK(H5Lexists(file, "axes", H5P_DEFAULT) > 0, "{}: missing group /axes", file_);
     h5::Id axes(h5::check_id(H5Gopen2(file, "axes", H5P_DEFAULT), file_, "open /axes"), H5Gclose);
     nlohmann::json fixed = nlohmann::json::object();
     for (const std::string& name : links(axes, file_, "/axes")) {
-      if (major >= 2 && is_scalar(axes, name)) {
+      if (is_scalar(axes, name)) {  // format 2: a fixed variable
         fixed[name] = read_fixed(axes, name);
       } else {
         table.axes.push_back(read_axis(axes, name));
       }
     }
     RAILTAB_CHECK(table.axis("slot"), "{}: missing axis /axes/slot", file_);
-    if (major >= 2) {
+    if (!table.attribute("fixed_axes")) {  // format 2: from the scalars and roll_mode
       if (h5::has_attribute(file, "roll_mode")) fixed["roll"] = h5::read_string_attribute(file, "roll_mode", file_);
       table.attributes.emplace_back("fixed_axes", fixed.dump());
-      restore_order(table.attributes);
     }
+    restore_order(table.attributes);
 
     for (const std::string& name : links(file, file_, "/")) {
-      if (name == "axes" || (major >= 2 && is_coordinate(name))) continue;
+      if (name == "axes" || is_coordinate(name)) continue;  // format 2: root copies of axes
       h5::Id object(h5::check_id(H5Oopen(file, name.c_str(), H5P_DEFAULT), file_, "open /" + name), H5Oclose);
       if (H5Iget_type(object) == H5I_DATASET) {
         if (!table.group("")) table.groups.push_back(TableGroup{"", {}});
@@ -158,7 +152,7 @@ class Reader {
         h5::Id g(h5::check_id(H5Gopen2(w, part.c_str(), H5P_DEFAULT), file_, "open /" + path), H5Gclose);
         TableGroup group{path, {}};
         for (const std::string& name : links(g, file_, "/" + path)) {
-          if (major >= 2 && is_coordinate(name)) continue;  // the group's copies of its axes
+          if (is_coordinate(name)) continue;  // format 2: the group's copies of its axes
           group.datasets.push_back(read_dataset(table, g, path, name));
         }
         for (const std::string& required : required_outputs(part)) {
@@ -171,8 +165,7 @@ class Reader {
   }
 
  private:
-  // Returns the major version (1 or 2).
-  int read_version(hid_t file) const {
+  void read_version(hid_t file) const {
     RAILTAB_CHECK(h5::has_attribute(file, "format_version"),
                   "{}: not a railtab table (no format_version attribute)", file_);
     std::string version = h5::read_string_attribute(file, "format_version", file_);
@@ -184,7 +177,6 @@ class Reader {
                   "{}: table format version {} is not supported (this railtab reads 1.x to {}.x); regenerate the "
                   "table or use a matching railtab",
                   file_, version, kTableFormatMajor);
-    return major;
   }
 
   bool is_scalar(hid_t group, const std::string& name) const {

@@ -15,10 +15,10 @@
 namespace railtab {
 namespace {
 
-// A small but complete format-1.0 table: y x slot geometry and y x load x slot normal parts.
+// A small but complete format-2.0 table: y x slot geometry and y x load x slot normal parts.
 Table small_table(std::size_t ny = 3) {
   Table t;
-  t.attributes = {{"format_version", "1.0"}, {"railtab_version", "0.1.0"}, {"git_commit", "abc"},
+  t.attributes = {{"format_version", "2.0"}, {"railtab_version", "0.1.0"}, {"git_commit", "abc"},
                   {"created", "2024-01-01T00:00:00Z"}, {"scene", "[scene]\nname = \"t\"\n"},
                   {"scene_name", "t"}, {"models", R"({"normal":"hertz"})"}, {"fixed_axes", R"({"roll":0.0})"}};
   TableAxis y{"y", "m", "lateral displacement", {}, false};
@@ -77,10 +77,24 @@ TEST(TableWriter, AxesAreDimensionScalesAttachedToEveryDimension) {
   hid_t load = H5Dopen2(f, "/axes/load", H5P_DEFAULT);
   hid_t d = H5Dopen2(f, "/right/normal/max_pressure", H5P_DEFAULT);
   EXPECT_GT(H5DSis_scale(y), 0);
-  EXPECT_GT(H5DSis_attached(d, y, 0), 0);
-  EXPECT_GT(H5DSis_attached(d, load, 1), 0);
-  EXPECT_GT(H5DSis_attached(d, slot, 2), 0);
-  for (hid_t id : {y, slot, load, d}) H5Dclose(id);
+  EXPECT_GT(H5DSis_scale(slot), 0);
+  // Format 2: each part group holds its own copies of its axes (xarray/netCDF find coordinates
+  // only in the group or its ancestors), and the datasets are attached to those.
+  hid_t gy = H5Dopen2(f, "/right/normal/y", H5P_DEFAULT);
+  hid_t gload = H5Dopen2(f, "/right/normal/load", H5P_DEFAULT);
+  hid_t gslot = H5Dopen2(f, "/right/normal/slot", H5P_DEFAULT);
+  EXPECT_GT(H5DSis_scale(gy), 0);
+  EXPECT_GT(H5DSis_attached(d, gy, 0), 0);
+  EXPECT_GT(H5DSis_attached(d, gload, 1), 0);
+  EXPECT_GT(H5DSis_attached(d, gslot, 2), 0);
+  // The fixed roll is a scalar dataset in /axes, not an attribute holding JSON.
+  hid_t roll = H5Dopen2(f, "/axes/roll", H5P_DEFAULT);
+  ASSERT_GE(roll, 0);
+  hid_t space = H5Dget_space(roll);
+  EXPECT_EQ(H5Sget_simple_extent_ndims(space), 0);
+  EXPECT_EQ(H5Aexists(f, "fixed_axes"), 0);
+  H5Sclose(space);
+  for (hid_t id : {y, slot, load, d, gy, gload, gslot, roll}) H5Dclose(id);
   H5Fclose(f);
 }
 
@@ -125,17 +139,17 @@ TEST(TableWriter, CancelRemovesTemporaryAndKeepsOldTarget) {
 TEST(TableReader, RejectsUnknownMajorVersion) {
   testing::TempDir dir("reader_version");
   Table t = small_table();
-  t.set_attribute("format_version", "2.0");
+  t.set_attribute("format_version", "3.0");
   write_table(t, dir / "t.h5");
   try {
     read_table(dir / "t.h5");
-    FAIL() << "version 2.0 accepted";
+    FAIL() << "version 3.0 accepted";
   } catch (const Error& e) {
     std::string m = e.what();
     EXPECT_NE(m.find((dir / "t.h5").string()), std::string::npos) << m;
-    EXPECT_NE(m.find("format version 2.0 is not supported"), std::string::npos) << m;
+    EXPECT_NE(m.find("format version 3.0 is not supported"), std::string::npos) << m;
   }
-  t.set_attribute("format_version", "1.7");  // newer minor: accepted
+  t.set_attribute("format_version", "2.7");  // newer minor: accepted
   write_table(t, dir / "t.h5");
   EXPECT_NO_THROW(read_table(dir / "t.h5"));
 }
