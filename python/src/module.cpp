@@ -8,4 +8,5 @@ PYBIND11_MODULE(_railtab, m) {
   m.doc() = "railtab's compiled core; use the package `railtab`, not this module";
   railtab::python::bind_table(m);
   railtab::python::bind_profile(m);
+  railtab::python::bind_evaluate(m);
 }
