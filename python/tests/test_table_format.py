@@ -133,3 +133,20 @@ def test_query_command_agrees_with_the_module_and_the_file(railtab_program, defa
         for name, units in j["units"].items():
             part = next(p for p in ("geometry", "normal", "creep", "wear") if name in f["left"][p])
             assert f["left"][part][name].attrs["units"] == units, name
+
+
+def test_inspect_json_describes_the_file(railtab_program, default_table):
+    out = subprocess.run([railtab_program, "inspect", str(default_table), "--json"], check=True,
+                         capture_output=True, text=True)
+    j = json.loads(out.stdout)
+    assert j["attributes"]["format_version"] == "2.0"
+    assert j["attributes"]["models"]["normal"] == "stripes-ab"        # an object, not JSON text
+    assert j["attributes"]["fixed_axes"] == {"roll": "equilibrium"}
+    with h5py.File(default_table) as f:
+        assert {a["name"]: a["size"] for a in j["axes"]} == {k: f["axes"][k].size for k in f["axes"]}
+        group = next(g for g in j["groups"] if g["path"] == "/left/creep")
+        status = next(d for d in group["datasets"] if d["name"] == "status")
+        bits = f["left/creep/status"][()]
+        assert status["shape"] == list(bits.shape)
+        assert status["status_counts"]["no_contact"] == int((bits == 0).sum())
+        assert status["status_counts"]["converged"] == int((bits & 1).astype(bool).sum())
