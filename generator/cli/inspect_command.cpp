@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
 #include "table/inspect.hpp"
 #include "table/table_io.hpp"
@@ -18,6 +19,7 @@ void add_inspect_command(CLI::App& app) {
   cmd->add_option("table", *path, "Table file (HDF5)")->required();
   cmd->add_flag("--scene", *scene, "Also print the scene text stored in the table");
   cmd->add_flag("--json", *json, "Print JSON (stable keys, SI units; the scene text included) instead of text");
+  add_quiet_flag(cmd);  // inspect prints results only; accepted for uniformity
   cmd->callback([path, scene, json] {
     Table table = read_table(*path);
     if (*json) {

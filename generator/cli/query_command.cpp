@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
 #include "core/check.hpp"
 #include "core/status.hpp"
@@ -190,6 +191,7 @@ void add_query_command(CLI::App& app) {
   cmd->add_option("--wheel", opt->wheel, "left, right or both")->capture_default_str();
   cmd->add_option("--method", opt->method, "Interpolation: linear, cubic or monotone-cubic")->capture_default_str();
   cmd->add_flag("--json", opt->json, "Print JSON (stable keys, SI units) instead of text");
+  add_quiet_flag(cmd);  // query prints results only; accepted for uniformity
   cmd->callback([opt] { run_query(*opt); });
 }
 
