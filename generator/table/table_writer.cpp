@@ -268,6 +268,24 @@ class Writer {
       }
     }
     for (const auto& [name, value] : fixed_) write_fixed(group, name, value);
+    coordinates_.clear();
+    for (const auto& [name, value] : fixed_) coordinates_ += (coordinates_.empty() ? "" : " ") + name;
+    write_equilibrium_roll(group, g);
+  }
+
+  // With roll following the equilibrium, a part group over y also gets roll(y): a copy of
+  // /equilibrium_roll named `roll` on the group's y, listed in `coordinates` (xarray shows it).
+  void write_equilibrium_roll(hid_t group, const TableGroup& g) {
+    const TableGroup* root = table_.group("");
+    const TableDataset* roll = root ? root->find("equilibrium_roll") : nullptr;
+    if (!roll_equilibrium_ || g.path.empty() || !roll || roll->axes != std::vector<std::string>{"y"} ||
+        !local_scales_.count("y")) {
+      return;
+    }
+    TableDataset copy = *roll;
+    copy.name = "roll";
+    write_dataset(group, g.path, copy, /*coordinate=*/true);
+    coordinates_ += (coordinates_.empty() ? "" : " ") + std::string("roll");
   }
 
   // Dataset creation properties of small datasets: contiguous, no timestamps.
@@ -279,7 +297,8 @@ class Writer {
     return dcpl_plain_.get();
   }
 
-  void write_dataset(hid_t parent, const std::string& group, const TableDataset& d) {
+  // `coordinate`: a coordinate copy (roll(y)), which names no further coordinates itself.
+  void write_dataset(hid_t parent, const std::string& group, const TableDataset& d, bool coordinate = false) {
     std::string what = fmt::format("write dataset {}/{}", group, d.name);
     std::vector<hsize_t> dims(d.shape.begin(), d.shape.end());
     h5::Id space(h5::check_id(dims.empty() ? H5Screate(H5S_SCALAR)
@@ -316,11 +335,7 @@ class Writer {
     h5::write_string_attribute(ds, "units", d.units, file_);
     h5::write_string_attribute(ds, "description", d.description, file_);
     h5::write_string_attribute(ds, "axes", join_axes(d.axes), file_);
-    if (!fixed_.empty()) {
-      std::string coordinates;
-      for (const auto& [name, value] : fixed_) coordinates += (coordinates.empty() ? "" : " ") + name;
-      h5::write_string_attribute(ds, "coordinates", coordinates, file_);
-    }
+    if (!coordinate && !coordinates_.empty()) h5::write_string_attribute(ds, "coordinates", coordinates_, file_);
     if (d.is_status) {
       static const auto flags = status_flags();
       h5::write_uint32_array_attribute(ds, "flag_masks", flags.first, file_);
@@ -339,6 +354,7 @@ class Writer {
   std::map<std::string, h5::Id> local_scales_;  // the current group's axis copies, for H5DSattach_scale
   std::vector<std::pair<std::string, double>> fixed_;  // fixed variables (from fixed_axes)
   bool roll_equilibrium_ = false;               // fixed_axes says "roll":"equilibrium"
+  std::string coordinates_;                     // CF `coordinates` of the current group's datasets
   h5::Id dcpl_plain_;                           // see dcpl_plain()
 };
 

@@ -40,6 +40,11 @@ def test_xarray_opens_every_group_with_coordinates_and_units(default_table, engi
         iy = int(np.abs(f["axes/y"][()] - 0.003).argmin())
         np.testing.assert_array_equal(curve.values, f["left/creep/fx"][iy, 1, :, 2, 1, 0])
     assert curve.values[0] > 0 > curve.values[-1]   # braking force grows with xi (sign convention)
+    # roll follows the equilibrium: roll(y) is a coordinate of the group, equal to /equilibrium_roll
+    assert "roll" in creep.coords and creep.coords["roll"].dims == ("y",)
+    assert creep.coords["roll"].attrs["units"] == "rad"
+    with h5py.File(default_table) as f:
+        np.testing.assert_array_equal(creep.coords["roll"].values, f["equilibrium_roll"][()])
     creep.close()
 
 
@@ -93,7 +98,7 @@ def test_fixed_variables_are_scalar_datasets(railtab_program, tmp_path):
     with h5py.File(tmp_path / "s.h5") as f:
         assert f["axes/load"].shape == () and f["axes/load"][()] == 78.5e3
         assert f["axes/load"].attrs["units"] == "N"
-        assert f["left/normal/area"].attrs["coordinates"] == "load"
+        assert f["left/normal/area"].attrs["coordinates"] == "load roll"   # roll(y): equilibrium
     xr = pytest.importorskip("xarray")
     ds = xr.open_dataset(tmp_path / "s.h5", group="left/normal", engine="h5netcdf")
     assert float(ds["load"]) == 78.5e3 and "load" in ds.coords
