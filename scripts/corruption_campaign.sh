@@ -8,7 +8,7 @@
 # Usage: bash scripts/corruption_campaign.sh [FLIPS [SEED [TABLE.h5]]]
 #   FLIPS   number of single-byte changes (default 1000)
 #   SEED    random seed (default 19)
-#   TABLE   table to corrupt (default: the lookup's fixture table, format 1.1, written here)
+#   TABLE   table to corrupt (default: the lookup's fixture table, format 2.0, written here)
 # Also runs the same changes on a legacy (format 1.0, no checksums) copy of the fixture for
 # comparison: those may load with different answers (no checksum to catch them) but must not
 # crash. Builds into build/release; exit status 0 when the checksummed campaign passes.

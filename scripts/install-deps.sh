@@ -17,6 +17,9 @@ packages=(
   libfmt-dev               # formatting
   openmpi-bin libopenmpi-dev  # MPI table generation (mpirun -n N railtab generate)
   gnuplot-nox              # PNG charts from CSV (pngcairo)
+  python3-dev python3-pybind11   # the Python module railtab (python/)
+  python3-numpy python3-pytest   # its arrays and its tests
+  python3-xarray python3-h5netcdf python3-netcdf4 python3-h5py  # query results as Datasets; tables opened by xarray and h5py (tests)
 )
 
 missing=()

@@ -16,6 +16,7 @@
 #include "charts/pressure_chart.hpp"
 #include "charts/speed_accuracy_chart.hpp"
 #include "charts/stability_chart.hpp"
+#include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
 #include "scene/scene.hpp"
 
@@ -25,12 +26,14 @@ namespace {
 struct GeometryCommandOptions {
   std::string scene_path = "tables/default.toml";  // scene file
   std::string out_dir = "out";                     // output directory
+  bool quiet = false;                              // -q: no "wrote" lines
   GeometryChartOptions chart;                      // y range and step [m]
 };
 
 void run_geometry_chart(const GeometryCommandOptions& opt) {
+  require_writable_directory(opt.out_dir);
   const auto [csv, png] = draw_geometry_chart(load_scene(opt.scene_path), opt.out_dir, opt.chart);
-  std::cout << fmt::format("chart-geometry: wrote {} and {}\n", csv.string(), png.string());
+  diagnostics(opt.quiet) << fmt::format("chart-geometry: wrote {} and {}\n", csv.string(), png.string());
 }
 
 struct SpeedChartOptions {
@@ -40,10 +43,12 @@ struct SpeedChartOptions {
   int repeats = 11;                                // timed runs per state and model
   bool quick = false;                              // fewer settings (smoke runs)
   bool keep_tables = false;                        // keep the generated .h5 tables
+  bool quiet = false;                              // -q: no "wrote" line
 };
 
 void run_speed_chart(const SpeedChartOptions& opt) {
   const Scene scene = load_scene(opt.scene_path);
+  require_writable_directory(opt.out_dir);
   SpeedAccuracyOptions so;
   so.reference_csv = opt.reference.empty()
                          ? std::filesystem::path(RAILTAB_SOURCE_DIR) / ".." / "shared" / "reference" /
@@ -67,14 +72,15 @@ void run_speed_chart(const SpeedChartOptions& opt) {
                              row.kind == "lookup" ? std::to_string(row.memory_bytes) : std::string("-"),
                              row.pareto_tread || row.pareto_flange ? "  *Pareto" : "");
   }
-  std::cout << fmt::format("chart: wrote {}, {}, {}, {} in {:.1f} s\n", files.csv.string(), files.png.string(),
+  diagnostics(opt.quiet) << fmt::format("chart: wrote {}, {}, {}, {} in {:.1f} s\n", files.csv.string(), files.png.string(),
                            files.memory_csv.string(), files.memory_png.string(), r.seconds);
 }
 
-// The options every chart command shares: the scene and the output directory.
-void add_scene_and_out(CLI::App* cmd, std::string& scene_path, std::string& out_dir) {
+// The options every chart command shares: the scene, the output directory, -q/--quiet.
+void add_scene_and_out(CLI::App* cmd, std::string& scene_path, std::string& out_dir, bool& quiet) {
   cmd->add_option("--scene", scene_path, "Scene file (TOML)")->capture_default_str();
   cmd->add_option("--out", out_dir, "Output directory")->capture_default_str();
+  cmd->add_flag("-q,--quiet", quiet, "No progress or diagnostics on stderr (results and errors are still printed)");
 }
 
 // A y sweep: first, last and step [m].
@@ -90,35 +96,38 @@ void add_chart_commands(CLI::App& app) {
   auto geo = std::make_shared<GeometryCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "chart-geometry", "Chart rolling radius difference and contact angle against y (CSV + PNG)");
-  add_scene_and_out(cmd, geo->scene_path, geo->out_dir);
+  add_scene_and_out(cmd, geo->scene_path, geo->out_dir, geo->quiet);
   add_y_range(cmd, geo->chart.y_min, geo->chart.y_max, geo->chart.y_step);
   cmd->callback([geo] { run_geometry_chart(*geo); });
 
   struct StabilityChartOptions {
     std::string scene_path = "tables/default.toml";  // scene file
     std::string out_dir = "out";                     // output directory
+    bool quiet = false;                              // -q: no "wrote" line
     StabilityMapOptions map;                         // y range and step [m]
   };
   auto st = std::make_shared<StabilityChartOptions>();
   CLI::App* stab = app.add_subcommand(
       "chart-stability", "Chart the status flags of every normal model across y (CSV + PNG)");
-  add_scene_and_out(stab, st->scene_path, st->out_dir);
+  add_scene_and_out(stab, st->scene_path, st->out_dir, st->quiet);
   add_y_range(stab, st->map.y_min, st->map.y_max, st->map.y_step);
   stab->callback([st] {
+    require_writable_directory(st->out_dir);
     draw_stability_chart(load_scene(st->scene_path), st->out_dir, st->map);
-    std::cout << fmt::format("chart-stability: wrote {}/stability_map.csv and stability_map.png\n", st->out_dir);
+    diagnostics(st->quiet) << fmt::format("chart-stability: wrote {}/stability_map.csv and stability_map.png\n", st->out_dir);
   });
 
   struct PressureCommandOptions {
     std::string scene_path = "tables/default.toml";  // scene file
     std::string out_dir = "out";                     // output directory
     std::string side = "right";                      // wheel
+    bool quiet = false;                              // -q: no "wrote" line
     PressureChartOptions chart;
   };
   auto pr = std::make_shared<PressureCommandOptions>();
   CLI::App* pres = app.add_subcommand(
       "chart-pressure", "Chart the pressure along the strip centre lines of every normal model (CSV + PNG)");
-  add_scene_and_out(pres, pr->scene_path, pr->out_dir);
+  add_scene_and_out(pres, pr->scene_path, pr->out_dir, pr->quiet);
   pres->add_option("--y", pr->chart.y, "Wheelset lateral displacement [m]")->capture_default_str();
   pres->add_option("--load", pr->chart.load, "Vertical wheel load [N]")->capture_default_str();
   pres->add_option("--wheel", pr->side, "left|right")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
@@ -126,14 +135,15 @@ void add_chart_commands(CLI::App& app) {
                    "Half-space maximum pressure to draw as a line [Pa] (e.g. CONTACT block A: 888e6)");
   pres->callback([pr] {
     pr->chart.side = pr->side == "left" ? Side::left : Side::right;
+    require_writable_directory(pr->out_dir);
     draw_pressure_chart(load_scene(pr->scene_path), pr->out_dir, pr->chart);
-    std::cout << fmt::format("chart-pressure: wrote {}/pressure.csv and pressure.png\n", pr->out_dir);
+    diagnostics(pr->quiet) << fmt::format("chart-pressure: wrote {}/pressure.csv and pressure.png\n", pr->out_dir);
   });
 
   auto sa = std::make_shared<SpeedChartOptions>();
   CLI::App* chart = app.add_subcommand(
       "chart", "Speed against accuracy of every contact model and of table lookup (CSV + PNG charts)");
-  add_scene_and_out(chart, sa->scene_path, sa->out_dir);
+  add_scene_and_out(chart, sa->scene_path, sa->out_dir, sa->quiet);
   chart->add_option("--reference", sa->reference,
                     "CONTACT block C CSV (default: <source>/../shared/reference/blockC_sweep_integer_dy.csv; "
                     "absent: finest STRIPES as reference)");

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
 #include "scene/scene.hpp"
 #include "sweep/state_eval.hpp"
@@ -103,6 +104,7 @@ void add_eval_command(CLI::App& app) {
       ->expected(3);
   cmd->add_option("--mu", opt->request.mu, "Coulomb friction coefficient (default: scene's)");
   cmd->add_flag("--json", opt->json, "Print JSON (stable keys, SI units) instead of text");
+  add_quiet_flag(cmd);  // eval prints results only; accepted for uniformity
   cmd->callback([opt] { run_eval(*opt); });
 }
 

@@ -1,4 +1,4 @@
-// railtab generate SCENE -o TABLE.h5 [--threads N] [--quiet] [--resume] [--shard I/N]; under mpirun/srun
+// railtab generate SCENE -o TABLE.h5 [--threads N] [-q] [--resume] [--shard I/N]; under mpirun/srun
 // the MPI engine (generator/distributed/) when built with it
 #include <unistd.h>
 
@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
 #include "sweep/generate.hpp"
 #include "sweep/shard_split.hpp"
@@ -19,20 +20,20 @@ namespace railtab {
 void add_generate_command(CLI::App& app) {
   auto opt = std::make_shared<GenerateOptions>();
   auto shard = std::make_shared<std::string>();
-  auto quiet = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("generate", "Compute a contact table (HDF5, docs/table-format.md) from a scene");
   cmd->add_option("scene", opt->scene, "Scene file (TOML, docs/scenes.md)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", opt->output, "Table file to write (HDF5)")->required();
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_flag("--quiet", *quiet, "No progress and no summary");
+  auto quiet = add_quiet_flag(cmd);
   cmd->add_flag("--resume", opt->resume,
                 "Keep finished y blocks in OUTPUT.partial and skip those already there (result = fresh run)");
   cmd->add_option("--shard", *shard, "Compute only part I of N (1-based, contiguous y ranges of about equal estimated cost; "
                 "\"auto\": from SLURM_ARRAY_TASK_ID/COUNT); join with railtab merge");
   cmd->callback([opt, shard, quiet] {
     if (!shard->empty()) std::tie(opt->shard_index, opt->shard_count) = parse_shard_spec(*shard);
+    require_writable_file(opt->output);  // now, not after the sweep
     opt->log = *quiet ? nullptr : &std::cerr;
     opt->terminal = ::isatty(STDERR_FILENO) != 0;
     interrupt_flag().store(false);

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
 #include "table/merge.hpp"
 
@@ -17,9 +18,11 @@ void add_merge_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("merge", "Join the shards of generate --shard I/N into one table");
   cmd->add_option("output", *output, "Table file to write (HDF5)")->required();
   cmd->add_option("shards", *inputs, "All N shard files, in any order")->required()->check(CLI::ExistingFile);
-  cmd->callback([output, inputs] {
+  auto quiet = add_quiet_flag(cmd);
+  cmd->callback([output, inputs, quiet] {
+    require_writable_file(*output);
     const std::size_t y_values = merge_table_files(*inputs, *output);
-    std::cerr << fmt::format("merged {} shards into {} ({} y values)\n", inputs->size(), *output, y_values);
+    diagnostics(*quiet) << fmt::format("merged {} shards into {} ({} y values)\n", inputs->size(), *output, y_values);
   });
 }
 

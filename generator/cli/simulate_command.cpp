@@ -1,10 +1,11 @@
-// railtab simulate SCENE --out DIR [--threads N] [--direct] [--duration SECONDS] [--post-processors P ...]
+// railtab simulate SCENE --out DIR [--threads N] [--direct] [--duration SECONDS] [--post-processors P ...] [-q]
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <iostream>
 #include <memory>
 
+#include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
 #include "scene/simulation_scene.hpp"
 #include "simulate/simulation_run.hpp"
@@ -14,7 +15,6 @@ namespace railtab {
 void add_simulate_command(CLI::App& app) {
   auto opt = std::make_shared<SimulationOptions>();
   auto scene_file = std::make_shared<std::string>();
-  auto quiet = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Run a bogie over a route with a contact table in the dynamics and accumulate wheel wear with each wear post-processor (docs/simulation.md)");
   cmd->add_option("scene", *scene_file, "Simulation scene (TOML, docs/simulation.md)")
@@ -30,8 +30,9 @@ void add_simulate_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--post-processors", opt->post_processors,
                   "Wear post-processors instead of the scene's (e.g. hertz stripes-a)");
-  cmd->add_flag("--quiet", *quiet, "No progress lines");
+  auto quiet = add_quiet_flag(cmd);
   cmd->callback([opt, scene_file, quiet] {
+    require_writable_directory(opt->out);  // now, not after the first table
     opt->log = *quiet ? nullptr : &std::cerr;
     const SimulationScene scene = load_simulation_scene(*scene_file);
     const SimulationSummary summary = run_simulation(scene, *opt);

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "core/check.hpp"
+#include "profile/simpack_writer.hpp"
 
 namespace railtab {
 namespace {
@@ -101,6 +102,7 @@ void write_worn_profile(const Profile& wheel, const std::vector<double>& u, cons
                 step, u0, u1);
 
   const std::filesystem::path tmp = file.string() + ".tmp";
+  std::vector<double> worn;  // z of the worn wheel at the nodes [m]
   {
     std::ofstream out(tmp);
     RAILTAB_CHECK(out.good(), "worn profile {}: cannot write {}", name, tmp.string());
@@ -109,8 +111,8 @@ void write_worn_profile(const Profile& wheel, const std::vector<double>& u, cons
     out << "# lateral [mm] (+ field side), vertical [mm] (+ down, r - r_nominal); docs/profiles.md\n";
     for (double x : nodes) {
       // The wheel's z is -(r - r0); wear lowers r by the radial depth, so z rises by it.
-      const double z = wheel.eval(x).z + depth_at(u, smoothed, bin, x);
-      out << fmt::format("{:.9f} {:.9f}\n", x * 1e3, -z * 1e3);
+      worn.push_back(wheel.eval(x).z + depth_at(u, smoothed, bin, x));
+      out << fmt::format("{:.9f} {:.9f}\n", x * 1e3, -worn.back() * 1e3);
     }
     out.close();
     RAILTAB_CHECK(out.good(), "worn profile {}: writing {} failed", name, tmp.string());
@@ -118,6 +120,12 @@ void write_worn_profile(const Profile& wheel, const std::vector<double>& u, cons
   std::error_code ec;
   std::filesystem::rename(tmp, file, ec);
   RAILTAB_CHECK(!ec, "worn profile {}: cannot rename {} to it: {}", name, tmp.string(), ec.message());
+  // The same points as a SIMPACK wheel profile, for tools that do not read the two-column form.
+  std::filesystem::path simpack = file;
+  simpack.replace_extension(".prw");
+  write_simpack_profile(simpack, ProfileKind::wheel, nodes, worn,
+                        fmt::format("worn {} (railtab simulate), wear smoothed over {:g} mm", wheel.name(),
+                                    smoothing_length * 1e3));
 }
 
 }  // namespace railtab

@@ -13,8 +13,9 @@ namespace railtab {
 // Smooths `depth` (radial depth on the uniformly spaced bin centres `u` [m]) with smooth_depth,
 // removes it from `wheel` (rolling radius r(u) - depth(u), i.e. z + depth; depth linear between
 // bin centres, 0 beyond the bins), and writes the profile at `step` spacing over the wheel's
-// range to `file` (lateral and vertical in mm, CONTACT orientation). Written to a temporary name
-// and renamed. Throws railtab::Error naming the file for I/O errors or non-finite input.
+// range to `file` (lateral and vertical in mm, CONTACT orientation), and the same points as a
+// SIMPACK wheel profile beside it (`file` with the extension .prw, profile/simpack_writer.hpp).
+// Written to temporary names and renamed. Throws railtab::Error naming the file for I/O errors or non-finite input.
 void write_worn_profile(const Profile& wheel, const std::vector<double>& u,
                         const std::vector<double>& depth, double smoothing_length,
                         const std::filesystem::path& file, double step = 0.0002);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace railtab {
@@ -38,7 +39,52 @@ void print_status(const TableDataset& d, std::ostream& out) {
   out << "\n";
 }
 
+nlohmann::ordered_json status_counts(const TableDataset& d) {
+  std::array<std::size_t, 32> count{};
+  std::size_t empty = 0;
+  for (StatusBits s : d.status) {
+    if (s == 0) ++empty;
+    for (unsigned b = 0; b < 32; ++b) count[b] += (s >> b) & 1u;
+  }
+  nlohmann::ordered_json j{{"cells", d.status.size()}, {"no_contact", empty}};
+  for (unsigned b = 0; b < 32; ++b)
+    if (count[b] > 0) j[status::describe(1u << b)] = count[b];
+  return j;
+}
+
 }  // namespace
+
+std::string table_summary_json(const Table& table, const std::string& path, std::uintmax_t file_bytes,
+                               bool checksums_verified) {
+  nlohmann::ordered_json out;
+  out["file"] = path;
+  out["file_bytes"] = file_bytes;
+  out["checksums_verified"] = checksums_verified;
+  nlohmann::ordered_json attributes = nlohmann::ordered_json::object();
+  for (const auto& [name, value] : table.attributes) {
+    // Attributes holding JSON text (models, fixed_axes, accuracy_*) as objects, the rest as text.
+    const auto parsed = nlohmann::ordered_json::parse(value, nullptr, false);
+    attributes[name] = name != "scene" && parsed.is_object() ? parsed : nlohmann::ordered_json(value);
+  }
+  out["attributes"] = attributes;
+  out["axes"] = nlohmann::ordered_json::array();
+  for (const TableAxis& a : table.axes) {
+    out["axes"].push_back({{"name", a.name}, {"units", a.units}, {"description", a.description},
+                           {"size", a.values.size()}, {"min", a.values.front()}, {"max", a.values.back()}});
+  }
+  out["groups"] = nlohmann::ordered_json::array();
+  for (const TableGroup& g : table.groups) {
+    nlohmann::ordered_json gj{{"path", "/" + g.path}, {"datasets", nlohmann::ordered_json::array()}};
+    for (const TableDataset& d : g.datasets) {
+      nlohmann::ordered_json dj{{"name", d.name},   {"units", d.units}, {"description", d.description},
+                                {"axes", d.axes},   {"shape", d.shape}, {"storage_bytes", d.storage_bytes}};
+      if (d.is_status) dj["status_counts"] = status_counts(d);
+      gj["datasets"].push_back(dj);
+    }
+    out["groups"].push_back(gj);
+  }
+  return out.dump(2);
+}
 
 void print_table_summary(const Table& table, const std::string& path, std::uintmax_t file_bytes, bool print_scene,
                          std::ostream& out) {

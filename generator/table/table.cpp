@@ -2,9 +2,14 @@
 #include "table/table.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <functional>
 #include <numeric>
+
+#include "core/check.hpp"
 
 namespace railtab {
 
@@ -72,7 +77,17 @@ const std::vector<std::string>& required_outputs(const std::string& part) {
 }
 
 std::string utc_timestamp() {
-  const std::time_t now = std::time(nullptr);
+  std::time_t now = std::time(nullptr);
+  // Reproducible builds (reproducible-builds.org/specs/source-date-epoch): a rebuilt table is
+  // byte-identical when SOURCE_DATE_EPOCH is set.
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch != nullptr && *epoch != '\0') {
+    long long seconds = -1;
+    const char* end = epoch + std::strlen(epoch);
+    const auto [ptr, ec] = std::from_chars(epoch, end, seconds);
+    RAILTAB_CHECK(ec == std::errc() && ptr == end && seconds >= 0,
+                  "SOURCE_DATE_EPOCH must be a non-negative integer (seconds since 1970), got '{}'", epoch);
+    now = static_cast<std::time_t>(seconds);
+  }
   std::tm tm{};
   gmtime_r(&now, &tm);
   char text[32];

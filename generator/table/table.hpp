@@ -13,9 +13,13 @@
 
 namespace railtab {
 
-inline constexpr int kTableFormatMajor = 1;
-inline constexpr int kTableFormatMinor = 1;
-inline constexpr const char* kTableFormatVersion = "1.1";  // 1.1: checksums (docs/table-format.md)
+// Format 2 (docs/table-format.md): typed attributes, fixed variables as scalar datasets in /axes,
+// CF flag attributes, coordinates in every part group, with the integrity of format 1.1
+// (Fletcher32 on every chunked dataset, checksummed metadata, fixed-length strings). The reader
+// also reads format 1.0 and 1.1.
+inline constexpr int kTableFormatMajor = 2;
+inline constexpr int kTableFormatMinor = 0;
+inline constexpr const char* kTableFormatVersion = "2.0";
 
 struct TableAxis {
   std::string name;          // "y", "roll", "load", "xi", "eta", "phi", "slot"
@@ -63,7 +67,8 @@ struct Table {
 // Datasets every reader may rely on, per part (format 1.0). Parts "creep" and "wear" are optional.
 const std::vector<std::string>& required_outputs(const std::string& part);
 
-// The current UTC time as ISO 8601 ("2026-11-21T22:37:00Z"), the root attribute `created`.
+// The current UTC time as ISO 8601 ("2026-11-21T22:37:00Z"), the root attribute `created`; the
+// time SOURCE_DATE_EPOCH gives when it is set (throws railtab::Error when it is not an integer).
 std::string utc_timestamp();
 
 }  // namespace railtab

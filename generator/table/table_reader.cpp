@@ -1,5 +1,6 @@
-// Reads a format-1.x table file into a Table, checking everything a consumer relies on, so that a
-// damaged or foreign file fails here with the file name and the problem, not later with garbage.
+// Reads a format-1.x or 2.x table file into a Table, checking everything a consumer relies on, so
+// that a damaged or foreign file fails here with the file name and the problem, not later with
+// garbage. Format 2's typed attributes come back as the text the Table holds (table_writer.cpp).
 #include <hdf5_hl.h>
 
 #include <fmt/format.h>
@@ -7,9 +8,12 @@
 #include <algorithm>
 #include <charconv>
 
+#include <nlohmann/json.hpp>
+
 #include "core/check.hpp"
 #include "table/h5_util.hpp"
 #include "table/table_io.hpp"
+#include "table/typed_attributes.hpp"
 
 namespace railtab {
 namespace {
@@ -59,6 +63,30 @@ std::vector<std::string> split_axes(const std::string& text) {
   return out;
 }
 
+// Format 2 names: root attributes stored as groups, the order the sweep writes root attributes in
+// (the reader restores it), and the coordinate copies in part groups (not outputs).
+constexpr const char* kObjectAttributes[] = {"models", "accuracy_targets", "accuracy_achieved"};
+constexpr const char* kAttributeOrder[] = {"format_version", "railtab_version", "git_commit", "created",
+                                          "scene", "scene_name", "models", "fixed_axes", "shard",
+                                          "shard_y_begin", "shard_y_end", "shard_y_total",
+                                          "accuracy_targets", "accuracy_achieved"};
+constexpr const char* kCoordinateNames[] = {"y", "roll", "load", "xi", "eta", "phi", "slot"};
+
+bool is_coordinate(const std::string& name) {
+  return std::any_of(std::begin(kCoordinateNames), std::end(kCoordinateNames), [&](const char* n) { return name == n; });
+}
+
+// Known attributes first, in the sweep's order, then the others in file order.
+void restore_order(std::vector<std::pair<std::string, std::string>>& attributes) {
+  auto rank = [](const std::string& name) {
+    const auto* it = std::find_if(std::begin(kAttributeOrder), std::end(kAttributeOrder),
+                                  [&](const char* n) { return name == n; });
+    return static_cast<std::size_t>(it - std::begin(kAttributeOrder));
+  };
+  std::stable_sort(attributes.begin(), attributes.end(),
+                   [&](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
+}
+
 class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
@@ -77,17 +105,34 @@ class Reader {
       h5::Id attr(h5::check_id(H5Aopen(file, name.c_str(), H5P_DEFAULT), file_, "open attribute " + name),
                   H5Aclose);
       h5::Id type(h5::check_id(H5Aget_type(attr), file_, "attribute type " + name), H5Tclose);
-      if (H5Tget_class(type) != H5T_STRING) continue;  // only string attributes belong to the format
-      table.attributes.emplace_back(name, h5::read_string_attribute(file, name, file_));
+      // Format 1 has string attributes only; format 2 also numbers (as text in the Table).
+      if (name != "roll_mode") table.attributes.emplace_back(name, h5::read_attribute_as_text(file, name, file_));
+    }
+    for (const char* name : kObjectAttributes) {  // format 2: JSON objects as groups
+      if (H5Lexists(file, name, H5P_DEFAULT) <= 0) continue;
+      h5::Id g(h5::check_id(H5Gopen2(file, name, H5P_DEFAULT), file_, fmt::format("open /{}", name)), H5Gclose);
+      table.attributes.emplace_back(name, h5::read_json_object(g, file_).dump());
     }
 
     RAILTAB_CHECK(H5Lexists(file, "axes", H5P_DEFAULT) > 0, "{}: missing group /axes", file_);
     h5::Id axes(h5::check_id(H5Gopen2(file, "axes", H5P_DEFAULT), file_, "open /axes"), H5Gclose);
-    for (const std::string& name : links(axes, file_, "/axes")) table.axes.push_back(read_axis(axes, name));
+    nlohmann::json fixed = nlohmann::json::object();
+    for (const std::string& name : links(axes, file_, "/axes")) {
+      if (is_scalar(axes, name)) {  // format 2: a fixed variable
+        fixed[name] = read_fixed(axes, name);
+      } else {
+        table.axes.push_back(read_axis(axes, name));
+      }
+    }
     RAILTAB_CHECK(table.axis("slot"), "{}: missing axis /axes/slot", file_);
+    if (!table.attribute("fixed_axes")) {  // format 2: from the scalars and roll_mode
+      if (h5::has_attribute(file, "roll_mode")) fixed["roll"] = h5::read_string_attribute(file, "roll_mode", file_);
+      table.attributes.emplace_back("fixed_axes", fixed.dump());
+    }
+    restore_order(table.attributes);
 
     for (const std::string& name : links(file, file_, "/")) {
-      if (name == "axes") continue;
+      if (name == "axes" || is_coordinate(name)) continue;  // format 2: root copies of axes
       h5::Id object(h5::check_id(H5Oopen(file, name.c_str(), H5P_DEFAULT), file_, "open /" + name), H5Oclose);
       if (H5Iget_type(object) == H5I_DATASET) {
         if (!table.group("")) table.groups.push_back(TableGroup{"", {}});
@@ -107,6 +152,7 @@ class Reader {
         h5::Id g(h5::check_id(H5Gopen2(w, part.c_str(), H5P_DEFAULT), file_, "open /" + path), H5Gclose);
         TableGroup group{path, {}};
         for (const std::string& name : links(g, file_, "/" + path)) {
+          if (is_coordinate(name)) continue;  // format 2: the group's copies of its axes
           group.datasets.push_back(read_dataset(table, g, path, name));
         }
         for (const std::string& required : required_outputs(part)) {
@@ -127,10 +173,23 @@ class Reader {
     auto dot = version.find('.');
     auto [end, ec] = std::from_chars(version.data(), version.data() + (dot == std::string::npos ? version.size() : dot), major);
     RAILTAB_CHECK(ec == std::errc() && dot != std::string::npos, "{}: malformed format_version \"{}\"", file_, version);
-    RAILTAB_CHECK(major == kTableFormatMajor,
-                  "{}: table format version {} is not supported (this railtab reads {}.x); regenerate the table "
-                  "or use a matching railtab",
+    RAILTAB_CHECK(major >= 1 && major <= kTableFormatMajor,
+                  "{}: table format version {} is not supported (this railtab reads 1.x to {}.x); regenerate the "
+                  "table or use a matching railtab",
                   file_, version, kTableFormatMajor);
+  }
+
+  bool is_scalar(hid_t group, const std::string& name) const {
+    h5::Id ds(h5::check_id(H5Dopen2(group, name.c_str(), H5P_DEFAULT), file_, "open /axes/" + name), H5Dclose);
+    h5::Id space(h5::check_id(H5Dget_space(ds), file_, "/axes/" + name), H5Sclose);
+    return H5Sget_simple_extent_ndims(space) == 0;
+  }
+
+  double read_fixed(hid_t group, const std::string& name) const {
+    h5::Id ds(h5::check_id(H5Dopen2(group, name.c_str(), H5P_DEFAULT), file_, "open /axes/" + name), H5Dclose);
+    double value = 0.0;
+    h5::check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), file_, "read /axes/" + name);
+    return value;
   }
 
   std::string required_attribute(hid_t object, const std::string& where, const std::string& name) const {

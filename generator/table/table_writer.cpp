@@ -1,18 +1,28 @@
-// Writes a Table as an HDF5 file, format 1.1: /axes as dimension scales, every dataset with units,
-// description and axes attributes and its dimensions attached to the scales, chunked + shuffle +
-// deflate above 64 KiB, every dataset with a Fletcher32 checksum, HDF5 1.10 file format (metadata
-// checksums), fixed-length string attributes. Written to TARGET.tmp.<pid> and renamed only when complete.
+// Writes a Table as an HDF5 file, format 2.0 (docs/table-format.md): /axes as dimension scales and
+// fixed variables as scalar datasets beside them; every part group holds its own copies of its
+// axes as dimension scales (so xarray/netCDF open any group with coordinates); every dataset with
+// units, description and axes attributes; status datasets with CF flag_masks/flag_meanings; JSON
+// root attributes stored typed (typed_attributes.hpp); chunked + shuffle + deflate above 64 KiB;
+// integrity as in format 1.1: every array dataset with a Fletcher32 checksum (scalars compact, in
+// their checksummed object header), HDF5 1.10 file format (metadata checksums), fixed-length
+// string attributes; no object timestamps, so equal inputs (and SOURCE_DATE_EPOCH) give equal bytes. Written to
+// TARGET.tmp.<pid> and renamed only when complete.
 #include <hdf5_hl.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <charconv>
 #include <map>
 #include <system_error>
+
+#include <nlohmann/json.hpp>
 
 #include "table/h5_util.hpp"
 #include "table/interrupt.hpp"
 #include "table/table_io.hpp"
+#include "table/typed_attributes.hpp"
 
 namespace railtab {
 namespace {
@@ -21,6 +31,31 @@ constexpr std::size_t kCompressAbove = 64 * 1024;  // datasets above this are ch
 constexpr std::size_t kChunkTarget = 256 * 1024;   // chunk size aimed at [B]
 constexpr unsigned kDeflateLevel = 4;
 
+// Root attributes whose in-memory text is a JSON object: stored as a group of typed attributes.
+constexpr const char* kObjectAttributes[] = {"models", "accuracy_targets", "accuracy_achieved"};
+// Root attributes whose text is an integer: stored as int64.
+constexpr const char* kIntegerAttributes[] = {"shard_y_begin", "shard_y_end", "shard_y_total"};
+// Units of the state variables, for fixed ones (scalar datasets /axes/<name>).
+constexpr std::pair<const char*, const char*> kStateUnits[] = {{"y", "m"},  {"roll", "rad"}, {"load", "N"},
+                                                               {"xi", "1"}, {"eta", "1"},    {"phi", "rad/m"}};
+
+template <std::size_t N>
+bool one_of(const std::string& name, const char* const (&names)[N]) {
+  return std::any_of(std::begin(names), std::end(names), [&](const char* n) { return name == n; });
+}
+
+// CF flag attributes of a status dataset: every named bit of src/core/status.hpp.
+std::pair<std::vector<std::uint32_t>, std::string> status_flags() {
+  std::vector<std::uint32_t> masks;
+  std::string meanings;
+  for (int bit = 0; bit < 32; ++bit) {
+    const std::string name = status::describe(1u << bit);
+    if (name == "none") continue;
+    masks.push_back(1u << bit);
+    meanings += (meanings.empty() ? "" : " ") + name;
+  }
+  return {masks, meanings};
+}
 std::string join_axes(const std::vector<std::string>& axes) {
   std::string out;
   for (const auto& a : axes) out += (out.empty() ? "" : ",") + a;
@@ -62,21 +97,25 @@ class Writer {
     h5::Id fcpl(h5::check_id(H5Pcreate(H5P_FILE_CREATE), file_, "file creation properties"), H5Pclose);
     track_order(fcpl);
     check(H5Pset_attr_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), "attribute order");
-    // Format 1.1 integrity (docs/table-format.md): the HDF5 1.10 file format checksums every
+    check(H5Pset_obj_track_times(fcpl, false), "no timestamps");
+    // Integrity (docs/table-format.md, "Integrity"): the HDF5 1.10 file format checksums every
     // metadata block (superblock, object headers with their attributes, chunk indexes).
     h5::Id fapl(h5::check_id(H5Pcreate(H5P_FILE_ACCESS), file_, "file access properties"), H5Pclose);
     check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_LATEST), "file format version");
     hid_t raw = H5Fcreate(file_.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
     h5::Id file(h5::check_id(raw, file_, "create file"), H5Fclose);
     {
-      for (const auto& [name, value] : table_.attributes) h5::write_string_attribute(file, name, value, file_);
+      for (const auto& [name, value] : table_.attributes) write_root_attribute(file, name, value);
       write_axes(file);
       for (const TableGroup& group : table_.groups) {
         h5::Id g = open_group(file, group.path);
+        const hid_t parent = g.get() == H5I_INVALID_HID ? file.get() : g.get();
+        write_coordinates(parent, group);
         for (const TableDataset& d : group.datasets) {
           poll_cancel();
-          write_dataset(g.get() == H5I_INVALID_HID ? file.get() : g.get(), group.path, d);
+          write_dataset(parent, group.path, d);
         }
+        local_scales_.clear();
       }
       scales_.clear();
     }
@@ -102,6 +141,7 @@ class Writer {
     h5::Id gcpl(h5::check_id(H5Pcreate(H5P_GROUP_CREATE), file_, "group properties"), H5Pclose);
     track_order(gcpl);
     check(H5Pset_attr_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), "attribute order");
+    check(H5Pset_obj_track_times(gcpl, false), "no timestamps");
     return h5::Id(h5::check_id(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), file_,
                                "create group " + name),
                   H5Gclose);
@@ -122,11 +162,151 @@ class Writer {
     return current;
   }
 
+  // Text attributes as the format stores them: JSON objects as groups, integers as int64,
+  // fixed_axes as scalar datasets in /axes (write_axes), everything else as strings.
+  void write_root_attribute(hid_t file, const std::string& name, const std::string& value) {
+    if (name == "fixed_axes") return;
+    if (one_of(name, kObjectAttributes)) {
+      const nlohmann::json j = nlohmann::json::parse(value, nullptr, false);
+      if (j.is_object()) {
+        h5::Id gcpl(h5::check_id(H5Pcreate(H5P_GROUP_CREATE), file_, "group properties"), H5Pclose);
+        check(H5Pset_obj_track_times(gcpl, false), "no timestamps");
+        h5::Id g = make_group(file, name);
+        h5::write_json_object(g, j, file_, gcpl);
+        return;
+      }
+    }
+    if (one_of(name, kIntegerAttributes)) {
+      std::int64_t n = 0;
+      const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+      RAILTAB_CHECK(ec == std::errc() && ptr == value.data() + value.size(), "{}: attribute {} = '{}' is not an integer",
+                    file_, name, value);
+      h5::write_int64_attribute(file, name, n, file_);
+      return;
+    }
+    h5::write_string_attribute(file, name, value, file_);
+  }
+
+  // A 1-D axis dataset, made a dimension scale, in `group` (/axes, or a part group's copy).
+  h5::Id write_axis(hid_t group, const TableAxis& axis) {
+    std::string what = "write axis " + axis.name;
+    hsize_t n = axis.values.size();
+    h5::Id space(h5::check_id(H5Screate_simple(1, &n, nullptr), file_, what), H5Sclose);
+    hid_t type = axis.integer ? H5T_STD_I32LE : H5T_IEEE_F64LE;
+    h5::Id dcpl = checksummed_layout({n}, what);
+    h5::Id ds(h5::check_id(H5Dcreate2(group, axis.name.c_str(), type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+                           file_, what),
+              H5Dclose);
+    if (axis.integer) {
+      std::vector<int> data(axis.values.begin(), axis.values.end());
+      check(H5Dwrite(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), what);
+    } else {
+      check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, axis.values.data()), what);
+    }
+    check(H5DSset_scale(ds, axis.name.c_str()), what + " (dimension scale)");
+    h5::write_string_attribute(ds, "units", axis.units, file_);
+    h5::write_string_attribute(ds, "description", axis.description, file_);
+    if (axis.name == "slot") {
+      // Slot meaning stored, not only described: names and the CF flag_values/flag_meanings.
+      std::vector<std::string> names;
+      std::vector<std::int32_t> values;
+      for (std::size_t i = 0; i < axis.values.size(); ++i) {
+        names.push_back(i == 0 ? "tread" : i == 1 ? "flange" : fmt::format("slot{}", i));  // = lookup::slot_name
+        values.push_back(static_cast<std::int32_t>(i));
+      }
+      std::string meanings;
+      for (const std::string& name : names) meanings += (meanings.empty() ? "" : " ") + name;
+      h5::write_string_array_attribute(ds, "slot_names", names, file_);
+      h5::write_int32_array_attribute(ds, "flag_values", values, file_);
+      h5::write_string_attribute(ds, "flag_meanings", meanings, file_);
+    }
+    return ds;
+  }
+
+  // A fixed state variable: a scalar float64 dataset with units.
+  void write_fixed(hid_t group, const std::string& name, double value) {
+    std::string what = "write fixed variable " + name;
+    h5::Id space(h5::check_id(H5Screate(H5S_SCALAR), file_, what), H5Sclose);
+    h5::Id dcpl = checksummed_layout({}, what);
+    h5::Id ds(h5::check_id(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+                           file_, what),
+              H5Dclose);
+    check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), what);
+    const char* units = "1";
+    for (const auto& [state, u] : kStateUnits)
+      if (name == state) units = u;
+    h5::write_string_attribute(ds, "units", units, file_);
+    h5::write_string_attribute(ds, "description", "fixed value: " + name + " is not tabulated", file_);
+  }
+
+  // Fixed variables of the root attribute fixed_axes (JSON text in memory), in its order.
+  void parse_fixed() {
+    const std::string* text = table_.attribute("fixed_axes");
+    if (!text) return;
+    const nlohmann::json j = nlohmann::json::parse(*text, nullptr, false);
+    RAILTAB_CHECK(j.is_object(), "{}: fixed_axes is not a JSON object: {}", file_, *text);
+    for (const auto& [name, value] : j.items()) {
+      if (value.is_number()) {
+        fixed_.emplace_back(name, value.get<double>());
+      } else {
+        RAILTAB_CHECK(name == "roll" && value == "equilibrium", "{}: fixed_axes: '{}' must be a number", file_, name);
+        roll_equilibrium_ = true;
+      }
+    }
+  }
+
+  void write_axes(hid_t file) {
+    h5::Id group = make_group(file, "axes");
+    for (const TableAxis& axis : table_.axes) scales_.emplace(axis.name, write_axis(group, axis));
+    parse_fixed();
+    for (const auto& [name, value] : fixed_) write_fixed(group, name, value);
+    // Roll following the kinematic equilibrium is neither an axis nor fixed (/equilibrium_roll).
+    if (roll_equilibrium_) h5::write_string_attribute(file, "roll_mode", "equilibrium", file_);
+  }
+
+  // The group's own copies of the axes its datasets use (dimension scales, attached instead of
+  // /axes: netCDF and xarray find coordinates only in the group itself or its ancestors), and the
+  // fixed variables as scalars, named in each dataset's CF `coordinates` attribute.
+  void write_coordinates(hid_t group, const TableGroup& g) {
+    for (const TableDataset& d : g.datasets) {
+      for (const std::string& name : d.axes) {
+        if (local_scales_.count(name)) continue;
+        local_scales_.emplace(name, write_axis(group, *table_.axis(name)));
+      }
+    }
+    for (const auto& [name, value] : fixed_) write_fixed(group, name, value);
+    coordinates_.clear();
+    for (const auto& [name, value] : fixed_) coordinates_ += (coordinates_.empty() ? "" : " ") + name;
+    write_equilibrium_roll(group, g);
+  }
+
+  // With roll following the equilibrium, a part group over y also gets roll(y): a copy of
+  // /equilibrium_roll named `roll` on the group's y, listed in `coordinates` (xarray shows it).
+  void write_equilibrium_roll(hid_t group, const TableGroup& g) {
+    const TableGroup* root = table_.group("");
+    const TableDataset* roll = root ? root->find("equilibrium_roll") : nullptr;
+    if (!roll_equilibrium_ || g.path.empty() || !roll || roll->axes != std::vector<std::string>{"y"} ||
+        !local_scales_.count("y")) {
+      return;
+    }
+    TableDataset copy = *roll;
+    copy.name = "roll";
+    write_dataset(group, g.path, copy, /*coordinate=*/true);
+    coordinates_ += (coordinates_.empty() ? "" : " ") + std::string("roll");
+  }
+
+  // Creation properties of a dataset without timestamps.
+  h5::Id untimed_dcpl(const std::string& what) const {
+    h5::Id dcpl(h5::check_id(H5Pcreate(H5P_DATASET_CREATE), file_, what), H5Pclose);
+    check(H5Pset_obj_track_times(dcpl, false), what + " (no timestamps)");
+    return dcpl;
+  }
+
   // Creation properties of an uncompressed dataset with its checksum: one chunk holding it all,
   // with HDF5's Fletcher32 filter (a filter needs a chunked layout). A scalar cannot be
   // chunked: compact instead, its bytes inside the (checksummed) object header.
   h5::Id checksummed_layout(const std::vector<hsize_t>& dims, const std::string& what) const {
-    h5::Id dcpl(h5::check_id(H5Pcreate(H5P_DATASET_CREATE), file_, what), H5Pclose);
+    h5::Id dcpl = untimed_dcpl(what);
     if (dims.empty()) {
       check(H5Pset_layout(dcpl, H5D_COMPACT), what + " (compact)");
       return dcpl;
@@ -136,32 +316,8 @@ class Writer {
     return dcpl;
   }
 
-  void write_axes(hid_t file) {
-    h5::Id group = make_group(file, "axes");
-    for (const TableAxis& axis : table_.axes) {
-      std::string what = "write axis " + axis.name;
-      hsize_t n = axis.values.size();
-      h5::Id space(h5::check_id(H5Screate_simple(1, &n, nullptr), file_, what), H5Sclose);
-      hid_t type = axis.integer ? H5T_STD_I32LE : H5T_IEEE_F64LE;
-      h5::Id dcpl = checksummed_layout({n}, what);
-      h5::Id ds(h5::check_id(H5Dcreate2(group, axis.name.c_str(), type, space, H5P_DEFAULT, dcpl,
-                                        H5P_DEFAULT),
-                             file_, what),
-                H5Dclose);
-      if (axis.integer) {
-        std::vector<int> data(axis.values.begin(), axis.values.end());
-        check(H5Dwrite(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), what);
-      } else {
-        check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, axis.values.data()), what);
-      }
-      check(H5DSset_scale(ds, axis.name.c_str()), what + " (dimension scale)");
-      h5::write_string_attribute(ds, "units", axis.units, file_);
-      h5::write_string_attribute(ds, "description", axis.description, file_);
-      scales_.emplace(axis.name, std::move(ds));
-    }
-  }
-
-  void write_dataset(hid_t parent, const std::string& group, const TableDataset& d) {
+  // `coordinate`: a coordinate copy (roll(y)), which names no further coordinates itself.
+  void write_dataset(hid_t parent, const std::string& group, const TableDataset& d, bool coordinate = false) {
     std::string what = fmt::format("write dataset {}/{}", group, d.name);
     std::vector<hsize_t> dims(d.shape.begin(), d.shape.end());
     h5::Id space(h5::check_id(dims.empty() ? H5Screate(H5S_SCALAR)
@@ -170,8 +326,7 @@ class Writer {
                  H5Sclose);
     std::size_t element = d.is_status ? sizeof(std::uint32_t) : sizeof(double);
     const bool compress = !dims.empty() && d.size() * element > kCompressAbove && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0;
-    h5::Id dcpl = compress ? h5::Id(h5::check_id(H5Pcreate(H5P_DATASET_CREATE), file_, what), H5Pclose)
-                           : checksummed_layout(dims, what);
+    h5::Id dcpl = compress ? untimed_dcpl(what) : checksummed_layout(dims, what);
     if (compress) {
       // Chunks span the fast dimensions whole; the slow ones are halved until a chunk fits.
       std::vector<hsize_t> chunk = dims;
@@ -200,8 +355,14 @@ class Writer {
     h5::write_string_attribute(ds, "units", d.units, file_);
     h5::write_string_attribute(ds, "description", d.description, file_);
     h5::write_string_attribute(ds, "axes", join_axes(d.axes), file_);
+    if (!coordinate && !coordinates_.empty()) h5::write_string_attribute(ds, "coordinates", coordinates_, file_);
+    if (d.is_status) {
+      static const auto flags = status_flags();
+      h5::write_uint32_array_attribute(ds, "flag_masks", flags.first, file_);
+      h5::write_string_attribute(ds, "flag_meanings", flags.second, file_);
+    }
     for (std::size_t i = 0; i < d.axes.size(); ++i) {
-      check(H5DSattach_scale(ds, scales_.at(d.axes[i]), static_cast<unsigned>(i)),
+      check(H5DSattach_scale(ds, local_scales_.at(d.axes[i]), static_cast<unsigned>(i)),
             fmt::format("{} (attach scale {})", what, d.axes[i]));
     }
   }
@@ -209,7 +370,11 @@ class Writer {
   const Table& table_;
   std::string file_;
   const std::atomic<bool>* cancel_;
-  std::map<std::string, h5::Id> scales_;  // open axis datasets by name, for H5DSattach_scale
+  std::map<std::string, h5::Id> scales_;        // open /axes datasets by name
+  std::map<std::string, h5::Id> local_scales_;  // the current group's axis copies, for H5DSattach_scale
+  std::vector<std::pair<std::string, double>> fixed_;  // fixed variables (from fixed_axes)
+  bool roll_equilibrium_ = false;               // fixed_axes says "roll":"equilibrium"
+  std::string coordinates_;                     // CF `coordinates` of the current group's datasets
 };
 
 }  // namespace

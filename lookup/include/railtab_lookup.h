@@ -161,7 +161,7 @@ RAILTAB_LOOKUP_API int railtab_lookup_default_state(const railtab_lookup_table* 
 
 typedef struct railtab_lookup_table_info {
   const char* path;            /* file it was loaded from */
-  const char* format_version;  /* e.g. "1.1" */
+  const char* format_version;  /* e.g. "2.0" */
   const char* scene_name;      /* "" if absent */
   int method;                  /* RAILTAB_LOOKUP_LINEAR, ... */
   int n_axes;                  /* tabulated state variables: railtab_lookup_axis 0 .. n_axes-1 */
@@ -201,7 +201,7 @@ RAILTAB_LOOKUP_API const char* railtab_lookup_status_bit_name(uint32_t bit);
  * too short and holds a truncated, still terminated, text. buf may be NULL when size is 0. */
 RAILTAB_LOOKUP_API size_t railtab_lookup_status_text(uint32_t status, char* buf, size_t size);
 
-/* Library version ("0.1.0") and the newest table format it reads ("1.1"). */
+/* Library version ("0.1.0") and the newest table format it reads ("2.0"). */
 RAILTAB_LOOKUP_API const char* railtab_lookup_version(void);
 RAILTAB_LOOKUP_API const char* railtab_lookup_format_version(void);
 

@@ -187,8 +187,67 @@ void Hdf5File::check_all_string_attributes() const {
     hsize_t index = 0;
     if (H5Aiterate2(obj.get(), H5_INDEX_NAME, H5_ITER_NATIVE, &index, strings, &found) < 0)
       fail(with_hdf5_message("cannot list the attributes of " + object));
-    for (const std::string& name : found.names) string_attribute(object, name);
+    for (const std::string& name : found.names) check_string_attribute(object, name);
   }
+}
+
+void Hdf5File::check_string_attribute(const std::string& object, const std::string& name) const {
+  const std::string where = "attribute " + name + " of " + object;
+  Hid attr(H5Aopen_by_name(file_.get(), object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+           H5Aclose);
+  if (attr.get() < 0) fail(with_hdf5_message("cannot open " + where));
+  Hid space(H5Aget_space(attr.get()), H5Sclose);
+  const hssize_t n = space.get() < 0 ? -1 : H5Sget_simple_extent_npoints(space.get());
+  if (n < 0) fail(with_hdf5_message("cannot read the shape of " + where));
+  if (n == 1) {  // a single string: the checks and the bounded read of string_attribute
+    string_attribute(object, name);
+    return;
+  }
+  // An array of strings (format 2: slot_names, json_members): fixed-length, bounded, stored
+  // size = declared size, then one bounded copy.
+  Hid type(H5Aget_type(attr.get()), H5Tclose);
+  if (type.get() < 0) fail(with_hdf5_message("cannot read the type of " + where));
+  if (H5Tis_variable_str(type.get()) != 0)
+    fail(where + " is an array of variable-length strings: a checksummed table stores "
+                 "fixed-length strings only");
+  const std::size_t size = H5Tget_size(type.get());
+  const auto count = static_cast<std::size_t>(n);
+  if (size == 0 || size > kMaxAttributeBytes || count > kMaxAttributeBytes / size)
+    fail(where + " declares " + std::to_string(count) + " strings of " + std::to_string(size) +
+         " bytes (limit " + std::to_string(kMaxAttributeBytes) + " bytes)");
+  if (H5Aget_storage_size(attr.get()) != size * count)
+    fail(where + " declares " + std::to_string(size * count) + " bytes but stores " +
+         std::to_string(static_cast<unsigned long long>(H5Aget_storage_size(attr.get()))));
+  if (count == 0) return;
+  Hid mem(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
+  H5Tset_size(mem.get(), size);
+  H5Tset_strpad(mem.get(), H5T_STR_NULLPAD);
+  std::string bytes(size * count, '\0');
+  if (H5Aread(attr.get(), mem.get(), bytes.data()) < 0) fail(with_hdf5_message("cannot read " + where));
+}
+
+std::vector<std::string> Hdf5File::members(const std::string& group) const {
+  constexpr std::size_t kMaxMembers = 1000;  // /axes holds at most 7
+  struct Found {
+    std::vector<std::string> names;
+    bool too_many = false;
+  } found;
+  const auto collect = [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+    auto* f = static_cast<Found*>(out);
+    if (f->names.size() >= kMaxMembers) {
+      f->too_many = true;
+      return 1;  // stop
+    }
+    f->names.emplace_back(name);
+    return 0;
+  };
+  Hid g(H5Gopen2(file_.get(), group.c_str(), H5P_DEFAULT), H5Gclose);
+  if (g.get() < 0) fail(with_hdf5_message("cannot open group " + group));
+  if (H5Literate(g.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect, &found) < 0)
+    fail(with_hdf5_message("cannot list the members of " + group));
+  if (found.too_many) fail("group " + group + " has more than " + std::to_string(kMaxMembers) + " members");
+  return found.names;
 }
 
 Hid Hdf5File::open_dataset(const std::string& dataset) const {
@@ -210,7 +269,8 @@ template <typename T>
 DatasetValues<T> Hdf5File::read(const std::string& dataset, hid_t mem_type,
                                 H5T_class_t type_class, const char* type_name,
                                 const std::vector<hsize_t>& expected,
-                                const std::string& shape_source, std::size_t max_values) const {
+                                const std::string& shape_source, std::size_t max_values,
+                                bool allow_scalar) const {
   const Hid d = open_dataset(dataset);
   Hid type(H5Dget_type(d.get()), H5Tclose);
   if (type.get() < 0 || H5Tget_class(type.get()) != type_class)
@@ -232,8 +292,9 @@ DatasetValues<T> Hdf5File::read(const std::string& dataset, hid_t mem_type,
   if (!expected.empty() && out.dims != expected)
     fail("dataset " + dataset + " has shape " + shape_text(out.dims) + ", but " + shape_source +
          " need " + shape_text(expected));
-  if (expected.empty() && rank != 1)
-    fail("dataset " + dataset + " is not 1-D, shape " + shape_text(out.dims));
+  if (expected.empty() && rank != 1 && !(allow_scalar && rank == 0))
+    fail("dataset " + dataset + " is not 1-D" + (allow_scalar ? " nor a scalar" : "") +
+         ", shape " + shape_text(out.dims));
   const auto n = checked_product(out.dims);
   if (!n || *n > max_values)
     fail("dataset " + dataset + " declares shape " + shape_text(out.dims) + ", more than " +
@@ -255,7 +316,9 @@ DatasetValues<T> Hdf5File::read(const std::string& dataset, hid_t mem_type,
       fail("dataset " + dataset + " uses HDF5 filter " + std::to_string(id) +
            " (a table uses shuffle, deflate and fletcher32 only)");
   }
-  if (H5Pget_layout(dcpl.get()) == H5D_CHUNKED) {
+  const H5D_layout_t layout = H5Pget_layout(dcpl.get());
+  out.compact = layout == H5D_COMPACT;
+  if (layout == H5D_CHUNKED) {
     std::vector<hsize_t> chunk(static_cast<std::size_t>(rank));
     if (H5Pget_chunk(dcpl.get(), rank, chunk.data()) != rank)
       fail(with_hdf5_message("cannot read the chunk shape of " + dataset));
@@ -295,9 +358,10 @@ DatasetValues<std::uint32_t> Hdf5File::read_uint32(const std::string& dataset,
                              shape_source, std::numeric_limits<std::size_t>::max());
 }
 
-DatasetValues<double> Hdf5File::read_axis(const std::string& dataset,
-                                          std::size_t max_values) const {
-  return read<double>(dataset, H5T_NATIVE_DOUBLE, H5T_FLOAT, "floating-point", {}, "", max_values);
+DatasetValues<double> Hdf5File::read_axis(const std::string& dataset, std::size_t max_values,
+                                          bool allow_scalar) const {
+  return read<double>(dataset, H5T_NATIVE_DOUBLE, H5T_FLOAT, "floating-point", {}, "", max_values,
+                      allow_scalar);
 }
 
 DatasetValues<std::int32_t> Hdf5File::read_int32(const std::string& dataset,

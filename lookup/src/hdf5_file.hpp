@@ -49,6 +49,7 @@ struct DatasetValues {
   std::vector<hsize_t> dims;  // shape in the file, C order
   std::vector<T> values;      // prod(dims) values, C order
   bool checksummed = false;   // its filter pipeline holds HDF5's Fletcher32 checksum
+  bool compact = false;       // compact layout: the values live in the object header
 };
 
 class Hdf5File {
@@ -71,6 +72,9 @@ class Hdf5File {
   // inspect`). Only for files with checksummed metadata: listing the attributes makes libhdf5
   // decode every attribute message, which it cannot do safely when they may be corrupt.
   void check_all_string_attributes() const;
+  // One string attribute as check_all_string_attributes checks it: a single string through
+  // string_attribute, an array of fixed-length strings by its sizes and one bounded read.
+  void check_string_attribute(const std::string& object, const std::string& name) const;
   // Variable-length string attributes are read only when allowed (legacy tables); the global
   // heap is checked once, before the first such read.
   void set_allow_variable_strings(bool allow) { allow_vlen_ = allow; }
@@ -85,8 +89,13 @@ class Hdf5File {
   DatasetValues<std::uint32_t> read_uint32(const std::string& dataset,
                                            const std::vector<hsize_t>& expected,
                                            const std::string& shape_source) const;
-  DatasetValues<double> read_axis(const std::string& dataset, std::size_t max_values) const;
+  // 1-D, or also a scalar (rank 0, dims empty) when `allow_scalar` (format-2 fixed variables).
+  DatasetValues<double> read_axis(const std::string& dataset, std::size_t max_values,
+                                  bool allow_scalar = false) const;
   DatasetValues<std::int32_t> read_int32(const std::string& dataset, std::size_t max_values) const;
+  // Names of the links in `group` (at most 1000, else an error). Only for files with checksummed
+  // metadata, like check_all_string_attributes.
+  std::vector<std::string> members(const std::string& group) const;
   // Whether `dataset` has the Fletcher32 filter (nothing but its creation properties is read).
   bool checksummed(const std::string& dataset) const;
 
@@ -99,7 +108,8 @@ class Hdf5File {
   template <typename T>
   DatasetValues<T> read(const std::string& dataset, hid_t mem_type, H5T_class_t type_class,
                         const char* type_name, const std::vector<hsize_t>& expected,
-                        const std::string& shape_source, std::size_t max_values) const;
+                        const std::string& shape_source, std::size_t max_values,
+                        bool allow_scalar = false) const;
   Hid open_dataset(const std::string& dataset) const;
 
   std::string path_;             // file name, for messages

@@ -14,7 +14,12 @@
 namespace railtab::lookup::detail {
 namespace {
 
-constexpr int kKnownMajor = 1;  // format major version this reader understands
+// Format major versions this reader understands. 2 differs from 1 in how fixed variables are
+// stored (scalar datasets /axes/<name> instead of the JSON root attribute fixed_axes, roll
+// following the equilibrium as the root attribute roll_mode) and always carries checksums
+// (docs/table-format.md, "Version history").
+constexpr int kOldestMajor = 1;
+constexpr int kNewestMajor = 2;
 // Limits (docs/table-format.md, "Limits"), checked before anything is allocated: the generator
 // writes at most 1e6 nodes per axis; one part's grid at most 2^28 nodes (2 GiB per output
 // dataset and slot).
@@ -50,16 +55,22 @@ bool parse_version(const std::string& v, int& major) {
   return true;
 }
 
-void read_version(const Hdf5File& f, TableData& d) {
+// Returns the major version.
+int read_version(const Hdf5File& f, TableData& d) {
   const auto v = f.string_attribute("/", "format_version");
   if (!v) f.fail("missing root attribute format_version (not a railtab table?)");
   d.format_version = *v;
   int major = -1;
   if (!parse_version(*v, major))
     f.fail("format_version '" + *v + "' is not of the form MAJOR.MINOR (e.g. \"1.1\")");
-  if (major != kKnownMajor)
-    f.fail("unsupported format_version '" + *v + "': this reader knows major version " +
-           std::to_string(kKnownMajor) + " (a newer railtab may read it)");
+  if (major < kOldestMajor || major > kNewestMajor)
+    f.fail("unsupported format_version '" + *v + "': this reader knows major versions " +
+           std::to_string(kOldestMajor) + " to " + std::to_string(kNewestMajor) +
+           " (a newer railtab may read it)");
+  // Format 2 was never written without checksums: one without is damaged or crafted.
+  if (major >= 2 && !d.checksums_verified)
+    f.fail("format_version '" + *v + "' but no checksums (every format-2 table carries them)");
+  return major;
 }
 
 // A shard (`railtab generate --shard I/N`) covers part of y only: refused, it must be merged.
@@ -112,12 +123,22 @@ void check_axis(const Hdf5File& f, const std::string& name, const std::vector<do
     f.fail("axis " + name + " has a mean spacing whose reciprocal is not finite");
 }
 
-void read_axes(const Hdf5File& f, TableData& d) {
+void read_axes(const Hdf5File& f, TableData& d, int major) {
   if (!f.exists("/axes")) f.fail("missing group /axes");
   for (int var = 0; var < kNumVars; ++var) {
     const std::string name = std::string("/axes/") + var_name(var);
     if (!f.exists(name)) continue;
-    auto a = f.read_axis(name, kMaxAxisNodes);
+    auto a = f.read_axis(name, kMaxAxisNodes, /*allow_scalar=*/major >= 2);
+    if (a.dims.empty()) {  // format 2: a scalar dataset is a fixed variable
+      // A scalar cannot be chunked, so it carries no Fletcher32: it is compact, its value
+      // inside its object header, which the HDF5 1.10 format checksums.
+      if (!a.compact) f.fail("fixed variable " + name + " is not stored compact (a format-2 scalar is)");
+      if (!std::isfinite(a.values[0])) f.fail("fixed variable " + name + " is not finite");
+      d.fixed[var] = true;
+      d.fixed_value[var] = a.values[0];
+      d.fixed_list.emplace_back(var_name(var), a.values[0]);
+      continue;
+    }
     check_checksum(f, d, name, a.checksummed);
     if (a.dims.size() != 1) f.fail("axis " + name + " is not 1-D, shape " + shape_text(a.dims));
     check_axis(f, name, a.values);
@@ -176,6 +197,33 @@ void read_fixed_axes(const Hdf5File& f, TableData& d) {
     if (!d.tabulated[var] && !listed[var])
       f.fail(std::string("state variable '") + var_name(var) + "' is neither an axis (/axes/" +
              var_name(var) + ") nor in the root attribute fixed_axes");
+}
+
+// Format 2: /axes holds the slot axis and one dataset per state variable, an axis or a scalar;
+// roll may instead follow the equilibrium (root attribute roll_mode = "equilibrium"). Every
+// state variable must be accounted for, as with format 1's fixed_axes.
+void check_fixed_variables(const Hdf5File& f, const TableData& d) {
+  if (f.has_attribute("/", "fixed_axes"))
+    f.fail("root attribute fixed_axes in a format-2 table (format 2 stores fixed variables as "
+           "scalar datasets /axes/<name>)");
+  for (const std::string& member : f.members("/axes")) {
+    int var = 0;
+    while (var < kNumVars && member != var_name(var)) ++var;
+    if (var == kNumVars && member != "slot")
+      f.fail("/axes/" + member + " is not a state variable (y, roll, load, xi, eta, phi) nor slot");
+  }
+  bool roll_equilibrium = false;
+  if (const auto mode = f.string_attribute("/", "roll_mode")) {
+    if (*mode != "equilibrium")
+      f.fail("root attribute roll_mode is '" + *mode + "' (the only mode is \"equilibrium\")");
+    if (d.tabulated[kVarRoll] || d.fixed[kVarRoll])
+      f.fail("roll_mode = \"equilibrium\" but /axes/roll exists too");
+    roll_equilibrium = true;
+  }
+  for (int var = 0; var < kNumVars; ++var)
+    if (!d.tabulated[var] && !d.fixed[var] && !(var == kVarRoll && roll_equilibrium))
+      f.fail(std::string("state variable '") + var_name(var) + "' is neither an axis nor a fixed " +
+             "value (dataset /axes/" + var_name(var) + ")");
 }
 
 // One part of one wheel as read from the file, checked.
@@ -296,11 +344,12 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   // 1.10.8 itself crashes decoding some corrupt attribute messages that listing all of them
   // would touch (measured: 5 in 1,000 single-byte changes), while the lookup alone reads none.
   if (d->checksums_verified) f.check_all_string_attributes();
-  read_version(f, *d);
+  const int major = read_version(f, *d);
   refuse_shard(f);
   d->scene_name = f.string_attribute("/", "scene_name").value_or("");
-  read_axes(f, *d);
-  read_fixed_axes(f, *d);
+  read_axes(f, *d, major);
+  if (major == 1) read_fixed_axes(f, *d);  // format 2 stores them in /axes (read_axes)
+  else check_fixed_variables(f, *d);
   for (int var = 0; var < kNumVars; ++var) {
     if (d->tabulated[var]) d->tabulated_var[d->n_tabulated++] = var;
     if (d->fixed[var]) d->fixed_var[d->n_fixed++] = var;

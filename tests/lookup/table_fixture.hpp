@@ -68,6 +68,7 @@ struct FixtureSpec {
   bool complete_fixed = true;
   std::vector<std::pair<std::string, std::string>> extra_root_attributes;  // e.g. {"shard","1/4"}
   std::string fixed_text;          // extra raw "key":value members of fixed_axes, e.g. "\"roll\":\"equilibrium\""
+  bool fixed_as_datasets = false;  // format 2: fixed variables as scalar /axes/<name>, no fixed_axes JSON
   ValueFn value;                      // required
   StatusFn status = [](int, int, int, const double*) -> std::uint32_t { return 1u; };
 };
@@ -179,7 +180,7 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
   string_attr(file, "scene", "# fixture written by tests/lookup/table_fixture.hpp\n", fl);
   string_attr(file, "scene_name", "fixture", fl);
   string_attr(file, "models", "{}", fl);
-  string_attr(file, "fixed_axes", fixed_json, fl);
+  if (!spec.fixed_as_datasets) string_attr(file, "fixed_axes", fixed_json, fl);
   for (const auto& [name, value] : spec.extra_root_attributes)
     string_attr(file, name.c_str(), value, fl);
 
@@ -197,6 +198,22 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
     string_attr(d, "units", kVarUnits[var], fl);
     string_attr(d, "description", std::string("axis ") + kVarNames[var], fl);
     scale[var] = d;
+  }
+  if (spec.fixed_as_datasets) {
+    // Every fixed variable (with complete_fixed, the unlisted ones at 0 too); with checksums
+    // compact, as the generator writes them (a scalar cannot be chunked for Fletcher32).
+    for (const auto& [var, value] : fixed) {
+      const hid_t space = H5Screate(H5S_SCALAR);
+      const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+      if (ck) check(H5Pset_layout(dcpl, H5D_COMPACT), "compact");
+      const hid_t d = check_id(H5Dcreate2(axes, kVarNames[var], H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                          dcpl, H5P_DEFAULT), "fixed");
+      H5Pclose(dcpl);
+      check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), "fixed");
+      string_attr(d, "units", kVarUnits[var], fl);
+      H5Dclose(d);
+      H5Sclose(space);
+    }
   }
   {
     std::vector<std::int32_t> slots(static_cast<std::size_t>(spec.n_slots));

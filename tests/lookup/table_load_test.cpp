@@ -91,11 +91,34 @@ TEST(TableLoad, MissingStatus) {
 }
 
 TEST(TableLoad, UnknownMajorVersion) {
+  TempFile file("v3");
+  FixtureSpec spec = tiny_spec();
+  spec.format_version = "3.0";
+  testing::write_fixture(file.path, spec);
+  expect_load_error(file.path, "unsupported format_version '3.0'");
+}
+
+// Format 2 stores each fixed variable as a scalar dataset /axes/<name> (typed, with units)
+// instead of the JSON attribute fixed_axes; format 1 files still load (the tests above).
+TEST(TableLoad, Version2FixedVariablesAsScalarDatasets) {
   TempFile file("v2");
   FixtureSpec spec = tiny_spec();
   spec.format_version = "2.0";
+  spec.fixed_as_datasets = true;
   testing::write_fixture(file.path, spec);
-  expect_load_error(file.path, "unsupported format_version '2.0'");
+  const Table t = Table::load(file.path);
+  EXPECT_EQ(t.format_version(), "2.0");
+  ASSERT_EQ(t.fixed_axes().size(), 4u);
+  EXPECT_EQ(t.fixed_axes()[1].first, "load");
+  EXPECT_EQ(t.fixed_axes()[1].second, 78500.0);
+  State s = t.default_state();
+  EXPECT_EQ(s.load, 78500.0);
+  Result r;
+  t.query(Wheel::kLeft, s, r);
+  EXPECT_FALSE(r.status & status::kOutOfRange);
+  s.load = 60000.0;  // off the fixed value
+  t.query(Wheel::kLeft, s, r);
+  EXPECT_TRUE(r.status & status::kOutOfRange);
 }
 
 TEST(TableLoad, NewerMinorVersionLoads) {

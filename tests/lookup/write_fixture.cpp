@@ -1,6 +1,8 @@
-// Writes a small format-1.0 table (y 9 x xi 5 x eta 3 x phi 3, 2 slots, all parts) for the C
-// example, the install consumer test and the corruption campaign.
-// Usage: railtab_lookup_write_fixture OUT.h5 [--legacy]   (--legacy: format 1.0, no checksums)
+// Writes a small table (y 9 x xi 5 x eta 3 x phi 3, 2 slots, all parts) for the C example, the
+// install consumer test and the corruption campaign: format 2.0 (fixed variables as compact
+// scalar datasets, checksums), or with --format-1.1 the 1.x layout with checksums, or with
+// --legacy format 1.0 without checksums.
+// Usage: railtab_lookup_write_fixture OUT.h5 [--legacy | --format-1.1]
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -8,9 +10,10 @@
 #include "lookup/table_fixture.hpp"
 
 int main(int argc, char** argv) {
-  const bool legacy = argc == 3 && std::string(argv[2]) == "--legacy";
-  if (argc != 2 && !legacy) {
-    std::fprintf(stderr, "usage: %s OUT.h5 [--legacy]\n", argv[0]);
+  const std::string option = argc == 3 ? argv[2] : "";
+  const bool legacy = option == "--legacy", v11 = option == "--format-1.1";
+  if (argc < 2 || argc > 3 || (argc == 3 && !legacy && !v11)) {
+    std::fprintf(stderr, "usage: %s OUT.h5 [--legacy | --format-1.1]\n", argv[0]);
     return 2;
   }
   using namespace railtab::lookup::testing;
@@ -20,6 +23,8 @@ int main(int argc, char** argv) {
                {4, linspace(-0.01, 0.01, 3)},
                {5, linspace(-1.0, 1.0, 3)}};
   spec.checksums = !legacy;
+  spec.format_version = legacy ? "1.0" : v11 ? "1.1" : "2.0";
+  spec.fixed_as_datasets = !legacy && !v11;
   try {
     write_fixture(argv[1], spec);
   } catch (const std::exception& e) {

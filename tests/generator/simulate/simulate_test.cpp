@@ -234,6 +234,7 @@ TEST_F(SimulateTest, RunWritesEveryStepAndTheWornProfileFeedsTheNextStep) {
     // (Hertz) table.
     const Scene step1 = load_scene(out / p / "step1" / "scene.toml");
     EXPECT_EQ(step1.wheel.file.filename(), "wheel_worn.txt");
+    EXPECT_TRUE(fs::exists(out / p / "step1" / "wheel_worn.prw"));  // the same profile for SIMPACK
     EXPECT_EQ(step1.wheel.file.parent_path().filename(), "step1");
     EXPECT_EQ(step1.normal.model, NormalModel::hertz);
   }

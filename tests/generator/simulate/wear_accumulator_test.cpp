@@ -320,6 +320,11 @@ TEST(WornProfile, RoundTripThroughTheProfileReader) {
     ++checked;
   }
   EXPECT_GT(checked, 500);
+  // The SIMPACK copy beside it holds the same profile (17 digits instead of the 9 decimals in mm
+  // of the two-column file).
+  const ProfilePtr simpack = read_profile(dir / "worn.prw", ProfileKind::wheel);
+  EXPECT_DOUBLE_EQ(simpack->u_max(), wheel->u_max());
+  for (double x = -0.06; x < 0.055; x += 0.001) EXPECT_NEAR(simpack->eval(x).z, worn->eval(x).z, 1e-11) << "u = " << x;
   std::filesystem::remove_all(dir);
 }
 

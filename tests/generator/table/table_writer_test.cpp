@@ -15,10 +15,10 @@
 namespace railtab {
 namespace {
 
-// A small but complete format-1.0 table: y x slot geometry and y x load x slot normal parts.
+// A small but complete format-2.0 table: y x slot geometry and y x load x slot normal parts.
 Table small_table(std::size_t ny = 3) {
   Table t;
-  t.attributes = {{"format_version", "1.0"}, {"railtab_version", "0.1.0"}, {"git_commit", "abc"},
+  t.attributes = {{"format_version", "2.0"}, {"railtab_version", "0.1.0"}, {"git_commit", "abc"},
                   {"created", "2024-01-01T00:00:00Z"}, {"scene", "[scene]\nname = \"t\"\n"},
                   {"scene_name", "t"}, {"models", R"({"normal":"hertz"})"}, {"fixed_axes", R"({"roll":0.0})"}};
   TableAxis y{"y", "m", "lateral displacement", {}, false};
@@ -77,10 +77,24 @@ TEST(TableWriter, AxesAreDimensionScalesAttachedToEveryDimension) {
   hid_t load = H5Dopen2(f, "/axes/load", H5P_DEFAULT);
   hid_t d = H5Dopen2(f, "/right/normal/max_pressure", H5P_DEFAULT);
   EXPECT_GT(H5DSis_scale(y), 0);
-  EXPECT_GT(H5DSis_attached(d, y, 0), 0);
-  EXPECT_GT(H5DSis_attached(d, load, 1), 0);
-  EXPECT_GT(H5DSis_attached(d, slot, 2), 0);
-  for (hid_t id : {y, slot, load, d}) H5Dclose(id);
+  EXPECT_GT(H5DSis_scale(slot), 0);
+  // Format 2: each part group holds its own copies of its axes (xarray/netCDF find coordinates
+  // only in the group or its ancestors), and the datasets are attached to those.
+  hid_t gy = H5Dopen2(f, "/right/normal/y", H5P_DEFAULT);
+  hid_t gload = H5Dopen2(f, "/right/normal/load", H5P_DEFAULT);
+  hid_t gslot = H5Dopen2(f, "/right/normal/slot", H5P_DEFAULT);
+  EXPECT_GT(H5DSis_scale(gy), 0);
+  EXPECT_GT(H5DSis_attached(d, gy, 0), 0);
+  EXPECT_GT(H5DSis_attached(d, gload, 1), 0);
+  EXPECT_GT(H5DSis_attached(d, gslot, 2), 0);
+  // The fixed roll is a scalar dataset in /axes, not an attribute holding JSON.
+  hid_t roll = H5Dopen2(f, "/axes/roll", H5P_DEFAULT);
+  ASSERT_GE(roll, 0);
+  hid_t space = H5Dget_space(roll);
+  EXPECT_EQ(H5Sget_simple_extent_ndims(space), 0);
+  EXPECT_EQ(H5Aexists(f, "fixed_axes"), 0);
+  H5Sclose(space);
+  for (hid_t id : {y, slot, load, d, gy, gload, gslot, roll}) H5Dclose(id);
   H5Fclose(f);
 }
 
@@ -127,17 +141,17 @@ TEST(TableWriter, CancelRemovesTemporaryAndKeepsOldTarget) {
 TEST(TableReader, RejectsUnknownMajorVersion) {
   testing::TempDir dir("reader_version");
   Table t = small_table();
-  t.set_attribute("format_version", "2.0");
+  t.set_attribute("format_version", "3.0");
   write_table(t, dir / "t.h5");
   try {
     read_table(dir / "t.h5");
-    FAIL() << "version 2.0 accepted";
+    FAIL() << "version 3.0 accepted";
   } catch (const Error& e) {
     std::string m = e.what();
     EXPECT_NE(m.find((dir / "t.h5").string()), std::string::npos) << m;
-    EXPECT_NE(m.find("format version 2.0 is not supported"), std::string::npos) << m;
+    EXPECT_NE(m.find("format version 3.0 is not supported"), std::string::npos) << m;
   }
-  t.set_attribute("format_version", "1.7");  // newer minor: accepted
+  t.set_attribute("format_version", "2.7");  // newer minor: accepted
   write_table(t, dir / "t.h5");
   EXPECT_NO_THROW(read_table(dir / "t.h5"));
 }
@@ -184,26 +198,41 @@ TEST(TableReader, RejectsMissingDatasetsAndForeignFiles) {
 namespace railtab {
 namespace {
 
-// Format 1.1 integrity (issue #19 item 5): every dataset with HDF5's Fletcher32 checksum (a
-// scalar: compact, inside its checksummed object header), the HDF5 1.10 file format (metadata
-// checksums) and fixed-length string attributes.
-herr_t check_object(hid_t loc, const char* name, const H5O_info_t* info, void* failures) {
-  auto& out = *static_cast<std::vector<std::string>*>(failures);
+// Format integrity (since 1.1, issue #19 item 5): every dataset with HDF5's Fletcher32 checksum
+// (a scalar: compact, inside its checksummed object header), the HDF5 1.10 file format (metadata
+// checksums) and fixed-length string attributes everywhere (string arrays of format 2 too).
+struct Failures {
+  std::vector<std::string> list;
+  std::string object;   // the object whose attributes are being checked
+  int strings = 0;      // string attributes seen
+};
+
+herr_t check_attribute(hid_t loc, const char* name, const H5A_info_t*, void* data) {
+  auto& f = *static_cast<Failures*>(data);
+  const hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+  const hid_t t = H5Aget_type(a);
+  if (H5Tget_class(t) == H5T_STRING) {
+    ++f.strings;
+    if (H5Tis_variable_str(t) > 0) f.list.push_back(f.object + "/" + name + ": variable-length");
+  }
+  H5Tclose(t);
+  H5Aclose(a);
+  return 0;
+}
+
+herr_t check_object(hid_t loc, const char* name, const H5O_info_t* info, void* data) {
+  auto& f = *static_cast<Failures*>(data);
+  const hid_t o = H5Oopen(loc, name, H5P_DEFAULT);
+  f.object = name;
+  H5Aiterate2(o, H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, check_attribute, &f);
+  H5Oclose(o);
   if (info->type != H5O_TYPE_DATASET) return 0;
   const hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
   const hid_t dcpl = H5Dget_create_plist(d);
   const bool fletcher = H5Pget_filter_by_id2(dcpl, H5Z_FILTER_FLETCHER32, nullptr, nullptr, nullptr, 0,
                                              nullptr, nullptr) >= 0;
-  if (!fletcher && H5Pget_layout(dcpl) != H5D_COMPACT) out.push_back(std::string(name) + ": no checksum");
+  if (!fletcher && H5Pget_layout(dcpl) != H5D_COMPACT) f.list.push_back(std::string(name) + ": no checksum");
   H5Pclose(dcpl);
-  for (const char* attr : {"units", "description", "axes"}) {
-    if (H5Aexists(d, attr) <= 0) continue;
-    const hid_t a = H5Aopen(d, attr, H5P_DEFAULT);
-    const hid_t t = H5Aget_type(a);
-    if (H5Tis_variable_str(t) > 0) out.push_back(std::string(name) + "/" + attr + ": variable-length");
-    H5Tclose(t);
-    H5Aclose(a);
-  }
   H5Dclose(d);
   return 0;
 }
@@ -219,14 +248,12 @@ TEST(TableWriter, EveryDatasetAndTheMetadataAreChecksummed) {
   H5F_info2_t info{};
   ASSERT_GE(H5Fget_info2(f, &info), 0);
   EXPECT_GE(info.super.version, 2u);  // superblock 2+: checksummed metadata
-  std::vector<std::string> failures;
+  Failures failures;
   ASSERT_GE(H5Ovisit(f, H5_INDEX_NAME, H5_ITER_NATIVE, check_object, &failures), 0);
-  EXPECT_TRUE(failures.empty()) << failures.front();
-  const hid_t a = H5Aopen(f, "fixed_axes", H5P_DEFAULT);
-  const hid_t type = H5Aget_type(a);
-  EXPECT_EQ(H5Tis_variable_str(type), 0);
-  H5Tclose(type);
-  H5Aclose(a);
+  failures.object = "/";
+  ASSERT_GE(H5Aiterate2(f, H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, check_attribute, &failures), 0);
+  EXPECT_TRUE(failures.list.empty()) << failures.list.front();
+  EXPECT_GT(failures.strings, 20);  // units, descriptions, axes, provenance, slot_names, flags ...
   H5Fclose(f);
   Table r = read_table(dir / "t.h5");  // fixed-length UTF-8 strings read back exactly
   EXPECT_EQ(r.attributes, t.attributes);

@@ -1,0 +1,70 @@
+// -q/--quiet, the diagnostics stream and the early output checks of every command (cli_common.hpp).
+#include "cli/cli_common.hpp"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <system_error>
+
+#include "core/check.hpp"
+
+namespace railtab {
+namespace {
+
+// A stream buffer that accepts and drops everything.
+class NullBuffer : public std::streambuf {
+ protected:
+  int overflow(int c) override { return c; }
+};
+
+// Creates and removes one probe file in `dir`; the error names `what` (the user's path).
+void probe(const std::filesystem::path& dir, const std::filesystem::path& what) {
+  const std::filesystem::path file = dir / (".railtab-write-check." + std::to_string(::getpid()));
+  std::ofstream out(file);
+  const int error = errno;
+  RAILTAB_CHECK(out.is_open(), "{}: cannot write there ({}); refused before starting", what.string(),
+                std::strerror(error));
+  out.close();
+  std::error_code ignored;
+  std::filesystem::remove(file, ignored);
+}
+
+}  // namespace
+
+std::shared_ptr<bool> add_quiet_flag(CLI::App* cmd) {
+  auto quiet = std::make_shared<bool>(false);
+  cmd->add_flag("-q,--quiet", *quiet, "No progress or diagnostics on stderr (results and errors are still printed)");
+  return quiet;
+}
+
+std::ostream& diagnostics(bool quiet) {
+  static NullBuffer null_buffer;
+  static std::ostream null_stream(&null_buffer);
+  return quiet ? null_stream : std::cerr;
+}
+
+void require_writable_file(const std::filesystem::path& target) {
+  RAILTAB_CHECK(!target.empty(), "output path is empty");
+  std::error_code ec;
+  RAILTAB_CHECK(!std::filesystem::is_directory(target, ec), "{}: is a directory, a file name is needed",
+                target.string());
+  const std::filesystem::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  RAILTAB_CHECK(std::filesystem::is_directory(dir, ec), "{}: directory {} does not exist; refused before starting",
+                target.string(), dir.string());
+  probe(dir, target);
+}
+
+void require_writable_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  RAILTAB_CHECK(!ec && std::filesystem::is_directory(dir), "{}: cannot create the output directory ({}); refused "
+                "before starting", dir.string(), ec ? ec.message() : "not a directory");
+  probe(dir, dir);
+}
+
+}  // namespace railtab

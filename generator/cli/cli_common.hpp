@@ -1,0 +1,28 @@
+// What every railtab command shares: -q/--quiet, a stream for diagnostics (stderr, or nothing when
+// quiet), and refusing an output that cannot be written before any long work starts.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <ostream>
+
+namespace CLI {
+class App;
+}
+
+namespace railtab {
+
+// Adds -q/--quiet ("no progress or diagnostics on stderr; results and errors still printed").
+std::shared_ptr<bool> add_quiet_flag(CLI::App* cmd);
+
+// Where diagnostics go: std::cerr, or a stream that drops everything when `quiet`.
+std::ostream& diagnostics(bool quiet);
+
+// Throws railtab::Error naming the path unless a file can be created at `target` (its directory
+// exists and is writable): probes with a temporary file that is removed at once.
+void require_writable_file(const std::filesystem::path& target);
+
+// Creates `dir` (with parents) and throws railtab::Error naming it unless a file can be created in it.
+void require_writable_directory(const std::filesystem::path& dir);
+
+}  // namespace railtab

@@ -1,0 +1,179 @@
+"""railtab.Table: a contact table loaded with railtab's lookup, queried on numpy arrays."""
+import os
+
+import numpy as np
+
+from . import _railtab
+from ._status import cf_flag_attributes
+from ._units import AXIS_UNITS, OUTPUT_UNITS
+
+_STATE = ("y", "roll", "load", "xi", "eta", "phi")
+_CREEPAGES = ("xi", "eta", "phi")  # default 0 (pure rolling) when tabulated and not given
+_WHEELS = {"left": 0, "right": 1}
+
+
+def _wheel_codes(wheel):
+    """'left'/'right'/0/1, or an array of them, as int32 codes 0/1."""
+    if isinstance(wheel, str):
+        if wheel not in _WHEELS:
+            raise ValueError(f"wheel must be 'left' or 'right', got {wheel!r}")
+        return np.array(_WHEELS[wheel], dtype=np.int32)
+    arr = np.asarray(wheel)
+    if arr.dtype.kind in "US":
+        bad = set(np.unique(arr)) - set(_WHEELS)
+        if bad:
+            raise ValueError(f"wheel must be 'left' or 'right', got {sorted(bad)}")
+        return (arr == "right").astype(np.int32)
+    codes = arr.astype(np.int32)
+    if codes.size and not np.isin(codes, (0, 1)).all():
+        raise ValueError("wheel must be 0 (left) or 1 (right)")
+    return codes
+
+
+def _flat(arr, shape, n):
+    """One value, or the array broadcast to `shape` and flattened (a view when possible)."""
+    if arr.size == 1:
+        return arr.reshape(1)
+    return np.broadcast_to(arr, shape).reshape(n)
+
+
+class QueryResult(dict):
+    """Named arrays of a query (used when xarray is absent, or with as_xarray=False).
+
+    Keys: every output of the table's parts, 'status' and 'part_status', and the state variables
+    given. `units[name]` gives the SI unit, `dims[name]` the dimension names, `attrs` the table."""
+
+    def __init__(self):
+        super().__init__()
+        self.units = {}
+        self.dims = {}
+        self.attrs = {}
+
+
+class Table:
+    """A wheel-rail contact table (docs/table-format.md), loaded once, queried vectorised."""
+
+    def __init__(self, native):
+        self._t = native
+
+    @classmethod
+    def load(cls, path, method="linear"):
+        """Loads a table file. method: 'linear' (default), 'cubic' or 'monotone-cubic'.
+
+        Raises OSError naming the file and the problem (missing, corrupt, unknown version)."""
+        return cls(_railtab.Table.load(os.fspath(path), method))
+
+    path = property(lambda self: self._t.path)
+    method = property(lambda self: self._t.method)
+    n_slots = property(lambda self: self._t.n_slots)
+    parts = property(lambda self: self._t.parts, doc="parts held: 'geometry', 'normal', ...")
+    axes = property(lambda self: self._t.axes, doc="tabulated axes: name -> nodes (SI)")
+    fixed_axes = property(lambda self: self._t.fixed_axes, doc="untabulated variables -> value")
+    format_version = property(lambda self: self._t.format_version)
+    scene_name = property(lambda self: self._t.scene_name)
+    memory_bytes = property(lambda self: self._t.memory_bytes)
+
+    def outputs(self):
+        """Names of the outputs this table holds, in file order."""
+        parts = set(self.parts)
+        return [name for name, part in _railtab.OUTPUTS if part in parts]
+
+    def __repr__(self):
+        axes = ", ".join(f"{k}[{len(v)}]" for k, v in self.axes.items())
+        return f"<railtab.Table {self.path!r} scene={self.scene_name!r} axes: {axes}>"
+
+    def query(self, wheel, y=None, roll=None, load=None, xi=None, eta=None, phi=None, *, slot=None,
+              as_xarray=None):
+        """Interpolates the table at many states at once.
+
+        wheel: 'left', 'right' (or 0, 1, or an array of them). y [m], roll [rad], load [N],
+        xi, eta [1], phi [rad/m]: numbers or numpy arrays, broadcast against each other (numpy
+        rules). A tabulated y, roll or load must be given; a creepage axis not given is 0; an
+        untabulated variable defaults to the table's fixed value (another value is flagged
+        out_of_range, as in the C++ lookup). slot: None for every slot (0 = tread, 1 = flange),
+        or one slot only (half the cost).
+
+        Returns an xarray.Dataset when xarray is installed (as_xarray=None) or asked for
+        (as_xarray=True), else a QueryResult dict. Either way every output of the table's parts
+        has dims (*state dims, 'slot') and SI units; 'status' holds the status bits with the CF
+        attributes flag_masks / flag_meanings (railtab.decode_status turns them into text);
+        'part_status' holds them per part. Never extrapolates: outside the table the values are
+        clamped to the edge and flagged out_of_range.
+        """
+        given = {"y": y, "roll": roll, "load": load, "xi": xi, "eta": eta, "phi": phi}
+        fixed = self.fixed_axes
+        axes = self.axes
+        values = {}
+        for name in _STATE:
+            v = given[name]
+            if v is None:
+                if name in fixed:
+                    v = fixed[name]
+                elif name in axes and name not in _CREEPAGES:
+                    raise TypeError(f"{name} is an axis of {self.path}: give {name}=... "
+                                    f"(range {axes[name][0]:g} .. {axes[name][-1]:g} {AXIS_UNITS[name]})")
+                else:
+                    v = 0.0
+            values[name] = np.asarray(v, dtype=np.float64)
+        codes = _wheel_codes(wheel)
+        shape = np.broadcast_shapes(codes.shape, *(a.shape for a in values.values()))
+        n = int(np.prod(shape, dtype=np.int64))
+        slot_arg = -1 if slot is None else int(slot)
+        raw, part_status, status = self._t._query_arrays(
+            n, _flat(codes, shape, n), *(_flat(values[k], shape, n) for k in _STATE), slot_arg)
+        slots = raw.shape[1]
+        raw = raw.reshape(shape + (slots, raw.shape[2]))
+        part_status = part_status.reshape(shape + (slots, part_status.shape[2]))
+        status = status.reshape(shape + (slots,))
+        state_dims = ("state",) if len(shape) == 1 else tuple(f"state_{i}" for i in range(len(shape)))
+        slot_coord = np.arange(slots) if slot is None else np.array([slot_arg])
+        out = QueryResult()
+        out.attrs = {"table": self.path, "scene_name": self.scene_name, "method": self.method,
+                     "format_version": self.format_version}
+        parts = set(self.parts)
+        for k, (name, part) in enumerate(_railtab.OUTPUTS):
+            if part in parts:
+                out[name] = raw[..., k]
+                out.units[name] = OUTPUT_UNITS[name]
+                out.dims[name] = state_dims + ("slot",)
+        out["status"] = status
+        out.dims["status"] = state_dims + ("slot",)
+        out["part_status"] = part_status
+        out.dims["part_status"] = state_dims + ("slot", "part")
+        out["slot"] = slot_coord
+        out.dims["slot"] = ("slot",)
+        for name in _STATE:
+            if given[name] is not None:
+                out[name] = np.broadcast_to(values[name], shape)
+                out.units[name] = AXIS_UNITS[name]
+                out.dims[name] = state_dims
+        out["wheel"] = np.broadcast_to(codes, shape)
+        out.dims["wheel"] = state_dims
+        if as_xarray is None:
+            try:
+                import xarray  # noqa: F401
+                as_xarray = True
+            except ImportError:
+                as_xarray = False
+        return _to_xarray(out, given) if as_xarray else out
+
+
+def _to_xarray(result, given):
+    """The QueryResult as an xarray.Dataset: state variables and slot as coordinates."""
+    import xarray as xr
+
+    coords = {"slot": ("slot", result["slot"], {"description": "0 = tread, 1 = flange"}),
+              "part": ("part", np.array(_railtab.PARTS)),
+              "wheel": (result.dims["wheel"], result["wheel"], {"description": "0 = left, 1 = right"})}
+    for name in _STATE:
+        if given[name] is not None:
+            coords[name] = (result.dims[name], result[name], {"units": result.units[name]})
+    data = {}
+    for name, arr in result.items():
+        if name in coords:
+            continue
+        attrs = {"units": result.units[name]} if name in result.units else {}
+        if name in ("status", "part_status"):
+            attrs.update(cf_flag_attributes())
+        data[name] = (result.dims[name], arr, attrs)
+    return xr.Dataset(data, coords=coords, attrs=result.attrs)

@@ -1,0 +1,62 @@
+"""The railtab program's hygiene (issue 16 item 7): results on stdout, diagnostics on stderr,
+-q/--quiet on every command, exit codes documented in --help, an unwritable output refused
+before any work starts."""
+import subprocess
+
+import pytest
+
+from conftest import SOURCE_DIR
+
+COMMANDS = ["eval", "generate", "inspect", "query", "merge", "chart-geometry", "chart-pressure", "chart-stability",
+            "chart", "simulate"]
+SCENE = str(SOURCE_DIR / "tables" / "default.toml")
+
+
+def run(program, *args, **kw):
+    return subprocess.run([program, *args], capture_output=True, text=True, **kw)
+
+
+def test_help_documents_exit_codes(railtab_program):
+    r = run(railtab_program, "--help")
+    assert r.returncode == 0
+    for code in ("0 success", "1 error", "2 usage error", "130 interrupted"):
+        assert code in r.stdout
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_every_command_has_quiet(railtab_program, command):
+    r = run(railtab_program, command, "--help")
+    assert r.returncode == 0 and "-q,--quiet" in r.stdout
+
+
+def test_usage_error_is_exit_code_2(railtab_program):
+    r = run(railtab_program, "eval", "--no-such-option")
+    assert r.returncode == 2 and r.stdout == "" and "no-such-option" in r.stderr
+
+
+def test_results_on_stdout_diagnostics_on_stderr(railtab_program, default_table, tmp_path):
+    for args in (["eval", "--scene", SCENE, "--y", "0.002", "--json"],
+                 ["query", str(default_table), "--y", "0.002", "--load", "78500"],
+                 ["inspect", str(default_table)]):
+        r = run(railtab_program, *args)
+        assert r.returncode == 0 and r.stdout and r.stderr == "", args
+    scene = (SOURCE_DIR / "tables" / "default.toml").read_text().replace(
+        "phi = [-0.3, 0.0, 0.3]", "phi = [0.0]").replace("eta = [-0.004, -0.001, 0.0, 0.001, 0.004]", "eta = [0.0]")
+    (tmp_path / "s.toml").write_text(scene)
+    r = run(railtab_program, "generate", str(tmp_path / "s.toml"), "-o", str(tmp_path / "s.h5"), "--threads", "1")
+    assert r.returncode == 0 and r.stdout == "" and r.stderr      # progress and summary on stderr
+    r = run(railtab_program, "generate", str(tmp_path / "s.toml"), "-o", str(tmp_path / "q.h5"), "-q")
+    assert r.returncode == 0 and r.stdout == "" and r.stderr == ""
+    assert (tmp_path / "q.h5").exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["generate", SCENE, "-o", "/proc/railtab-not-writable/t.h5"],
+    ["generate", SCENE, "-o", "/nonexistent-railtab-dir/t.h5"],
+    ["simulate", str(SOURCE_DIR / "tables" / "sim" / "r600.toml"), "--out", "/proc/railtab-not-writable"],
+    ["chart-stability", "--scene", SCENE, "--out", "/proc/railtab-not-writable"],
+])
+def test_unwritable_output_refused_before_work(railtab_program, args):
+    r = run(railtab_program, *args, timeout=20)   # refused at once: no sweep, no table generation
+    assert r.returncode == 1 and r.stdout == ""
+    assert "refused before starting" in r.stderr and "progress" not in r.stderr

@@ -1,0 +1,42 @@
+"""The Python example of README.md runs as written (in a directory holding the default table
+made by `railtab generate tables/default.toml -o default.h5`, and tables/ of the source tree),
+and its table creep curve agrees with the direct model it prints beside it."""
+import contextlib
+import io
+import os
+import re
+
+import numpy as np
+
+from conftest import SOURCE_DIR
+
+
+def readme_example():
+    text = (SOURCE_DIR / "README.md").read_text()
+    match = re.search(r"<!-- python-example -->\s*```python\n(.*?)```", text, re.S)
+    assert match, "README.md lost its Python example (marker <!-- python-example -->)"
+    return match.group(1)
+
+
+def test_readme_example_runs_as_written(default_table, tmp_path):
+    code = readme_example()
+    (tmp_path / "default.h5").symlink_to(default_table)
+    (tmp_path / "tables").symlink_to(SOURCE_DIR / "tables")
+    old = os.getcwd()
+    os.chdir(tmp_path)
+    out = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(out):
+            exec(compile(code, "README.md example", "exec"), {})
+    finally:
+        os.chdir(old)
+    rows = np.array([[float(v) for v in line.replace("[", " ").replace("]", " ").split()]
+                     for line in out.getvalue().strip().splitlines()])
+    assert rows.shape == (9, 3)                        # xi, table fx, direct fx
+    xi, table, direct = rows.T
+    assert np.all(np.diff(table) < 0)                  # the creep curve falls with xi
+    # table against direct: linear interpolation between the creepage nodes of the default scene
+    # (xi nodes 0, +-1, +-2, +-4 e-3); at the nodes they agree to rounding.
+    nodes = np.isin(np.round(xi * 1e3), [-4, -2, -1, 0, 1, 2, 4])
+    np.testing.assert_allclose(table[nodes], direct[nodes], rtol=1e-6, atol=1e-3)
+    assert np.max(np.abs(table - direct)) < 0.05 * 0.3 * 78.5e3

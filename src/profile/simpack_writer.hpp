@@ -1,0 +1,31 @@
+// Writing a profile as a SIMPACK rail-wheel profile (.prw wheel, .prr rail), the format other
+// vehicle-dynamics tools (SIMPACK, CONTACT, GENSYS importers) read. The counterpart of
+// read_profile (profile/profile_io.hpp); docs/profiles.md describes the format.
+#pragma once
+
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "profile/profile.hpp"
+
+namespace railtab {
+
+// The file text of a SIMPACK profile through the points (u [m] towards the field side, z [m] up;
+// the profile frame of docs/conventions.md), ascending u. Written in SIMPACK's / CONTACT's frame
+// (y = u, z = -z, in mm, `units.len.f = 1000`) with every processing option neutral (no shift,
+// rotation, bounds, mirroring or inversion), so read_profile gives the points back (to rounding
+// in the 16th digit). `comment` goes to the spline block's `comment` (quotes are replaced by
+// spaces). Deterministic: no dates. Throws railtab::Error for fewer than 4 points, u and z of
+// different lengths, a non-finite number or u not strictly increasing.
+std::string simpack_profile_text(ProfileKind kind, std::span<const double> u, std::span<const double> z,
+                                 std::string_view comment = {});
+
+// Writes simpack_profile_text to `file`, through a temporary name renamed when complete. The
+// extension must be .prw for a wheel and .prr for a rail (another tool decides the kind by it).
+// Throws railtab::Error naming the file for a wrong extension or an I/O error.
+void write_simpack_profile(const std::filesystem::path& file, ProfileKind kind, std::span<const double> u,
+                           std::span<const double> z, std::string_view comment = {});
+
+}  // namespace railtab
