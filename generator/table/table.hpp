@@ -14,8 +14,8 @@
 namespace railtab {
 
 inline constexpr int kTableFormatMajor = 1;
-inline constexpr int kTableFormatMinor = 0;
-inline constexpr const char* kTableFormatVersion = "1.0";
+inline constexpr int kTableFormatMinor = 1;
+inline constexpr const char* kTableFormatVersion = "1.1";  // 1.1: creep part may hold the normal contact per creepage (issue 14)
 
 struct TableAxis {
   std::string name;          // "y", "roll", "load", "xi", "eta", "phi", "slot"
