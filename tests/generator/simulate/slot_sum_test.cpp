@@ -223,7 +223,8 @@ TEST(SlotSum, TableSlotCarriesBothPatchesAndTheLoadBalances) {
   EXPECT_GT(second * std::cos(st.normal.patches[static_cast<std::size_t>(st.slots.patch[0][1])].contact_angle),
             spread + 1e-6 * kLoad);
 
-  // Creep at every creepage node: the slot's sum (axes y, load, xi, eta, phi, slot).
+  // Creep at every creepage node: the slot's sum (axes y, load, xi, eta, phi, slot), on the normal
+  // contact of that creepage (load coupling, issue 14: both patches at the node's creepage).
   const TableGroup& creep = *table.group("left/creep");
   const CreepConditions conditions = creep_conditions(s);
   const FastsimOptions options = fastsim_options(s);
@@ -232,8 +233,16 @@ TEST(SlotSum, TableSlotCarriesBothPatchesAndTheLoadBalances) {
   for (double xi : s.grids.xi) {
     for (double eta : s.grids.eta) {
       for (double phi : s.grids.phi) {
-        const FastsimResult r = slot_creep(st.geometry, st.normal, st.slots, 0, Creepage{xi, eta, phi}, conditions,
-                                           s.material, options, ws);
+        const Creepage c{xi, eta, phi};
+        CoupledLoadResult coupled;
+        solve_coupled_load(st.geometry, kLoad, st.normal, s.material, s.normal,
+                           fastsim_tangential(st.geometry, [&](std::size_t, const ContactPatch&) { return c; },
+                                              conditions, s.material, options, ws),
+                           coupled_load_options(s), coupled);
+        const PatchSlots slots = assign_patch_slots(coupled.normal, Side::left, s.geometry.flange_angle);
+        ASSERT_TRUE(slots.occupied(0));
+        const FastsimResult r = slot_creep(st.geometry, coupled.normal, slots, 0, c, conditions, s.material, options, ws);
+        EXPECT_EQ(creep.find("normal_force")->values[cell * kSlots], slot_normal(coupled.normal, slots, 0).normal_force);
         const std::size_t i = cell++ * kSlots;
         EXPECT_EQ(creep.find("fx")->values[i], r.fx) << xi << " " << eta << " " << phi;
         EXPECT_EQ(creep.find("fy")->values[i], r.fy);
