@@ -169,8 +169,8 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
 // creepage (the table has one creepage per slot, shared by the slots in two-point contact). Both
 // slots' creep and wear cells and the creep part's normal outputs of that creepage are written.
 void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geometry,
-                         const WheelNormalResult& uncoupled, const ColumnState& state, std::size_t wheel,
-                         std::size_t il, ColumnOutput& out) {
+                         const WheelNormalResult& uncoupled, const PatchSlots& uncoupled_slots,
+                         const ColumnState& state, std::size_t wheel, std::size_t il, ColumnOutput& out) {
   FastsimWorkspace& workspace = thread_fastsim_workspace();
   thread_local WearDistribution distribution;
   thread_local CoupledLoadResult coupled;
@@ -187,13 +187,16 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
                              fastsim_tangential(geometry, [&](std::size_t, const ContactPatch&) { return creepage; },
                                                 k.creep, k.material, k.fastsim, workspace),
                              k.coupling, coupled);
-          const StatusBits solver_bits = (coupled.normal.status & status::kNotConverged) | coupled.status;
+          const StatusBits not_converged = (coupled.normal.status | coupled.status) & status::kNotConverged;
           const PatchSlots slots = assign_patch_slots(coupled.normal, geometry.side, flange_angle);
           for (std::size_t s = 0; s < kSlots; ++s) {
             const std::size_t cell = cells + s;
-            if (!slots.occupied(s)) {  // no loaded patch in this slot at this creepage: zeros
-              out.status(wheel, kCreepPart)[cell] = status::kConverged | status::kLiftOff;
-              out.status(wheel, kWearPart)[cell] = status::kConverged | status::kLiftOff;
+            if (!slots.occupied(s)) {
+              // No patch here at this creepage: zeros; status 0 (no contact) as in the normal part,
+              // or converged,lift_off where the creepage-free solution had one (lifted by the coupling).
+              const StatusBits bits = uncoupled_slots.occupied(s) ? status::kConverged | status::kLiftOff : 0u;
+              out.status(wheel, kCreepPart)[cell] = bits;
+              out.status(wheel, kWearPart)[cell] = bits;
               continue;
             }
             const ContactPatch patch = slot_normal(coupled.normal, slots, s);
@@ -202,9 +205,10 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
             const FastsimResult creep =
                 slot_creep(geometry, coupled.normal, slots, s, creepage, k.creep, k.material, k.fastsim, workspace, &wear);
             store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
-            // Status: the creep forces' bits, the patch's (normal) bits, the coupling's verdict.
+            // Status: the creep forces' bits as without the coupling, plus not_converged when the
+            // coupled solve (or a normal solve in it) missed its tolerance.
             out.status(wheel, kCreepPart)[cell] =
-                ((creep.status | patch.status) & ~status::kConverged) | solver_bits | slots.extra[s];
+                (not_converged ? creep.status & ~status::kConverged : creep.status) | slots.extra[s] | not_converged;
             store(kWearOutputs, wear.result, out, wheel, kWearPart, cell);
             out.status(wheel, kWearPart)[cell] = wear.result.status | slots.extra[s];
           }
@@ -276,7 +280,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
         store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
         out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | patch_slots.extra[s];
       }
-      if (!normal.patches.empty()) solve_creep_coupled(k, geometry, normal, state, wheel, il, out);
+      if (!normal.patches.empty()) solve_creep_coupled(k, geometry, normal, patch_slots, state, wheel, il, out);
       continue;
     }
     for (std::size_t s = 0; s < kSlots; ++s) {
