@@ -104,8 +104,10 @@ inline void check_kernel_layout(const SweepKernel& kernel) {
     ASSERT_EQ(kernel.parts[static_cast<std::size_t>(p)].name, lk::part_name(static_cast<lk::Part>(p)));
   const std::vector<int> index = lookup_outputs(kernel);
   int o = 0;
-  for (int k : index)
-    if (k >= 0) ASSERT_EQ(k, o++);
+  for (int k : index) {
+    if (k < 0) continue;
+    ASSERT_EQ(k, o++);
+  }
   ASSERT_EQ(o, lk::kNumOutputs);
 }
 
