@@ -69,8 +69,10 @@ void solve_coupled_load(const WheelContactGeometry& geometry, double vertical_lo
 
   double x1 = out.normal.vertical_approach;
   double g1 = balance_variable(v1, vertical_load);
-  // Second point: the normal load the balance asks for, reached as Hertz would (delta ~ W^(2/3)).
-  const double wanted = vertical_load - out.tangential_vertical;
+  // Second point: the normal load the balance asks for if the creep forces' share scales with the
+  // normal load (as near saturation: Wn (1 + T0/Wn0) = Q), reached as Hertz would (delta ~ W^(2/3)).
+  const double share = out.tangential_vertical / std::max(out.normal_vertical, 1e-300);
+  const double wanted = vertical_load / std::max(1.0 + share, 0.05);
   const double ratio = std::clamp(wanted / std::max(out.normal_vertical, 1e-300), 0.05, 20.0);
   double x0 = x1, g0 = g1;
   double next = h_min + (x1 - h_min) * std::cbrt(ratio * ratio);
