@@ -9,8 +9,9 @@
 //
 // Method: secant on the vertical approach, in the variable V^(2/3) (V the total vertical force,
 // nearly linear in the approach), starting from the uncoupled solution (which the caller usually
-// has already: a table shares it between all creepages of a load) and a second point scaled from
-// it as Hertz would (N ~ delta^(3/2)); a bracket is kept once the residual changes sign. Every
+// has already: a table shares it between all creepages of a load) and a second point at the normal
+// load the balance needs if the creep share scales with N, its approach scaled as Hertz would
+// (N ~ delta^(3/2)); a bracket is kept once the residual changes sign. Every
 // iteration is one normal solve at a given approach plus one tangential solve per patch.
 #pragma once
 
