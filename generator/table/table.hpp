@@ -14,8 +14,10 @@
 namespace railtab {
 
 inline constexpr int kTableFormatMajor = 1;
-inline constexpr int kTableFormatMinor = 1;
-inline constexpr const char* kTableFormatVersion = "1.1";  // 1.1: checksums (docs/table-format.md)
+inline constexpr int kTableFormatMinor = 2;
+// 1.1: checksums; 1.2: the creep part may hold the normal contact per creepage (issue 14).
+// docs/table-format.md gives the history.
+inline constexpr const char* kTableFormatVersion = "1.2";
 
 struct TableAxis {
   std::string name;          // "y", "roll", "load", "xi", "eta", "phi", "slot"
