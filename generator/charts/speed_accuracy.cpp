@@ -104,23 +104,32 @@ struct Chain {
   FastsimOptions fastsim;
   CreepConditions creep;
   WearOptions wear;
+  CoupledLoadOptions coupling;
 };
 
 SaOutcome evaluate(const Chain& c, const SaState& s, FastsimWorkspace& ws, WearDistribution& dist,
                    double& sink) {
   SaOutcome out;
   const WheelContactGeometry g = c.solver->solve_wheel(Side::right, WheelsetState{s.y, 0.0});
-  const WheelNormalResult n = solve_normal_for_load(g, s.load, c.material, c.normal);
   CreepConditions cc = c.creep;
   cc.friction = s.friction;
+  const Creepage creepage{s.xi, s.eta, s.phi};
+  // The load is carried by normal and creep forces together (issue 14, scene key load_coupling).
+  CoupledLoadResult coupled;
+  solve_coupled_load(g, s.load, solve_normal_for_load(g, s.load, c.material, c.normal), c.material, c.normal,
+                     fastsim_tangential(g, [&](std::size_t, const ContactPatch&) { return creepage; }, cc,
+                                        c.material, c.fastsim, ws),
+                     c.coupling, coupled);
+  const WheelNormalResult& n = coupled.normal;
   double fmax = -1.0;
   for (const ContactPatch& p : n.patches) {
     if (!(p.normal_force > 0.0)) continue;
-    const FastsimResult f = fastsim_contact(g, p, Creepage{s.xi, s.eta, s.phi}, cc, c.material, c.fastsim, ws);
+    const FastsimResult f = fastsim_contact(g, p, creepage, cc, c.material, c.fastsim, ws);
     const WearResult w = archard_wear(ws, c.wear, dist);
     sink += w.wear_rate;
     out.fx += f.fx;
     out.fy += f.fy;
+    out.fn += p.normal_force;
     out.area += p.area;
     out.pmax = std::max(out.pmax, p.max_pressure);
     if (p.normal_force > fmax) {
@@ -139,6 +148,7 @@ SaOutcome from_lookup(const lk::Result& r) {
     const lk::Contact& c = r.contact[k];
     const double fn = c.value[lk::kNormalForce];
     if (!(fn > 0.0)) continue;
+    out.fn += fn;
     out.fx += c.value[lk::kFx];
     out.fy += c.value[lk::kFy];
     out.area += c.value[lk::kArea];
@@ -293,10 +303,12 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
   base.fastsim = fastsim_options(mscene);
   base.creep = creep_conditions(mscene);
   base.wear = wear_options(mscene);
+  base.coupling = coupled_load_options(mscene);
   res.setup = fmt::format(
-      "right wheel, roll 0, Fz {:g} kN, mu {:g}, E {:g} GPa, nu {:g}, spin {}, negative curvature {}", load * 1e-3,
-      friction, mscene.material.youngs_modulus * 1e-9, mscene.material.poisson_ratio,
-      mscene.tangential.spin_per_strip ? "per strip" : "patch-constant", to_string(mscene.normal.negative_curvature));
+      "right wheel, roll 0, Fz {:g} kN, mu {:g}, E {:g} GPa, nu {:g}, spin {}, negative curvature {}, load coupling {}",
+      load * 1e-3, friction, mscene.material.youngs_modulus * 1e-9, mscene.material.poisson_ratio,
+      mscene.tangential.spin_per_strip ? "per strip" : "patch-constant", to_string(mscene.normal.negative_curvature),
+      mscene.tangential.load_coupling ? "on" : "off");
 
   FastsimWorkspace ws;
   WearDistribution dist;

@@ -36,6 +36,7 @@ struct SaState {
   double ref_area = 0.0;              // [m2]
   double ref_pmax = 0.0;              // [Pa]
   double ref_angle = 0.0;             // contact angle, track frame [rad]
+  double ref_fn = 0.0;                // normal force (sum over patches) [N]
 };
 
 // What one evaluation gives (summed over patches/slots: CONTACT has one patch per case).
@@ -44,6 +45,8 @@ struct SaOutcome {
   double area = 0.0;          // [m2] sum over patches
   double pmax = 0.0;          // [Pa] max over patches
   double angle = 0.0;         // contact angle of the patch with the largest normal force [rad]
+  double fn = 0.0;            // [N] normal force, sum over patches (with the load coupling: at the
+                              //   state's creepage, issue 14)
   bool ok = false;            // a loaded contact was found
 };
 

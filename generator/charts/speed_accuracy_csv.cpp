@@ -52,14 +52,14 @@ void write_states_csv(const SpeedAccuracyResult& result, const std::filesystem::
   RAILTAB_CHECK(out.good(), "cannot write {}", path.string());
   header_comments(out, result);
   out << "label,dy_mm,y_m,creep_set,xi,eta,phi_rad_per_m,flange,fx_N,fy_N,ref_fx_N,ref_fy_N,err_force,area_m2,"
-         "ref_area_m2,pmax_Pa,ref_pmax_Pa,contact_angle_rad,ref_contact_angle_rad,time_us\n";
+         "ref_area_m2,pmax_Pa,ref_pmax_Pa,contact_angle_rad,ref_contact_angle_rad,time_us,fn_N,ref_fn_N\n";
   for (const SaStateRow& p : result.per_state) {
     const SaState& s = result.states[p.state];
-    out << fmt::format("{},{:g},{:g},{},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+    out << fmt::format("{},{:g},{:g},{},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
                        result.rows[p.row].label, s.dy_mm, s.y, s.creep_set, s.xi, s.eta, s.phi, int(s.flange),
                        num(p.out.fx), num(p.out.fy), num(s.ref_fx), num(s.ref_fy), num(p.err_force), num(p.out.area),
                        num(s.ref_area), num(p.out.pmax), num(s.ref_pmax), num(p.out.angle), num(s.ref_angle),
-                       num(p.time_us));
+                       num(p.time_us), num(p.out.fn), num(s.ref_fn));
   }
 }
 

@@ -79,6 +79,7 @@ std::vector<SaState> read_contact_states(const std::filesystem::path& path, cons
     s.ref_area = num("area_mm2") * 1e-6;
     s.ref_pmax = num("pmax_MPa") * 1e6;
     s.ref_angle = num("contact_angle_rad");
+    s.ref_fn = num("fn_N");
     classify(s);
     s.normal_reliable = !(s.creep_set == "a_none" && std::abs(s.dy_mm - 7.0) < 1e-9);  // README outlier
     by_key[{s.dy_mm, s.creep_set}] = s;

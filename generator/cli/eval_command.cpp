@@ -43,6 +43,15 @@ void print_text(const nlohmann::json& out) {
   for (const auto& w : out["wheels"]) {
     std::cout << fmt::format("\n{} wheel: vertical approach {:.4f} mm, status {}\n", w["side"].get<std::string>(),
                              w["vertical_approach"].get<double>() * 1e3, w["status"].get<std::string>());
+    if (w.contains("load_coupling")) {  // issue 14: the load carried by normal and creep forces
+      const auto& c = w["load_coupling"];
+      std::cout << fmt::format("  vertical load {:.2f} kN = normal {:.2f} kN + creep forces {:.2f} kN (load coupling {}, "
+                               "{} iterations, {})\n",
+                               w["vertical_load"].get<double>() * 1e-3, w["vertical_load_normal"].get<double>() * 1e-3,
+                               w["vertical_load_tangential"].get<double>() * 1e-3,
+                               c["enabled"].get<bool>() ? "on" : "off", c["iterations"].get<int>(),
+                               c["status"].get<std::string>());
+    }
     std::cout << "  loaded patches  wheel_y  rail_y   angle    r_roll       N  approach   area   p_max";
     const bool creep = out.contains("creepage");
     std::cout << (creep ? "      fx      fy      mz  slip  wear_rate" : "") << "  status\n";

@@ -315,7 +315,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
 
   Section co = section(ctx, root, "contact",
                        {"normal_model", "negative_curvature", "strips", "virtual_penetration", "tolerance",
-                        "max_iterations", "friction", "elements_per_strip", "spin_per_strip", "speed"});
+                        "max_iterations", "friction", "elements_per_strip", "spin_per_strip", "speed",
+                        "load_coupling"});
   NormalOptions& no = scene.normal;
   if (auto m = co.parse_string("normal_model", parse_normal_model)) no.model = *m;
   if (auto m = co.parse_string("negative_curvature", parse_negative_curvature)) no.negative_curvature = *m;
@@ -328,6 +329,7 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   ts.elements_per_strip = co.integer("elements_per_strip", ts.elements_per_strip, 1);
   ts.spin_per_strip = co.boolean("spin_per_strip", ts.spin_per_strip);
   ts.speed = co.number("speed", ts.speed, positive, "> 0 [m/s]");
+  ts.load_coupling = co.boolean("load_coupling", ts.load_coupling);
 
   Section we = section(ctx, root, "wear", {"hardness", "lubrication_factor"});
   scene.wear.hardness = we.number("hardness", scene.wear.hardness, positive, "> 0 [Pa]");

@@ -11,6 +11,7 @@
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
 #include "profile/profile_io.hpp"
+#include "tangential/coupled_load.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "wear/archard.hpp"
 
@@ -29,6 +30,8 @@ struct TangentialSettings {
   int elements_per_strip = 20;    // FASTSIM cells along each strip [-]
   bool spin_per_strip = false;    // spin follows the local contact angle (STRIPES) [-]
   double speed = 20.0;            // rolling speed, for slip velocities and wear [m/s]
+  bool load_coupling = true;      // the creep forces' vertical share in the load balance (issue 14;
+                                  //   tangential/coupled_load.hpp); false: normal from the load alone
 };
 
 struct WearSettings {
@@ -107,6 +110,7 @@ ContactGeometrySolver make_geometry_solver(const Scene& scene);
 // The tangential and wear model settings a scene describes (one mapping for eval and the sweep).
 FastsimOptions fastsim_options(const Scene& scene);
 CreepConditions creep_conditions(const Scene& scene);
+CoupledLoadOptions coupled_load_options(const Scene& scene);
 WearOptions wear_options(const Scene& scene);  // throws railtab::Error for an invalid wear map
 
 }  // namespace railtab

@@ -17,6 +17,12 @@ CreepConditions creep_conditions(const Scene& scene) {
   return conditions;
 }
 
+CoupledLoadOptions coupled_load_options(const Scene& scene) {
+  CoupledLoadOptions options;
+  options.couple = scene.tangential.load_coupling;
+  return options;
+}
+
 WearOptions wear_options(const Scene& scene) {
   WearOptions options;
   options.map.hardness = scene.wear.hardness;

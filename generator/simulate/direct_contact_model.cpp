@@ -5,6 +5,7 @@
 
 #include "core/check.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "tangential/coupled_load.hpp"
 
 namespace railtab {
 
@@ -13,7 +14,8 @@ DirectContactModel::DirectContactModel(const Scene& scene)
       material_(scene.material),
       normal_options_(scene.normal),
       creep_conditions_(creep_conditions(scene)),
-      fastsim_options_(fastsim_options(scene)) {}
+      fastsim_options_(fastsim_options(scene)),
+      coupling_(coupled_load_options(scene)) {}
 
 void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels],
                                 vehicle::WheelContacts (&contacts)[vehicle::kWheels]) {
@@ -31,6 +33,7 @@ void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels]
       loaded_[w][slot] = false;
     }
     patches_[w] = {};
+    load_[w] = load[w];
     try {
       if (!roll_ok) throw Error("no equilibrium roll");
       geometry_[w] = solver_.solve_wheel(side, WheelsetState{y, roll});
@@ -76,6 +79,10 @@ void DirectContactModel::creep(const vehicle::SlotCreepage (&creepage)[vehicle::
                                vehicle::SlotForces (&forces)[vehicle::kWheels][vehicle::kContactSlots]) {
   FastsimWorkspace& workspace = thread_fastsim_workspace();
   for (int w = 0; w < vehicle::kWheels; ++w) {
+    if (coupling_.couple && (loaded_[w][0] || loaded_[w][1])) {
+      creep_coupled(w, creepage[w], forces[w], workspace);
+      continue;
+    }
     for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
       vehicle::SlotForces& f = forces[w][slot];
       f = {};
@@ -94,6 +101,47 @@ void DirectContactModel::creep(const vehicle::SlotCreepage (&creepage)[vehicle::
         f.status = status::kFailed;
       }
     }
+  }
+}
+
+void DirectContactModel::creep_coupled(int w, const vehicle::SlotCreepage (&creepage)[vehicle::kContactSlots],
+                                       vehicle::SlotForces (&forces)[vehicle::kContactSlots],
+                                       FastsimWorkspace& workspace) {
+  for (int slot = 0; slot < vehicle::kContactSlots; ++slot) forces[slot] = {};
+  const PatchSlots& before = patches_[w];
+  // Each patch at the creepage of the slot it sat in after normal().
+  auto patch_creepage = [&](std::size_t i, const ContactPatch&) {
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot)
+      for (int ip : before.patch[slot])
+        if (ip == static_cast<int>(i)) {
+          const vehicle::SlotCreepage& c = creepage[slot];
+          return Creepage{c.xi, c.eta, c.phi};
+        }
+    return Creepage{};
+  };
+  try {
+    solve_coupled_load(geometry_[w], load_[w], normal_[w], material_, normal_options_,
+                       fastsim_tangential(geometry_[w], patch_creepage, creep_conditions_, material_,
+                                          fastsim_options_, workspace),
+                       coupling_, coupled_);
+    const PatchSlots slots = assign_patch_slots(coupled_.normal, geometry_[w].side, solver_.settings().flange_angle);
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      const auto s = static_cast<std::size_t>(slot);
+      if (!loaded_[w][slot] || !slots.occupied(s)) continue;
+      const vehicle::SlotCreepage& c = creepage[slot];
+      const FastsimResult r = slot_creep(geometry_[w], coupled_.normal, slots, s, Creepage{c.xi, c.eta, c.phi},
+                                         creep_conditions_, material_, fastsim_options_, workspace);
+      vehicle::SlotForces& f = forces[slot];
+      f.fx = r.fx;
+      f.fy = r.fy;
+      f.mz = r.mz;
+      f.normal_force = slot_normal(coupled_.normal, slots, s).normal_force;
+      f.status = r.status | (coupled_.status & status::kNotConverged);
+    }
+  } catch (const std::exception&) {
+    ++failures_;
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot)
+      if (loaded_[w][slot]) forces[slot].status = status::kFailed;
   }
 }
 

@@ -3,7 +3,10 @@
 // are mapped exactly as the table sweep maps them (contact_kernel.hpp: assign_slots for the
 // geometry, assign_patch_slots for the patches, a slot's normal force/area and creep forces the sum
 // of its up to two patches by slot_normal and slot_creep), so at a grid node it returns what the
-// table holds. The reference run of `railtab simulate --direct`.
+// table holds. The reference run of `railtab simulate --direct`. With the scene's load coupling
+// (issue 14) creep() re-solves the normal contact of each wheel so that normal and creep forces
+// together carry the wheel load, each patch at its slot's creepage, and returns the slot's normal
+// force at that creepage in SlotForces::normal_force.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +14,7 @@
 #include "normal/normal_model.hpp"
 #include "scene/scene.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "tangential/coupled_load.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "vehicle/contact_model.hpp"
 
@@ -30,11 +34,18 @@ class DirectContactModel final : public vehicle::ContactModel {
   std::uint64_t failures() const { return failures_; }
 
  private:
+  // creep() of wheel w with the load coupling.
+  void creep_coupled(int w, const vehicle::SlotCreepage (&creepage)[vehicle::kContactSlots],
+                     vehicle::SlotForces (&forces)[vehicle::kContactSlots], FastsimWorkspace& workspace);
+
   ContactGeometrySolver solver_;
   Material material_;
   NormalOptions normal_options_;
   CreepConditions creep_conditions_;
   FastsimOptions fastsim_options_;
+  CoupledLoadOptions coupling_;
+  double load_[vehicle::kWheels] = {0.0, 0.0};        // of the last normal() call [N]
+  CoupledLoadResult coupled_;                          // scratch of creep()
   WheelContactGeometry geometry_[vehicle::kWheels];   // of the last normal() call
   WheelNormalResult normal_[vehicle::kWheels];         // of the last normal() call
   PatchSlots patches_[vehicle::kWheels];                // slot -> patches, of the last normal() call

@@ -60,6 +60,16 @@ const Output<FastsimResult> kCreepOutputs[] = {
     {"slip_fraction", "1", "slipping share of the contact area", [](const FastsimResult& r) { return r.slip_fraction; }},
 };
 
+// Normal contact of a creep point (creep part, format 1.2): with the load coupling (issue 14) the
+// normal contact depends on the creepage, because the creep forces carry part of the vertical load.
+const Output<ContactPatch> kCreepNormalOutputs[] = {
+    {"normal_force", "N", "normal force along the contact normal at this creepage (load carried by normal and creep forces)",
+     [](const ContactPatch& c) { return c.normal_force; }},
+    {"approach", "m", "normal approach at the patch reference point at this creepage", [](const ContactPatch& c) { return c.penetration; }},
+    {"area", "m2", "contact area at this creepage", [](const ContactPatch& c) { return c.area; }},
+    {"max_pressure", "Pa", "maximum contact pressure at this creepage", [](const ContactPatch& c) { return c.max_pressure; }},
+};
+
 // Wear part, same grid as creep.
 const Output<WearResult> kWearOutputs[] = {
     {"wear_rate", "m2/m", "worn wheel-profile cross-section per rolled distance (Archard, KTH map)",
@@ -73,10 +83,20 @@ PartSpec part_spec(const char* name, std::vector<std::string> inner_axes, const 
   return spec;
 }
 
+// The creep part: creep forces, then (with the load coupling) the normal contact at the creepage.
+template <std::size_t N, std::size_t M>
+PartSpec creep_part_spec(const Output<FastsimResult> (&creep)[N], const Output<ContactPatch> (&normal)[M],
+                         bool coupled) {
+  PartSpec spec = part_spec("creep", {"load", "xi", "eta", "phi"}, creep);
+  if (coupled)
+    for (const Output<ContactPatch>& o : normal) spec.outputs.push_back({o.name, o.units, o.description});
+  return spec;
+}
+
 template <class Result, std::size_t N>
 void store(const Output<Result> (&outputs)[N], const Result& result, const ColumnOutput& out, std::size_t wheel,
-           std::size_t part, std::size_t cell) {
-  for (std::size_t o = 0; o < N; ++o) out.values(wheel, part, o)[cell] = outputs[o].get(result);
+           std::size_t part, std::size_t cell, std::size_t first = 0) {
+  for (std::size_t o = 0; o < N; ++o) out.values(wheel, part, first + o)[cell] = outputs[o].get(result);
 }
 
 constexpr std::size_t kGeometryPart = 0;
@@ -99,12 +119,20 @@ struct KernelData {
   CreepConditions creep;
   FastsimOptions fastsim;
   WearOptions wear;
+  CoupledLoadOptions coupling;          // couple = false: the creep part has no normal outputs (format 1.0 layout)
   std::vector<NormalModel> model_by_y;  // per node of the scene's y grid (planned model choice); empty = normal.model
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
 
+// The normal options at this column (the planned model choice per y node).
+NormalOptions uncoupled_options(const KernelData& k, const ColumnState& state) {
+  NormalOptions options = k.normal;
+  if (!k.model_by_y.empty()) options.model = k.model_by_y[state.iy];
+  return options;
+}
+
 // Creep forces and wear of one slot's loaded patches (summed, slot_creep) over the creepage grid,
-// into the cells of load il.
+// into the cells of load il. Without the load coupling.
 void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, const WheelNormalResult& normal,
                  const PatchSlots& slots, const ColumnState& state, std::size_t wheel, std::size_t il,
                  std::size_t slot, ColumnOutput& out) {
@@ -129,6 +157,68 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
                                   to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi, e.what()));
           out.status(wheel, kCreepPart)[cell] = failure_status(state);
           out.status(wheel, kWearPart)[cell] = failure_status(state);
+        }
+      }
+    }
+  }
+}
+
+// With the load coupling (issue 14): per creepage the normal contact is re-solved so that normal
+// and creep forces together carry the load (tangential/coupled_load.hpp), starting from the
+// creepage-free solution `uncoupled` of load il; every loaded patch of the wheel gets the grid's
+// creepage (the table has one creepage per slot, shared by the slots in two-point contact). Both
+// slots' creep and wear cells and the creep part's normal outputs of that creepage are written.
+void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geometry,
+                         const WheelNormalResult& uncoupled, const PatchSlots& uncoupled_slots,
+                         const ColumnState& state, std::size_t wheel, std::size_t il, ColumnOutput& out) {
+  FastsimWorkspace& workspace = thread_fastsim_workspace();
+  thread_local WearDistribution distribution;
+  thread_local CoupledLoadResult coupled;
+  const double load = k.grids.load[il];
+  const double flange_angle = k.solver.settings().flange_angle;
+  std::size_t c = il * k.creepages();
+  for (double xi : k.grids.xi) {
+    for (double eta : k.grids.eta) {
+      for (double phi : k.grids.phi) {
+        const std::size_t cells = c++ * kSlots;
+        const Creepage creepage{xi, eta, phi};
+        try {
+          solve_coupled_load(geometry, load, uncoupled, k.material, uncoupled_options(k, state),
+                             fastsim_tangential(geometry, [&](std::size_t, const ContactPatch&) { return creepage; },
+                                                k.creep, k.material, k.fastsim, workspace),
+                             k.coupling, coupled);
+          const StatusBits not_converged = (coupled.normal.status | coupled.status) & status::kNotConverged;
+          const PatchSlots slots = assign_patch_slots(coupled.normal, geometry.side, flange_angle);
+          for (std::size_t s = 0; s < kSlots; ++s) {
+            const std::size_t cell = cells + s;
+            if (!slots.occupied(s)) {
+              // No patch here at this creepage: zeros; status 0 (no contact) as in the normal part,
+              // or converged,lift_off where the creepage-free solution had one (lifted by the coupling).
+              const StatusBits bits = uncoupled_slots.occupied(s) ? status::kConverged | status::kLiftOff : 0u;
+              out.status(wheel, kCreepPart)[cell] = bits;
+              out.status(wheel, kWearPart)[cell] = bits;
+              continue;
+            }
+            const ContactPatch patch = slot_normal(coupled.normal, slots, s);
+            store(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, std::size(kCreepOutputs));
+            SlotWear wear{k.wear, distribution, {}};
+            const FastsimResult creep =
+                slot_creep(geometry, coupled.normal, slots, s, creepage, k.creep, k.material, k.fastsim, workspace, &wear);
+            store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
+            // Status: the creep forces' bits as without the coupling, plus not_converged when the
+            // coupled solve (or a normal solve in it) missed its tolerance.
+            out.status(wheel, kCreepPart)[cell] =
+                (not_converged ? creep.status & ~status::kConverged : creep.status) | slots.extra[s] | not_converged;
+            store(kWearOutputs, wear.result, out, wheel, kWearPart, cell);
+            out.status(wheel, kWearPart)[cell] = wear.result.status | slots.extra[s];
+          }
+        } catch (const std::exception& e) {
+          out.failure(fmt::format("coupled normal/creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
+                                  to_string(geometry.side), state.y, load, xi, eta, phi, e.what()));
+          for (std::size_t s = 0; s < kSlots; ++s) {
+            out.status(wheel, kCreepPart)[cells + s] = failure_status(state);
+            out.status(wheel, kWearPart)[cells + s] = failure_status(state);
+          }
         }
       }
     }
@@ -166,8 +256,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     out.status(wheel, kGeometryPart)[s] = p.status | status::kConverged | wheel_bits | slots.extra[s];
   }
 
-  NormalOptions normal_options = k.normal;
-  if (!k.model_by_y.empty()) normal_options.model = k.model_by_y[state.iy];
+  const NormalOptions normal_options = uncoupled_options(k, state);
   for (std::size_t il = 0; il < nload; ++il) {
     WheelNormalResult normal;
     try {
@@ -183,6 +272,17 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     }
     const StatusBits solver_bits = normal.status & (status::kConverged | status::kNotConverged);
     const PatchSlots patch_slots = assign_patch_slots(normal, side, k.solver.settings().flange_angle);
+    if (k.coupling.couple && k.creepages() > 0) {
+      // The normal part keeps the creepage-free solution; the creep part gets its own per creepage.
+      for (std::size_t s = 0; s < kSlots; ++s) {
+        if (!patch_slots.occupied(s)) continue;
+        const ContactPatch patch = slot_normal(normal, patch_slots, s);
+        store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
+        out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | patch_slots.extra[s];
+      }
+      if (!normal.patches.empty()) solve_creep_coupled(k, geometry, normal, patch_slots, state, wheel, il, out);
+      continue;
+    }
     for (std::size_t s = 0; s < kSlots; ++s) {
       if (!patch_slots.occupied(s)) continue;  // no loaded patch in this slot: zeros, status 0
       const ContactPatch patch = slot_normal(normal, patch_slots, s);  // the sum of the slot's patches
@@ -321,11 +421,11 @@ SweepKernel make_contact_kernel(const Scene& scene) {
   }
   auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
                                                             scene.normal, scene.tangential, creep, fastsim, wear,
-                                                            model_by_y});
+                                                            coupled_load_options(scene), model_by_y});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));
-  kernel.parts.push_back(part_spec("creep", {"load", "xi", "eta", "phi"}, kCreepOutputs));
+  kernel.parts.push_back(creep_part_spec(kCreepOutputs, kCreepNormalOutputs, scene.tangential.load_coupling));
   kernel.parts.push_back(part_spec("wear", {"load", "xi", "eta", "phi"}, kWearOutputs));
   kernel.points_per_column = scene.grids.load.size() * data->creepages();
   const NormalOptions& n = scene.normal;
@@ -339,6 +439,7 @@ SweepKernel make_contact_kernel(const Scene& scene) {
       {"youngs_modulus", scene.material.youngs_modulus},
       {"poisson_ratio", scene.material.poisson_ratio},
       {"tangential", "fastsim-strips"},
+      {"load_coupling", scene.tangential.load_coupling},
       {"spin", to_string(fastsim.spin)},
       {"elements_per_strip", fastsim.elements_per_strip},
       {"friction", scene.tangential.friction},

@@ -18,6 +18,11 @@ struct WheelEval {
   const WheelContactGeometry* geometry = nullptr;
   WheelNormalResult normal;
   std::vector<CreepOutput> creep;  // per patch, empty without --creepage
+  bool coupled = false;            // with creepage: the coupled load control ran
+  StatusBits coupling_status = 0;  // its verdict (kConverged / kNotConverged)
+  int coupling_iterations = 0;     // its normal solves beyond the uncoupled one
+  double normal_vertical = 0.0;    // sum N cos g [N]
+  double tangential_vertical = 0.0;  // sum fy sin g [N]
 };
 
 nlohmann::json patch_json(const ContactPatch& patch, StatusBits solver_bits, const CreepOutput* creep) {
@@ -99,6 +104,7 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
   const CreepConditions conditions = creep_conditions(scene);
   const WearOptions wear = wear_options(scene);
   std::array<WheelEval, 2> wheels;
+  const CoupledLoadOptions coupling = coupled_load_options(scene);
   for (int w = 0; w < 2; ++w) {
     WheelEval& e = wheels[w];
     e.geometry = &geometry.wheels[w];
@@ -107,6 +113,19 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
     FastsimWorkspace workspace;
     WearDistribution distribution;
     const Creepage creepage{request.creepage[0], request.creepage[1], request.creepage[2]};
+    // The load is carried by normal and creep forces together (issue 14): the normal contact is
+    // re-solved at the approach that balances both (tangential/coupled_load.hpp).
+    CoupledLoadResult coupled;
+    solve_coupled_load(*e.geometry, load, e.normal, scene.material, scene.normal,
+                       fastsim_tangential(*e.geometry, [&](std::size_t, const ContactPatch&) { return creepage; },
+                                          conditions, scene.material, fastsim, workspace),
+                       coupling, coupled);
+    e.normal = std::move(coupled.normal);
+    e.coupled = true;
+    e.coupling_status = coupled.status;
+    e.coupling_iterations = coupled.iterations;
+    e.normal_vertical = coupled.normal_vertical;
+    e.tangential_vertical = coupled.tangential_vertical;
     for (const ContactPatch& patch : e.normal.patches) {
       CreepOutput c;
       c.force = fastsim_contact(*e.geometry, patch, creepage, conditions, scene.material, fastsim, workspace);
@@ -131,7 +150,16 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
     wj["side"] = to_string(e.geometry->side);
     wj["vertical_approach"] = e.normal.vertical_approach;
     wj["vertical_load"] = e.normal.vertical_load;
-    wj["status"] = status::describe(e.geometry->status | e.normal.status);
+    if (e.coupled) {
+      // The load balance in track axes: vertical_load_normal + vertical_load_tangential = load.
+      wj["vertical_load"] = e.normal_vertical + e.tangential_vertical;
+      wj["vertical_load_normal"] = e.normal_vertical;
+      wj["vertical_load_tangential"] = e.tangential_vertical;
+      wj["load_coupling"] = {{"enabled", scene.tangential.load_coupling},
+                             {"iterations", e.coupling_iterations},
+                             {"status", status::describe(e.coupling_status)}};
+    }
+    wj["status"] = status::describe(e.geometry->status | e.normal.status | (e.coupled ? e.coupling_status : 0u));
     wj["contacts"] = nlohmann::json::array();
     for (std::size_t i = 0; i < e.normal.patches.size(); ++i) {
       const StatusBits solver_bits = e.normal.status & (status::kConverged | status::kNotConverged);

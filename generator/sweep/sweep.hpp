@@ -136,7 +136,7 @@ struct SweepResult {
 std::pair<std::size_t, std::size_t> shard_range(std::size_t ny, int index, int count);
 
 // Run `kernel` over the scene's grids (the shard's part of y) and return the filled table with
-// all root attributes (format 1.0). With options.checkpoint set, finished blocks are appended to
+// all root attributes (format 1.2, docs/table-format.md). With options.checkpoint set, finished blocks are appended to
 // that file as they complete and blocks already in it are not recomputed.
 SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const SweepOptions& options);
 

@@ -288,20 +288,28 @@ WheelNormalResult lift_off(const WheelContactGeometry& g, StatusBits extra) {
 WheelNormalResult solve_normal_for_approach(const WheelContactGeometry& geometry,
                                             double vertical_approach, const Material& material,
                                             const NormalOptions& options) {
+  WheelNormalResult r;
+  solve_normal_for_approach(geometry, vertical_approach, material, options, r);
+  return r;
+}
+
+void solve_normal_for_approach(const WheelContactGeometry& geometry, double vertical_approach,
+                               const Material& material, const NormalOptions& options,
+                               WheelNormalResult& r) {
   detail::check_options(options);
-  if (!std::isfinite(vertical_approach))
-    return detail::lift_off(geometry, status::kInvalidInput);
+  if (!std::isfinite(vertical_approach)) {
+    r = detail::lift_off(geometry, status::kInvalidInput);
+    return;
+  }
   if (geometry.points.empty() || vertical_approach <= 0.0) {
-    auto r = detail::lift_off(geometry, status::kConverged);
+    r = detail::lift_off(geometry, status::kConverged);
     r.vertical_approach = vertical_approach;
-    return r;
+    return;
   }
   detail::Workspace& w = detail::thread_workspace();
   detail::prepare(geometry, material, options, w);
-  WheelNormalResult r;
   detail::fill(geometry, material, options, w, vertical_approach, r);
   r.status |= status::kConverged;
-  return r;
 }
 
 }  // namespace railtab

@@ -166,4 +166,10 @@ WheelNormalResult solve_normal_for_approach(const WheelContactGeometry& geometry
                                             double vertical_approach, const Material& material,
                                             const NormalOptions& options);
 
+// The same, writing into `out` and reusing the capacity of its vectors (the coupled load control,
+// tangential/coupled_load.hpp, calls it once per iteration).
+void solve_normal_for_approach(const WheelContactGeometry& geometry, double vertical_approach,
+                               const Material& material, const NormalOptions& options,
+                               WheelNormalResult& out);
+
 }  // namespace railtab

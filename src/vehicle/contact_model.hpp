@@ -37,6 +37,8 @@ struct SlotForces {
   double fx = 0.0;            // along x [N]
   double fy = 0.0;            // along s [N]
   double mz = 0.0;            // about n [N m]
+  double normal_force = 0.0;  // normal force at this creepage when the source couples the load
+                              //   with the creep forces (issue 14) [N]; 0: normal()'s value holds
   std::uint32_t status = 0;   // railtab status bits (e.g. kFullSlip, kOutOfRange)
 };
 

@@ -79,8 +79,10 @@ void evaluate_wheelset_contact(const WheelsetParameters& p, ContactModel& contac
       out.status |= c.status | f.status;
       if (!c.loaded) continue;
       const double y_c = contact_lateral_position(w, c.wheel_u, q0);
+      // The creepage-dependent normal force where the contact model gives one (load coupling).
+      const double normal_force = f.normal_force > 0.0 ? f.normal_force : c.normal_force;
       out.lateral_force[w] +=
-          -c.normal_force * std::sin(c.contact_angle) + f.fy * std::cos(c.contact_angle);
+          -normal_force * std::sin(c.contact_angle) + f.fy * std::cos(c.contact_angle);
       out.contact_yaw_moment += -y_c * f.fx + f.mz * std::cos(c.contact_angle);
     }
   }

@@ -80,17 +80,33 @@ struct WheelValues {
 };
 using Direct = std::array<WheelValues, 2>;  // [wheel] 0 left, 1 right
 
-// The kernel's parts and outputs must be the lookup's, in the same order (docs/table-format.md).
+// The lookup output of every kernel output, in kernel order (-1: an output the lookup does not
+// serve, e.g. the creep part's per-creepage normal contact of format 1.2, docs/table-format.md).
+inline std::vector<int> lookup_outputs(const SweepKernel& kernel) {
+  std::vector<int> index;
+  for (std::size_t p = 0; p < kernel.parts.size(); ++p)
+    for (const OutputInfo& info : kernel.parts[p].outputs) {
+      int found = -1;
+      for (int o = 0; o < lk::kNumOutputs; ++o)
+        if (lk::output_part(static_cast<lk::Output>(o)) == static_cast<int>(p) &&
+            info.name == lk::output_name(static_cast<lk::Output>(o)))
+          found = o;
+      index.push_back(found);
+    }
+  return index;
+}
+
+// The kernel's parts and the lookup's outputs must be the kernel's, in the same order
+// (docs/table-format.md); the kernel may have more (format 1.2 creep part), which the lookup skips.
 inline void check_kernel_layout(const SweepKernel& kernel) {
   ASSERT_EQ(kernel.parts.size(), static_cast<std::size_t>(lk::kNumParts));
-  int o = 0;
-  for (int p = 0; p < lk::kNumParts; ++p) {
+  for (int p = 0; p < lk::kNumParts; ++p)
     ASSERT_EQ(kernel.parts[static_cast<std::size_t>(p)].name, lk::part_name(static_cast<lk::Part>(p)));
-    for (const OutputInfo& info : kernel.parts[static_cast<std::size_t>(p)].outputs) {
-      ASSERT_EQ(info.name, lk::output_name(static_cast<lk::Output>(o)));
-      ASSERT_EQ(lk::output_part(static_cast<lk::Output>(o)), p);
-      ++o;
-    }
+  const std::vector<int> index = lookup_outputs(kernel);
+  int o = 0;
+  for (int k : index) {
+    if (k < 0) continue;
+    ASSERT_EQ(k, o++);
   }
   ASSERT_EQ(o, lk::kNumOutputs);
 }
@@ -118,10 +134,14 @@ inline Direct evaluate_direct(const Scene& scene, const Point& p) {
   state.y = p.v[kY];
   state.roll = scene.equilibrium_roll ? kernel.equilibrium_roll(p.v[kY]) : scene.grids.roll.front();
   kernel.compute(state, out);
+  const std::vector<int> index = lookup_outputs(kernel);
   Direct d;
   for (std::size_t w = 0; w < 2; ++w) {
-    for (std::size_t o = 0; o < total; ++o)
-      for (std::size_t s = 0; s < kSlots; ++s) d[w].value[o][s] = values[(w * total + o) * kSlots + s];
+    for (std::size_t o = 0; o < total; ++o) {
+      if (index[o] < 0) continue;  // not served by the lookup
+      for (std::size_t s = 0; s < kSlots; ++s)
+        d[w].value[static_cast<std::size_t>(index[o])][s] = values[(w * total + o) * kSlots + s];
+    }
     for (std::size_t q = 0; q < parts; ++q)
       for (std::size_t s = 0; s < kSlots; ++s) d[w].status[q][s] = statuses[(w * parts + q) * kSlots + s];
   }

@@ -158,6 +158,63 @@ load = [60e3, 80e3]
   EXPECT_TRUE(geo.find("status")->status[3 * 2 + 1] & status::kFlangeContact);
 }
 
+// Load coupling (issue 14): the creep part holds the normal contact per creepage. Left wheel in
+// flange contact (y = +8 mm, Hertz, one patch): N cos g + fy sin g equals the load within the
+// coupling tolerance at every creepage (g of the rigid point = the Hertz patch's angle), N moves
+// by tens of per cent between eta = -0.001 and +0.001, and the normal part keeps the
+// creepage-free N. Without the coupling the creep part has no normal outputs.
+TEST(ContactSweep, CreepPartHoldsTheCoupledNormalForce) {
+  const char* text = R"(
+[scene]
+name = "coupled"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[contact]
+normal_model = "hertz"
+load_coupling = LOAD_COUPLING
+[grid]
+y = [0.0, 0.008]
+roll = 0.0
+load = 78.5e3
+xi = 0.0
+eta = [-0.001, 0.0, 0.001]
+phi = 0.0
+)";
+  auto scene_with = [&](const char* coupling) {
+    std::string t = text;
+    t.replace(t.find("LOAD_COUPLING"), 13, coupling);
+    return parse_scene(t, "coupled.toml");
+  };
+  const Scene scene = scene_with("true");
+  SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+  ASSERT_EQ(r.summary.failures, 0u) << r.summary.first_failure;
+  const TableGroup& creep = *r.table.group("left/creep");
+  const TableGroup& normal = *r.table.group("left/normal");
+  const TableGroup& geo = *r.table.group("left/geometry");
+  ASSERT_TRUE(creep.find("normal_force"));
+  ASSERT_TRUE(creep.find("area") && creep.find("max_pressure") && creep.find("approach"));
+  // Cells: y index iy, eta index ie, slot s: (iy * 3 + ie) * 2 + s. Flange slot at y = 8 mm.
+  const std::size_t iy = 1, s = 1;
+  ASSERT_TRUE(geo.find("status")->status[iy * 2 + s] & status::kFlangeContact);
+  const double g = geo.find("contact_angle")->values[iy * 2 + s];
+  const double n0 = normal.find("normal_force")->values[iy * 2 + s];
+  double n[3];
+  for (std::size_t ie = 0; ie < 3; ++ie) {
+    const std::size_t cell = (iy * 3 + ie) * 2 + s;
+    n[ie] = creep.find("normal_force")->values[cell];
+    const double fy = creep.find("fy")->values[cell];
+    EXPECT_NEAR(n[ie] * std::cos(g) + fy * std::sin(g), 78.5e3, 2e-4 * 78.5e3) << "eta index " << ie;
+    EXPECT_FALSE(creep.find("status")->status[cell] & status::kNotConverged);
+  }
+  EXPECT_NEAR(n[1], n0, 1e-3 * n0);  // no lateral creepage: (almost) the creepage-free N
+  EXPECT_GT(std::abs(n[2] - n[0]), 0.3 * n0);
+  // Without the coupling the creep part has no normal outputs (format 1.0 layout).
+  const Scene off = scene_with("false");
+  SweepResult u = run_sweep(off, make_contact_kernel(off), SweepOptions{});
+  EXPECT_FALSE(u.table.group("left/creep")->find("normal_force"));
+}
+
 TEST(ContactKernel, SlotsByFlangeFlagLowerSeparationWins) {
   WheelContactGeometry g;
   ContactPoint tread{};
