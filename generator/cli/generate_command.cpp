@@ -25,6 +25,13 @@ void add_generate_command(CLI::App& app) {
   cmd->add_flag("--resume", opt->resume,
                 "Keep finished y blocks in OUTPUT.partial and skip those already there (result = fresh run)");
   cmd->add_option("--shard", *shard, "Compute only part I of N (1-based, split along y); join with railtab merge");
+  cmd->add_option("--max-points", opt->max_points,
+                  "Refuse a table with more grid points (docs/reliability.md); raise it for a bigger run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-bytes", opt->max_bytes, "Refuse a table needing more memory [B]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->callback([opt, shard, quiet] {
     if (!shard->empty()) std::tie(opt->shard_index, opt->shard_count) = parse_shard(*shard);
     opt->log = *quiet ? nullptr : &std::cerr;
@@ -36,7 +43,7 @@ void add_generate_command(CLI::App& app) {
       generate_table(*opt);
     } catch (const Interrupted& e) {
       std::cerr << "\nrailtab: " << e.what() << "\n";
-      throw CLI::RuntimeError(130);  // the shell's code for death by SIGINT
+      throw CLI::RuntimeError(128 + (interrupt_signal() ? interrupt_signal() : 2));  // the shell's code: 130, 143
     }
   });
 }

@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <system_error>
+#include <sstream>
 
 #include "core/check.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 namespace {
@@ -100,10 +100,8 @@ void write_worn_profile(const Profile& wheel, const std::vector<double>& u, cons
   RAILTAB_CHECK(nodes.size() >= 4, "worn profile {}: step {} m leaves fewer than 4 points on [{}, {}] m", name,
                 step, u0, u1);
 
-  const std::filesystem::path tmp = file.string() + ".tmp";
   {
-    std::ofstream out(tmp);
-    RAILTAB_CHECK(out.good(), "worn profile {}: cannot write {}", name, tmp.string());
+    std::ostringstream out;
     out << fmt::format("# worn wheel profile from '{}', radial wear smoothed over {:g} mm (railtab)\n", wheel.name(),
                        smoothing_length * 1e3);
     out << "# lateral [mm] (+ field side), vertical [mm] (+ down, r - r_nominal); docs/profiles.md\n";
@@ -112,12 +110,8 @@ void write_worn_profile(const Profile& wheel, const std::vector<double>& u, cons
       const double z = wheel.eval(x).z + depth_at(u, smoothed, bin, x);
       out << fmt::format("{:.9f} {:.9f}\n", x * 1e3, -z * 1e3);
     }
-    out.close();
-    RAILTAB_CHECK(out.good(), "worn profile {}: writing {} failed", name, tmp.string());
+    write_text_file(file, out.str());  // through a locked, synced temporary (table/output_file.hpp)
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  RAILTAB_CHECK(!ec, "worn profile {}: cannot rename {} to it: {}", name, tmp.string(), ec.message());
 }
 
 }  // namespace railtab

@@ -24,6 +24,8 @@ struct GenerateOptions {
   std::ostream* log = nullptr;               // progress and summary; nullptr = silent
   bool terminal = false;                     // log is a terminal: draw a progress bar
   std::function<SweepKernel(const Scene&)> make_kernel;  // default: make_contact_kernel
+  std::uint64_t max_points = kDefaultMaxPoints;  // refuse a larger table (--max-points) [-]
+  std::uint64_t max_bytes = kDefaultMaxBytes;    // refuse a table needing more memory (--max-bytes) [B]
 };
 
 // The checkpoint file of a table: OUTPUT.partial.

@@ -222,6 +222,12 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
   RAILTAB_CHECK(!scene.equilibrium_roll || kernel.equilibrium_roll,
                 "sweep: the scene asks for equilibrium roll but the kernel cannot compute it");
   RAILTAB_CHECK(kernel.compute, "sweep: kernel without compute function");
+  {
+    // Before any allocation: every size of the layout below fits once the totals do.
+    const auto [y_begin, y_end] = shard_range(scene.grids.y.size(), options.shard_index, options.shard_count);
+    check_table_size(scene.name, table_points(scene, y_end - y_begin), table_bytes(scene, kernel, y_end - y_begin),
+                     options.max_points, options.max_bytes);
+  }
   const Layout l = make_layout(scene, kernel, options);
   SweepResult result;
   result.table = make_skeleton(scene, kernel, l, options);

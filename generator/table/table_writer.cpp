@@ -1,8 +1,7 @@
 // Writes a Table as an HDF5 file, format 1.0: /axes as dimension scales, every dataset with units,
 // description and axes attributes and its dimensions attached to the scales, chunked + shuffle +
-// deflate above 64 KiB. Written to TARGET.tmp.<pid> and renamed only when complete.
+// deflate above 64 KiB. Written through an OutputFile (TARGET.tmp.<pid>, synced, renamed when complete).
 #include <hdf5_hl.h>
-#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -11,6 +10,7 @@
 
 #include "table/h5_util.hpp"
 #include "table/interrupt.hpp"
+#include "table/output_file.hpp"
 #include "table/table_io.hpp"
 
 namespace railtab {
@@ -191,24 +191,13 @@ class Writer {
 
 }  // namespace
 
-std::filesystem::path temporary_path(const std::filesystem::path& target) {
-  return target.string() + ".tmp." + std::to_string(::getpid());
-}
-
-void write_table(const Table& table, const std::filesystem::path& target, const std::atomic<bool>* cancel) {
+void write_table(const Table& table, const std::filesystem::path& target, const std::atomic<bool>* cancel,
+                 const std::vector<std::filesystem::path>& inputs) {
   h5::silence_errors();
   validate(table, target.string());
-  std::filesystem::path tmp = temporary_path(target);
-  try {
-    Writer(table, tmp.string(), cancel).write();
-    std::error_code ec;
-    std::filesystem::rename(tmp, target, ec);
-    RAILTAB_CHECK(!ec, "{}: cannot rename {} into place: {}", target.string(), tmp.string(), ec.message());
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
-  }
+  OutputFile file(target, inputs);  // removes its temporary unless committed
+  Writer(table, file.temporary().string(), cancel).write();
+  file.commit();
 }
 
 }  // namespace railtab
