@@ -15,6 +15,7 @@ packages=(
   nlohmann-json3-dev       # JSON output of railtab eval
   libfmt-dev               # formatting
   gnuplot-nox              # PNG charts from CSV (pngcairo)
+  clang-14 libclang-rt-14-dev llvm-14  # libFuzzer targets and sanitizer runtimes (.ci/run, scripts/fuzz.sh)
 )
 
 missing=()

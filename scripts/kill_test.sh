@@ -23,7 +23,7 @@ leftovers() { find "$work" -maxdepth 1 \( -name 'out.h5.tmp.*' -o -name 'out.h5.
 
 start=$(date +%s.%N)
 "$railtab" generate "$work/scene.toml" -o "$work/ref.h5" --threads 1 --quiet < /dev/null
-ref_seconds=$(echo "$(date +%s.%N) - $start" | bc)
+ref_seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {printf "%.2f", b - a}')
 echo "kill_test: reference run $ref_seconds s"
 
 run_and_kill() {  # signal, delay [s], extra generate arguments...
@@ -61,13 +61,13 @@ resume_and_check() {
 
 for sig in KILL TERM; do
   for fraction in 0.1 0.5 0.9 0.98; do
-    delay=$(echo "$ref_seconds * $fraction" | bc -l | awk '{printf "%.2f", $1}')
+    delay=$(awk -v t="$ref_seconds" -v f="$fraction" 'BEGIN {printf "%.2f", t * f}')
     run_and_kill "$sig" "$delay" --resume
     resume_and_check
   done
 done
 # Without --resume, SIGTERM writes nothing and removes everything it made.
-run_and_kill TERM "$(echo "$ref_seconds * 0.5" | bc -l | awk '{printf "%.2f", $1}')"
+run_and_kill TERM "$(awk -v t="$ref_seconds" 'BEGIN {printf "%.2f", t * 0.5}')"
 [ -z "$(leftovers)" ] || fail "SIGTERM without --resume left $(leftovers)"
 # A temporary of a killed run (SIGKILL during the write) is removed by the next run.
 echo stale > "$work/out.h5.tmp.999999999"
