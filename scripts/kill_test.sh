@@ -30,7 +30,7 @@ run_and_kill() {  # signal, delay [s], extra generate arguments...
   local sig=$1 delay=$2
   shift 2
   rm -f "$work"/out.h5*
-  "$railtab" generate "$work/scene.toml" -o "$work/out.h5" --threads 1 --quiet "$@" < /dev/null 2> "$work/stderr.txt" &
+  "$railtab" generate "$work/scene.toml" -o "$work/out.h5" --threads 1 "$@" < /dev/null 2> "$work/stderr.txt" &
   local pid=$!
   sleep "$delay"
   kill -s "$sig" "$pid" 2> /dev/null || true
@@ -46,6 +46,10 @@ run_and_kill() {  # signal, delay [s], extra generate arguments...
   esac
   if [ "$sig" = TERM ] && [ -n "$(find "$work" -maxdepth 1 -name 'out.h5.tmp.*')" ]; then
     fail "SIGTERM left a temporary: $(leftovers)"
+  fi
+  # Handled, not died of it: railtab says it was interrupted (an unhandled SIGTERM also gives 143).
+  if [ "$sig" = TERM ] && [ "$rc" = 143 ] && ! grep -q "interrupted" "$work/stderr.txt"; then
+    fail "SIGTERM was not handled (no 'interrupted' message)"
   fi
   if [ "$sig" = TERM ] && [ "$rc" = 143 ] && [ -e "$work/out.h5" ]; then
     fail "SIGTERM reported an interruption but out.h5 exists"
