@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/check.hpp"
+#include "sweep/finite_status.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
 #include "tangential/fastsim_contact.hpp"
@@ -73,10 +74,29 @@ PartSpec part_spec(const char* name, std::vector<std::string> inner_axes, const 
   return spec;
 }
 
-template <class Result, std::size_t N>
-void store(const Output<Result> (&outputs)[N], const Result& result, const ColumnOutput& out, std::size_t wheel,
-           std::size_t part, std::size_t cell) {
-  for (std::size_t o = 0; o < N; ++o) out.values(wheel, part, o)[cell] = outputs[o].get(result);
+// One cell's outputs and status. A NaN or inf in any output makes the cell failed (zeros,
+// non_finite_status): a non-finite number is never `converged`, and the lookup refuses
+// non-finite tables. `where` describes the cell for the failure message (called only then).
+template <class Result, std::size_t N, class Where>
+void store(const Output<Result> (&outputs)[N], const Result& result, StatusBits bits, ColumnOutput& out,
+           std::size_t wheel, std::size_t part, std::size_t cell, Where where) {
+  double values[N];
+  bool finite = true;
+  for (std::size_t o = 0; o < N; ++o) {
+    values[o] = outputs[o].get(result);
+    finite = finite && std::isfinite(values[o]);
+  }
+  for (std::size_t o = 0; o < N; ++o) out.values(wheel, part, o)[cell] = finite ? values[o] : 0.0;
+  out.status(wheel, part)[cell] = finite ? bits : non_finite_status(bits);
+  if (!finite) {
+    for (std::size_t o = 0; o < N; ++o) {
+      if (!std::isfinite(values[o])) {
+        out.failure(fmt::format("{}: {} = {} (not finite; stored as 0, status failed)", where(), outputs[o].name,
+                                values[o]));
+        break;
+      }
+    }
+  }
 }
 
 constexpr std::size_t kGeometryPart = 0;
@@ -120,10 +140,12 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
           SlotWear wear{k.wear, distribution, {}};
           FastsimResult creep = slot_creep(geometry, normal, slots, slot, Creepage{xi, eta, phi}, k.creep,
                                            k.material, k.fastsim, workspace, &wear);
-          store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
-          out.status(wheel, kCreepPart)[cell] = creep.status | extra;
-          store(kWearOutputs, wear.result, out, wheel, kWearPart, cell);
-          out.status(wheel, kWearPart)[cell] = wear.result.status | extra;
+          auto where = [&] {
+            return fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
+                               to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi);
+          };
+          store(kCreepOutputs, creep, creep.status | extra, out, wheel, kCreepPart, cell, where);
+          store(kWearOutputs, wear.result, wear.result.status | extra, out, wheel, kWearPart, cell, where);
         } catch (const std::exception& e) {
           out.failure(fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
                                   to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi, e.what()));
@@ -162,8 +184,8 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
   for (std::size_t s = 0; s < kSlots; ++s) {
     if (slots.point[s] < 0) continue;  // empty slot: zeros, status 0
     const ContactPoint& p = geometry.points[static_cast<std::size_t>(slots.point[s])];
-    store(kGeometryOutputs, p, out, wheel, kGeometryPart, s);
-    out.status(wheel, kGeometryPart)[s] = p.status | status::kConverged | wheel_bits | slots.extra[s];
+    store(kGeometryOutputs, p, p.status | status::kConverged | wheel_bits | slots.extra[s], out, wheel, kGeometryPart, s,
+          [&] { return fmt::format("geometry, {} wheel, y = {} m, roll = {} rad", to_string(side), state.y, state.roll); });
   }
 
   NormalOptions normal_options = k.normal;
@@ -186,8 +208,11 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     for (std::size_t s = 0; s < kSlots; ++s) {
       if (!patch_slots.occupied(s)) continue;  // no loaded patch in this slot: zeros, status 0
       const ContactPatch patch = slot_normal(normal, patch_slots, s);  // the sum of the slot's patches
-      store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
-      out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | patch_slots.extra[s];
+      store(kNormalOutputs, patch, patch.status | solver_bits | patch_slots.extra[s], out, wheel, kNormalPart,
+            il * kSlots + s, [&] {
+              return fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N", to_string(side), state.y,
+                                 state.roll, k.grids.load[il]);
+            });
       // Creep and wear on top of this normal result; an unloaded slot has none (zeros, lift_off).
       if (!(patch.normal_force > 0.0)) {
         const std::size_t per_load = k.creepages();
