@@ -4,10 +4,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
+#include <sstream>
 
 #include "charts/gnuplot.hpp"
 #include "core/check.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 
@@ -18,8 +19,7 @@ std::pair<std::filesystem::path, std::filesystem::path> draw_geometry_chart(cons
   const ContactGeometrySolver solver = make_geometry_solver(scene);
   std::filesystem::create_directories(dir);
   const std::filesystem::path csv = dir / "geometry_sweep.csv";
-  std::ofstream out(csv);
-  RAILTAB_CHECK(out.good(), "cannot write {}", csv.string());
+  std::ostringstream out;
   out << "y_m,roll_rad,rolling_radius_difference_m,left_contact_angle_rad,right_contact_angle_rad,"
          "left_rolling_radius_m,right_rolling_radius_m,left_contacts,right_contacts\n";
   const int n = static_cast<int>(std::lround((opt.y_max - opt.y_min) / opt.y_step));
@@ -34,25 +34,24 @@ std::pair<std::filesystem::path, std::filesystem::path> draw_geometry_chart(cons
                        left.rolling_radius, right.rolling_radius, g.wheels[0].points.size(),
                        g.wheels[1].points.size());
   }
-  out.close();
+  write_text_file(csv, out.str());
   const std::filesystem::path png = dir / "geometry.png";
   const std::string script = fmt::format(R"(set terminal pngcairo noenhanced size 1000,800 font ",11"
-set output '{png}'
 set datafile separator ','
 set multiplot layout 2,1 title "{title}: rigid contact geometry, roll {roll}"
 set grid
 set xlabel 'wheelset lateral displacement y [mm] (+ left)'
 set ylabel 'r_left - r_right [mm]'
-plot '{csv}' every ::1 using ($1*1e3):($3*1e3) with lines lw 2 title 'rolling radius difference'
+plot {csv} every ::1 using ($1*1e3):($3*1e3) with lines lw 2 title 'rolling radius difference'
 set ylabel 'contact angle [deg]'
-plot '{csv}' every ::1 using ($1*1e3):($4*180/pi) with lines lw 2 title 'left wheel', \
-     '{csv}' every ::1 using ($1*1e3):($5*180/pi) with lines lw 2 title 'right wheel'
+plot {csv} every ::1 using ($1*1e3):($4*180/pi) with lines lw 2 title 'left wheel', \
+     {csv} every ::1 using ($1*1e3):($5*180/pi) with lines lw 2 title 'right wheel'
 unset multiplot
 )",
-                                         fmt::arg("png", png.string()), fmt::arg("csv", csv.string()),
-                                         fmt::arg("title", scene.name),
+                                         fmt::arg("csv", gnuplot_quote(csv)),
+                                         fmt::arg("title", gnuplot_text(scene.name)),
                                          fmt::arg("roll", scene.equilibrium_roll ? "at kinematic equilibrium" : "0"));
-  run_gnuplot(dir / "geometry.gp", script);
+  run_gnuplot(dir / "geometry.gp", script, png);
   return {csv, png};
 }
 

@@ -4,12 +4,13 @@
 #include <fmt/format.h>
 
 #include <array>
-#include <fstream>
+#include <sstream>
 #include <iostream>
 #include <string>
 
 #include "charts/gnuplot.hpp"
 #include "core/check.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 namespace {
@@ -40,8 +41,7 @@ void draw_pressure_chart(const Scene& scene, const std::filesystem::path& out_di
   const WheelContactGeometry geometry = solver.solve_wheel(options.side, {options.y, roll});
 
   const std::filesystem::path csv = out_dir / "pressure.csv";
-  std::ofstream out(csv);
-  RAILTAB_CHECK(out.good(), "cannot write {}", csv.string());
+  std::ostringstream out;
   out << "variant,s_mm,rail_y_mm,pressure_MPa\n";
   std::string plots;
   for (std::size_t v = 0; v < kVariants.size(); ++v) {
@@ -60,17 +60,16 @@ void draw_pressure_chart(const Scene& scene, const std::filesystem::path& out_di
     }
     std::cout << fmt::format("  {:<24} p_max {:7.1f} MPa, {} patch(es), status {}\n", kVariants[v].label,
                              peak * 1e-6, result.patches.size(), status::describe(result.status));
-    plots += fmt::format("{}'{}' every ::1 using ($1=={} ? $3 : NaN):4 with linespoints pt 7 ps 0.4 lw {} title '{}'",
-                         v ? ", \\\n     " : "", csv.string(), v, v < 2 ? 2.5 : 1.0, kVariants[v].label);
+    plots += fmt::format("{}{} every ::1 using ($1=={} ? $3 : NaN):4 with linespoints pt 7 ps 0.4 lw {} title '{}'",
+                         v ? ", \\\n     " : "", gnuplot_quote(csv), v, v < 2 ? 2.5 : 1.0, kVariants[v].label);
   }
-  out.close();
+  write_text_file(csv, out.str());
   if (options.reference_max_pressure > 0.0) {
     plots += fmt::format(", \\\n     {:.1f} with lines dt 2 lc rgb 'black' title 'half-space p_max (CONTACT)'",
                          options.reference_max_pressure * 1e-6);
   }
   const std::filesystem::path png = out_dir / "pressure.png";
   const std::string script = fmt::format(R"gp(set terminal pngcairo noenhanced size 1100,650 font ",11"
-set output '{png}'
 set datafile separator ','
 set title "{title}: peak pressure along the strip centre lines, {side} wheel, y = {y:.1f} mm, {load:.1f} kN"
 set xlabel 'lateral position on the rail profile [mm] (+ field side)'
@@ -79,9 +78,9 @@ set grid
 set key outside right top
 plot {plots}
 )gp",
-      fmt::arg("png", png.string()), fmt::arg("title", scene.name), fmt::arg("side", to_string(options.side)),
+      fmt::arg("title", gnuplot_text(scene.name)), fmt::arg("side", to_string(options.side)),
       fmt::arg("y", options.y * 1e3), fmt::arg("load", options.load * 1e-3), fmt::arg("plots", plots));
-  run_gnuplot(out_dir / "pressure.gp", script);
+  run_gnuplot(out_dir / "pressure.gp", script, png);
 }
 
 }  // namespace railtab

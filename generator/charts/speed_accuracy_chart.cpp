@@ -5,21 +5,21 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "charts/gnuplot.hpp"
 #include "core/check.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 namespace {
 
 // Points of the Pareto fronts sorted by time, two gnuplot data blocks (tread, flange).
 void write_pareto(const SpeedAccuracyResult& r, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  RAILTAB_CHECK(out.good(), "cannot write {}", path.string());
+  std::ostringstream out;
   for (int panel = 0; panel < 2; ++panel) {
     std::vector<std::pair<double, double>> pts;
     for (const SaRow& row : r.rows) {
@@ -31,6 +31,7 @@ void write_pareto(const SpeedAccuracyResult& r, const std::filesystem::path& pat
     for (const auto& [t, e] : pts) out << fmt::format("{:.6g},{:.6g}\n", t, e);
     out << "\n\n";
   }
+  write_text_file(path, out.str());
 }
 
 }  // namespace
@@ -72,20 +73,19 @@ SpeedAccuracyResult draw_speed_accuracy_charts(const Scene& scene, const std::fi
     std::string s = fmt::format("set title '{}'\nplot ", title);
     for (const Family& f : families) {
       s += fmt::format(
-          "'{csv}' using (strcol(3) eq '{n}' ? ${t} : 1/0):{e} with points pt {pt} ps 1.3 lc rgb '{c}' title '{ti}', \\\n"
-          "     '{csv}' using (strcol(3) eq '{n}' && ${p} == 1 ? ${t} : 1/0):{e}:1 with labels noenhanced "
+          "{csv} using (strcol(3) eq '{n}' ? ${t} : 1/0):{e} with points pt {pt} ps 1.3 lc rgb '{c}' title '{ti}', \\\n"
+          "     {csv} using (strcol(3) eq '{n}' && ${p} == 1 ? ${t} : 1/0):{e}:1 with labels noenhanced "
           "font ',7' offset 0,0.8 tc rgb '{c}' notitle, \\\n     ",
-          fmt::arg("csv", csv.string()), fmt::arg("n", f.name), fmt::arg("t", tcol), fmt::arg("e", ecol),
+          fmt::arg("csv", gnuplot_quote(csv)), fmt::arg("n", f.name), fmt::arg("t", tcol), fmt::arg("e", ecol),
           fmt::arg("p", pcol),
           fmt::arg("pt", f.pt), fmt::arg("c", f.color), fmt::arg("ti", f.title));
     }
-    s += fmt::format("'{}' index {} using 1:2 with steps lw 2 lc rgb '#cc0000' title 'Pareto front'\n",
-                     pareto_csv.string(), block);
+    s += fmt::format("{} index {} using 1:2 with steps lw 2 lc rgb '#cc0000' title 'Pareto front'\n",
+                     gnuplot_quote(pareto_csv), block);
     return s;
   };
   const std::filesystem::path png = files.png = dir / "speed_accuracy.png";
   std::string script = fmt::format(R"GP(set terminal pngcairo size 1400,620 font ",10"
-set output '{png}'
 set datafile separator ','
 set datafile missing 'nan'
 set logscale xy
@@ -96,19 +96,18 @@ set ylabel 'median |F - F_{{ref}}| / |F_{{ref}}| (creep force)'
 set key bottom left font ',8' box opaque
 set multiplot layout 1,2 title "{scene}: speed against accuracy, {ref}\n{setup}" font ',11'
 )GP",
-                                   fmt::arg("png", png.string()), fmt::arg("scene", scene.name),
+                                   fmt::arg("scene", gnuplot_text(scene.name)),
                                    fmt::arg("ref", ref_title), fmt::arg("setup", r.setup));
   script += panel(9, 15, 26, 0, "tread contact (dy = -6..6 mm)");
   script += "unset key\n";
   script += panel(10, 16, 27, 1, "flange contact (dy = 7..10 mm)");
   script += "unset multiplot\n";
-  run_gnuplot(dir / "speed_accuracy.gp", script);
+  run_gnuplot(dir / "speed_accuracy.gp", script, png);
 
   // Table memory against lookup error. table_memory.csv: 1 label, 2 method, 3 y step, 4 creep grid,
   // 5 file bytes, 6 memory bytes, 7 time, 8 err_force, 10 tread, 11 flange.
   const std::filesystem::path mpng = files.memory_png = dir / "table_memory.png";
   const std::string mscript = fmt::format(R"GP(set terminal pngcairo size 900,600 font ",10"
-set output '{png}'
 set datafile separator ','
 set datafile missing 'nan'
 set logscale xy
@@ -119,16 +118,16 @@ set yrange [5e-4:1]
 set ylabel 'median relative creep-force error'
 set key top right font ',8' box opaque
 set title "{scene}: table lookup error against memory, {ref}\n(y step; 'fine' = fine creepage grid; roll 0 and load fixed)"
-plot '{csv}' using (strcol(2) eq 'linear' ? $6 : 1/0):10 with points ps 1.4 pt 7 lc rgb '#1b9e77' title 'linear, tread', \
-     '{csv}' using (strcol(2) eq 'linear' ? $6 : 1/0):11 with points ps 1.4 pt 5 lc rgb '#d95f02' title 'linear, flange', \
-     '{csv}' using (strcol(2) eq 'cubic' ? $6 : 1/0):10 with points ps 1.4 pt 6 lc rgb '#1b9e77' title 'cubic, tread', \
-     '{csv}' using (strcol(2) eq 'cubic' ? $6 : 1/0):11 with points ps 1.4 pt 4 lc rgb '#d95f02' title 'cubic, flange', \
-     '{csv}' using (strcol(2) eq 'linear' ? $6 : 1/0):14 with points ps 1.4 pt 9 lc rgb '#7570b3' title 'linear, interpolation only (vs direct model)', \
-     '{csv}' using (strcol(2) eq 'linear' ? $6 : 1/0):10:(sprintf('%gmm%s', $3, strcol(4) eq 'fine' ? ' fine' : '')) with labels font ',8' offset 0,0.8 notitle
+plot {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):10 with points ps 1.4 pt 7 lc rgb '#1b9e77' title 'linear, tread', \
+     {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):11 with points ps 1.4 pt 5 lc rgb '#d95f02' title 'linear, flange', \
+     {csv} using (strcol(2) eq 'cubic' ? $6 : 1/0):10 with points ps 1.4 pt 6 lc rgb '#1b9e77' title 'cubic, tread', \
+     {csv} using (strcol(2) eq 'cubic' ? $6 : 1/0):11 with points ps 1.4 pt 4 lc rgb '#d95f02' title 'cubic, flange', \
+     {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):14 with points ps 1.4 pt 9 lc rgb '#7570b3' title 'linear, interpolation only (vs direct model)', \
+     {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):10:(sprintf('%gmm%s', $3, strcol(4) eq 'fine' ? ' fine' : '')) with labels font ',8' offset 0,0.8 notitle
 )GP",
-                                          fmt::arg("png", mpng.string()), fmt::arg("csv", mem_csv.string()),
-                                          fmt::arg("scene", scene.name), fmt::arg("ref", ref_title));
-  run_gnuplot(dir / "table_memory.gp", mscript);
+                                          fmt::arg("csv", gnuplot_quote(mem_csv)),
+                                          fmt::arg("scene", gnuplot_text(scene.name)), fmt::arg("ref", ref_title));
+  run_gnuplot(dir / "table_memory.gp", mscript, mpng);
 
   return r;
 }

@@ -3,10 +3,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
+#include <sstream>
 
 #include "charts/speed_accuracy.hpp"
 #include "core/check.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 
@@ -28,8 +29,7 @@ void header_comments(std::ostream& out, const SpeedAccuracyResult& r) {
 }  // namespace
 
 void write_speed_accuracy_csv(const SpeedAccuracyResult& result, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  RAILTAB_CHECK(out.good(), "cannot write {}", path.string());
+  std::ostringstream out;
   header_comments(out, result);
   out << "label,kind,family,strips,elements,table_y_step_mm,table_creep_grid,time_us,time_tread_us,"
          "time_flange_us,time_geometry_us,time_contact_us,err_force,err_force_p90,err_force_tread,err_force_flange,err_area,"
@@ -45,11 +45,11 @@ void write_speed_accuracy_csv(const SpeedAccuracyResult& result, const std::file
                        int(r.pareto_tread), int(r.pareto_flange), num(r.err_interp), num(r.err_interp_p90),
                        result.contact_reference ? "contact" : "stripes");
   }
+  write_text_file(path, out.str());
 }
 
 void write_states_csv(const SpeedAccuracyResult& result, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  RAILTAB_CHECK(out.good(), "cannot write {}", path.string());
+  std::ostringstream out;
   header_comments(out, result);
   out << "label,dy_mm,y_m,creep_set,xi,eta,phi_rad_per_m,flange,fx_N,fy_N,ref_fx_N,ref_fy_N,err_force,area_m2,"
          "ref_area_m2,pmax_Pa,ref_pmax_Pa,contact_angle_rad,ref_contact_angle_rad,time_us,fn_N,ref_fn_N\n";
@@ -61,11 +61,11 @@ void write_states_csv(const SpeedAccuracyResult& result, const std::filesystem::
                        num(s.ref_area), num(p.out.pmax), num(s.ref_pmax), num(p.out.angle), num(s.ref_angle),
                        num(p.time_us), num(p.out.fn), num(s.ref_fn));
   }
+  write_text_file(path, out.str());
 }
 
 void write_table_memory_csv(const SpeedAccuracyResult& result, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  RAILTAB_CHECK(out.good(), "cannot write {}", path.string());
+  std::ostringstream out;
   header_comments(out, result);
   out << "label,method,table_y_step_mm,table_creep_grid,table_file_bytes,table_memory_bytes,time_us,err_force,"
          "err_force_p90,err_force_tread,err_force_flange,err_area,err_angle_mrad,err_interp,err_interp_p90\n";
@@ -77,6 +77,7 @@ void write_table_memory_csv(const SpeedAccuracyResult& result, const std::filesy
                        num(r.err_force_p90), num(r.err_force_tread), num(r.err_force_flange), num(r.err_area),
                        num(r.err_angle_mrad), num(r.err_interp), num(r.err_interp_p90));
   }
+  write_text_file(path, out.str());
 }
 
 }  // namespace railtab

@@ -12,6 +12,7 @@
 
 #include "charts/gnuplot.hpp"
 #include "core/check.hpp"
+#include "table/output_file.hpp"
 #include "core/status.hpp"
 
 namespace railtab {
@@ -61,8 +62,7 @@ void draw_stability_chart(const Scene& scene, const std::filesystem::path& out_d
   std::map<std::string, int> row_of;
   std::vector<std::string> row_labels;
   const std::filesystem::path flags_csv = out_dir / "stability_map_flags.csv";
-  std::ofstream out(flags_csv);
-  RAILTAB_CHECK(out.good(), "cannot write {}", flags_csv.string());
+  std::ostringstream out;
   out << "y_mm,row,flag\n";
   while (std::getline(in, line)) {
     const std::vector<std::string> f = leading_fields(line, 8);
@@ -76,7 +76,7 @@ void draw_stability_chart(const Scene& scene, const std::filesystem::path& out_d
       if (bits & kFlags[k].bit) out << fmt::format("{:.4f},{},{}\n", y_mm, it->second, k);
     }
   }
-  out.close();
+  write_text_file(flags_csv, out.str());
 
   std::string ytics;
   for (std::size_t r = 0; r < row_labels.size(); ++r) {
@@ -87,12 +87,11 @@ void draw_stability_chart(const Scene& scene, const std::filesystem::path& out_d
     // Each flag sits at its own vertical offset inside the row, so overlapping flags stay visible.
     const double offset = -0.4 + 0.8 * static_cast<double>(k) / (kFlags.size() - 1);
     plots += fmt::format(
-        "{}'{}' every ::1 using 1:($3=={} ? $2+({:.3f}) : NaN) with points pt 5 ps 0.35 lc rgb '{}' title '{}'",
-        k ? ", \\\n     " : "", flags_csv.string(), k, offset, kFlags[k].colour, kFlags[k].name);
+        "{}{} every ::1 using 1:($3=={} ? $2+({:.3f}) : NaN) with points pt 5 ps 0.35 lc rgb '{}' title '{}'",
+        k ? ", \\\n     " : "", gnuplot_quote(flags_csv), k, offset, kFlags[k].colour, kFlags[k].name);
   }
   const std::filesystem::path png = out_dir / "stability_map.png";
   const std::string script = fmt::format(R"gp(set terminal pngcairo noenhanced size 1400,{height} font ",10"
-set output '{png}'
 set datafile separator ','
 set title "{title}: status flags of each normal model across y (load {load:.1f} kN, roll {roll})"
 set xlabel 'wheelset lateral displacement y [mm] (+ left)'
@@ -103,12 +102,11 @@ set grid xtics
 set key outside right top
 plot {plots}
 )gp",
-      fmt::arg("height", 300 + 40 * row_labels.size()), fmt::arg("png", png.string()),
-      fmt::arg("title", scene.name), fmt::arg("load", scene.grids.load[scene.grids.load.size() / 2] * 1e-3),
+      fmt::arg("height", 300 + 40 * row_labels.size()), fmt::arg("title", gnuplot_text(scene.name)), fmt::arg("load", scene.grids.load[scene.grids.load.size() / 2] * 1e-3),
       fmt::arg("roll", scene.equilibrium_roll ? "kinematic equilibrium" : "0"), fmt::arg("ytics", ytics),
       fmt::arg("top", row_labels.size() - 0.3), fmt::arg("xmin", options.y_min * 1e3),
       fmt::arg("xmax", options.y_max * 1e3), fmt::arg("plots", plots));
-  run_gnuplot(out_dir / "stability_map.gp", script);
+  run_gnuplot(out_dir / "stability_map.gp", script, png);
 }
 
 }  // namespace railtab

@@ -5,11 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/check.hpp"
+#include "table/output_file.hpp"
 #include "core/status.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
@@ -97,8 +98,7 @@ void write_stability_map_csv(const Scene& scene, const std::filesystem::path& cs
     }
   }
 
-  std::ofstream out(csv);
-  RAILTAB_CHECK(out.good(), "stability map: cannot write {}", csv.string());
+  std::ostringstream out;
   out << "variant,model,negative_curvature,wheel,y_m,roll_rad,load_N,status,status_names,patches,"
          "points,normal_force_N,iterations,error\n";
   for (const Variant& v : variants) {
@@ -144,7 +144,7 @@ void write_stability_map_csv(const Scene& scene, const std::filesystem::path& cs
       }
     }
   }
-  out.close();
+  write_text_file(csv, out.str());
   RAILTAB_CHECK(!out.fail(), "stability map: writing {} failed", csv.string());
 }
 

@@ -4,10 +4,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
+#include <sstream>
 
 #include "charts/gnuplot.hpp"
 #include "core/check.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 
@@ -31,8 +32,7 @@ void draw_wear_chart(const std::vector<WearSeries>& series, const std::filesyste
   std::filesystem::path gp = png;
   gp.replace_extension(".gp");
 
-  std::ofstream out(csv);
-  RAILTAB_CHECK(out.good(), "wear chart: cannot write {}", csv.string());
+  std::ostringstream out;
   out << "series,name,u_mm,depth_mm\n";
   std::string plots;
   for (std::size_t k = 0; k < series.size(); ++k) {
@@ -42,14 +42,12 @@ void draw_wear_chart(const std::vector<WearSeries>& series, const std::filesyste
                     "wear chart {}: series '{}' has a non-finite value at bin {}", png.string(), s.name, i);
       out << fmt::format("{},{},{:.4f},{:.6g}\n", k, s.name, s.u[i] * 1e3, s.depth[i] * 1e3);
     }
-    plots += fmt::format("{}'{}' every ::1 using ($1=={} ? $3 : NaN):4 with lines lw {} title '{}'",
-                         k ? ", \\\n     " : "", csv.string(), k, s.bold ? 3.0 : 1.2, s.name);
+    plots += fmt::format("{}{} every ::1 using ($1=={} ? $3 : NaN):4 with lines lw {} title '{}'",
+                         k ? ", \\\n     " : "", gnuplot_quote(csv), k, s.bold ? 3.0 : 1.2, s.name);
   }
-  out.close();
-  RAILTAB_CHECK(out.good(), "wear chart: writing {} failed", csv.string());
+  write_text_file(csv, out.str());
 
   const std::string script = fmt::format(R"gp(set terminal pngcairo noenhanced size 1100,650 font ",11"
-set output '{png}'
 set datafile separator ','
 set title "{title}"
 set xlabel 'wheel profile lateral coordinate u [mm] (+ field side, 0 = running circle)'
@@ -58,9 +56,9 @@ set grid
 set key top left
 plot {plots}
 )gp",
-                                         fmt::arg("png", png.string()), fmt::arg("title", title),
+                                         fmt::arg("title", title),
                                          fmt::arg("plots", plots));
-  run_gnuplot(gp, script);
+  run_gnuplot(gp, script, png);
 }
 
 }  // namespace railtab

@@ -48,17 +48,6 @@ std::ostream& diagnostics(bool quiet) {
   return quiet ? null_stream : std::cerr;
 }
 
-void require_writable_file(const std::filesystem::path& target) {
-  RAILTAB_CHECK(!target.empty(), "output path is empty");
-  std::error_code ec;
-  RAILTAB_CHECK(!std::filesystem::is_directory(target, ec), "{}: is a directory, a file name is needed",
-                target.string());
-  const std::filesystem::path dir = target.parent_path().empty() ? "." : target.parent_path();
-  RAILTAB_CHECK(std::filesystem::is_directory(dir, ec), "{}: directory {} does not exist; refused before starting",
-                target.string(), dir.string());
-  probe(dir, target);
-}
-
 void require_writable_directory(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -18,9 +18,8 @@ std::shared_ptr<bool> add_quiet_flag(CLI::App* cmd);
 // Where diagnostics go: std::cerr, or a stream that drops everything when `quiet`.
 std::ostream& diagnostics(bool quiet);
 
-// Throws railtab::Error naming the path unless a file can be created at `target` (its directory
-// exists and is writable): probes with a temporary file that is removed at once.
-void require_writable_file(const std::filesystem::path& target);
+// An output FILE is checked by check_output_path (table/output_file.hpp), called by the command
+// before any work.
 
 // Creates `dir` (with parents) and throws railtab::Error naming it unless a file can be created in it.
 void require_writable_directory(const std::filesystem::path& dir);

@@ -31,9 +31,15 @@ void add_generate_command(CLI::App& app) {
                 "Keep finished y blocks in OUTPUT.partial and skip those already there (result = fresh run)");
   cmd->add_option("--shard", *shard, "Compute only part I of N (1-based, contiguous y ranges of about equal estimated cost; "
                 "\"auto\": from SLURM_ARRAY_TASK_ID/COUNT); join with railtab merge");
+  cmd->add_option("--max-points", opt->max_points,
+                  "Refuse a table with more grid points (docs/reliability.md); raise it for a bigger run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-bytes", opt->max_bytes, "Refuse a table needing more memory [B]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->callback([opt, shard, quiet] {
     if (!shard->empty()) std::tie(opt->shard_index, opt->shard_count) = parse_shard_spec(*shard);
-    require_writable_file(opt->output);  // now, not after the sweep
     opt->log = *quiet ? nullptr : &std::cerr;
     opt->terminal = ::isatty(STDERR_FILENO) != 0;
     interrupt_flag().store(false);
@@ -52,7 +58,7 @@ void add_generate_command(CLI::App& app) {
       }
     } catch (const Interrupted& e) {
       std::cerr << "\nrailtab: " << e.what() << "\n";
-      throw CLI::RuntimeError(130);  // the shell's code for death by SIGINT
+      throw CLI::RuntimeError(128 + (interrupt_signal() ? interrupt_signal() : 2));  // the shell's code: 130, 143
     }
   });
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <tuple>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -386,11 +387,28 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   grids.xi = optional_axis("xi");
   grids.eta = optional_axis("eta");
   grids.phi = optional_axis("phi");
+  for (const auto& [key, axis, limit] : {std::tuple{"xi", &grids.xi, kMaxCreepage},
+                                         std::tuple{"eta", &grids.eta, kMaxCreepage},
+                                         std::tuple{"phi", &grids.phi, kMaxSpinCreepage}}) {
+    for (double v : *axis) {
+      if (!(std::abs(v) <= limit)) {
+        fail(ctx, gr.node(key)->source(), std::string("grid.") + key,
+             fmt::format("creepage {} is far beyond physical (|{}| <= {} {}; docs/reliability.md)", v, key, limit,
+                         key == std::string("phi") ? "1/m" : ""));
+      }
+    }
+  }
   if (acc.enabled && acc.axes.empty()) {
     fail(ctx, root.get("accuracy")->source(), "accuracy",
          "no grid axis is adaptive: give at least one as {start, stop, max_step, min_step}");
   }
   return scene;
+}
+
+void check_creepage_magnitude(const std::string& what, double xi, double eta, double phi) {
+  RAILTAB_CHECK(std::abs(xi) <= kMaxCreepage && std::abs(eta) <= kMaxCreepage && std::abs(phi) <= kMaxSpinCreepage,
+                "{}: creepage ({}, {}, {}) is far beyond physical (|xi|, |eta| <= {}; |phi| <= {} 1/m)", what, xi, eta,
+                phi, kMaxCreepage, kMaxSpinCreepage);
 }
 
 Scene load_scene(const std::filesystem::path& path) {

@@ -104,6 +104,16 @@ Scene load_scene(const std::filesystem::path& path);
 Scene parse_scene(std::string_view toml_text, const std::string& source_name,
                   const std::filesystem::path& base_dir = {});
 
+// Creepages far beyond anything physical are refused (scene grids, eval): a locked wheel slides at
+// |xi| = 1, and a spin of 1000 1/m would need a 1 mm rolling radius. Beyond ~1e154 the models'
+// squares overflow to inf and NaN (docs/reliability.md).
+inline constexpr double kMaxCreepage = 10.0;        // |xi|, |eta| [-]
+inline constexpr double kMaxSpinCreepage = 1000.0;  // |phi| [1/m]
+
+// Throws railtab::Error naming `what` when |xi| or |eta| exceeds kMaxCreepage or |phi| exceeds
+// kMaxSpinCreepage.
+void check_creepage_magnitude(const std::string& what, double xi, double eta, double phi);
+
 // Build the profiles and the geometry solver a scene describes.
 ContactGeometrySolver make_geometry_solver(const Scene& scene);
 

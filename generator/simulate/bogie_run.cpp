@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -13,6 +12,7 @@
 #include "core/check.hpp"
 #include "simulate/direct_contact_model.hpp"
 #include "simulate/lookup_contact_model.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 namespace {
@@ -178,15 +178,7 @@ RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact,
       next_row += sim.trajectory_interval;
     }
   }
-  {
-    const fs::path tmp = trajectory_csv.string() + ".tmp";
-    std::ofstream out(tmp, std::ios::binary);
-    RAILTAB_CHECK(out.good(), "{}: cannot open for writing", tmp.string());
-    out << csv.str();
-    out.close();
-    RAILTAB_CHECK(out.good(), "{}: write failed", tmp.string());
-    fs::rename(tmp, trajectory_csv);
-  }
+  write_text_file(trajectory_csv, csv.str());  // through a locked, synced temporary (table/output_file.hpp)
 
   r.simulated_seconds = bogie.time();
   r.distance = bogie.distance() - a;

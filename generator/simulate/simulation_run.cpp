@@ -26,6 +26,7 @@
 #include "simulate/lookup_contact_model.hpp"
 #include "simulate/worn_profile.hpp"
 #include "sweep/generate.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 namespace {
@@ -37,18 +38,9 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Text to `file` through a temporary name, so a reader never sees half a file.
-void write_file(const fs::path& file, const std::string& text) {
-  const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    RAILTAB_CHECK(out.good(), "{}: cannot open for writing", tmp.string());
-    out << text;
-    out.close();
-    RAILTAB_CHECK(out.good(), "{}: write failed", tmp.string());
-  }
-  fs::rename(tmp, file);
-}
+// Text to `file` through a locked, synced temporary (table/output_file.hpp): a reader never sees
+// half a file, a non-regular `file` is refused.
+void write_file(const fs::path& file, const std::string& text) { write_text_file(file, text); }
 
 // The wheel profile of a scene as a Profile (the worn profile is written from it).
 ProfilePtr wheel_profile(const Scene& scene) {

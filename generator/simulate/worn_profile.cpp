@@ -5,11 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <system_error>
+#include <sstream>
 
 #include "core/check.hpp"
 #include "profile/simpack_writer.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 namespace {
@@ -101,11 +101,9 @@ void write_worn_profile(const Profile& wheel, const std::vector<double>& u, cons
   RAILTAB_CHECK(nodes.size() >= 4, "worn profile {}: step {} m leaves fewer than 4 points on [{}, {}] m", name,
                 step, u0, u1);
 
-  const std::filesystem::path tmp = file.string() + ".tmp";
   std::vector<double> worn;  // z of the worn wheel at the nodes [m]
   {
-    std::ofstream out(tmp);
-    RAILTAB_CHECK(out.good(), "worn profile {}: cannot write {}", name, tmp.string());
+    std::ostringstream out;
     out << fmt::format("# worn wheel profile from '{}', radial wear smoothed over {:g} mm (railtab)\n", wheel.name(),
                        smoothing_length * 1e3);
     out << "# lateral [mm] (+ field side), vertical [mm] (+ down, r - r_nominal); docs/profiles.md\n";
@@ -114,18 +112,14 @@ void write_worn_profile(const Profile& wheel, const std::vector<double>& u, cons
       worn.push_back(wheel.eval(x).z + depth_at(u, smoothed, bin, x));
       out << fmt::format("{:.9f} {:.9f}\n", x * 1e3, -worn.back() * 1e3);
     }
-    out.close();
-    RAILTAB_CHECK(out.good(), "worn profile {}: writing {} failed", name, tmp.string());
+    write_text_file(file, out.str());  // through a locked, synced temporary (table/output_file.hpp)
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  RAILTAB_CHECK(!ec, "worn profile {}: cannot rename {} to it: {}", name, tmp.string(), ec.message());
   // The same points as a SIMPACK wheel profile, for tools that do not read the two-column form.
   std::filesystem::path simpack = file;
   simpack.replace_extension(".prw");
-  write_simpack_profile(simpack, ProfileKind::wheel, nodes, worn,
-                        fmt::format("worn {} (railtab simulate), wear smoothed over {:g} mm", wheel.name(),
-                                    smoothing_length * 1e3));
+  write_text_file(simpack, simpack_profile_text(ProfileKind::wheel, nodes, worn,
+                                                fmt::format("worn {} (railtab simulate), wear smoothed over {:g} mm",
+                                                            wheel.name(), smoothing_length * 1e3)));
 }
 
 }  // namespace railtab

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/check.hpp"
+#include "sweep/finite_status.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
 #include "tangential/fastsim_contact.hpp"
@@ -93,10 +94,38 @@ PartSpec creep_part_spec(const Output<FastsimResult> (&creep)[N], const Output<C
   return spec;
 }
 
-template <class Result, std::size_t N>
-void store(const Output<Result> (&outputs)[N], const Result& result, const ColumnOutput& out, std::size_t wheel,
-           std::size_t part, std::size_t cell, std::size_t first = 0) {
-  for (std::size_t o = 0; o < N; ++o) out.values(wheel, part, first + o)[cell] = outputs[o].get(result);
+// One cell's outputs, written from output index `first` of the part. A NaN or inf in any of them
+// writes zeros instead and a failure message naming the output, and returns false: the caller
+// then marks the cell failed (non_finite_status), so a non-finite number is never `converged`
+// (and the lookup refuses non-finite tables). `where` describes the cell (called only then).
+template <class Result, std::size_t N, class Where>
+bool store_values(const Output<Result> (&outputs)[N], const Result& result, ColumnOutput& out, std::size_t wheel,
+                  std::size_t part, std::size_t cell, Where where, std::size_t first = 0) {
+  double values[N];
+  bool finite = true;
+  for (std::size_t o = 0; o < N; ++o) {
+    values[o] = outputs[o].get(result);
+    finite = finite && std::isfinite(values[o]);
+  }
+  for (std::size_t o = 0; o < N; ++o) out.values(wheel, part, first + o)[cell] = finite ? values[o] : 0.0;
+  if (!finite) {
+    for (std::size_t o = 0; o < N; ++o) {
+      if (!std::isfinite(values[o])) {
+        out.failure(fmt::format("{}: {} = {} (not finite; stored as 0, status failed)", where(), outputs[o].name,
+                                values[o]));
+        break;
+      }
+    }
+  }
+  return finite;
+}
+
+// One cell's outputs and status (failed where an output is not finite).
+template <class Result, std::size_t N, class Where>
+void store(const Output<Result> (&outputs)[N], const Result& result, StatusBits bits, ColumnOutput& out,
+           std::size_t wheel, std::size_t part, std::size_t cell, Where where) {
+  const bool finite = store_values(outputs, result, out, wheel, part, cell, where);
+  out.status(wheel, part)[cell] = finite ? bits : non_finite_status(bits);
 }
 
 constexpr std::size_t kGeometryPart = 0;
@@ -148,10 +177,12 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
           SlotWear wear{k.wear, distribution, {}};
           FastsimResult creep = slot_creep(geometry, normal, slots, slot, Creepage{xi, eta, phi}, k.creep,
                                            k.material, k.fastsim, workspace, &wear);
-          store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
-          out.status(wheel, kCreepPart)[cell] = creep.status | extra;
-          store(kWearOutputs, wear.result, out, wheel, kWearPart, cell);
-          out.status(wheel, kWearPart)[cell] = wear.result.status | extra;
+          auto where = [&] {
+            return fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
+                               to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi);
+          };
+          store(kCreepOutputs, creep, creep.status | extra, out, wheel, kCreepPart, cell, where);
+          store(kWearOutputs, wear.result, wear.result.status | extra, out, wheel, kWearPart, cell, where);
         } catch (const std::exception& e) {
           out.failure(fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
                                   to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi, e.what()));
@@ -199,18 +230,24 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
               out.status(wheel, kWearPart)[cell] = bits;
               continue;
             }
+            auto where = [&] {
+              return fmt::format("coupled creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
+                                 to_string(geometry.side), state.y, load, xi, eta, phi);
+            };
             const ContactPatch patch = slot_normal(coupled.normal, slots, s);
-            store(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, std::size(kCreepOutputs));
+            const bool normal_finite =
+                store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where, std::size(kCreepOutputs));
             SlotWear wear{k.wear, distribution, {}};
             const FastsimResult creep =
                 slot_creep(geometry, coupled.normal, slots, s, creepage, k.creep, k.material, k.fastsim, workspace, &wear);
-            store(kCreepOutputs, creep, out, wheel, kCreepPart, cell);
+            const bool creep_finite = store_values(kCreepOutputs, creep, out, wheel, kCreepPart, cell, where);
             // Status: the creep forces' bits as without the coupling, plus not_converged when the
-            // coupled solve (or a normal solve in it) missed its tolerance.
-            out.status(wheel, kCreepPart)[cell] =
+            // coupled solve (or a normal solve in it) missed its tolerance; failed if not finite.
+            const StatusBits creep_bits =
                 (not_converged ? creep.status & ~status::kConverged : creep.status) | slots.extra[s] | not_converged;
-            store(kWearOutputs, wear.result, out, wheel, kWearPart, cell);
-            out.status(wheel, kWearPart)[cell] = wear.result.status | slots.extra[s];
+            out.status(wheel, kCreepPart)[cell] =
+                normal_finite && creep_finite ? creep_bits : non_finite_status(creep_bits);
+            store(kWearOutputs, wear.result, wear.result.status | slots.extra[s], out, wheel, kWearPart, cell, where);
           }
         } catch (const std::exception& e) {
           out.failure(fmt::format("coupled normal/creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
@@ -252,8 +289,8 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
   for (std::size_t s = 0; s < kSlots; ++s) {
     if (slots.point[s] < 0) continue;  // empty slot: zeros, status 0
     const ContactPoint& p = geometry.points[static_cast<std::size_t>(slots.point[s])];
-    store(kGeometryOutputs, p, out, wheel, kGeometryPart, s);
-    out.status(wheel, kGeometryPart)[s] = p.status | status::kConverged | wheel_bits | slots.extra[s];
+    store(kGeometryOutputs, p, p.status | status::kConverged | wheel_bits | slots.extra[s], out, wheel, kGeometryPart, s,
+          [&] { return fmt::format("geometry, {} wheel, y = {} m, roll = {} rad", to_string(side), state.y, state.roll); });
   }
 
   const NormalOptions normal_options = uncoupled_options(k, state);
@@ -277,8 +314,11 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
       for (std::size_t s = 0; s < kSlots; ++s) {
         if (!patch_slots.occupied(s)) continue;
         const ContactPatch patch = slot_normal(normal, patch_slots, s);
-        store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
-        out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | patch_slots.extra[s];
+        store(kNormalOutputs, patch, patch.status | solver_bits | patch_slots.extra[s], out, wheel, kNormalPart,
+              il * kSlots + s, [&] {
+                return fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N", to_string(side), state.y,
+                                   state.roll, k.grids.load[il]);
+              });
       }
       if (!normal.patches.empty()) solve_creep_coupled(k, geometry, normal, patch_slots, state, wheel, il, out);
       continue;
@@ -286,8 +326,11 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     for (std::size_t s = 0; s < kSlots; ++s) {
       if (!patch_slots.occupied(s)) continue;  // no loaded patch in this slot: zeros, status 0
       const ContactPatch patch = slot_normal(normal, patch_slots, s);  // the sum of the slot's patches
-      store(kNormalOutputs, patch, out, wheel, kNormalPart, il * kSlots + s);
-      out.status(wheel, kNormalPart)[il * kSlots + s] = patch.status | solver_bits | patch_slots.extra[s];
+      store(kNormalOutputs, patch, patch.status | solver_bits | patch_slots.extra[s], out, wheel, kNormalPart,
+            il * kSlots + s, [&] {
+              return fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N", to_string(side), state.y,
+                                 state.roll, k.grids.load[il]);
+            });
       // Creep and wear on top of this normal result; an unloaded slot has none (zeros, lift_off).
       if (!(patch.normal_force > 0.0)) {
         const std::size_t per_load = k.creepages();

@@ -6,11 +6,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #include "sweep/adaptive_grid.hpp"
 #include "sweep/contact_kernel.hpp"
 #include "sweep/progress.hpp"
 #include "sweep/shard_split.hpp"
+#include "sweep/table_size.hpp"
 #include "table/interrupt.hpp"
 #include "table/table_io.hpp"
 
@@ -35,6 +37,10 @@ std::pair<int, int> parse_shard(const std::string& text) {
 }
 
 SweepSummary generate_table(const GenerateOptions& options) {
+  // Refused before any work: the output must be a regular file (or new) and not the scene itself;
+  // the checkpoint beside it likewise.
+  check_output_path(options.output, {options.scene});
+  if (options.resume || options.always_checkpoint) check_output_path(checkpoint_path(options.output), {options.scene});
   Scene scene = load_scene(options.scene);
   // [accuracy] scenes: place the adaptive axes' nodes first (docs/adaptive-grids.md); deterministic,
   // so shards and resumed runs get the same grids.
@@ -47,8 +53,20 @@ SweepSummary generate_table(const GenerateOptions& options) {
     }
     *options.log << fmt::format("adaptive grids placed in {:.2f} s\n", adaptive.seconds);
   }
+  // The grid's size before the kernel (which may solve per y node) and before any allocation. A
+  // shard's y range is taken as an even split here (the cost-weighted split needs contact solves);
+  // SweepPlan checks the exact range again before it allocates.
+  const auto [y_begin, y_end] = shard_range(scene.grids.y.size(), options.shard_index, options.shard_count);
+  const std::uint64_t points = table_points(scene, y_end - y_begin);
+  check_table_size(scene.name, points, 0, options.max_points, options.max_bytes);
   const SweepKernel kernel = options.make_kernel ? options.make_kernel(scene) : make_contact_kernel(scene);
   std::ostream* log = options.log;
+  const std::uint64_t bytes = table_bytes(scene, kernel, y_end - y_begin);
+  check_table_size(scene.name, points, bytes, options.max_points, options.max_bytes);
+  if (log) {
+    const unsigned cores = std::thread::hardware_concurrency();
+    *log << describe_table_size(points, bytes, options.threads > 0 ? options.threads : static_cast<int>(cores ? cores : 1));
+  }
 
   ProgressPrinter printer(log ? *log : std::cerr, options.terminal);
   SweepOptions sweep;
@@ -57,6 +75,8 @@ SweepSummary generate_table(const GenerateOptions& options) {
   sweep.shard_count = options.shard_count;
   if (options.shard_count > 1) sweep.y_costs = column_costs(scene);  // flange columns count more
   sweep.interrupt = options.interrupt;
+  sweep.max_points = options.max_points;
+  sweep.max_bytes = options.max_bytes;
   const bool keep_checkpoint = options.resume || options.always_checkpoint;
   if (keep_checkpoint) sweep.checkpoint = checkpoint_path(options.output);
   if (options.always_checkpoint && !options.resume) {
@@ -87,7 +107,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
     result.table.set_attribute("accuracy_targets", adaptive.targets_json(scene).dump());
     result.table.set_attribute("accuracy_achieved", adaptive.achieved_json().dump());
   }
-  write_table(result.table, options.output, options.interrupt);
+  write_table(result.table, options.output, options.interrupt, {options.scene});
   if (keep_checkpoint) {
     std::error_code ignored;
     std::filesystem::remove(sweep.checkpoint, ignored);

@@ -31,6 +31,8 @@ struct GenerateOptions {
   // Keep finished blocks in OUTPUT.partial even without `resume` (a fresh run discards an old
   // one): MPI runs always do, so a rank that dies leaves a resumable checkpoint.
   bool always_checkpoint = false;
+  std::uint64_t max_points = kDefaultMaxPoints;  // refuse a larger table (--max-points) [-]
+  std::uint64_t max_bytes = kDefaultMaxBytes;    // refuse a table needing more memory (--max-bytes) [B]
 };
 
 // The checkpoint file of a table: OUTPUT.partial.

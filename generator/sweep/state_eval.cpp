@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/check.hpp"
+#include "sweep/finite_status.hpp"
 
 namespace railtab {
 namespace {
@@ -50,18 +51,25 @@ nlohmann::json patch_json(const ContactPatch& patch, StatusBits solver_bits, con
     c["wear_rate"] = creep->wear.wear_rate;
     bits |= creep->force.status;
   }
+  // A NaN or inf in any number is failed, never converged (finite_status.hpp).
+  for (const auto& [key, value] : c.items()) {
+    if (value.is_number_float() && !std::isfinite(value.get<double>())) bits = non_finite_status(bits);
+  }
   c["status"] = status::describe(bits);
   c["status_bits"] = bits;
   return c;
 }
 
 nlohmann::json point_json(const ContactPoint& point, int patch) {
+  const bool finite = all_finite({point.wheel_u, point.rail_u, point.y_track, point.z_track, point.contact_angle,
+                                  point.rolling_radius, point.separation, point.curvature_a, point.curvature_b});
+  const StatusBits bits = finite ? point.status : non_finite_status(point.status);
   return {{"wheel_y", point.wheel_u},         {"rail_y", point.rail_u},
           {"y_track", point.y_track},         {"z_track", point.z_track},
           {"contact_angle", point.contact_angle}, {"rolling_radius", point.rolling_radius},
           {"separation", point.separation},   {"curvature_a", point.curvature_a},
           {"curvature_b", point.curvature_b}, {"patch", patch},
-          {"status", status::describe(point.status)}, {"status_bits", point.status}};
+          {"status", status::describe(bits)}, {"status_bits", bits}};
 }
 
 }  // namespace
@@ -78,6 +86,9 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
   RAILTAB_CHECK(!with_creep || request.creepage.size() == 3,
                 "--creepage takes XI,ETA,PHI (three numbers), got {} value(s)", request.creepage.size());
   for (double c : request.creepage) RAILTAB_CHECK(std::isfinite(c), "--creepage values must be finite, got {}", c);
+  if (with_creep) {
+    check_creepage_magnitude("--creepage", request.creepage[0], request.creepage[1], request.creepage[2]);
+  }
   const ContactGeometrySolver solver = make_geometry_solver(scene);
 
   double roll = 0.0;
@@ -159,12 +170,20 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
                              {"iterations", e.coupling_iterations},
                              {"status", status::describe(e.coupling_status)}};
     }
-    wj["status"] = status::describe(e.geometry->status | e.normal.status | (e.coupled ? e.coupling_status : 0u));
+    StatusBits wheel_bits = e.geometry->status | e.normal.status | (e.coupled ? e.coupling_status : 0u);
+    if (!all_finite({e.normal.vertical_approach, e.normal.vertical_load, e.normal_vertical, e.tangential_vertical})) {
+      wheel_bits = non_finite_status(wheel_bits);
+    }
     wj["contacts"] = nlohmann::json::array();
     for (std::size_t i = 0; i < e.normal.patches.size(); ++i) {
       const StatusBits solver_bits = e.normal.status & (status::kConverged | status::kNotConverged);
       wj["contacts"].push_back(patch_json(e.normal.patches[i], solver_bits, with_creep ? &e.creep[i] : nullptr));
+      // A failed contact makes its wheel failed too: the wheel line never says converged over a NaN.
+      if (wj["contacts"].back()["status_bits"].get<StatusBits>() & status::kFailed) {
+        wheel_bits = non_finite_status(wheel_bits);
+      }
     }
+    wj["status"] = status::describe(wheel_bits);
     wj["rigid_points"] = nlohmann::json::array();
     for (std::size_t i = 0; i < e.geometry->points.size(); ++i) {
       const int patch = i < e.normal.point_patch.size() ? e.normal.point_patch[i] : -1;

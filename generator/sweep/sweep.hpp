@@ -23,6 +23,7 @@
 
 #include "core/status.hpp"
 #include "scene/scene.hpp"
+#include "sweep/table_size.hpp"
 #include "table/table.hpp"
 
 namespace railtab {
@@ -110,6 +111,8 @@ struct SweepOptions {
   const std::atomic<bool>* interrupt = nullptr;  // polled; set = stop as soon as possible
   std::function<void(const SweepProgress&)> progress;  // called on the calling thread only
   double progress_interval = 0.25;          // seconds between progress calls [s]
+  std::uint64_t max_points = kDefaultMaxPoints;  // refuse a larger table (table_size.hpp) [-]
+  std::uint64_t max_bytes = kDefaultMaxBytes;    // refuse a table needing more memory [B]
 };
 
 struct SweepSummary {

@@ -8,6 +8,7 @@
 #include "core/check.hpp"
 #include "sweep/checkpoint.hpp"
 #include "sweep/shard_split.hpp"
+#include "sweep/table_size.hpp"
 #include "table/version.hpp"
 
 namespace railtab {
@@ -197,6 +198,10 @@ SweepPlan::SweepPlan(const Scene& scene, const SweepKernel& kernel, const SweepO
                 "sweep: the scene asks for equilibrium roll but the kernel cannot compute it");
   RAILTAB_CHECK(kernel.compute, "sweep: kernel without compute function");
   layout_ = make_layout(scene, kernel, options);
+  // Before any allocation (every engine makes its skeleton here): every size of the skeleton fits
+  // once the totals do. make_layout only does arithmetic on the grid sizes.
+  check_table_size(scene.name, table_points(scene, layout_.ny), table_bytes(scene, kernel, layout_.ny),
+                   options.max_points, options.max_bytes);
   table_ = make_skeleton(scene, kernel, layout_, options);
   TableGroup* root = table_.group("");
   TableDataset* roll_dataset = root ? root->find("equilibrium_roll") : nullptr;

@@ -1,4 +1,4 @@
-// The SIGINT flag and its guard (interrupt.hpp).
+// The interrupt flag and its guard (interrupt.hpp): SIGINT and SIGTERM both set it.
 #include "table/interrupt.hpp"
 
 #include <csignal>
@@ -12,14 +12,26 @@ std::atomic<bool>& interrupt_flag() {
 }
 
 namespace {
-void on_sigint(int) {
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs a lock-free number");
+
+void on_signal(int sig) {
+  g_signal.store(sig);
   interrupt_flag().store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C terminates at once
+  std::signal(sig, SIG_DFL);  // a second signal of the same kind terminates at once
 }
 }  // namespace
 
-SigintGuard::SigintGuard() : previous_(std::signal(SIGINT, on_sigint)) {}
+int interrupt_signal() { return g_signal.load(); }
 
-SigintGuard::~SigintGuard() { std::signal(SIGINT, previous_ == SIG_ERR ? SIG_DFL : previous_); }
+SigintGuard::SigintGuard()
+    : previous_(std::signal(SIGINT, on_signal)), previous_term_(std::signal(SIGTERM, on_signal)) {
+  g_signal.store(0);
+}
+
+SigintGuard::~SigintGuard() {
+  std::signal(SIGINT, previous_ == SIG_ERR ? SIG_DFL : previous_);
+  std::signal(SIGTERM, previous_term_ == SIG_ERR ? SIG_DFL : previous_term_);
+}
 
 }  // namespace railtab

@@ -1,5 +1,5 @@
-// Ctrl-C handling for long runs: a SIGINT handler that only sets a flag, which the sweep and the
-// writer poll. The program then stops cleanly (temporary files removed) instead of dying mid-write.
+// Ctrl-C and SIGTERM handling for long runs (SIGTERM is what timeout, systemd and Slurm send): a
+// handler that only sets a flag, which the sweep and the writer poll. The program then stops cleanly (temporary files removed) instead of dying mid-write.
 #pragma once
 
 #include <atomic>
@@ -14,11 +14,15 @@ class Interrupted : public Error {
   using Error::Error;
 };
 
-// The process-wide flag the SIGINT handler sets.
+// The process-wide flag the SIGINT and SIGTERM handler sets.
 std::atomic<bool>& interrupt_flag();
 
-// Installs the SIGINT handler for its lifetime and restores the previous one afterwards. A second
-// Ctrl-C falls back to the default action (terminate) for a run that does not react.
+// The signal that set the flag under the current guard (SIGINT or SIGTERM), 0 if none.
+int interrupt_signal();
+
+// Installs the SIGINT and SIGTERM handler for its lifetime and restores the previous ones
+// afterwards. A second signal falls back to the default action (terminate) for a run that does
+// not react.
 class SigintGuard {
  public:
   SigintGuard();
@@ -28,6 +32,7 @@ class SigintGuard {
 
  private:
   void (*previous_)(int);
+  void (*previous_term_)(int);
 };
 
 }  // namespace railtab

@@ -114,11 +114,13 @@ Table merge_shards(const std::vector<Table>& shards, const std::vector<std::stri
 }
 
 std::size_t merge_table_files(const std::vector<std::string>& inputs, const std::string& output) {
+  std::vector<std::filesystem::path> input_paths(inputs.begin(), inputs.end());
+  check_output_path(output, input_paths);  // before reading: an input is never overwritten
   std::vector<Table> shards;
   for (const std::string& path : inputs) shards.push_back(read_table(path));
   Table merged = merge_shards(shards, inputs);
   shards.clear();  // the shards' memory before writing
-  write_table(merged, output);
+  write_table(merged, output, nullptr, input_paths);
   return merged.axis("y") ? merged.axis("y")->values.size() : 1;
 }
 

@@ -6,15 +6,20 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
-#include <functional>
-#include <numeric>
+
+#include "core/check.hpp"
 
 #include "core/check.hpp"
 
 namespace railtab {
 
 std::size_t TableDataset::size() const {
-  return std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
+  std::size_t n = 1;
+  for (std::size_t extent : shape) {
+    // A wrapped product would allocate a small buffer and index far beyond it.
+    RAILTAB_CHECK(!__builtin_mul_overflow(n, extent, &n), "dataset {}: shape overflows 64 bits", name);
+  }
+  return n;
 }
 
 const TableDataset* TableGroup::find(const std::string& name) const {

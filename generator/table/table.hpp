@@ -40,7 +40,7 @@ struct TableDataset {
   bool is_status = false;            // stored as uint32
   std::uint64_t storage_bytes = 0;   // bytes on disk (set by the reader) [B]
 
-  std::size_t size() const;          // number of elements, prod(shape)
+  std::size_t size() const;          // number of elements, prod(shape); throws on overflow
 };
 
 // A group of datasets: a wheel part ("left/geometry") or the root ("").

@@ -4,23 +4,24 @@
 
 #include <atomic>
 #include <filesystem>
+#include <vector>
 
+#include "table/output_file.hpp"  // temporary_path
 #include "table/table.hpp"
 
 namespace railtab {
 
-// Write `table` to `target`: first to `target.tmp.<pid>`, renamed to `target` only once complete
-// and closed. Any failure (or `cancel` becoming true between datasets, which throws Interrupted)
-// removes the temporary file and leaves an existing `target` untouched.
+// Write `table` to `target` through an OutputFile (table/output_file.hpp): first to
+// `target.tmp.<pid>`, synced and renamed to `target` only once complete and closed. Refuses a
+// target that is not a regular file or is one of `inputs`. Any failure (or `cancel` becoming true
+// between datasets, which throws Interrupted) removes the temporary file and leaves an existing
+// `target` untouched.
 void write_table(const Table& table, const std::filesystem::path& target,
-                 const std::atomic<bool>* cancel = nullptr);
+                 const std::atomic<bool>* cancel = nullptr, const std::vector<std::filesystem::path>& inputs = {});
 
 // Read a whole table. Throws railtab::Error naming the file and the problem for: a missing or
 // non-HDF5 file, a truncated file, an unknown major format version, missing required groups,
 // datasets or attributes, and datasets whose shape disagrees with their axes.
 Table read_table(const std::filesystem::path& path);
-
-// Path of the temporary file write_table uses for `target` in this process.
-std::filesystem::path temporary_path(const std::filesystem::path& target);
 
 }  // namespace railtab

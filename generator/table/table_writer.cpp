@@ -5,10 +5,9 @@
 // root attributes stored typed (typed_attributes.hpp); chunked + shuffle + deflate above 64 KiB;
 // integrity as in format 1.1: every array dataset with a Fletcher32 checksum (scalars compact, in
 // their checksummed object header), HDF5 1.10 file format (metadata checksums), fixed-length
-// string attributes; no object timestamps, so equal inputs (and SOURCE_DATE_EPOCH) give equal bytes. Written to
-// TARGET.tmp.<pid> and renamed only when complete.
+// string attributes; no object timestamps, so equal inputs (and SOURCE_DATE_EPOCH) give equal bytes. Written through
+// an OutputFile (TARGET.tmp.<pid>, locked, synced, renamed only when complete).
 #include <hdf5_hl.h>
-#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -21,6 +20,7 @@
 
 #include "table/h5_util.hpp"
 #include "table/interrupt.hpp"
+#include "table/output_file.hpp"
 #include "table/table_io.hpp"
 #include "table/typed_attributes.hpp"
 
@@ -379,24 +379,13 @@ class Writer {
 
 }  // namespace
 
-std::filesystem::path temporary_path(const std::filesystem::path& target) {
-  return target.string() + ".tmp." + std::to_string(::getpid());
-}
-
-void write_table(const Table& table, const std::filesystem::path& target, const std::atomic<bool>* cancel) {
+void write_table(const Table& table, const std::filesystem::path& target, const std::atomic<bool>* cancel,
+                 const std::vector<std::filesystem::path>& inputs) {
   h5::silence_errors();
   validate(table, target.string());
-  std::filesystem::path tmp = temporary_path(target);
-  try {
-    Writer(table, tmp.string(), cancel).write();
-    std::error_code ec;
-    std::filesystem::rename(tmp, target, ec);
-    RAILTAB_CHECK(!ec, "{}: cannot rename {} into place: {}", target.string(), tmp.string(), ec.message());
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
-  }
+  OutputFile file(target, inputs);  // removes its temporary unless committed
+  Writer(table, file.temporary().string(), cancel).write();
+  file.commit();
 }
 
 }  // namespace railtab

@@ -1,0 +1,96 @@
+// Table size before the sweep (table_size.hpp): checked products, limits, time estimate.
+#include "sweep/table_size.hpp"
+
+#include <fmt/format.h>
+
+#include "core/check.hpp"
+#include "sweep/sweep.hpp"
+
+namespace railtab {
+namespace {
+
+std::string human_bytes(double b) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  int u = 0;
+  while (b >= 1024.0 && u < 6) {
+    b /= 1024.0;
+    ++u;
+  }
+  return fmt::format("{:.3g} {}", b, units[u]);
+}
+
+std::string human_seconds(double s) {
+  if (s < 120.0) return fmt::format("{:.0f} s", s);
+  if (s < 7200.0) return fmt::format("{:.0f} min", s / 60.0);
+  if (s < 172800.0) return fmt::format("{:.1f} h", s / 3600.0);
+  return fmt::format("{:.3g} days", s / 86400.0);
+}
+
+std::uint64_t axis_count(const std::vector<double>& axis) { return axis.empty() ? 1 : axis.size(); }
+
+}  // namespace
+
+std::uint64_t checked_multiply(std::uint64_t a, std::uint64_t b, const std::string& what) {
+  std::uint64_t product = 0;
+  RAILTAB_CHECK(!__builtin_mul_overflow(a, b, &product), "{}: size overflows 64 bits ({} x {})", what, a, b);
+  return product;
+}
+
+std::uint64_t table_points(const Scene& scene, std::uint64_t y_count) {
+  const std::string what = fmt::format("scene '{}': table grid points", scene.name);
+  std::uint64_t points = y_count;
+  const SceneGrids& g = scene.grids;
+  points = checked_multiply(points, scene.equilibrium_roll ? 1 : axis_count(g.roll), what);
+  for (const std::vector<double>* axis : {&g.load, &g.xi, &g.eta, &g.phi}) {
+    points = checked_multiply(points, axis_count(*axis), what);
+  }
+  return points;
+}
+
+std::uint64_t table_bytes(const Scene& scene, const SweepKernel& kernel, std::uint64_t y_count) {
+  const std::string what = fmt::format("scene '{}': table bytes", scene.name);
+  const SceneGrids& g = scene.grids;
+  const std::uint64_t columns = checked_multiply(y_count, scene.equilibrium_roll ? 1 : axis_count(g.roll), what);
+  std::uint64_t total = 0;
+  for (const PartSpec& part : kernel.parts) {
+    std::uint64_t cells = checked_multiply(columns, kSlots, what);
+    for (const std::string& axis : part.inner_axes) {
+      const std::vector<double>* grid = axis == "load" ? &g.load
+                                        : axis == "xi" ? &g.xi
+                                        : axis == "eta" ? &g.eta
+                                        : axis == "phi" ? &g.phi
+                                                        : nullptr;
+      RAILTAB_CHECK(grid, "{}: unknown axis '{}'", what, axis);
+      cells = checked_multiply(cells, axis_count(*grid), what);
+    }
+    const std::uint64_t per_cell = sizeof(double) * part.outputs.size() + sizeof(StatusBits);
+    const std::uint64_t part_bytes = checked_multiply(checked_multiply(cells, per_cell, what), 2, what);  // 2 wheels
+    RAILTAB_CHECK(!__builtin_add_overflow(total, part_bytes, &total), "{}: size overflows 64 bits", what);
+  }
+  return total;
+}
+
+void check_table_size(const std::string& scene_name, std::uint64_t points, std::uint64_t bytes,
+                      std::uint64_t max_points, std::uint64_t max_bytes) {
+  RAILTAB_CHECK(points <= max_points,
+                "scene '{}': the table has {} grid points ({:.3g}), above the limit of {} (--max-points); at "
+                "{:.0f}-{:.0f} us per point per thread that is {} to {} on one thread. Coarsen the grid, split it "
+                "with --shard, or raise --max-points",
+                scene_name, points, static_cast<double>(points), max_points, kSecondsPerPointLow * 1e6,
+                kSecondsPerPointHigh * 1e6, human_seconds(static_cast<double>(points) * kSecondsPerPointLow),
+                human_seconds(static_cast<double>(points) * kSecondsPerPointHigh));
+  RAILTAB_CHECK(bytes <= max_bytes,
+                "scene '{}': the table needs {} in memory ({} bytes), above the limit of {} (--max-bytes). Coarsen "
+                "the grid, split it with --shard, or raise --max-bytes",
+                scene_name, human_bytes(static_cast<double>(bytes)), bytes, human_bytes(static_cast<double>(max_bytes)));
+}
+
+std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads) {
+  const double per_thread = static_cast<double>(points) / static_cast<double>(threads < 1 ? 1 : threads);
+  return fmt::format("table: {} grid points, {} in memory (the file is smaller: compressed); estimated time {} to {} "
+                     "with {} thread{}\n",
+                     points, human_bytes(static_cast<double>(bytes)), human_seconds(per_thread * kSecondsPerPointLow),
+                     human_seconds(per_thread * kSecondsPerPointHigh), threads, threads == 1 ? "" : "s");
+}
+
+}  // namespace railtab

@@ -1,0 +1,42 @@
+// Size of a table before it is computed: grid points and bytes in memory, every product checked
+// for overflow, compared with limits a flag can raise (--max-points, --max-bytes), and an
+// estimate of the run time. Checked before anything proportional to the grid is allocated
+// (docs/reliability.md, "Limits").
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "scene/scene.hpp"
+
+namespace railtab {
+
+struct SweepKernel;
+
+inline constexpr std::uint64_t kDefaultMaxPoints = 20'000'000;       // about 30-70 min on 2 cores [-]
+inline constexpr std::uint64_t kDefaultMaxBytes = 4ull << 30;        // table in memory [B]
+// Cost of one grid point (both wheels) per thread, the range measured on the shipped scenes
+// (docs/validation.md: 57 us for tables/default.toml; flange-heavy scenes up to ~200 us) [s].
+inline constexpr double kSecondsPerPointLow = 50e-6;
+inline constexpr double kSecondsPerPointHigh = 200e-6;
+
+// a * b, or railtab::Error naming `what` when the product does not fit in 64 bits.
+std::uint64_t checked_multiply(std::uint64_t a, std::uint64_t b, const std::string& what);
+
+// Grid points of the table of `scene` with `y_count` y values (a shard's share): y x roll x load
+// x xi x eta x phi (roll counts 1 with equilibrium roll). Throws railtab::Error on overflow.
+std::uint64_t table_points(const Scene& scene, std::uint64_t y_count);
+
+// Bytes of the in-memory table `kernel` makes for `scene` with `y_count` y values: every
+// float64 output and uint32 status dataset of both wheels. Throws railtab::Error on overflow.
+std::uint64_t table_bytes(const Scene& scene, const SweepKernel& kernel, std::uint64_t y_count);
+
+// Throws railtab::Error when `points` exceeds `max_points` or `bytes` exceeds `max_bytes`,
+// saying the size, the limit and the flag that raises it.
+void check_table_size(const std::string& scene_name, std::uint64_t points, std::uint64_t bytes,
+                      std::uint64_t max_points, std::uint64_t max_bytes);
+
+// One line for the log: points, memory and the run time range with `threads` threads.
+std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads);
+
+}  // namespace railtab

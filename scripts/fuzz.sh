@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (fuzz/, clang-14 with ASan+UBSan) and runs each for a bounded time
+# on a scratch copy of its seed corpus (fuzz/corpus/<name>/): the profile readers, the scene
+# reader and the table loader. A crash, a sanitizer report, a timeout (> 10 s for one input) or an
+# allocation above 2 GB fails the run and leaves the input in build/fuzz/artifacts/.
+# Usage: bash scripts/fuzz.sh [seconds per target, default 60] [target...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+shift || true
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_profile fuzz_scene fuzz_table_load)
+# The fuzz toolchain is not in scripts/install-deps.sh (CI does not run this script): install it here.
+fuzz_packages=(clang-14 libclang-rt-14-dev llvm-14)
+missing=()
+for p in "${fuzz_packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+# -fsized-deallocation: clang 14 leaves C++14 sized delete off by default (lookup/src/table_data.hpp uses it).
+flags="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -fsized-deallocation"
+CC=clang-14 CXX=clang++-14 cmake -S . -B build/fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DRAILTAB_BUILD_FUZZ=ON -DRAILTAB_BUILD_TESTS=OFF -DRAILTAB_BUILD_BENCH=OFF \
+  -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" > build/fuzz-configure.log
+cmake --build build/fuzz --parallel "$(nproc)" --target "${targets[@]}"
+
+mkdir -p build/fuzz/artifacts
+status=0
+for t in "${targets[@]}"; do
+  corpus_name=${t#fuzz_}
+  [ "$corpus_name" = table_load ] && corpus_name=table
+  work=build/fuzz/corpus-run/$corpus_name
+  rm -rf "$work" && mkdir -p "$work" && cp fuzz/corpus/"$corpus_name"/* "$work"/
+  echo "fuzz: $t for $seconds s"
+  # detect_leaks=0 for the table loader: libhdf5 (not instrumented) keeps allocations on some
+  # error paths until H5close; leaks of railtab's own code are caught by the ASan test run.
+  leaks=1
+  [ "$t" = fuzz_table_load ] && leaks=0
+  if ! ASAN_OPTIONS="detect_leaks=$leaks:allocator_may_return_null=1" UBSAN_OPTIONS=print_stacktrace=1 \
+      build/fuzz/fuzz/"$t" "$work" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+      -malloc_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build/fuzz/artifacts/"$t"- \
+      > build/fuzz/"$t".log 2>&1; then
+    echo "fuzz: $t FAILED (build/fuzz/$t.log, inputs in build/fuzz/artifacts/):" >&2
+    grep -E "ERROR|SUMMARY|==[0-9]+==|Test unit written" build/fuzz/"$t".log | head -20 >&2
+    status=1
+  fi
+  # Executions per second and coverage (edges) for the record.
+  grep -E "stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb" build/fuzz/"$t".log |
+    tr '\n' ' ' | sed "s/^/fuzz: $t: /"
+  echo
+  grep -E "^#[0-9]+.*(DONE|pulse|NEW|REDUCE)" build/fuzz/"$t".log | tail -1 | sed "s/^/fuzz: $t: last: /" || true
+done
+exit $status
