@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One strip-wise FASTSIM solve on a central-case-like non-elliptic patch (S1002/UIC60 tread
 // contact, about 78 kN): 50 strips, each with its own local ellipse (STRIPES-like: Kalker
 // coefficients evaluated per strip), parabolic pressure, combined creepage with spin.

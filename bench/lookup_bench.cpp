@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Lookup speed on the default scene's own table (tables/default.toml: y 57 nodes, non-uniform;
 // load 3; xi 7 and eta 5, non-uniform; phi 3; roll at the equilibrium; 2 slots: creep and wear
 // 5-D, normal over (y, load), geometry over y), through the public API (railtab/lookup.hpp).

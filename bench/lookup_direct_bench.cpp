@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What a table lookup saves: the direct model evaluation of one contact state against the lookup
 // of the same state, in one run (the issue asks for lookup >= 10,000x faster than the models).
 //   BM_DirectStripesFastsim: seed 000 central case (S1002 on UIC60 1:40, right wheel, y = 0,

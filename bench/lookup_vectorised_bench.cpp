@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The C++ side of the Python module's speed target (issue 16: a vectorised query of 1e6 states
 // from Python at no more than 2x the C++ cost). One iteration = 1e6 uniformly random states over
 // the table's axes (wheels alternating), every output of every slot, through the batch API in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One load-controlled normal solve per model on the seed 000 central case (S1002 on UIC60 1:40,
 // right wheel, y = 0, 78.5 kN). The geometry is solved once outside the timed loop.
 // Targets: STRIPES < 20 us per solve (~50 strips), Hertz < 1 us. Every solve includes the patch

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cmake -DGENERATOR_DIR=<generator/> -P CheckGeneratorIncludes.cmake
 # Fails if a file in generator/ includes a header through "../": that would get around the
 # per-library include paths that keep generator/'s folders to their allowed dependencies

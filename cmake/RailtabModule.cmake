@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # railtab_module(NAME DEPENDS dep...)
 # One static library per layer of src/ (src/NAME/*.cpp), so each layer builds and tests on its own.
 function(railtab_module name)

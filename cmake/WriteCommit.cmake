@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cmake -DSOURCE_DIR=... -DOUTPUT=... -P WriteCommit.cmake
 # Writes the current git commit (with "-dirty" for uncommitted tracked changes) into OUTPUT as a C
 # macro, at build time, and only when it changed, so tables record the commit they were made with.

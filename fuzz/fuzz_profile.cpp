@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fuzz target: the profile readers (src/profile/profile_io*). The first byte picks the format
 // (SIMPACK .prw/.prr or a two-column file) and the kind; the rest is the file. Any input must end
 // in a profile or a railtab::Error, never a crash, a hang or a sanitizer report.

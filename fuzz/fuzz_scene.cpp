@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fuzz target: the scene reader (generator/scene): parse_scene on arbitrary TOML text, then the
 // objects the scene describes (geometry solver, model options). Profile files named in the scene
 // are looked up in an empty directory. Any input must end in a Scene or a railtab::Error.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fuzz target: the table loader (lookup/): railtab::lookup::Table::load on a file holding the
 // fuzz input, then one query at the default state. Any input must end in a Table or a
 // lookup::LoadError, never a crash, a sanitizer report or an allocation beyond libFuzzer's

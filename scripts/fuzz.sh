@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Builds the libFuzzer targets (fuzz/, clang-14 with ASan+UBSan) and runs each for a bounded time
 # on a scratch copy of its seed corpus (fuzz/corpus/<name>/): the profile readers, the scene
 # reader and the table loader. A crash, a sanitizer report, a timeout (> 10 s for one input) or an

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs every Debian 12 package railtab needs to build, test and chart.
 # Safe to run twice; needs root (or sudo) for apt-get.
 set -euo pipefail

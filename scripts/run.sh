@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The main job: sets up, builds, makes the table of a scene and its charts.
 # Usage: bash scripts/run.sh [scene.toml] [output dir]      (default: tables/default.toml, out/)
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Sanitizer runs of the test suite (issue 19, docs/reliability.md):
 #   asan: the `debug` preset (ASan + UBSan, gcc), the whole CTest suite; any report fails the run.
 #   tsan: ThreadSanitizer build of the sweep and lookup tests only (the code with threads), run

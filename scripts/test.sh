@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Builds railtab (Release) and runs the whole test suite with CTest.
 # Usage: bash scripts/test.sh [extra ctest arguments, e.g. -L stability]
 set -euo pipefail

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The message of the railtab::Error that `f` throws, "" when it throws none. Tests use it to
 // assert that bad input is refused with a message naming the input and the problem.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rolling radius difference and contact angles against y (flange jump visible): CSV, then gnuplot.
 #include "charts/geometry_chart.hpp"
 

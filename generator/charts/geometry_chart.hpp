@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The geometry chart (railtab chart-geometry): rolling radius difference and contact angles of the
 // rigid wheelset against y, so the flange jump shows.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Runs gnuplot without a shell: posix_spawnp with an argument vector, the script on its standard
 // input through a socket pair (send with MSG_NOSIGNAL: a gnuplot that dies early cannot kill us
 // with SIGPIPE), paths quoted for gnuplot's own string syntax.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PNG charts are drawn by gnuplot (Debian gnuplot-nox, pngcairo terminal) from CSV files that the
 // chart commands write first, so every chart can be redrawn or re-plotted elsewhere from its CSV.
 // gnuplot is started without a shell (argument vector, script on its standard input); every path

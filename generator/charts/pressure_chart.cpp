@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pressure along the strip centre lines of every normal model: CSV, then the gnuplot chart.
 #include "charts/pressure_chart.hpp"
 

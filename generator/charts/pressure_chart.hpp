@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pressure comparison of seed 000: peak pressure along the strip centre lines of one wheel's
 // patch, every normal model and negative-curvature treatment side by side.
 #pragma once

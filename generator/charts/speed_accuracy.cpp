@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Speed against accuracy: times and errors of every model setting and of table lookup at the states.
 #include "charts/speed_accuracy.hpp"
 

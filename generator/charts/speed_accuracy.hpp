@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Speed against accuracy: for a fixed set of wheel-rail states of a scene, time per evaluation and
 // error against a reference of every contact model setting (full chain: geometry -> normal ->
 // FASTSIM -> Archard) and of table lookup at several grid resolutions (lookup query only: a

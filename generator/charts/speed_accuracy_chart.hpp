@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The speed-against-accuracy charts of `railtab chart` (docs/speed-vs-accuracy.md): the measurement
 // of speed_accuracy.hpp, its CSVs and two PNG charts.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CSV files of the speed-against-accuracy measurement: one row per setting, per state, and the
 // table memory rows; '#' comment lines name the reference, error measure and timing.
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The states of the speed-against-accuracy measurement (speed_accuracy.hpp explains which).
 #pragma once
 

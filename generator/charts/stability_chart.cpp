@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stability chart: the stability map's status flags per model and y, CSV then gnuplot.
 #include "charts/stability_chart.hpp"
 

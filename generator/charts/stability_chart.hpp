@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stability map chart: which status flags each normal model raises across y, per wheel.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stability map: runs every normal model across y and records the status flags it raises.
 #include "charts/stability_map.hpp"
 

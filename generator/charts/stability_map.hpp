@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stability map of a scene: for every normal model (STRIPES with both negative-curvature
 // treatments) and a fine y sweep of both wheels at the scene's default load, the union of the status
 // flags the geometry and the normal layer raise, and the number of loaded patches. Written as CSV

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Radial wear depth across the wheel profile per step: CSV, then the gnuplot chart.
 #include "charts/wear_chart.hpp"
 

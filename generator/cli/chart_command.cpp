@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab chart-*: option parsing for the charts of generator/charts/, each drawn from a CSV it writes.
 //   chart-geometry: rolling radius difference and contact angles against y (geometry_chart.hpp).
 //   chart-pressure: pressure along the strip centre lines of every normal model (pressure_chart.hpp).

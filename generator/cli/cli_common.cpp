@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // -q/--quiet, the diagnostics stream and the early output checks of every command (cli_common.hpp).
 #include "cli/cli_common.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What every railtab command shares: -q/--quiet, a stream for diagnostics (stderr, or nothing when
 // quiet), and refusing an output that cannot be written before any long work starts.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Subcommands of the railtab program; each lives in its own file and registers itself here.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab eval: one wheelset state of a scene, human-readable or JSON (stable keys, SI units).
 // Per wheel: the loaded contact patches ("contacts": normal contact and, with --creepage, creep
 // forces and wear) and the rigid contact points of the geometry ("rigid_points").

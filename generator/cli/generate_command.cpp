@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab generate SCENE -o TABLE.h5 [--threads N] [-q] [--resume] [--shard I/N]; under mpirun/srun
 // the MPI engine (generator/distributed/) when built with it
 #include <unistd.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab inspect TABLE.h5 [--scene] [--json]: axes, outputs, status counts and provenance of a table.
 #include <CLI/CLI.hpp>
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab: wheel-rail contact tables. Each subcommand registers itself (commands.hpp).
 // Every command: results on stdout, diagnostics (progress, "wrote ...", errors) on stderr, -q/--quiet
 // silences the diagnostics but not the errors; the exit codes are those of kExitCodes.

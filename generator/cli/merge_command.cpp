@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab merge OUT.h5 SHARD.h5...: join the shards of `railtab generate --shard I/N` into one
 // table equal to a single run.
 #include <CLI/CLI.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab query TABLE.h5 --y Y[,Y...] [--roll R] [--load N] [--creepage XI,ETA,PHI] [--wheel W]
 //               [--method M] [--json]
 // Interpolates a table with the runtime library (railtab::lookup, exactly what a simulation

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab simulate SCENE --out DIR [--threads N] [--direct] [--duration SECONDS] [--post-processors P ...] [-q]
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

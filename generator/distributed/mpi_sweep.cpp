@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The MPI sweep engine: rank 0 deals y blocks and collects them; every rank computes.
 #include "distributed/mpi_sweep.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sweep across MPI ranks: rank 0 deals y blocks out to every rank (itself included) as they
 // finish, collects the results, keeps the checkpoint and alone holds the finished table.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scene files: TOML (toml++) into a Scene. Every key is checked against the list of keys its
 // section knows, so a typo is an error, never a silently ignored setting. Errors name the file,
 // the line and the dotted key. File format: docs/scenes.md.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A scene: everything a contact table needs (profiles, track, wheelset, material, models, grids),
 // read from a TOML file in tables/. The file format is documented in docs/scenes.md.
 #pragma once

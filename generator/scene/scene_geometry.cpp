@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Profiles and geometry solver of a scene: built-in analytic profiles or measured profile files.
 #include <fmt/format.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Model settings of a scene: the single mapping from scene keys to the tangential and wear layers.
 #include "scene/scene.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Simulation scenes: TOML (toml++) into a SimulationScene. As in scene.cpp every key is checked
 // against its section's list, so a typo is an error naming file, line and dotted key; the
 // checked reading is generator/toml_section.hpp, shared with scene.cpp.

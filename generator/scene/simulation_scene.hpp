@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A simulation scene for `railtab simulate`: which contact scene, the contact model of the
 // dynamics and the wear post-processors (seed 001: one dynamics, several wear models), the
 // vehicle (a bogie of vehicle::BogieParameters), the route (tangent, transition and circular

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Checked TOML reading: typed values, units and unknown-key errors naming file and key.
 #include "scene/toml_section.hpp"
 

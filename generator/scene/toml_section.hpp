@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Checked reading of TOML scene files (contact scenes and simulation scenes): every table knows
 // its allowed keys, so a typo is an error and never a silently ignored setting, and every error
 // names the file, the line and the dotted key ("bad.toml:12: grid.load: must be > 0, got -1").

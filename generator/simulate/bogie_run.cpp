@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One bogie run over a route with the dynamics' contact model, feeding every wear post-processor.
 #include "simulate/bogie_run.hpp"
 

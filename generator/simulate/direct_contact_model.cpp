@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ContactModel evaluating geometry, normal model and FASTSIM at every call (the reference).
 #include "simulate/direct_contact_model.hpp"
 

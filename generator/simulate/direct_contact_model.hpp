@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // vehicle::ContactModel evaluating the core at every call: rigid geometry at the equilibrium
 // roll, the scene's normal model under the wheel load, FASTSIM per loaded patch. Slots and outputs
 // are mapped exactly as the table sweep maps them (contact_kernel.hpp: assign_slots for the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ContactModel over a contact table: interpolates the table with railtab::lookup every step.
 #include "simulate/lookup_contact_model.hpp"
 

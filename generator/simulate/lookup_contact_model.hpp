@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // vehicle::ContactModel over a contact table (railtab::lookup): what a simulation does every step.
 // normal() is one batch query of both wheels at zero creepage, creep() one query_slot per loaded
 // slot at its own creepage. Queries the table flags out of range or invalid are counted (per

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab simulate: table, bogie run, wear post-processing and profile update, step after step.
 #include "simulate/simulation_run.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `railtab simulate` as a library call: the profile-evolution loop of seed 001 with the contact
 // tables in the time-stepping loop and the dynamics separated from the wear. Per wear step: write
 // the step's contact scene (current wheel profile, the DYNAMICS' normal model, the simulation

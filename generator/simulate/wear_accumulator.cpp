@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Accumulates the wear of a simulation per wheel revolution into a radial depth distribution.
 #include "simulate/wear_accumulator.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Wear post-processing of a simulation, once per wheel revolution, as seed 001 does after its MBS
 // runs: at the wheelset's state the core solves geometry, the scene's normal model, FASTSIM and
 // Archard/KTH wear for every loaded patch of each wheel, and the radial wear depth per strip is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The contact model of each wear post-processor: normal model + FASTSIM + Archard/KTH per wheel.
 #include "simulate/wheel_wear.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The contact model of one wear post-processor (seed 001 sections 2.1, 4: the dynamics runs with
 // one contact model, the wear is computed afterwards, once per wheel revolution, with another):
 // from one wheel's contact geometry, its vertical contact force in the dynamics and the

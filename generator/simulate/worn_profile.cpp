@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Smooths a wear depth distribution and removes it from the wheel profile (the next profile).
 #include "simulate/worn_profile.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Profile evolution: a wheel profile worn by a radial depth distribution becomes the next wear
 // step's wheel profile, written as a two-column profile file (docs/profiles.md) that a scene can
 // name, so every step of a run can be reproduced with `railtab generate` and `railtab eval`.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Adaptive grids: the contact-chain sampler of each axis and build_adaptive_grids (adaptive_grid.hpp).
 #include "sweep/adaptive_grid.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Adaptive grids: the nodes of each adaptive axis of an [accuracy] scene, placed before the sweep
 // so that linear interpolation between neighbouring nodes meets the scene's error targets at the
 // midpoints (docs/adaptive-grids.md). Refinement is separable (one axis at a time, the others at a

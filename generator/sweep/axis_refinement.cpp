@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Generic 1-D grid refinement over a batch sampler (axis_refinement.hpp): midpoint insertion, then
 // coarsening; knows nothing of contact.
 #include "sweep/axis_refinement.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Generic 1-D grid refinement: refine_axis() places the nodes of one axis so that linear
 // interpolation between neighbours meets a tolerance at the midpoints, over any batch sampler
 // (tests drive it with synthetic functions; adaptive_grid.hpp gives it the contact chain).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Checkpoint file of an interrupted sweep: writes finished y blocks, reads them back on --resume.
 #include "sweep/checkpoint.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Checkpoint file of an interrupted sweep (TARGET.partial): a header with a key that identifies the
 // run (scene text, build, shard, layout), then one record per finished y block holding that
 // block's slice of every dataset, with a checksum. A resumed run loads the valid records and

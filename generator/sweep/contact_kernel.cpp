@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sweep's contact kernel: geometry, normal, FASTSIM and wear per (y, roll) column, in slots.
 #include "sweep/contact_kernel.hpp"
 

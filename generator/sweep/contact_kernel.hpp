@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wheel-rail contact kernel of the table sweep: per (y, roll) column and wheel, the rigid
 // geometry once (ContactGeometrySolver::solve_wheel), the normal contact once per load on top of
 // it, and FASTSIM creep forces and Archard wear per creepage on top of each slot's loaded patches

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The contact chain at single states for the adaptive grids (contact_probe.hpp): geometry -> normal
 // -> FASTSIM with the sweep kernel's slot rules, one state at a time.
 #include "sweep/contact_probe.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ContactProbe: the contact chain of a scene at single states, for placing adaptive grid nodes
 // and for checking tables against direct evaluation.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A result with a NaN or an inf in any output is failed, never converged: the status a table
 // point and `railtab eval` carry for it (the lookup refuses tables with non-finite values, so the
 // table stores zeros there). docs/reliability.md.

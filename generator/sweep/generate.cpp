@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab generate as a library call: adaptive grids, sweep, checkpoint and table file.
 #include "sweep/generate.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab generate as a library call: scene -> sweep -> table file, with checkpoint/resume,
 // shards, progress and clean interruption. The subcommand (generate_command.cpp) and the tests
 // drive this.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Adaptive grids against uniform grids of the same worst midpoint error, both against direct
 // evaluation at random off-grid states (grid_comparison.hpp, docs/adaptive-grids.md).
 #include "sweep/grid_comparison.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The measurement of docs/adaptive-grids.md: adaptive grids against uniform grids with the same
 // worst midpoint error, and both against direct evaluation at random off-grid states.
 #pragma once

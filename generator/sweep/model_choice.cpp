@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Model choice per y node for [accuracy] scenes: the cheapest model within the targets.
 #include "sweep/model_choice.hpp"
 

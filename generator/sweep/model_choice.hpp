@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-region model choice of [accuracy] scenes (docs/adaptive-grids.md, "Model choice per y"): for
 // each node of the y grid, the cheapest normal model of `[accuracy] models` whose results stay within
 // the accuracy targets of the reference model ([contact] normal_model) at a fixed set of probe states.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Progress bar (terminal) or periodic lines (logs) of a running sweep.
 #include "sweep/progress.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Progress of a long sweep: a redrawn bar with rate and ETA on a terminal, plain periodic lines
 // otherwise (logs, CI), called from one reporter thread only.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // --shard: cost-balanced contiguous y ranges and the Slurm job-array form.
 #include "sweep/shard_split.hpp"
 

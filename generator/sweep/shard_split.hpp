@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // How --shard splits the y grid: contiguous ranges of about equal estimated cost, so the shards of a
 // job array finish together. A column's cost is estimated by the contact patches it solves (a
 // flange column solves tread and flange patches: about 1.5 x a tread column's normal and creep work).

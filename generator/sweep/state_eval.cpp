@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One wheelset state of a scene through the whole chain, as JSON (state_eval.hpp; railtab eval).
 #include "sweep/state_eval.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One wheelset state of a scene through the whole chain (geometry -> normal -> FASTSIM -> wear), as
 // `railtab eval` prints it: a JSON document with stable keys in SI units.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sweep engine: a kernel over the (y, roll) grid in parallel, in a deterministic order.
 #include "sweep/sweep.hpp"
 

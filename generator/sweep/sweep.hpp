@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The table sweep: a generic engine that runs a kernel over the (y, roll) grid in parallel and
 // fills a Table (docs/table-format.md).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One sweep laid out: sizes, the table skeleton, the run key, and one column computed into it.
 #include "sweep/sweep_plan.hpp"
 

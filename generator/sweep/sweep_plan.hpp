@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One sweep laid out: the table skeleton, the sizes, the run key and the computation of one column
 // into it. Shared by the threaded engine (sweep.cpp) and the MPI engine (generator/distributed/), so
 // both fill the same bytes in the same places.

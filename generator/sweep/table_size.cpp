@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Table size before the sweep (table_size.hpp): checked products, limits, time estimate.
 #include "sweep/table_size.hpp"
 

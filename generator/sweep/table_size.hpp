@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Size of a table before it is computed: grid points and bytes in memory, every product checked
 // for overflow, compared with limits a flag can raise (--max-points, --max-bytes), and an
 // estimate of the run time. Checked before anything proportional to the grid is allocated

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // HDF5 C API helpers: RAII handles and errors that name the file and the object.
 #include "table/h5_util.hpp"
 

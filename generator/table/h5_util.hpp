@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Thin RAII and error checking over the HDF5 C API, shared by the table writer and reader.
 // Every call result goes through check(), which throws railtab::Error naming the file, what was
 // being done and HDF5's own innermost message. HDF5's automatic stack printing is switched off.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Text summary of a table file: provenance, axes and the range of every output.
 #include "table/inspect.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Human-readable summary of a table file: provenance, axes, and per wheel and part the outputs
 // with shapes, sizes and status counts.
 #pragma once

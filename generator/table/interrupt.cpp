@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The interrupt flag and its guard (interrupt.hpp): SIGINT and SIGTERM both set it.
 #include "table/interrupt.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ctrl-C and SIGTERM handling for long runs (SIGTERM is what timeout, systemd and Slurm send): a
 // handler that only sets a flag, which the sweep and the writer poll. The program then stops cleanly (temporary files removed) instead of dying mid-write.
 #pragma once

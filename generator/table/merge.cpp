@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Joins table shards (generate --shard I/N) into one table, checking they fit together.
 #include "table/merge.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Joining the shards of a table (railtab generate --shard I/N) into the table a single run writes.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Safe output files (output_file.hpp): target checks by device and inode, a locked temporary
 // beside the target, fsync around the rename, removal of temporaries left by killed runs.
 #include "table/output_file.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Safe output files: every file railtab writes goes through here. A target must be absent or a
 // regular file and must not be one of the command's inputs (same device and inode); the content
 // is written to a temporary beside it (TARGET.tmp.<pid>, held under a lock while alive), synced,

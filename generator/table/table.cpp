@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // In-memory table: dataset lookup by name, sizes and the creation time stamp.
 #include "table/table.hpp"
 

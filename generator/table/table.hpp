@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // In-memory image of a contact-table file (docs/table-format.md): root attributes, axes and the
 // datasets of each wheel and part. The sweep fills it, the writer stores it, the reader returns it,
 // merge concatenates shards of it. Everything is held in C order, last index fastest.

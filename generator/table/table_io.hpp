@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading and writing contact-table files (docs/table-format.md, format 1.0) with the HDF5 C API.
 // Only one thread may call these at a time (HDF5 is serialised process-wide).
 #pragma once

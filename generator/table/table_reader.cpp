@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reads a format-1.x or 2.x table file into a Table, checking everything a consumer relies on, so
 // that a damaged or foreign file fails here with the file name and the problem, not later with
 // garbage. Format 2's typed attributes come back as the text the Table holds (table_writer.cpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes a Table as an HDF5 file, format 2.0 (docs/table-format.md): /axes as dimension scales and
 // fixed variables as scalar datasets beside them; every part group holds its own copies of its
 // axes as dimension scales (so xarray/netCDF open any group with coordinates); every dataset with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "table/typed_attributes.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Typed HDF5 attributes for format 2 (docs/table-format.md): numbers as numbers, lists as arrays,
 // JSON objects as groups of such attributes, so h5py, xarray and h5dump show values, not JSON
 // text. The in-memory Table keeps its JSON text (table.hpp); only the file encoding changes.

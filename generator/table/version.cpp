@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Version string and git commit of this build (the commit header is generated at build time).
 #include "table/version.hpp"
 

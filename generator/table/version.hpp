@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Version and provenance of this build, recorded in every table file.
 #pragma once
 

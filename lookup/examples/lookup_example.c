@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 /* Loads a railtab table and queries the left wheel along a lateral sweep, from C.
  * Usage: railtab_lookup_example TABLE.h5          (exit status 0 on success) */
 #include <stdio.h>

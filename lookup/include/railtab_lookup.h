@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 /* railtab lookup, C API: load a wheel-rail contact table once, query it from any thread.
  *
  * Surface over railtab::lookup (railtab/lookup.hpp): an opaque handle, open / query / query

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The query layout of a block (table_data.hpp): records without status padding, and per node
 // the status of the cell it starts, so a query reads one status word per part instead of
 // folding the 2^D corners.

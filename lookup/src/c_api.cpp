@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // C API over railtab::lookup::Table. No exception crosses this boundary: each entry point
 // catches, stores the message in a thread-local string and returns a code.
 #include "railtab_lookup.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Parser for the one JSON shape the lookup reads: the root attribute fixed_axes, a flat object
 // of numbers ({"roll":0.0,"load":78500.0}). Small on purpose: the lookup carries no JSON library.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Grid side of the lookup: one axis of nodes and the search that places a query value in a cell.
 // Kept apart from the interpolators (interpolate.hpp), which only see (cell, fraction) pairs.
 #pragma once

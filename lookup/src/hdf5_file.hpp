@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Read-only access to one HDF5 file for the loader. Every failure throws LoadError naming the
 // file, the object and, when HDF5 has one, its own innermost error message. Used at load only;
 // the query path never touches HDF5.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Interpolators over one block's records (layout in table_data.hpp). They see the grid only
 // through per-axis cells (AxisLoc); grid.hpp finds the cells. No allocation, no throw.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Names shared with the table format: output datasets and part groups.
 #include "part_spec.hpp"
 

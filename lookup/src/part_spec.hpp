@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What format 1.0 puts in each part: group name, outputs and the state variables its datasets
 // may be tabulated over (docs/table-format.md, "Wheels and parts").
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Table: loading entry point, accessors and the query path.
 #include <algorithm>
 #include <cmath>

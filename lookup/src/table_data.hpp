@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // In-memory layout of a loaded table, built by table_load.cpp and read by the query path.
 //
 // Parts of one wheel that are tabulated over the same axes (creep and wear always; geometry and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Introspection that needs no query data: status bit names, units, slot names, versions, and the
 // Table accessors added with them (the query-path accessors are in table.cpp).
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Loading a table file into the query layout (table_data.hpp).
 #pragma once
 

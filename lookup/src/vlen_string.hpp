@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Variable-length string attributes (legacy tables, h5py's default) read WITHOUT libhdf5's
 // variable-length read: a one-byte corruption of the heap reference or of the global heap makes
 // that read allocate gigabytes or read out of bounds (issue #19). Instead the attribute's raw

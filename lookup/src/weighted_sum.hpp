@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Weighted sums of records (a record = NV consecutive doubles of a node, query layout in
 // table_data.hpp), the inner loop of every interpolator. Two instruction sets with the same
 // arithmetic: SSE2 (the x86-64 baseline, pairs of doubles) and AVX2 (quads, chosen at load when

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """railtab: wheel-rail contact tables and models for railway vehicle dynamics, from Python.
 
     import railtab

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """railtab.evaluate: the direct contact models at one wheelset state (the code of `railtab eval`)."""
 import json
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """railtab.Profile: wheel and rail profiles from files (docs/profiles.md), on numpy arrays."""
 import os
 

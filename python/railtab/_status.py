@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Status bits of every table point and query (docs/table-format.md, src/core/status.hpp)."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """railtab.Table: a contact table loaded with railtab's lookup, queried on numpy arrays."""
 import os
 

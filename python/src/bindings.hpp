@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One function per bound area, each in its own file (module.cpp calls them in order).
 #pragma once
 

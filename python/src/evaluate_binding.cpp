@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab.evaluate: one wheelset state of a scene through the direct models, the very code of
 // `railtab eval --json` (sweep/state_eval.hpp), returned as its JSON text (railtab/_evaluate.py
 // parses it), so Python and the command line cannot drift apart.

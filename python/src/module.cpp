@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The compiled part of the Python package `railtab` (python/railtab/__init__.py wraps it): the
 // lookup's tables, profiles from files and the direct contact models.
 #include <pybind11/pybind11.h>

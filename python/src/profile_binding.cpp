@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab.Profile: wheel and rail profiles from files (profile/profile_io.hpp), the built-in
 // S1002 and UIC60, evaluation on numpy arrays, and the SIMPACK writer.
 #include <pybind11/numpy.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab.Table: a loaded lookup table and its vectorised query. The query loop runs in C++ with
 // the GIL released; Python only broadcasts the inputs and names the outputs (railtab/_table.py).
 #include <pybind11/numpy.h>

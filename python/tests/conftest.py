@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared fixtures of the Python tests. CTest (python/CMakeLists.txt) sets the environment:
 PYTHONPATH (the built package), RAILTAB_PROGRAM (the railtab program), RAILTAB_WRITE_FIXTURE
 (tests/lookup's fixture table writer), RAILTAB_SOURCE_DIR, RAILTAB_TEST_TMP."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """railtab.evaluate: the direct models give exactly what `railtab eval --json` prints."""
 import json
 import subprocess

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """railtab.Profile: built-in and file profiles on numpy arrays; the SIMPACK writer round trip."""
 import numpy as np
 import pytest

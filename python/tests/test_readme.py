@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The Python example of README.md runs as written (in a directory holding the default table
 made by `railtab generate tables/default.toml -o default.h5`, and tables/ of the source tree),
 and its table creep curve agrees with the direct model it prints beside it."""

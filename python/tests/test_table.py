@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """railtab.Table: loading, vectorised queries against the fixture's known values, units, status."""
 import numpy as np
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Format 2.0 tables are self-describing (docs/table-format.md): xarray opens every group with
 its coordinates and units, the h5py example of the docs runs as written, attributes are typed,
 status bits are explained by CF attributes, and SOURCE_DATE_EPOCH makes rebuilds byte-identical."""

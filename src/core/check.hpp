@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Always-on precondition checks. A failed check throws railtab::Error with a message that names
 // the input and the offending values; assert() stays for internal invariants only.
 #pragma once

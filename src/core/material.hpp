@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Elastic material of wheel and rail (identical materials assumed, as in Hertz and FASTSIM).
 #pragma once
 

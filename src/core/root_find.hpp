@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Brent's bracketed root finder (Brent 1973, "Algorithms for minimization without derivatives",
 // ch. 4): inverse quadratic interpolation safeguarded by bisection, so it never leaves the bracket
 // and converges for any continuous function with a sign change. Header-only, allocation-free.

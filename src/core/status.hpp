@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Status flags carried by every result and every table point. Numerical trouble is data:
 // a result is always returned, and these bits say how far to trust it.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Gap band of one wheel at rigid contact: for rail points P(s), uniform in rail arc length s,
 // the wheel point on the rail normal line P + t n and the normal gap t. The normal-contact
 // models lay their strips along this band (overlap at approach dz: dz*cos(angle) - gap).

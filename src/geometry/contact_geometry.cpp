@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ContactGeometrySolver: input checks, one wheel's contact points and band, both wheels.
 #include "geometry/contact_geometry.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rigid wheel-rail contact geometry of a wheelset on a track: contact points (tread and flange,
 // two-point contact kept), contact angles, rolling radii, principal relative curvatures and the
 // gap function along the rail surface around the contacts, which the normal-contact models use.

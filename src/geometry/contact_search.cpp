@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rigid contact search of one wheel on its rail: local minima of the vertical gap.
 //
 // Both profiles are parametric curves (t = u for function profiles; placement.hpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Kinematic roll of a rigid wheelset on rigid rails: the roll at which both wheels touch at once.
 //
 // Each wheel, rolled about the common axle centre, needs its own vertical drop to touch its rail;

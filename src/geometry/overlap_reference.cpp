@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Loaded-patch references from the gap band (see overlap_reference.hpp for the rules and for how
 // they follow CONTACT's contact search).
 #include "geometry/overlap_reference.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reference point of a loaded contact patch from the rigid gap band: the wheel is pushed a rigid
 // vertical approach delta_z beyond rigid contact, and each region of positive overlap gets one
 // reference, placed and oriented the way CONTACT (Vollebregt) places its "contact reference

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Placement of rail and wheel in the side frame (model in placement.hpp and docs/conventions.md).
 #include "geometry/placement.hpp"
 

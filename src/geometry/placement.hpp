@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internal to the geometry layer: the rail and wheel curves placed in a side frame (q outward,
 // z up; docs/conventions.md "Side frame"), with the tables that make the hot loop cheap.
 //

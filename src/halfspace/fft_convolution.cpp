@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "halfspace/fft_convolution.hpp"
 
 #include <fftw3.h>

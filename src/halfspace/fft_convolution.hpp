@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Discrete convolution of grid fields with influence kernels by FFT, DC-FFT style (Liu, Wang &
 // Liu, Wear 243 (2000)): the field is zero-padded to at least twice its size in each direction
 // (the next length with prime factors 2, 3, 5, 7 only, where FFTW is fast) and the

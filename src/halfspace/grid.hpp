@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The potential contact area of the half-space solver: a rectangular grid of equal rectangular
 // elements in the patch's tangent plane (x rolling direction, y lateral along s, as the contact
 // frame of docs/conventions.md). Element (i, j) has its centre at (x0 + i dx, y0 + j dy) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Influence coefficients of the elastic half-space for uniform loads on a rectangle (Love 1929;
 // Johnson, Contact Mechanics ch. 3; Kalker 1990 ch. 5): the displacement DIFFERENCE of two
 // bodies of the same material (quasi-identical bodies: a pressure causes no tangential

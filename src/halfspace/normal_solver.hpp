@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Normal contact of two elastic half-spaces of the same material on a grid (potential contact
 // area): find the pressure p >= 0 and the approach delta with
 //   deformed gap  e = h + A p - delta >= 0,   p e = 0,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Steady rolling with Coulomb friction on a grid (Kalker's exact theory, discretised as in
 // CONTACT): traction p = (px, py) on the WHEEL per element, slip of the wheel relative to the rail
 // per rolling distance

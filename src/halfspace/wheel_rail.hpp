@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The exact half-space model on a wheel-rail contact: one planar patch per loaded region, as
 // CONTACT's wheel-rail module does by default, built from the same data as the fast models.
 //

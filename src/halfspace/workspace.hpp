@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-thread state of the half-space solvers: the FFT buffers and the kernel spectra of the grid
 // and material they were last made for (recomputed only when those change), and scratch fields.
 // One Workspace per thread; the solvers never share one.

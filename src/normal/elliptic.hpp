@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Complete elliptic integrals and the Hertz ellipse shape (FACTS 1.2, 1.3).
 //
 // The Hertz shape depends only on the curvature ratio A_min/A_max. With g = b/a <= 1 the ratio of

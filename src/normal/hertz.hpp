@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hertz contact of two identical elastic bodies with relative curvatures A (rolling direction x)
 // and B (lateral direction) (FACTS 1.1, 1.3; CONTACT's hzcalc3d gives the same numbers, 1.4).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Kik-Piotrowski (Piotrowski & Kik, VSD 46 (2008) 27-48; FACTS 2.3, verified against the public
 // implementation K1): virtual interpenetration with eps = 0.55, planar patch (reference normal),
 // semi-elliptic pressure along every strip p(x, s) = C sqrt(L(s)^2 - x^2), L(s) = sqrt(v(s)/A(s)).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Linder (with Brauchli, 1997): virtual interpenetration with the constant fraction eps = 0.55 of
 // the Hertzian approach (seed 000; FACTS 2.2). Planar patch (reference normal), semi-elliptic
 // pressure along every strip, p(x, s) = C sqrt(L(s)^2 - x^2), L(s) = sqrt(v(s)/A(s)).

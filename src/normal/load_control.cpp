@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Load control: the vertical approach that carries a given vertical wheel load (bracketing and
 // root finding on the summed patch loads), then the patches at that approach.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The band machinery shared by the virtual-interpenetration models: per-sample cos, A and q made
 // ready lazily, overlap runs along the gap band, strips (normal_internal.hpp).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internal machinery shared by the normal-contact models (not part of the public contract).
 // One solve prepares a PointContext per contact point (geometry-only data: band domain, curvature
 // treatment, reference Hertz coefficients); the load-control loop then evaluates every patch at

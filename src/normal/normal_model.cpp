@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Entry points and dispatch of the normal-contact layer: model names, preparation of the contact
 // points, the per-model dispatch (evaluate) and the solve at a given approach. The band machinery
 // is in normal_band.cpp, the run weights in run_weights.cpp, the patch assembly in

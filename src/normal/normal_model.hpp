@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Normal contact: one interface for Hertz, Linder, Kik-Piotrowski and STRIPES (A- and
 // A&B-correction). A model takes the rigid geometry of one wheel (contact points and the gap band
 // along the rail surface) and either the vertical wheel load or the vertical approach, and returns

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Patch assembly: the loaded points' contributions grouped by rigid-overlap run and merged into
 // the wheel's contact patches (fill), with the single-Hertz shortcut.
 

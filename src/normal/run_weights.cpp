@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Overlap-run weights of the point models: how points sharing one run of rigid overlap share its
 // load (normal_internal.hpp, "Overlap-run weights").
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // STRIPES (Ayasse & Chollet 2005) with the A- and the A&B-correction of seed 000 (FACTS 2.4).
 //
 // Patch: virtual interpenetration along the band; every strip follows its own contact angle (the

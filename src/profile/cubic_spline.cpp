@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "profile/cubic_spline.hpp"
 
 #include <Eigen/Sparse>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A cubic spline f(x) through points with strictly increasing x: interpolating (not-a-knot) or
 // smoothing (Reinsch). Shared by SplineProfile (z(u)) and ParametricProfile (y(s), z(s)).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MiniProf reader (docs/profiles.md "MiniProf"). The layout follows the files the instrument
 // software writes and CONTACT's testbank holds; the orientation and placement rules are ours and
 // documented there.

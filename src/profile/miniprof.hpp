@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internal to the profile readers: MiniProf wheel (.whl) and rail (.ban) files, in their three
 // forms (docs/profiles.md "MiniProf"): old style (a "MINIPROF" banner, free header lines, data
 // after the first blank line), keyed header (Key=Value lines, ColumnDef=...), plain columns.

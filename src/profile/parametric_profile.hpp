@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A profile through measured points that is not a function z(u): worn rails whose gauge corner
 // overhangs, undercut field sides, wheels measured round the vertical flange back. The curve is
 // parametrised by the chord length s of the points: s -> (y(s), z(s)), two cubic splines on the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internal to the profile readers: the small text-parsing helpers they share.
 #pragma once
 

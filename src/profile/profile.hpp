@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A wheel or rail profile: a smooth curve z(u) with first and second derivatives anywhere in its
 // range. Frames and signs are defined once in docs/conventions.md ("Profile frames"):
 //   u [m]  lateral, positive towards the field side (away from the track centre), for both bodies;

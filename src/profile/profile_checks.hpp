@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Plausibility of a profile read from a file (docs/profiles.md "Plausibility checks"): units,
 // orientation and extent checked against what a wheel or rail can be, before a wrong file turns
 // into a table of confident nonsense.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading measured or published profiles from files: the only file I/O in src/ (docs/profiles.md
 // gives the formats and how each maps to the profile frames of docs/conventions.md).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Limits on profile input, checked before anything is allocated (docs/profiles.md "Limits").
 // They are far above any real wheel or rail profile and keep hostile or broken files (a device,
 // a FIFO, coordinates in the wrong unit or scaled by 1e300) from exhausting memory or time.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The S1002 wheel profile (UIC 510-2 / EN 13715) from its piecewise analytic definition
 // (/work/shared/FACTS.md section 5.1), in the wheel profile frame of docs/conventions.md:
 //   u = S [m] (flange at negative u, flange back face at u = -0.070 m), z = -F(S) [m].

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writing a profile as a SIMPACK rail-wheel profile (.prw wheel, .prr rail), the format other
 // vehicle-dynamics tools (SIMPACK, CONTACT, GENSYS importers) read. The counterpart of
 // read_profile (profile/profile_io.hpp); docs/profiles.md describes the format.

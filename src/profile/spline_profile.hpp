@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A profile through measured points (u, z): a C2 cubic spline, interpolating or smoothing.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading input files safely: only regular files (a device or FIFO is refused at
 // once, without blocking), at most limits::kMaxProfileFileBytes and kMaxProfileLines.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The UIC60 / 60E1 rail head (EN 13674-1) from its arcs, in the rail profile frame of
 // docs/conventions.md: u [m] from the head centreline, z [m] up, z = 0 at the top (z <= 0).
 #pragma once

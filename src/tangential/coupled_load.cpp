@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Coupled load control: secant on the vertical approach until normal plus tangential vertical
 // force equals the prescribed load (coupled_load.hpp).
 #include "tangential/coupled_load.hpp"

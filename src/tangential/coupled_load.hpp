@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Load control in track axes with the creep forces in the balance (issue 14): the vertical wheel
 // load is carried by the normal force AND by the vertical component of the tangential force, so
 // the approach is found such that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FASTSIM (Kalker 1982): the simplified theory of rolling contact, on an elliptic patch and
 // strip-wise on the non-elliptic patches of the normal layer (Linder, Kik-Piotrowski, STRIPES).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FASTSIM on any contact patch of the normal layer, so callers (eval, the table sweep, benchmarks)
 // need not know which normal model made it: a Hertz patch without strips is solved by the
 // classical elliptic FASTSIM on its own ellipse, every other patch strip-wise.

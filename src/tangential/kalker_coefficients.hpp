@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Kalker's creepage coefficients C11, C22, C23 of the linear theory of rolling contact, as functions
 // of the ellipse ratio a/b (a along the rolling direction x, b lateral) and Poisson's ratio.
 //

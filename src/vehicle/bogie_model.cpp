@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Equations of motion of the bogie and their RK4 integration (docs/vehicle-model.md, "The bogie";
 // the names below follow it).
 #include "vehicle/bogie_model.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A bogie running at constant speed on a TrackLayout: two wheelsets (lateral and yaw each) held by
 // a primary suspension to a bogie frame (lateral and yaw), the frame held by a secondary
 // suspension (lateral and yaw springs and dampers) to a car body that follows the track

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the vehicle model needs from wheel-rail contact, whoever computes it: a contact table through
 // railtab::lookup (the normal case inside a time-stepping loop) or the core's models directly (the
 // reference run, `railtab simulate --direct`). Frames and signs: docs/conventions.md.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Creepages of one contact from the wheelset motion; derivation in docs/vehicle-model.md.
 #include "vehicle/kinematics.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Creepages of a wheel-rail contact from the wheelset's motion relative to the track (linearised
 // in the yaw angle; docs/vehicle-model.md derives them). Shared by the equations of motion and by
 // the wear post-processing, so both see the same creepages.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Torque balance about the axle: a one-dimensional monotone root search in Omega.
 #include "vehicle/spin_balance.hpp"
 

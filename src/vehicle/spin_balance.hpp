@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wheel spin speed that balances the creep torques about the axle (docs/vehicle-model.md,
 // "Spin speed"). Internal to src/vehicle.
 #pragma once

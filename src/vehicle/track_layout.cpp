@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Piecewise-linear curvature and cant along the centreline, plus the lateral irregularity.
 #include "vehicle/track_layout.hpp"
 

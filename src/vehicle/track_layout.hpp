@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The track a simulated wheelset runs on: a sequence of sections (tangent, transition, circular)
 // along the centreline, each with curvature and cant ramping linearly over its length (a clothoid
 // with a linear cant ramp for transitions), plus a lateral irregularity of both rails.

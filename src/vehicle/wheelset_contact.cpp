@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Loads, contact and contact forces of one wheelset; docs/vehicle-model.md derives every term.
 #include "vehicle/wheelset_contact.hpp"
 

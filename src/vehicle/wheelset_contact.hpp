@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The contact side of one wheelset's equations of motion, shared by the single-wheelset model
 // (wheelset_model.hpp) and the bogie (bogie_model.hpp): quasi-static wheel loads, the contact
 // model's normal problem, the spin balance, and the contact forces and yaw moment in track axes.

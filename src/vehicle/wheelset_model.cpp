@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Equations of motion of the suspended wheelset and their RK4 integration
 // (docs/vehicle-model.md derives every term; the names below follow it).
 #include "vehicle/wheelset_model.hpp"

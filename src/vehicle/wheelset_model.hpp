@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A single wheelset running at constant speed on a TrackLayout, held by a primary suspension
 // (lateral and longitudinal springs, lateral dampers) to a bogie frame that follows the track's
 // design centreline rigidly. Degrees of freedom: lateral displacement y and yaw psi (relative to

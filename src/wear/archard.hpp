@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Archard wear over a contact patch from the FASTSIM element results (Enblom & Berg procedure):
 // per element the depth removed from a wheel point crossing it is k p |s| dx / H (Archard with the
 // local pressure p, the local slip per rolling distance |s| and the element length dx; the time

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // KTH wear map (Jendel, Wear 253 (2002) 89-99; used by Enblom & Berg, Wear 265 (2008) 1532-1541):
 // Archard's dimensionless wear coefficient k as a function of the local contact pressure p and
 // the local slip velocity v, for dry wheel-rail contact, scaled down for natural contamination or

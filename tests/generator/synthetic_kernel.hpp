@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A fast kernel with the layout of the contact kernel (plus a creep-like part) whose values are a
 // fixed function of the grid indices, for testing the sweep machinery without the contact core.
 #pragma once

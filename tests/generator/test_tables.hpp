@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers shared by the generator tests: small tables and scenes, temporary directories, and
 // byte-wise comparison of datasets.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Gap band: non-negative at rigid contact, zero at the contacts, quadratic with curvature 2B.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // S1002 on UIC60 1:40 (Manchester set-up) against CONTACT's lateral sweep
 // (../shared/reference/blockC_sweep_integer_dy.csv, a_none rows; right wheel, no roll,
 // dy = -y). CONTACT reports the reference point of a loaded elastic patch (78.5 kN): the rigid

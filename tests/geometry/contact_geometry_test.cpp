@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ContactGeometrySolver on analytic profiles: closed-form contact position, angle, rolling radius,
 // A and B; mirror symmetry of the wheelset; input errors.
 #include "geometry/contact_geometry.hpp"

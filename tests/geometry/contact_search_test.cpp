@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Contact search: two-point contact found and kept, separations exact, S1002 two-point range and
 // the jump into flange contact.
 #include <gtest/gtest.h>

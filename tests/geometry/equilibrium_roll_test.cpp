@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Equilibrium (kinematic) roll: both wheels touch at once, odd in y, Manchester magnitudes.
 #include <gtest/gtest.h>
 

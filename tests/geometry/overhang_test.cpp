@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Parametric profiles in the contact geometry: a worn rail whose gauge face overhangs
 // (site_b_hr.prr of CONTACT's testbank, as shipped) and an undercut added below a UIC60 head.
 // The part of a rail under an overhang cannot be reached by a wheel coming from above, so it must

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // overlap_references: weighted patch reference (CONTACT's interpenetration centre) on hand-made
 // bands with closed-form answers, and on a synthetic cone/crown pair through the solver.
 #include <gtest/gtest.h>

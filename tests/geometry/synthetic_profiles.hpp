@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Analytic profiles with hand-computable contact geometry, for the geometry tests.
 #pragma once
 

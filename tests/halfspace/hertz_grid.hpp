@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test helper: a quadratic gap h = A x^2 + B y^2 on a grid around its Hertz ellipse.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Normal half-space solver (BCCG + FFT) against Hertz's closed forms.
 #include "halfspace/normal_solver.hpp"
 

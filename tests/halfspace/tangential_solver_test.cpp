@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Steady rolling on Hertzian patches: Kalker's linear creep coefficients, saturation at mu N,
 // symmetry, FASTSIM's signs, CONTACT's block D creep cases.
 #include "halfspace/tangential_solver.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The half-space model on S1002/UIC60 1:40 against CONTACT (../shared/reference blocks A, B, C;
 // right wheel, y = -dy, no roll). Mapping of docs/conventions.md: xi = -cksi, eta = ceta,
 // phi = cphi; fx = -fx_N, fy = fs_N. Numbers: docs/validation/halfspace.md. Skips without

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The half-space model on the built-in S1002/UIC60 pair (no ../shared needed): load control,
 // left/right mirror, wear per element.
 #include "halfspace/wheel_rail.hpp"

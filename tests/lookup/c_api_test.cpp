@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // C API: return codes, thread-local last error, results identical to the C++ API.
 #include "railtab_lookup.h"
 

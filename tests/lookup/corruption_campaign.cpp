@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Corruption campaign (issue #19 item 5; run by scripts/corruption_campaign.sh): N copies of a
 // table, each with one byte replaced by a different random value, each loaded through the C API
 // in a child process under a memory limit, then queried at fixed states and compared with the

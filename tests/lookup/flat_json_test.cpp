@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fixed_axes parser (lookup/src/flat_json.hpp).
 #include "flat_json.hpp"
 

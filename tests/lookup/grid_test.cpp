@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Axis::locate (lookup/src/grid.hpp): cells and fractions on uniform and non-uniform axes.
 #include "grid.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Interpolation accuracy through the public API: exact polynomial reproduction (multilinear:
 // affine; cubic: quadratics), convergence order on a smooth non-polynomial function, and no
 // overshoot for the monotone cubic.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared helpers of the lookup tests: unique temp file names, output index of (part, output).
 #pragma once
 

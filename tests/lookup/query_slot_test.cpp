@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Table::query_slot and railtab_lookup_query_slot: one contact slot gives exactly what the
 // all-slots query puts in that slot (values, part statuses, status with the query bits), for
 // every method, both wheels, in and out of range, NaN, absent parts, odd slot counts; bad slots

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cmake -DLIBRARY=librailtab_lookup.so -DNM=nm -P shared_symbols.cmake
 # Lists the shared library's exported (dynamic, defined) symbols and fails unless every one is
 # part of the API: a C function railtab_lookup_*, or railtab::lookup::* outside ::detail (with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The lookup mirrors the core's status bits (it must not link the core): the values must match.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes railtab table files (docs/table-format.md, version 1.0) filled with known functions,
 // straight from the HDF5 C API: the lookup tests must not depend on the generator's writer.
 // Header-only so test_lookup, the fixture-writer program and bench/lookup_bench.cpp share it.

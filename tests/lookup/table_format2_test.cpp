@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Format 2.0 (docs/table-format.md): fixed variables as compact scalar datasets /axes/<name>,
 // roll_mode, always checksummed; the checks of format 1's fixed_axes carried over (unknown or
 // missing variables refused), string arrays checked like single strings. Format 1.1 still loads.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hostile and corrupt tables (issue #19 items 4, 5, 9): every one is a LoadError naming the file
 // and the problem, before anything large is allocated; nothing reaches the query path.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Loading: every bad file is an error at load, of type LoadError, naming the file and the problem.
 #include <gtest/gtest.h>
 

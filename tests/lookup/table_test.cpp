@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Query semantics of Table: clamping and flags, NaN handling, fixed axes, status combination,
 // batch = single, wheels, and 8 threads = 1 thread.
 #include <gtest/gtest.h>

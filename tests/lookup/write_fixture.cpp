@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes a small table (y 9 x xi 5 x eta 3 x phi 3, 2 slots, all parts) for the C example, the
 // install consumer test and the corruption campaign: format 2.0 (fixed variables as compact
 // scalar datasets, checksums), or with --format-1.1 the 1.x layout with checksums, or with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Seed 001 Table 2 (S1002 on UIC60 1:40, 90 kN) and the seed 000 central case: every model on the
 // real profiles through the geometry solver. Prints the comparison table (docs/validation/normal.md)
 // and writes CSVs under <repo>/build/validation/.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Synthetic WheelContactGeometry for the normal-contact tests: a gap band with a prescribed gap
 // function (quadratic B s^2 for Hertzian cases), constant A via the rolling radius, and contact
 // points placed by hand. Independent of the geometry solver.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared test helper: a profile's analytic derivatives against central finite differences.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared test helper: the Manchester benchmark profile files in ../shared/profiles.
 #pragma once
 

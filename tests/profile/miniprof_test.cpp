@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MiniProf reader (src/profile/miniprof.cpp): the three forms of the file (old style with a
 // banner, keyed header, plain columns), the automatic orientation and the wheel placement, a
 // vertical flange back and an undercut gauge corner kept as parametric curves, and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ParametricProfile: a curve through points in their order, parametrised by chord length, that
 // may overhang. Checked on a circle (which turns back on itself laterally) and on the
 // single-valued view eval(u) that wheel and rail callers get.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reliability of the profile input (issue 19, findings 3 and 7): limits checked before anything
 // is allocated, only regular files read, and plausibility checks that refuse a wrong unit, a
 // wrong orientation, a cut file and a rail that would be canted twice. Each test here failed (or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test helper: profile files written from the built-in S1002 and UIC60 shapes, in the formats
 // the readers take, so that each test states its file in a few lines.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 3. Concave (negative) relative curvature and 4. near-conformal contact (FACTS 8 rows 3, 5).
 #include <numbers>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 5. Extreme ellipticity (FACTS 8 row 6): Hertz-like synthetic geometry with B/A = 1e-3 (a patch
 // 100x longer laterally... i.e. a/b -> 0) and 1e3 (a/b large). Every normal model, the Kalker
 // coefficients and FASTSIM stay finite; |F| <= mu N.

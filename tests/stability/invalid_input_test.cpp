@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 9. NaN and infinite inputs: a railtab::Error naming the input, or a kInvalidInput flag; never a
 // crash or a silent NaN in the output.
 #include <limits>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 6. Vanishing load and lift-off (FACTS 8 row 7): divisions by N, a, b must not produce NaN.
 #include "stability_common.hpp"
 

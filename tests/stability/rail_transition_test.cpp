@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 2. The UIC60 head radius transitions (R300 -> R80 at |u| = 10.5 mm, R80 -> R13 at 26 mm): the
 // lateral curvature of the rail jumps there (FACTS 8 row 4). On S1002 the left wheel's patch
 // crosses u = -10.5 mm for y in about [-0.5, 1] mm (the rigid point jumps over it through a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 8. Roll at the edges of the grid: roll +-0.01 and +-0.03 rad with y = +-10 mm, both wheels, every
 // model: finite, bounded, repeatable, FASTSIM and wear finite (sweep()).
 #include "stability_common.hpp"

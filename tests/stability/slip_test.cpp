@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 7. Full slip and very large spin (FACTS 8 rows 8-9): creepages up to 1, spin up to +-10 rad/m, on
 // tread (y = 0), flange root (6 mm) and flank (7 mm) patches of every model, both spin variations.
 #include "stability_common.hpp"

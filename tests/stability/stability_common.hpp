@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared pieces of the stability suite (tests/stability/): the S1002/UIC60 1:40 solver, the list of
 // normal-model variants every test runs, finiteness checks over every number a result carries,
 // bitwise comparison of two results (the "same answer run twice" check), FASTSIM + Archard wear on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 1. Two-point contact (tread + flange root/gauge corner) and the jump into flange contact on
 // S1002/UIC60 1:40 (FACTS 8 rows 1-2). The left wheel climbs its flange for y > 0, the right one
 // for y < 0; the rigid second point appears at |y| = 4.25 mm, the two contacts are separate patches

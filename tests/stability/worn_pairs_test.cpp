@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Worn profiles through every normal model (issue 20): the measured worn high rail site_b_hr.prr
 // (CONTACT testbank, overhanging gauge face; tests/data/profiles), a hollow-worn S1002 wheel
 // built here (a 1.5 mm deep, 25 mm wide wear groove on the tread, the shape that gives two

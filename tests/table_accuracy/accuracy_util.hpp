@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared machinery of the table accuracy tests (docs/lookup.md, "Accuracy"): generate a table
 // with the generator API, load it with the lookup, evaluate off-grid states directly with the
 // contact kernel, and classify each (state, wheel, slot, part) as a smooth cell (every corner

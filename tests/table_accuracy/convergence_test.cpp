@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Convergence of the multilinear lookup under grid refinement (docs/lookup.md, "Accuracy"): the
 // default scene's models on reduced grids over smooth sub-domains, three spacings h, h/2, h/4,
 // the same random states on each (every one a smooth cell, checked). Second-order interpolation:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The multilinear lookup against the core at random off-grid states of the default scene
 // (tables/default.toml, the full grid: it generates in ~1 s on 2 cores), docs/lookup.md
 // "Accuracy". Run: build/<dir>/tests/test_table_accuracy (or ctest -L table_accuracy); the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Coupled load control (issue 14): the vertical load carried by normal and creep forces together,
 // its sign against CONTACT's block C, and CONTACT's flange normal forces within 3 %.
 #include <gtest/gtest.h>

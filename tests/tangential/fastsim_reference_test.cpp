@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FASTSIM against CONTACT (Kalker's exact theory, half-space BEM): ../shared/reference blocks C
 // and D. Skips when the reference folder is absent.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test helpers for the tangential and wear tests: elliptic ContactPatch data built by hand (the
 // same strip layout the normal layer produces), ellipse recovery from a reference's area and
 // approach, and a small CSV reader for ../shared/reference.

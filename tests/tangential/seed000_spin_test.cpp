@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Seed 000 / reference block A: right wheel S1002 on UIC60 1:40, central position, 78.5 kN,
 // pure spin 0.052 rad/m, mu 0.3, through the real geometry and normal layers. Compares the two
 // spin treatments (patch-constant as CONTACT, per-strip as STRIPES). Forces are printed in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The bogie equations of motion against closed-form results of the linear contact model
 // (docs/vehicle-model.md, "The bogie").
 #include "vehicle/bogie_model.hpp"

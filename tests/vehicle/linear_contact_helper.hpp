@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A synthetic contact model with closed-form answers, for the vehicle tests: coned wheels on
 // knife-edge rails. Rolling radius r = r0 + sigma lambda y (the left wheel grows when the wheelset
 // moves left), a contact angle +-delta (towards the flange on both wheels; optionally growing

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The torque balance about the axle on creep laws where the first estimate is not the answer.
 #include "vehicle/spin_balance.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wheelset equations of motion against closed-form results of the linear contact model
 // (docs/vehicle-model.md, "Checks").
 #include "vehicle/wheelset_model.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "wear/kth_wear_map.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab::lookup: load a wheel-rail contact table (docs/table-format.md) once, then interpolate
 // it from any number of threads inside a simulation's time-stepping loop.
 //

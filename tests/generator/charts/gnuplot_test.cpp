@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnuplot without a shell (generator/charts/gnuplot.hpp): paths quoted for gnuplot, a path with a
 // quote or shell syntax draws its chart and runs nothing (issue 19).
 #include "charts/gnuplot.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab chart's measurement (generator/charts/speed_accuracy*.*) on a tiny state set: CSV columns,
 // finite numbers, and a non-dominated Pareto front. Seconds, not minutes.
 #include "charts/speed_accuracy.hpp"

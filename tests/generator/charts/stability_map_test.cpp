@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stability map (generator/charts/stability_map.hpp): one row per model variant, wheel and y;
 // range checks.
 #include "charts/stability_map.hpp"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # MPI generation end to end (ctest label `mpi`): `mpirun -n 3 railtab generate` gives the same
 # datasets as a single-process run; SIGKILL of one rank mid-run leaves no table file and a
 # checkpoint from which `--resume` finishes the same datasets.

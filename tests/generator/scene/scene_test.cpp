@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scene files (generator/scene/): defaults, every section, the shipped scenes, clear errors.
 #include "scene/scene.hpp"
 

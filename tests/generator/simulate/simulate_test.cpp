@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab simulate: a small Hertz table generated here (a second or so), a wheelset and a bogie
 // run over it through LookupContactModel, the wear post-processors fed the same states, the direct
 // model against the table at a grid node, and the simulation scene's located errors.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A contact slot holding two patches carries both (contact_kernel.hpp: assign_patch_slots,
 // slot_normal, slot_creep): S1002 on UIC60 1:30, Hertz, left wheel at y = 5 mm, 70 kN: a tread patch
 // (~63 kN, 0.12 rad) and a flange-root patch (~8 kN, 0.30 rad), both below the 0.35 rad flange

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Wear post-processing of a simulation (generator/simulate/wear_accumulator.hpp) and the profile update
 // (generator/simulate/worn_profile.hpp, generator/charts/wear_chart.hpp).
 #include "simulate/wear_accumulator.hpp"

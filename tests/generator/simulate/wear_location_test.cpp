@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where one wear sample puts the wear on the outer wheel, elliptic (Hertz) against STRIPES, as the
 // wheelset moves outwards in a curve: the diagnostic behind docs/simulation.md's direction check
 // (seed 001: STRIPES relocates wear towards the flange). Disabled: it prints a table, it asserts

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Adaptive grids (generator/sweep/axis_refinement, adaptive_grid, grid_comparison): node placement
 // and targets.
 #include "sweep/adaptive_grid.hpp"

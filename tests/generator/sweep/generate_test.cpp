@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // railtab generate as a library call (generator/sweep/generate.hpp): target file, interrupt,
 // resume, shards.
 #include "sweep/generate.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shards of one sweep merged (generator/table/merge.hpp) equal a single run; foreign shards
 // rejected.
 #include "table/merge.hpp"

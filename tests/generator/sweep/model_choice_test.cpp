@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-region model choice of [accuracy] scenes (generator/sweep/model_choice.*, docs/adaptive-grids.md).
 #include "sweep/model_choice.hpp"
 

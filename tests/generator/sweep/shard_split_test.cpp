@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // --shard's split (generator/sweep/shard_split.hpp): cost-balanced contiguous ranges, flange
 // columns costing more, and the Slurm job-array form.
 #include "sweep/shard_split.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sweep engine and contact kernel (generator/sweep/): table layout, failures as status,
 // thread-count determinism.
 #include "sweep/sweep.hpp"

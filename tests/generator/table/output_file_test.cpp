@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Safe output files (generator/table/output_file.hpp): non-regular targets and inputs refused by
 // device and inode, stale temporaries of dead runs removed, live ones kept, SIGTERM sets the
 // interrupt flag (issue 19, items 1 and 8).

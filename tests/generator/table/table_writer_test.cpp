@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Table files (generator/table/): write/read round trip, dimension scales, compression,
 // interrupted writes.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Loads the table given on the command line through the installed railtab::lookup, queries it
 // with both APIs, prints "consumer: ok" on success.
 #include <railtab/lookup.hpp>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cmake -DBUILD_DIR=... -DCONSUMER_SOURCE=... -DWORK_DIR=... -DTABLE=... -DGENERATOR=...
 #       -DC_COMPILER=... -DCXX_COMPILER=... -DEXAMPLE=lookup_example.c -DSHARED=ON|OFF
 #       -P run_consumer.cmake
