@@ -165,19 +165,8 @@ std::optional<SweepResult> run_sweep_mpi(const Scene& scene, const SweepKernel& 
   summary.ranks = ranks;
 
   // Resume: blocks in the checkpoint are loaded, not computed (rank 0 alone touches the file).
-  std::vector<char> block_done(l.ny, 0);
-  std::unique_ptr<Checkpoint> checkpoint;
-  if (!options.checkpoint.empty()) {
-    checkpoint = std::make_unique<Checkpoint>(options.checkpoint, plan.run_key(), pack_block(plan.table(), l.ny, 0).size());
-    summary.checkpoint_discarded = checkpoint->discarded();
-    for (Checkpoint::Record& r : checkpoint->take_records()) {
-      if (r.block >= l.ny || block_done[r.block]) continue;
-      unpack_block(plan.table(), l.ny, r.block, r.bytes);
-      block_done[r.block] = 1;
-      ++summary.blocks_done;
-    }
-  }
-  summary.points_resumed = summary.blocks_done * plan.points_per_block();
+  std::vector<char> block_done;
+  std::unique_ptr<Checkpoint> checkpoint = plan.resume(options.checkpoint, block_done, summary);
   std::deque<std::size_t> todo;
   for (std::size_t b = 0; b < l.ny; ++b) {
     if (!block_done[b]) todo.push_back(b);

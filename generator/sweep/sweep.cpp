@@ -48,19 +48,8 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
   summary.points_total = l.ny * points_per_block;
 
   // Resume: blocks already in the checkpoint are loaded, not computed.
-  std::vector<char> block_done(l.ny, 0);
-  std::unique_ptr<Checkpoint> checkpoint;
-  if (!options.checkpoint.empty()) {
-    checkpoint = std::make_unique<Checkpoint>(options.checkpoint, plan.run_key(), pack_block(plan.table(), l.ny, 0).size());
-    summary.checkpoint_discarded = checkpoint->discarded();
-    for (Checkpoint::Record& r : checkpoint->take_records()) {
-      if (r.block >= l.ny || block_done[r.block]) continue;
-      unpack_block(plan.table(), l.ny, r.block, r.bytes);
-      block_done[r.block] = 1;
-      ++summary.blocks_done;
-    }
-  }
-  summary.points_resumed = summary.blocks_done * points_per_block;
+  std::vector<char> block_done;
+  std::unique_ptr<Checkpoint> checkpoint = plan.resume(options.checkpoint, block_done, summary);
 
   struct Task {
     std::size_t block;  // local y index

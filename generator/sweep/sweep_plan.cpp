@@ -245,4 +245,21 @@ ColumnReport SweepPlan::compute_column(std::size_t block, std::size_t iroll) {
   return {out.failures(), out.first_failure()};
 }
 
+std::unique_ptr<Checkpoint> SweepPlan::resume(const std::filesystem::path& path, std::vector<char>& block_done,
+                                              SweepSummary& summary) {
+  const std::size_t ny = layout_.ny;
+  block_done.assign(ny, 0);
+  if (path.empty()) return nullptr;
+  auto checkpoint = std::make_unique<Checkpoint>(path, run_key(), pack_block(table_, ny, 0).size());
+  summary.checkpoint_discarded = checkpoint->discarded();
+  for (Checkpoint::Record& r : checkpoint->take_records()) {
+    if (r.block >= ny || block_done[r.block]) continue;
+    unpack_block(table_, ny, r.block, r.bytes);
+    block_done[r.block] = 1;
+    ++summary.blocks_done;
+  }
+  summary.points_resumed = summary.blocks_done * points_per_block();
+  return checkpoint;
+}
+
 }  // namespace railtab

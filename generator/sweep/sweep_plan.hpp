@@ -6,10 +6,13 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "scene/scene.hpp"
+#include "sweep/checkpoint.hpp"
 #include "sweep/sweep.hpp"
 #include "table/table.hpp"
 
@@ -47,6 +50,12 @@ class SweepPlan {
 
   // Compute column (local y block, roll index) into the table. Thread-safe for distinct columns.
   ColumnReport compute_column(std::size_t block, std::size_t iroll);
+
+  // Resume: open `path` (empty: no checkpoint, returns null), load the blocks it holds into the
+  // table and mark them in `block_done` (one flag per y block); counts them in `summary`
+  // (blocks_done, points_resumed, checkpoint_discarded). Both engines start this way.
+  std::unique_ptr<Checkpoint> resume(const std::filesystem::path& path, std::vector<char>& block_done,
+                                     SweepSummary& summary);
 
  private:
   const Scene& scene_;
