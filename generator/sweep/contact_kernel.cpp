@@ -239,8 +239,16 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
             const bool normal_finite =
                 store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where, std::size(kCreepOutputs));
             SlotWear wear{k.wear, distribution, {}};
+            // One patch on the wheel: the coupled solve's last FASTSIM solve was this patch at this
+            // creepage and is still in the workspace, so its result and wear are slot_creep's
+            // without solving it again (the same bytes; one FASTSIM solve of 3-4 per point saved).
+            const bool reuse = coupled.normal.patches.size() == 1 && coupled.creep.size() == 1 &&
+                               coupled.normal.patches[0].normal_force > 0.0;
+            if (reuse) wear.result = archard_wear(workspace, k.wear, distribution);
             const FastsimResult creep =
-                slot_creep(geometry, coupled.normal, slots, s, creepage, k.creep, k.material, k.fastsim, workspace, &wear);
+                reuse ? coupled.creep[0]
+                      : slot_creep(geometry, coupled.normal, slots, s, creepage, k.creep, k.material, k.fastsim,
+                                   workspace, &wear);
             const bool creep_finite = store_values(kCreepOutputs, creep, out, wheel, kCreepPart, cell, where);
             // Status: the creep forces' bits as without the coupling, plus not_converged when the
             // coupled solve (or a normal solve in it) missed its tolerance; failed if not finite.
