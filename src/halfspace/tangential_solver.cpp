@@ -74,9 +74,9 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
                       double* oy) {
     const Spectrum* f[2] = {&spx, &spy};
     const Spectrum* k1[2] = {kxx, kxy};
-    w.fft.convolve(k1, f, 2, ox);
+    K.fft->convolve(k1, f, 2, ox);
     const Spectrum* k2[2] = {kxy, kyy};
-    w.fft.convolve(k2, f, 2, oy);
+    K.fft->convolve(k2, f, 2, oy);
   };
   // Contact elements in sweep order: row by row, each from the leading edge backwards.
   std::vector<int> list;
@@ -99,8 +99,8 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
       px[list[a]] = qx[a];
       py[list[a]] = qy[a];
     }
-    w.fft.forward(px.data(), spx);
-    w.fft.forward(py.data(), spy);
+    K.fft->forward(px.data(), spx);
+    K.fft->forward(py.data(), spy);
     convolve(K.bxx, K.bxy, K.byy, sx.data(), sy.data());
     for (int a = 0; a < m; ++a) {
       const int k = list[a], i = k % grid.nx, j = k / grid.nx;
@@ -273,8 +273,8 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
     py[list[a]] = x[m + a];
   }
   // Final slip from the final tractions (exact), forces and states.
-  w.fft.forward(px.data(), spx);
-  w.fft.forward(py.data(), spy);
+  K.fft->forward(px.data(), spx);
+  K.fft->forward(py.data(), spy);
   convolve(K.bxx, K.bxy, K.byy, sx.data(), sy.data());
   const double dA = grid.element_area();
   int loaded = 0, slipping = 0;
