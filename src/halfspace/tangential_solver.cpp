@@ -156,15 +156,21 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
   // Fixed point p = Phi(p) (the steady state), accelerated by Anderson mixing (depth 5): the
   // plain iteration is transient rolling, which forgets its start only as material crosses the
   // patch.
-  const int depth = options.anderson_depth;
-  std::vector<double> x(2 * m, 0.0), fx(2 * m), x_prev, f_prev;
-  std::vector<std::vector<double>> dX, dF, gram;  // gram = dF^T dF
+  const int depth = std::max(0, options.anderson_depth);
+  const int len = 2 * m;
+  std::vector<double> x(len, 0.0), fx(len), x_prev, f_prev;
+  // History in a ring of `depth` slots: dF the change of the update's residual, dG = dX +
+  // mixing dF (the only form in which dX enters the step), gram = dF^T dF.
+  std::vector<double> dF(static_cast<size_t>(depth) * len), dG(static_cast<size_t>(depth) * len);
+  std::vector<double> gram(static_cast<size_t>(depth) * depth);
+  int stored = 0, newest = -1;  // slots in use; slot of the newest difference
   for (int a = 0; a < m; ++a) {
     x[a] = px[list[a]];
     x[m + a] = py[list[a]];
   }
   bool converged = force_bound <= 0.0 || m == 0;  // no friction or no load: no traction
-  std::vector<double> qx(m), qy(m);
+  std::vector<double> qx(m), qy(m), M, rhs, gamma;
+  std::vector<int> order(depth);  // slots oldest first
   for (int step = 1; step <= options.max_steps && !converged; ++step) {
     out.sweeps = step;
     for (int a = 0; a < m; ++a) {
@@ -187,48 +193,45 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
     }
     // A change of the slip set changes the map: the history no longer describes it.
     if (options.restart_on_slip_change && slipping_now != slipping_before) {
-      dX.clear();
-      dF.clear();
-      gram.clear();
+      stored = 0;
       x_prev.clear();
     }
     slipping_before = slipping_now;
-    if (!x_prev.empty()) {
-      std::vector<double> ddx(2 * m), ddf(2 * m);
-      for (int k = 0; k < 2 * m; ++k) {
-        ddx[k] = x[k] - x_prev[k];
-        ddf[k] = fx[k] - f_prev[k];
-      }
-      if (static_cast<int>(dX.size()) == depth) {  // drop the oldest
-        dX.erase(dX.begin());
-        dF.erase(dF.begin());
-        gram.erase(gram.begin());
-        for (auto& row : gram) row.erase(row.begin());
-      }
-      std::vector<double> row(dF.size() + 1);
-      for (size_t a = 0; a < dF.size(); ++a) {
-        double sum = 0.0;
-        for (int k = 0; k < 2 * m; ++k) sum += dF[a][k] * ddf[k];
-        row[a] = sum;
-        gram[a].push_back(sum);
-      }
+    if (!x_prev.empty() && depth > 0) {
+      const int slot = (newest + 1) % depth;  // the oldest when full
+      newest = slot;
+      stored = std::min(stored + 1, depth);
+      double* df = dF.data() + static_cast<size_t>(slot) * len;
+      double* dg = dG.data() + static_cast<size_t>(slot) * len;
       double self = 0.0;
-      for (int k = 0; k < 2 * m; ++k) self += ddf[k] * ddf[k];
-      row.back() = self;
-      gram.push_back(std::move(row));
-      dX.push_back(std::move(ddx));
-      dF.push_back(std::move(ddf));
+      for (int k = 0; k < len; ++k) {
+        df[k] = fx[k] - f_prev[k];
+        dg[k] = (x[k] - x_prev[k]) + options.mixing * df[k];
+        self += df[k] * df[k];
+      }
+      for (int a = 0; a < stored; ++a) {
+        const int sa = (slot - a + depth) % depth;
+        if (sa == slot) continue;
+        const double* other = dF.data() + static_cast<size_t>(sa) * len;
+        double sum = 0.0;
+        for (int k = 0; k < len; ++k) sum += other[k] * df[k];
+        gram[static_cast<size_t>(sa) * depth + slot] = gram[static_cast<size_t>(slot) * depth + sa] = sum;
+      }
+      gram[static_cast<size_t>(slot) * depth + slot] = self;
     }
     x_prev = x;
     f_prev = fx;
-    const int h = static_cast<int>(dF.size());
-    std::vector<double> gamma(h, 0.0);
-    if (h > 0) {  // least squares min |f - dF gamma| by the normal equations
-      std::vector<double> M(h * h), rhs(h);
+    const int h = stored;
+    gamma.assign(h, 0.0);
+    if (h > 0) {  // least squares min |f - dF gamma| by the normal equations, oldest first
+      for (int a = 0; a < h; ++a) order[a] = (newest - (h - 1 - a) + depth) % depth;
+      M.assign(static_cast<size_t>(h) * h, 0.0);
+      rhs.assign(h, 0.0);
       for (int a = 0; a < h; ++a) {
-        for (int b = 0; b < h; ++b) M[a * h + b] = gram[a][b];
+        for (int b = 0; b < h; ++b) M[a * h + b] = gram[static_cast<size_t>(order[a]) * depth + order[b]];
+        const double* df = dF.data() + static_cast<size_t>(order[a]) * len;
         double sum = 0.0;
-        for (int k = 0; k < 2 * m; ++k) sum += dF[a][k] * fx[k];
+        for (int k = 0; k < len; ++k) sum += df[k] * fx[k];
         rhs[a] = sum;
         M[a * h + a] *= 1.0 + 1e-10;
       }
@@ -251,10 +254,11 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
         gamma[c] = M[c * h + c] != 0.0 ? sum / M[c * h + c] : 0.0;
       }
     }
-    for (int k = 0; k < 2 * m; ++k) {
-      double v = x[k] + options.mixing * fx[k];
-      for (int a = 0; a < h; ++a) v -= gamma[a] * (dX[a][k] + options.mixing * dF[a][k]);
-      x[k] = v;
+    for (int k = 0; k < len; ++k) x[k] += options.mixing * fx[k];
+    for (int a = 0; a < h; ++a) {
+      const double* dg = dG.data() + static_cast<size_t>(order[a]) * len;
+      const double ga = gamma[a];
+      for (int k = 0; k < len; ++k) x[k] -= ga * dg[k];
     }
   }
   if (!converged) {  // keep a feasible state: one more rolling step from the last iterate
