@@ -28,6 +28,22 @@ void slip_traction(double s0x, double s0y, double g, double dxx, double dyy, dou
   *py = -g * s0y / (sigma + g * dyy);
 }
 
+// Dot product with four partial sums: the adds of one sum wait on each other (no reordering
+// without -ffast-math), four independent ones keep the pipeline busy. Deterministic (fixed
+// order for a given length).
+double dot(const double* a, const double* b, int n) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  int k = 0;
+  for (; k + 4 <= n; k += 4) {
+    s0 += a[k] * b[k];
+    s1 += a[k + 1] * b[k + 1];
+    s2 += a[k + 2] * b[k + 2];
+    s3 += a[k + 3] * b[k + 3];
+  }
+  for (; k < n; ++k) s0 += a[k] * b[k];
+  return (s0 + s1) + (s2 + s3);
+}
+
 }  // namespace
 
 void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
@@ -169,7 +185,7 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
     x[m + a] = py[list[a]];
   }
   bool converged = force_bound <= 0.0 || m == 0;  // no friction or no load: no traction
-  std::vector<double> qx(m), qy(m), M, rhs, gamma;
+  std::vector<double> qx(m), qy(m), M, rhs, gamma, fdot(depth, 0.0);  // fdot: dF_slot . f
   std::vector<int> order(depth);  // slots oldest first
   for (int step = 1; step <= options.max_steps && !converged; ++step) {
     out.sweeps = step;
@@ -203,21 +219,23 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
       stored = std::min(stored + 1, depth);
       double* df = dF.data() + static_cast<size_t>(slot) * len;
       double* dg = dG.data() + static_cast<size_t>(slot) * len;
-      double self = 0.0;
       for (int k = 0; k < len; ++k) {
         df[k] = fx[k] - f_prev[k];
         dg[k] = (x[k] - x_prev[k]) + options.mixing * df[k];
-        self += df[k] * df[k];
       }
+      const double self = dot(df, df, len), with_f = dot(df, fx.data(), len);
       for (int a = 0; a < stored; ++a) {
         const int sa = (slot - a + depth) % depth;
         if (sa == slot) continue;
         const double* other = dF.data() + static_cast<size_t>(sa) * len;
-        double sum = 0.0;
-        for (int k = 0; k < len; ++k) sum += other[k] * df[k];
+        const double sum = dot(other, df, len);
         gram[static_cast<size_t>(sa) * depth + slot] = gram[static_cast<size_t>(slot) * depth + sa] = sum;
+        // dF_a . f = dF_a . f_prev + dF_a . (f - f_prev): the right-hand side of the least
+        // squares problem without another pass over the history.
+        fdot[sa] += sum;
       }
       gram[static_cast<size_t>(slot) * depth + slot] = self;
+      fdot[slot] = with_f;
     }
     x_prev = x;
     f_prev = fx;
@@ -229,10 +247,7 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
       rhs.assign(h, 0.0);
       for (int a = 0; a < h; ++a) {
         for (int b = 0; b < h; ++b) M[a * h + b] = gram[static_cast<size_t>(order[a]) * depth + order[b]];
-        const double* df = dF.data() + static_cast<size_t>(order[a]) * len;
-        double sum = 0.0;
-        for (int k = 0; k < len; ++k) sum += df[k] * fx[k];
-        rhs[a] = sum;
+        rhs[a] = fdot[order[a]];
         M[a * h + a] *= 1.0 + 1e-10;
       }
       for (int c = 0; c < h; ++c) {  // Gaussian elimination with partial pivoting
