@@ -169,7 +169,7 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
       if (change <= options.inner_tolerance * total) break;
     }
   };
-  // Fixed point p = Phi(p) (the steady state), accelerated by Anderson mixing (depth 5): the
+  // Fixed point p = Phi(p) (the steady state), accelerated by Anderson mixing (options.anderson_depth): the
   // plain iteration is transient rolling, which forgets its start only as material crosses the
   // patch.
   const int depth = std::max(0, options.anderson_depth);
