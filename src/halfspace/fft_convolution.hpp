@@ -7,10 +7,11 @@
 // rounding): no aliasing, no approximation of the influence coefficients.
 //
 // FFT: FFTW 3 (Debian's libfftw3-dev). Plans are made with FFTW_ESTIMATE (no timing, so the same
-// plan, hence the same bytes, on every run) once per padded size and shared through a cache
-// behind a mutex, because FFTW's planner is not thread-safe; executing a plan on new arrays
-// (fftw_execute_dft_r2c/c2r) is. All arrays are fftw_malloc'd so their alignment always matches
-// the plan's.
+// plan, hence the same bytes, on every run) once per padded size and field height and shared
+// through a cache behind a mutex, because FFTW's planner is not thread-safe; executing a plan on
+// new arrays (fftw_execute_dft*) is. Fields are transformed as rows (only the non-zero ones)
+// then columns, and back as columns then the rows that are read (the .cpp). All arrays are
+// 64-byte aligned so their alignment always matches the plan's.
 #pragma once
 
 #include <complex>
