@@ -108,12 +108,29 @@ void bccg(const Grid& grid, const std::vector<double>& h, bool load_control, dou
   }
   const Spectrum* kernels[1] = {&kernel};
   const Spectrum* fields[1] = {&w.field_a};
+  const std::vector<double>& offsets = w.normal_kernel_offsets();
+  const int ax = 2 * grid.nx - 1;
+  // u = A p is carried from one iteration to the next instead of convolving p again: the step
+  // p - tau t has u - tau A t (A t is computed anyway), the few elements clipped at zero or
+  // entering the contact are added element by element (the real-space kernel), and the load
+  // scaling scales u. A convolution replaces this when many elements change (early iterations)
+  // and every `refresh` iterations, so rounding cannot accumulate.
+  constexpr int refresh = 16;
+  constexpr int max_direct = 48;  // elements; each costs about n multiply-adds
+  std::vector<int> changed;
+  std::vector<double> change_value;
+  bool u_current = false;
+  int since_refresh = 0;
   double G_old = 1.0, delta_flag = 0.0, mean_gap = 0.0;
   bool converged = false;
   for (int it = 1; it <= options.max_iterations; ++it) {
     s.iterations = it;
-    w.fft.forward(p.data(), w.field_a);
-    w.fft.convolve(kernels, fields, 1, w.u.data());
+    if (!u_current || since_refresh >= refresh) {
+      w.fft.forward(p.data(), w.field_a);
+      w.fft.convolve(kernels, fields, 1, w.u.data());
+      since_refresh = 0;
+    }
+    ++since_refresh;
     int nc = 0;
     double gsum = 0.0;
     for (int k = 0; k < n; ++k) {
@@ -135,34 +152,67 @@ void bccg(const Grid& grid, const std::vector<double>& h, bool load_control, dou
     G_old = G;
     w.fft.forward(w.t.data(), w.field_a);
     w.fft.convolve(kernels, fields, 1, w.r.data());
+    double rbar = 0.0;  // w.r - rbar is the search direction's effect on the gap
     if (load_control) {
       double rsum = 0.0;
       for (int k = 0; k < n; ++k)
         if (p[k] > 0.0) rsum += w.r[k];
-      const double rbar = rsum / nc;
-      for (int k = 0; k < n; ++k) w.r[k] -= rbar;
+      rbar = rsum / nc;
     }
     double num = 0.0, den = 0.0;
     for (int k = 0; k < n; ++k)
       if (p[k] > 0.0) {
         num += w.g[k] * w.t[k];
-        den += w.r[k] * w.t[k];
+        den += (w.r[k] - rbar) * w.t[k];
       }
     const double tau = den != 0.0 ? num / den : 0.0;
     w.p_old = p;
     bool overlap = false;
+    changed.clear();
+    change_value.clear();
     for (int k = 0; k < n; ++k) {
-      if (p[k] > 0.0) p[k] = std::max(0.0, p[k] - tau * w.t[k]);
+      const bool was_in = p[k] > 0.0;
+      if (was_in) {
+        const double stepped = p[k] - tau * w.t[k];
+        p[k] = std::max(0.0, stepped);
+        if (stepped < 0.0 && changed.size() <= static_cast<size_t>(max_direct)) {
+          changed.push_back(k);  // clipped: differs from the step by -stepped
+          change_value.push_back(-stepped);
+        }
+      }
       if (p[k] == 0.0 && w.g[k] < 0.0) {  // interpenetrating outside the contact set: enters
         p[k] = -tau * w.g[k];
         overlap = true;
+        if (changed.size() <= static_cast<size_t>(max_direct)) {
+          changed.push_back(k);  // the step left it at 0 (t = 0 outside, or clipped)
+          change_value.push_back(p[k]);
+        }
+      }
+    }
+    // Clipped then re-entering elements were pushed twice: the values add up to p - stepped.
+    u_current = changed.size() <= static_cast<size_t>(max_direct);
+    if (u_current) {
+      for (int k = 0; k < n; ++k) w.u[k] -= tau * w.r[k];
+      for (size_t c = 0; c < changed.size(); ++c) {
+        const int kc = changed[c], ic = kc % grid.nx, jc = kc / grid.nx;
+        const double v = change_value[c];
+        for (int j = 0; j < grid.ny; ++j) {
+          const double* row = offsets.data() + static_cast<size_t>(j - jc + grid.ny - 1) * ax +
+                              (grid.nx - 1 - ic);
+          double* uj = w.u.data() + static_cast<size_t>(j) * grid.nx;
+          for (int i = 0; i < grid.nx; ++i) uj[i] += v * row[i];
+        }
       }
     }
     delta_flag = overlap ? 0.0 : 1.0;
     double sum = 0.0;
     for (double v : p) sum += v;
-    if (load_control && sum > 0.0)
-      for (double& v : p) v *= target / (sum * dA);
+    if (load_control && sum > 0.0) {
+      const double scale = target / (sum * dA);
+      for (double& v : p) v *= scale;
+      if (u_current)
+        for (double& v : w.u) v *= scale;
+    }
     double change = 0.0, total = 0.0;
     for (int k = 0; k < n; ++k) {
       change += std::abs(p[k] - w.p_old[k]);

@@ -28,6 +28,22 @@ void slip_traction(double s0x, double s0y, double g, double dxx, double dyy, dou
   *py = -g * s0y / (sigma + g * dyy);
 }
 
+// Dot product with four partial sums: the adds of one sum wait on each other (no reordering
+// without -ffast-math), four independent ones keep the pipeline busy. Deterministic (fixed
+// order for a given length).
+double dot(const double* a, const double* b, int n) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  int k = 0;
+  for (; k + 4 <= n; k += 4) {
+    s0 += a[k] * b[k];
+    s1 += a[k + 1] * b[k + 1];
+    s2 += a[k + 2] * b[k + 2];
+    s3 += a[k + 3] * b[k + 3];
+  }
+  for (; k < n; ++k) s0 += a[k] * b[k];
+  return (s0 + s1) + (s2 + s3);
+}
+
 }  // namespace
 
 void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
@@ -74,9 +90,9 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
                       double* oy) {
     const Spectrum* f[2] = {&spx, &spy};
     const Spectrum* k1[2] = {kxx, kxy};
-    w.fft.convolve(k1, f, 2, ox);
+    K.fft->convolve(k1, f, 2, ox);
     const Spectrum* k2[2] = {kxy, kyy};
-    w.fft.convolve(k2, f, 2, oy);
+    K.fft->convolve(k2, f, 2, oy);
   };
   // Contact elements in sweep order: row by row, each from the leading edge backwards.
   std::vector<int> list;
@@ -88,6 +104,16 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
   for (int a = 0; a < m; ++a) pos[list[a]] = a;
   const int W = options.window;
   std::vector<double> lsx(m), lsy(m), lpx(m), lpy(m);
+  // Spin parts of the rigid slip of each contact element (list order), the same in every step.
+  std::vector<double> spin_x(m), spin_y(m);
+  for (int a = 0; a < m; ++a) {
+    const int k = list[a], i = k % grid.nx, j = k / grid.nx;
+    spin_x[a] = creepage.phi * grid.y(j);
+    spin_y[a] = creepage.phi * grid.x(i);
+  }
+  // With one sweep and no neighbours coupled, the slip update after an element's own step is
+  // never read again: skipped.
+  const bool couple = W != 0 || options.max_inner_sweeps > 1;
   // One rolling step Phi: the tractions p (list order) -> the tractions p' that satisfy the
   // element conditions with the displacements of p at the previous position frozen,
   // s = w + B p + A (p' - p) / dx, by Gauss-Seidel (convex: converges).
@@ -99,13 +125,12 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
       px[list[a]] = qx[a];
       py[list[a]] = qy[a];
     }
-    w.fft.forward(px.data(), spx);
-    w.fft.forward(py.data(), spy);
+    K.fft->forward(px.data(), spx);
+    K.fft->forward(py.data(), spy);
     convolve(K.bxx, K.bxy, K.byy, sx.data(), sy.data());
     for (int a = 0; a < m; ++a) {
-      const int k = list[a], i = k % grid.nx, j = k / grid.nx;
-      lsx[a] = sx[k] + creepage.xi - creepage.phi * grid.y(j);
-      lsy[a] = sy[k] + creepage.eta + creepage.phi * grid.x(i);
+      lsx[a] = sx[list[a]] + creepage.xi - spin_x[a];
+      lsy[a] = sy[list[a]] + creepage.eta + spin_y[a];
     }
     double total = 0.0;
     for (int sweep = 0; sweep < options.max_inner_sweeps; ++sweep) {
@@ -127,6 +152,7 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
         total += std::abs(nx) + std::abs(ny);
         if (dpx == 0.0 && dpy == 0.0) continue;
         change += std::abs(dpx) + std::abs(dpy);
+        if (!couple) continue;
         const int i = k % grid.nx, j = k / grid.nx;
         if (W < 0) {
           for (int b = 0; b < m; ++b) {
@@ -153,18 +179,24 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
       if (change <= options.inner_tolerance * total) break;
     }
   };
-  // Fixed point p = Phi(p) (the steady state), accelerated by Anderson mixing (depth 5): the
+  // Fixed point p = Phi(p) (the steady state), accelerated by Anderson mixing (options.anderson_depth): the
   // plain iteration is transient rolling, which forgets its start only as material crosses the
   // patch.
-  const int depth = options.anderson_depth;
-  std::vector<double> x(2 * m, 0.0), fx(2 * m), x_prev, f_prev;
-  std::vector<std::vector<double>> dX, dF, gram;  // gram = dF^T dF
+  const int depth = std::max(0, options.anderson_depth);
+  const int len = 2 * m;
+  std::vector<double> x(len, 0.0), fx(len), x_prev, f_prev;
+  // History in a ring of `depth` slots: dF the change of the update's residual, dG = dX +
+  // mixing dF (the only form in which dX enters the step), gram = dF^T dF.
+  std::vector<double> dF(static_cast<size_t>(depth) * len), dG(static_cast<size_t>(depth) * len);
+  std::vector<double> gram(static_cast<size_t>(depth) * depth);
+  int stored = 0, newest = -1;  // slots in use; slot of the newest difference
   for (int a = 0; a < m; ++a) {
     x[a] = px[list[a]];
     x[m + a] = py[list[a]];
   }
   bool converged = force_bound <= 0.0 || m == 0;  // no friction or no load: no traction
-  std::vector<double> qx(m), qy(m);
+  std::vector<double> qx(m), qy(m), M, rhs, gamma, fdot(depth, 0.0);  // fdot: dF_slot . f
+  std::vector<int> order(depth);  // slots oldest first
   for (int step = 1; step <= options.max_steps && !converged; ++step) {
     out.sweeps = step;
     for (int a = 0; a < m; ++a) {
@@ -187,49 +219,45 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
     }
     // A change of the slip set changes the map: the history no longer describes it.
     if (options.restart_on_slip_change && slipping_now != slipping_before) {
-      dX.clear();
-      dF.clear();
-      gram.clear();
+      stored = 0;
       x_prev.clear();
     }
     slipping_before = slipping_now;
-    if (!x_prev.empty()) {
-      std::vector<double> ddx(2 * m), ddf(2 * m);
-      for (int k = 0; k < 2 * m; ++k) {
-        ddx[k] = x[k] - x_prev[k];
-        ddf[k] = fx[k] - f_prev[k];
+    if (!x_prev.empty() && depth > 0) {
+      const int slot = (newest + 1) % depth;  // the oldest when full
+      newest = slot;
+      stored = std::min(stored + 1, depth);
+      double* df = dF.data() + static_cast<size_t>(slot) * len;
+      double* dg = dG.data() + static_cast<size_t>(slot) * len;
+      for (int k = 0; k < len; ++k) {
+        df[k] = fx[k] - f_prev[k];
+        dg[k] = (x[k] - x_prev[k]) + options.mixing * df[k];
       }
-      if (static_cast<int>(dX.size()) == depth) {  // drop the oldest
-        dX.erase(dX.begin());
-        dF.erase(dF.begin());
-        gram.erase(gram.begin());
-        for (auto& row : gram) row.erase(row.begin());
+      const double self = dot(df, df, len), with_f = dot(df, fx.data(), len);
+      for (int a = 0; a < stored; ++a) {
+        const int sa = (slot - a + depth) % depth;
+        if (sa == slot) continue;
+        const double* other = dF.data() + static_cast<size_t>(sa) * len;
+        const double sum = dot(other, df, len);
+        gram[static_cast<size_t>(sa) * depth + slot] = gram[static_cast<size_t>(slot) * depth + sa] = sum;
+        // dF_a . f = dF_a . f_prev + dF_a . (f - f_prev): the right-hand side of the least
+        // squares problem without another pass over the history.
+        fdot[sa] += sum;
       }
-      std::vector<double> row(dF.size() + 1);
-      for (size_t a = 0; a < dF.size(); ++a) {
-        double sum = 0.0;
-        for (int k = 0; k < 2 * m; ++k) sum += dF[a][k] * ddf[k];
-        row[a] = sum;
-        gram[a].push_back(sum);
-      }
-      double self = 0.0;
-      for (int k = 0; k < 2 * m; ++k) self += ddf[k] * ddf[k];
-      row.back() = self;
-      gram.push_back(std::move(row));
-      dX.push_back(std::move(ddx));
-      dF.push_back(std::move(ddf));
+      gram[static_cast<size_t>(slot) * depth + slot] = self;
+      fdot[slot] = with_f;
     }
     x_prev = x;
     f_prev = fx;
-    const int h = static_cast<int>(dF.size());
-    std::vector<double> gamma(h, 0.0);
-    if (h > 0) {  // least squares min |f - dF gamma| by the normal equations
-      std::vector<double> M(h * h), rhs(h);
+    const int h = stored;
+    gamma.assign(h, 0.0);
+    if (h > 0) {  // least squares min |f - dF gamma| by the normal equations, oldest first
+      for (int a = 0; a < h; ++a) order[a] = (newest - (h - 1 - a) + depth) % depth;
+      M.assign(static_cast<size_t>(h) * h, 0.0);
+      rhs.assign(h, 0.0);
       for (int a = 0; a < h; ++a) {
-        for (int b = 0; b < h; ++b) M[a * h + b] = gram[a][b];
-        double sum = 0.0;
-        for (int k = 0; k < 2 * m; ++k) sum += dF[a][k] * fx[k];
-        rhs[a] = sum;
+        for (int b = 0; b < h; ++b) M[a * h + b] = gram[static_cast<size_t>(order[a]) * depth + order[b]];
+        rhs[a] = fdot[order[a]];
         M[a * h + a] *= 1.0 + 1e-10;
       }
       for (int c = 0; c < h; ++c) {  // Gaussian elimination with partial pivoting
@@ -251,10 +279,11 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
         gamma[c] = M[c * h + c] != 0.0 ? sum / M[c * h + c] : 0.0;
       }
     }
-    for (int k = 0; k < 2 * m; ++k) {
-      double v = x[k] + options.mixing * fx[k];
-      for (int a = 0; a < h; ++a) v -= gamma[a] * (dX[a][k] + options.mixing * dF[a][k]);
-      x[k] = v;
+    for (int k = 0; k < len; ++k) x[k] += options.mixing * fx[k];
+    for (int a = 0; a < h; ++a) {
+      const double* dg = dG.data() + static_cast<size_t>(order[a]) * len;
+      const double ga = gamma[a];
+      for (int k = 0; k < len; ++k) x[k] -= ga * dg[k];
     }
   }
   if (!converged) {  // keep a feasible state: one more rolling step from the last iterate
@@ -273,8 +302,8 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
     py[list[a]] = x[m + a];
   }
   // Final slip from the final tractions (exact), forces and states.
-  w.fft.forward(px.data(), spx);
-  w.fft.forward(py.data(), spy);
+  K.fft->forward(px.data(), spx);
+  K.fft->forward(py.data(), spy);
   convolve(K.bxx, K.bxy, K.byy, sx.data(), sy.data());
   const double dA = grid.element_area();
   int loaded = 0, slipping = 0;

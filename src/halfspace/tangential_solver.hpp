@@ -38,7 +38,7 @@ namespace railtab::halfspace {
 struct TangentialSolverOptions {
   double tolerance = 1e-7;        // sum |Phi(p) - p| relative to sum |p| at the fixed point [-]
   int max_steps = 1500;           // updates Phi (accelerated) [-]
-  int anderson_depth = 40;        // history of the Anderson mixing [-]
+  int anderson_depth = 20;        // history of the Anderson mixing (40: fewer steps, each dearer) [-]
   double mixing = 0.5;            // Anderson's relaxation of the update (damping) [-]
   double inner_tolerance = 1e-9;  // Gauss-Seidel only: sum |dp| per sweep relative to sum |p| [-]
   int max_inner_sweeps = 1;       // sweeps per update [-]

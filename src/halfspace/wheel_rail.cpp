@@ -337,15 +337,23 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
     return tz;
   };
   // One round: normal for the load F_z - tz, then tangential; returns the new tz.
+  // The first round only has to give the tangential vertical load tz to the accuracy of the
+  // load balance (1e-4 F_z, tz = fy sin g): its tangential problem is solved to a looser
+  // tolerance (measured on block C: a third fewer steps over the two rounds). Every later round
+  // uses the full tolerance, so the result always comes from a fully converged solve.
+  constexpr double kFirstRoundTolerance = 1e-3;
+  HalfspaceOptions first_round = o;
+  first_round.tangential.tolerance = std::max(o.tangential.tolerance, kFirstRoundTolerance);
   auto round = [&](double tz) {
+    const HalfspaceOptions& oo = r.patches.empty() ? first_round : o;
     WheelHalfspaceResult next = solve_for_load(geometry, std::max(0.0, vertical_load - tz),
-                                               material, o, ws, r.patches.empty() ? nullptr : &r);
+                                               material, oo, ws, r.patches.empty() ? nullptr : &r);
     if (next.patches.size() == r.patches.size())  // warm start from the previous round
       for (size_t k = 0; k < next.patches.size(); ++k)
         if (next.patches[k].grid.nx == r.patches[k].grid.nx &&
             next.patches[k].grid.ny == r.patches[k].grid.ny)
           next.patches[k].tangential = std::move(r.patches[k].tangential);
-    solve_halfspace_tangential(next, creepage, mu, material, o, ws);
+    solve_halfspace_tangential(next, creepage, mu, material, oo, ws);
     r = std::move(next);
     return tangential_vertical(r);
   };

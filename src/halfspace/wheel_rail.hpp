@@ -90,7 +90,8 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
 // sin g) in track axes), which matters in flange contact (g about 1.1 rad: a lateral force of
 // 0.3 N changes N by half). The normal load sum N_k cos g_k = F_z - sum fy_k sin g_k is found by
 // the secant method on the tangential vertical part (at most 20 rounds; kNotConverged if not
-// within 1e-4 F_z). Each round warm-starts the tangential solve from the previous one.
+// within 1e-4 F_z). Each round warm-starts the tangential solve from the previous one; the
+// first, which only estimates fy sin g, stops at a looser tangential tolerance (1e-3).
 WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
                                              double vertical_load, const Creepage& creepage,
                                              double mu, const Material& material,

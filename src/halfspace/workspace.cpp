@@ -10,8 +10,16 @@ const Spectrum& Workspace::normal_kernel(const Grid& grid, const Material& mater
   fft.resize(grid.nx, grid.ny);
   if (!(key == normal_key_) || k_nn_.empty()) {
     const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy;
+    const int ax = 2 * grid.nx - 1, ay = 2 * grid.ny - 1;
+    k_nn_offsets_.resize(static_cast<size_t>(ax) * ay);
+    for (int dj = 1 - grid.ny; dj < grid.ny; ++dj)
+      for (int di = 1 - grid.nx; di < grid.nx; ++di)
+        k_nn_offsets_[static_cast<size_t>(dj + grid.ny - 1) * ax + (di + grid.nx - 1)] =
+            normal_influence(di * grid.dx, dj * grid.dy, hx, hy, material);
     fft.kernel_spectrum(
-        [&](int di, int dj) { return normal_influence(di * grid.dx, dj * grid.dy, hx, hy, material); },
+        [&](int di, int dj) {
+          return k_nn_offsets_[static_cast<size_t>(dj + grid.ny - 1) * ax + (di + grid.nx - 1)];
+        },
         k_nn_);
     normal_key_ = key;
   }
@@ -21,38 +29,63 @@ const Spectrum& Workspace::normal_kernel(const Grid& grid, const Material& mater
 TangentialKernels Workspace::tangential_kernels(const Grid& grid, const Material& material,
                                                 int window) {
   const Key key = key_of(grid, material, window);
-  fft.resize(grid.nx, grid.ny);
-  if (!(key == tangential_key_) || k_bxx_.empty()) {
-    const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy, dx = grid.dx;
-    auto a = [&](int di, int dj) {
-      const TangentialInfluence c = tangential_influence(di * dx, dj * grid.dy, hx, hy, material);
-      return TangentialInfluence{c.xx / dx, c.xy / dx, c.yy / dx};
-    };
-    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xx - a(di + 1, dj).xx; }, k_bxx_);
-    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).xy - a(di + 1, dj).xy; }, k_bxy_);
-    fft.kernel_spectrum([&](int di, int dj) { return a(di, dj).yy - a(di + 1, dj).yy; }, k_byy_);
-    near_.w = near_b_.w = window;
-    const int n = (2 * window + 1) * (2 * window + 1);
-    for (NearKernel* nk : {&near_, &near_b_}) {
-      nk->xx.assign(n, 0.0);
-      nk->xy.assign(n, 0.0);
-      nk->yy.assign(n, 0.0);
+  ++uses_;
+  for (auto& e : tangential_)
+    if (e->key == key) {
+      e->last_use = uses_;
+      return {&e->k_bxx, &e->k_bxy, &e->k_byy, &e->near, &e->near_b, &e->fft};
     }
-    for (int dj = -window; dj <= window; ++dj)
-      for (int di = -window; di <= window; ++di) {
-        const TangentialInfluence c = a(di, dj);
-        const int k = (dj + window) * (2 * window + 1) + (di + window);
-        near_.xx[k] = c.xx;
-        near_.xy[k] = c.xy;
-        near_.yy[k] = c.yy;
-        const TangentialInfluence t1 = a(di + 1, dj);
-        near_b_.xx[k] = c.xx - t1.xx;
-        near_b_.xy[k] = c.xy - t1.xy;
-        near_b_.yy[k] = c.yy - t1.yy;
-      }
-    tangential_key_ = key;
+  // Not cached: a new entry, or the least recently used one replaced.
+  TangentialEntry* entry = nullptr;
+  if (static_cast<int>(tangential_.size()) < kTangentialCache) {
+    tangential_.push_back(std::make_unique<TangentialEntry>());
+    entry = tangential_.back().get();
+  } else {
+    entry = tangential_.front().get();
+    for (auto& e : tangential_)
+      if (e->last_use < entry->last_use) entry = e.get();
   }
-  return {&k_bxx_, &k_bxy_, &k_byy_, &near_, &near_b_};
+  TangentialEntry& e = *entry;
+  e.last_use = uses_;
+  e.fft.resize(grid.nx, grid.ny);
+  const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy, dx = grid.dx;
+  auto a = [&](int di, int dj) {
+    const TangentialInfluence c = tangential_influence(di * dx, dj * grid.dy, hx, hy, material);
+    return TangentialInfluence{c.xx / dx, c.xy / dx, c.yy / dx};
+  };
+  // A / dx once per offset |di| <= nx, |dj| < ny (each is needed by three kernels, twice).
+  const int ax = 2 * grid.nx + 1, ay = 2 * grid.ny - 1;
+  std::vector<TangentialInfluence> table(static_cast<size_t>(ax) * ay);
+  for (int dj = 1 - grid.ny; dj < grid.ny; ++dj)
+    for (int di = -grid.nx; di <= grid.nx; ++di)
+      table[static_cast<size_t>(dj + grid.ny - 1) * ax + (di + grid.nx)] = a(di, dj);
+  auto at = [&](int di, int dj) -> const TangentialInfluence& {
+    return table[static_cast<size_t>(dj + grid.ny - 1) * ax + (di + grid.nx)];
+  };
+  e.fft.kernel_spectrum([&](int di, int dj) { return at(di, dj).xx - at(di + 1, dj).xx; }, e.k_bxx);
+  e.fft.kernel_spectrum([&](int di, int dj) { return at(di, dj).xy - at(di + 1, dj).xy; }, e.k_bxy);
+  e.fft.kernel_spectrum([&](int di, int dj) { return at(di, dj).yy - at(di + 1, dj).yy; }, e.k_byy);
+  e.near.w = e.near_b.w = window;
+  const int n = (2 * window + 1) * (2 * window + 1);
+  for (NearKernel* nk : {&e.near, &e.near_b}) {
+    nk->xx.assign(n, 0.0);
+    nk->xy.assign(n, 0.0);
+    nk->yy.assign(n, 0.0);
+  }
+  for (int dj = -window; dj <= window; ++dj)
+    for (int di = -window; di <= window; ++di) {
+      const TangentialInfluence c = a(di, dj);
+      const int k = (dj + window) * (2 * window + 1) + (di + window);
+      e.near.xx[k] = c.xx;
+      e.near.xy[k] = c.xy;
+      e.near.yy[k] = c.yy;
+      const TangentialInfluence t1 = a(di + 1, dj);
+      e.near_b.xx[k] = c.xx - t1.xx;
+      e.near_b.xy[k] = c.xy - t1.xy;
+      e.near_b.yy[k] = c.yy - t1.yy;
+    }
+  e.key = key;
+  return {&e.k_bxx, &e.k_bxy, &e.k_byy, &e.near, &e.near_b, &e.fft};
 }
 
 }  // namespace railtab::halfspace

@@ -4,6 +4,7 @@
 // One Workspace per thread; the solvers never share one.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "core/material.hpp"
@@ -29,16 +30,23 @@ struct TangentialKernels {
   const Spectrum *bxx, *bxy, *byy;  // steady kernel spectra
   const NearKernel* near;    // A / dx
   const NearKernel* near_b;  // B
+  FftConvolver* fft = nullptr;  // sized for the grid of these spectra
 };
 
 class Workspace {
  public:
   // Normal-kernel spectrum for this grid and material (cached).
   const Spectrum& normal_kernel(const Grid& grid, const Material& material);
-  // Tangential kernel spectra and the near window of A / dx (cached).
+  // The same kernel in real space, valid after normal_kernel(): the influence at element offset
+  // (di, dj), |di| < nx, |dj| < ny, at index (dj + ny - 1) * (2 nx - 1) + di + nx - 1 (for
+  // updates of a few elements, cheaper than a convolution).
+  const std::vector<double>& normal_kernel_offsets() const { return k_nn_offsets_; }
+  // Tangential kernel spectra and the near window of A / dx, with an FFT sized for them (cached
+  // for the last few grid sizes: the contact box changes by an element or so between the rounds
+  // of a coupled solve and along a sweep, and a kernel costs as much as many solver steps).
   TangentialKernels tangential_kernels(const Grid& grid, const Material& material, int window);
 
-  FftConvolver fft;
+  FftConvolver fft;  // the normal problem's (sized by normal_kernel)
   Spectrum field_a, field_b;                 // spectra of the current fields
   std::vector<double> u, g, t, r, p_old;     // normal-solver scratch (grid size)
   std::vector<double> sx, sy;                // tangential-solver scratch (grid size)
@@ -53,9 +61,19 @@ class Workspace {
   static Key key_of(const Grid& g, const Material& m, int window) {
     return {g.nx, g.ny, g.dx, g.dy, m.youngs_modulus, m.poisson_ratio, window};
   }
-  Key normal_key_, tangential_key_;
-  Spectrum k_nn_, k_bxx_, k_bxy_, k_byy_;
-  NearKernel near_, near_b_;
+  struct TangentialEntry {
+    Key key;
+    FftConvolver fft;
+    Spectrum k_bxx, k_bxy, k_byy;
+    NearKernel near, near_b;
+    unsigned long last_use = 0;
+  };
+  static constexpr int kTangentialCache = 4;
+  Key normal_key_;
+  Spectrum k_nn_;
+  std::vector<double> k_nn_offsets_;
+  std::vector<std::unique_ptr<TangentialEntry>> tangential_;
+  unsigned long uses_ = 0;
 };
 
 }  // namespace railtab::halfspace
