@@ -114,30 +114,46 @@ TEST(WornPairs, DISABLED_StripesFlankJumpOnHollowWheel) {
   }
 }
 
-// KNOWN FAILURE (measured MiniProf wheel Car7216, smoothed 2 mm), at 0.05 mm steps, diagnosed
-// again with the rigid points printed (issue 20 session 4): none of the failures is a jump between
-// near-equal gap minima: those steps now carry near_equal_minima and are exempt here
-// (PrimaryPointJumpsAreFlagged checks the flag). What fails:
-// (1) Car7216 / UIC60, y = -0.10 -> -0.05 mm: ONE rigid point (no second minimum within 0.5 mm)
-// crosses the UIC60 R300/R80 radius transition (rail u -10.519 -> -10.494 mm); B jumps 11.5 ->
-// 6.9 1/m, so Hertz's approach (0.1143 -> 0.1078 mm) and Linder's area (94.8 -> 84.6 mm2) jump.
-// A property of the design rail's curvature jump under a point model (RailTransition covers the
-// S1002 case, where the point jumps over it through a two-point state), not of the worn wheel.
-// (2) Car7216 / avg_HR: Linder's area steps 84.4 -> 83.3 mm2 between y = -2.510 and -2.505 mm
-// with rigid points, separations and B continuous (src/normal, Linder's band run; not found).
-// (3) the tread-to-flange load transfer between y = 5.20 and 5.40 mm is too quick for the 0.05 mm
-// criterion (passes at 0.025 mm).
-TEST(WornPairs, DISABLED_MeasuredMiniProfPairContinuity) {
+// Measured MiniProf pairs (Car7216, smoothed 2 mm), 0.05 mm steps: continuity in y except where
+// the character changes (character_change) or the geometry flags near_equal_minima (the primary
+// point may jump: the tread-to-flange takeover at y = 5.25 mm, where the point jumps 37.5 mm
+// (avg_HR) and 24.3 mm (UIC60), and the tread jumps between near-equal minima). Without the
+// flag exemption the flange takeover fails for every model (load transfer between 5.20 and
+// 5.40 mm, 130 -> 162 kN in one step for Hertz on avg_HR).
+// KNOWN FAILURES (the DISABLED test below), none of them at near-equal minima, diagnosed with the
+// rigid points printed:
+// (1) Car7216 / UIC60 hertz, linder, stripes-a/shift, stripes-ab/shift, y = -0.10 -> -0.05 mm:
+// ONE rigid point (no second minimum within 0.5 mm) crosses the UIC60 R300/R80 radius transition
+// (rail u -10.519 -> -10.494 mm); B jumps 11.5 -> 6.9 1/m, so Hertz's approach (0.1143 -> 0.1078
+// mm) and Linder's area (94.8 -> 84.6 mm2) jump. The design rail's curvature jump under point
+// models (RailTransition covers S1002, whose point jumps over it through a two-point state).
+// (2) Car7216 / UIC60 stripes-a/clip, stripes-ab/clip (and stripes-a/shift at 8.65 mm): force and
+// approach step 2 % between y = 8.90 and 8.95 mm on the flange flank (src/normal, STRIPES).
+// (3) Car7216 / avg_HR linder, kik-piotrowski: area steps 1.3 % (84.4 -> 83.3 mm2, Linder)
+// between y = -2.51 and -2.505 mm with the rigid points, separations and B continuous
+// (src/normal band run; cause not found); stripes-ab/shift: area 78.9 -> 79.1 mm2 at 4.95 -> 5.00.
+bool miniprof_known_failure(const Pair& pair, const Variant& v) {
+  if (std::string(pair.label) == "Car7216 / UIC60") return v.label != "kik-piotrowski";
+  if (std::string(pair.label) == "Car7216 / avg_HR")
+    return v.label == "linder" || v.label == "kik-piotrowski" || v.label == "stripes-ab/shift";
+  return false;
+}
+
+void miniprof_continuity(bool known_failures) {
   for (const Pair& pair : worn_pairs()) {
     if (!measured_miniprof_pair(pair)) continue;
     const ContactGeometrySolver solver(pair.wheel, pair.rail, pair.wheel, pair.rail, TrackGeometry{},
                                        WheelsetGeometry{});
     for (const Variant& v : all_variants()) {
+      if (miniprof_known_failure(pair, v) != known_failures) continue;
       expect_continuous(sweep(solver, Side::left, v, sweep_ys()), std::string(pair.label) + " " + v.label,
                         v.model != NormalModel::hertz, kExemptNearEqualMinima);
     }
   }
 }
+
+TEST(WornPairs, MeasuredMiniProfPairContinuity) { miniprof_continuity(false); }
+TEST(WornPairs, DISABLED_MeasuredMiniProfPairContinuityKnownFailures) { miniprof_continuity(true); }
 
 // Issue 20, hollow-worn treads: the primary rigid contact point moves continuously in y except
 // where the geometry flags near_equal_minima. A step of the sweep in which the primary point
