@@ -159,7 +159,7 @@ TEST(WornPairs, DISABLED_MeasuredMiniProfPairContinuityKnownFailures) { miniprof
 // where the geometry flags near_equal_minima. A step of the sweep in which the primary point
 // moves more than 1 mm (on the rail, side frame) is a jump; at least one of its two samples must
 // carry the flag (it is set where a second point would become primary within a 0.1 mm shift).
-// The sweeps hold 12 such jumps (3 to 53 mm: hollow-tread minima and flange takeovers; without the
+// The sweeps hold 12 such jumps (up to 53 mm: hollow-tread minima and flange takeovers; without the
 // flag, i.e. near_equal_shift = 0, each one fails). The flag must also stay specific: at most a
 // quarter of the samples carry it (42 of 1405 do).
 TEST(WornPairs, PrimaryPointJumpsAreFlagged) {
