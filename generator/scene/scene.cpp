@@ -279,7 +279,7 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
 
   Section pr = section(ctx, root, "profiles",
                        {"wheel", "rail", "smoothing", "wheel_mirror_y", "wheel_mirror_z", "rail_mirror_y",
-                        "rail_mirror_z"});
+                        "rail_mirror_z", "wheel_shift_y"});
   double smoothing = pr.number("smoothing", 0.0, non_negative, ">= 0 [m]");
   scene.wheel = parse_profile(pr, "wheel", base_dir, smoothing);
   scene.rail = parse_profile(pr, "rail", base_dir, smoothing);
@@ -287,6 +287,11 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   scene.wheel.mirror_z = pr.parse_string("wheel_mirror_z", parse_axis_mirror).value_or(AxisMirror::automatic);
   scene.rail.mirror_y = pr.parse_string("rail_mirror_y", parse_axis_mirror).value_or(AxisMirror::automatic);
   scene.rail.mirror_z = pr.parse_string("rail_mirror_z", parse_axis_mirror).value_or(AxisMirror::automatic);
+  scene.wheel.lateral_shift = pr.number("wheel_shift_y", 0.0);
+  if (scene.wheel.lateral_shift != 0.0 && scene.wheel.file.empty()) {
+    fail(ctx, pr.node("wheel_shift_y")->source(), "profiles.wheel_shift_y",
+         "applies to wheel profile files only (the built-in s1002 has its origin on the running circle)");
+  }
 
   Section tr = section(ctx, root, "track", {"gauge", "gauge_measuring_depth", "rail_inclination"});
   scene.track.gauge = tr.number("gauge", scene.track.gauge, positive, "> 0 [m]");
@@ -302,7 +307,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
       ws.number("nominal_radius", scene.wheelset.nominal_radius, positive, "> 0 [m]");
 
   Section ge = section(ctx, root, "geometry", {"search_step", "max_separation", "band_step",
-                                               "band_half_width", "band_max_gap", "flange_angle"});
+                                               "band_half_width", "band_max_gap", "flange_angle",
+                                               "near_equal_shift", "near_equal_distance"});
   GeometrySettings& g = scene.geometry;
   g.search_step = ge.number("search_step", g.search_step, positive, "> 0 [m]");
   g.max_separation = ge.number("max_separation", g.max_separation, non_negative, ">= 0 [m]");
@@ -310,6 +316,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   g.band_half_width = ge.number("band_half_width", g.band_half_width, positive, "> 0 [m]");
   g.band_max_gap = ge.number("band_max_gap", g.band_max_gap, positive, "> 0 [m]");
   g.flange_angle = ge.number("flange_angle", g.flange_angle, positive, "> 0 [rad]");
+  g.near_equal_shift = ge.number("near_equal_shift", g.near_equal_shift, non_negative, ">= 0 [m]");
+  g.near_equal_distance = ge.number("near_equal_distance", g.near_equal_distance, non_negative, ">= 0 [m]");
 
   Section ma = section(ctx, root, "material", {"youngs_modulus", "poisson_ratio"});
   scene.material.youngs_modulus = ma.number("youngs_modulus", scene.material.youngs_modulus, positive, "> 0 [Pa]");

@@ -24,6 +24,7 @@ struct ProfileSource {
   double smoothing_length = 0.0;  // smoothing of measured profiles, 0 = interpolate [m]
   AxisMirror mirror_y = AxisMirror::automatic;  // MiniProf lateral axis (profile/profile_io.hpp)
   AxisMirror mirror_z = AxisMirror::automatic;  // MiniProf vertical axis
+  double lateral_shift = 0.0;     // added to the file's lateral coordinate (wheel_shift_y) [m]
 };
 
 struct TangentialSettings {

@@ -25,6 +25,7 @@ ProfilePtr make_profile(const ProfileSource& source, ProfileKind kind) {
   options.smoothing_length = source.smoothing_length;
   options.mirror_y = source.mirror_y;
   options.mirror_z = source.mirror_z;
+  options.lateral_shift = source.lateral_shift;
   return read_profile(source.file, kind, options);
 #else
   throw Error(fmt::format("{}: reading profile files is not available in this build", source.file.string()));

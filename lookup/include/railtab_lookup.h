@@ -65,7 +65,8 @@ extern "C" {
 #define RAILTAB_LOOKUP_FAILED (1u << 13)           /* the core threw at a node: outputs 0 */
 #define RAILTAB_LOOKUP_AREA_TOO_SMALL (1u << 14)   /* half-space: contact reached the potential area's edge */
 #define RAILTAB_LOOKUP_NOT_PLANAR (1u << 15)       /* half-space: contact angle varies across the patch */
-#define RAILTAB_LOOKUP_NUM_STATUS_BITS 16
+#define RAILTAB_LOOKUP_NEAR_EQUAL_MINIMA (1u << 16) /* geometry: two near-equal rigid gap minima, the point may jump */
+#define RAILTAB_LOOKUP_NUM_STATUS_BITS 17
 
 /* Output indices into railtab_lookup_contact.value (railtab::lookup::Output). */
 enum {

@@ -7,7 +7,7 @@
 namespace railtab::status {
 
 std::string describe(StatusBits bits) {
-  static constexpr std::array<std::pair<StatusBits, const char*>, 16> kNames{{
+  static constexpr std::array<std::pair<StatusBits, const char*>, 17> kNames{{
       {kConverged, "converged"},
       {kNotConverged, "not_converged"},
       {kTwoPoint, "two_point"},
@@ -24,6 +24,7 @@ std::string describe(StatusBits bits) {
       {kFailed, "failed"},
       {kAreaTooSmall, "area_too_small"},
       {kNotPlanar, "not_planar"},
+      {kNearEqualMinima, "near_equal_minima"},
   }};
   std::string out;
   for (const auto& [bit, name] : kNames) {

@@ -29,6 +29,11 @@ inline constexpr StatusBits kFailed = 1u << 13;           // the core threw here
 inline constexpr StatusBits kAreaTooSmall = 1u << 14;     // contact reaches the potential area's edge
 inline constexpr StatusBits kNotPlanar = 1u << 15;        // contact angle varies across the patch
                                                           //   beyond the planar limit
+// Geometry (src/geometry): the wheel has two rigid contact points at least
+// GeometrySettings::near_equal_distance apart whose separations differ by less than
+// near_equal_gap, e.g. the two minima of a hollow-worn tread: the primary point (and its radius
+// and angle) may jump between them from one lateral position to the next.
+inline constexpr StatusBits kNearEqualMinima = 1u << 16;
 
 // Comma-separated names of the set bits, e.g. "converged,two_point"; "none" for 0.
 std::string describe(StatusBits bits);

@@ -41,6 +41,30 @@ void check_not_canted_twice(const Profile& rail, double inclination) {
                 rail.name(), cant.beta, 1.0 / std::tan(std::abs(cant.beta)), inclination);
 }
 
+// Which rigid point is the primary one is decided by a gap difference that crosses zero as y
+// changes. A local minimum's gap changes with the wheelset shift at the rate -tan(g) of its
+// contact angle g (the gap is stationary in the wheel coordinate there), so the separation h of
+// point k closes at |tan g_k - tan g_0| per metre of shift. Where that happens within
+// near_equal_shift (the two minima of a hollow tread, a flange onset), the primary point and its
+// radius and angle may jump from one y to the next. The loads need not jump: both points stay in
+// `points`, and the normal models load both once the approach exceeds h. The flag tells a user
+// of the primary point's quantities (a table's geometry slot).
+void flag_near_equal_minima(const GeometrySettings& settings, WheelContactGeometry& out) {
+  ContactPoint& primary = out.points.front();
+  for (std::size_t k = 1; k < out.points.size(); ++k) {
+    ContactPoint& p = out.points[k];
+    const double distance = std::hypot(p.y_track - primary.y_track, p.z_track - primary.z_track);
+    const double closing_rate =
+        std::abs(std::tan(p.contact_angle_side) - std::tan(primary.contact_angle_side));
+    if (p.separation < settings.near_equal_shift * closing_rate &&
+        distance >= settings.near_equal_distance) {
+      p.status |= status::kNearEqualMinima;
+      primary.status |= status::kNearEqualMinima;
+      out.status |= status::kNearEqualMinima;
+    }
+  }
+}
+
 }  // namespace
 
 ContactGeometrySolver::ContactGeometrySolver(ProfilePtr wheel_left, ProfilePtr rail_left,
@@ -75,6 +99,12 @@ ContactGeometrySolver::ContactGeometrySolver(ProfilePtr wheel_left, ProfilePtr r
                 "contact geometry: settings.band_half_width = {} must be finite and >= 0",
                 settings_.band_half_width);
   check_positive(settings_.band_max_gap, "settings.band_max_gap");
+  RAILTAB_CHECK(std::isfinite(settings_.near_equal_shift) && settings_.near_equal_shift >= 0.0,
+                "contact geometry: settings.near_equal_shift = {} must be finite and >= 0",
+                settings_.near_equal_shift);
+  RAILTAB_CHECK(std::isfinite(settings_.near_equal_distance) && settings_.near_equal_distance >= 0.0,
+                "contact geometry: settings.near_equal_distance = {} must be finite and >= 0",
+                settings_.near_equal_distance);
   RAILTAB_CHECK(std::isfinite(settings_.flange_angle),
                 "contact geometry: settings.flange_angle = {} is not finite", settings_.flange_angle);
 
@@ -154,6 +184,7 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
     return a.separation < b.separation;
   });
   out.points.front().separation = 0.0;  // exactly: the drop is defined by it
+  flag_near_equal_minima(settings_, out);
 
   const bool band_edge = detail::build_band(rail, wheel, pose, settings_, out);
   if (out.points.size() > 1) out.status |= status::kTwoPoint;

@@ -48,6 +48,13 @@ struct GeometrySettings {
   double band_half_width = 20e-3;      // band reaches this far beyond the outermost contacts [m]
   double band_max_gap = 2e-3;          // ...or stops where the normal gap exceeds this [m]
   double flange_angle = 0.35;          // contact angle above which a contact is "flange" [rad]
+  // kNearEqualMinima: a second rigid point at least near_equal_distance from the primary one (on
+  // the rail) would become the primary point within a lateral wheelset shift of near_equal_shift
+  // (first order: its separation h closes at the rate |tan g_k - tan g_0| per metre of shift, so
+  // the flag is h < near_equal_shift |tan g_k - tan g_0|). Twice the 0.05 mm step of the
+  // stability sweeps: both samples around a jump of the primary point carry the flag.
+  double near_equal_shift = 0.1e-3;    // [m]
+  double near_equal_distance = 1e-3;   // [m]
 };
 
 struct WheelsetState {
@@ -83,7 +90,8 @@ struct ContactPoint {
   double curvature_a;       // principal relative curvature, rolling direction, A [1/m]
   double curvature_b;       // principal relative curvature, lateral direction, B [1/m]
   double band_s;            // arc length of this point in the wheel's band [m]
-  StatusBits status;        // kFlangeContact, kNonHertzian (A or B <= 0), kProfileEdge
+  StatusBits status;        // kFlangeContact, kNonHertzian (A or B <= 0), kProfileEdge,
+                            //   kNearEqualMinima (this point and the primary, see GeometrySettings)
   double wheel_t;           // wheel curve parameter (Profile::curve; = wheel_u for z(u) profiles) [m]
   double rail_t;            // rail curve parameter (= rail_u for z(u) profiles) [m]
 };
@@ -95,7 +103,8 @@ struct WheelContactGeometry {
   double band_step = 0.0;            // s spacing of band [m]
   double wheel_drop = 0.0;           // vertical position of the wheel at rigid contact [m]
   double wheel_roll = 0.0;           // roll of the wheel in its side frame, sigma*roll [rad]
-  StatusBits status = 0;             // kTwoPoint when more than one point, kProfileEdge
+  StatusBits status = 0;             // kTwoPoint when more than one point, kProfileEdge,
+                                     //   kNearEqualMinima (GeometrySettings::near_equal_gap)
 };
 
 struct WheelsetContactGeometry {

@@ -51,7 +51,8 @@ double depth_reached(const std::vector<Sample>& s, std::size_t first, std::size_
 void check_wheel(const Profile& p, const std::vector<Sample>& s, const std::string& what) {
   RAILTAB_CHECK(p.u_min() < 0.0 && p.u_max() > 0.0,
                 "{}: the running circle u = 0 lies outside the wheel's range [{:.2f}, {:.2f}] mm: "
-                "wrong lateral origin?",
+                "wrong lateral origin? (shift it: scene profiles.wheel_shift_y, -0.070 m for a file "
+                "whose y = 0 is the flange back)",
                 what, p.u_min() / kMm, p.u_max() / kMm);
   const double z0 = p.eval(0.0).z;
   const auto lowest = std::min_element(s.begin(), s.end(), [](const Sample& a, const Sample& b) {
@@ -64,7 +65,8 @@ void check_wheel(const Profile& p, const std::vector<Sample>& s, const std::stri
                 "{}: the flange (lowest point, u = {:.2f} mm) lies on the field side of u = 0 "
                 "although it is on the inner part of the profile [{:.2f}, {:.2f}] mm: the lateral "
                 "origin is not on the running circle (measured from the flange back?); shift the "
-                "profile so that u = 0 is on the running circle",
+                "profile so that u = 0 is on the running circle (scene profiles.wheel_shift_y, "
+                "read option lateral_shift: -0.070 m for a file whose y = 0 is the flange back)",
                 what, lowest->u / kMm, p.u_min() / kMm, p.u_max() / kMm);
   const double flange = z0 - lowest->z;
   if (flange < 10 * kMm && high_inside && s[i_high].z - z0 >= 10 * kMm) {

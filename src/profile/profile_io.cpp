@@ -253,9 +253,12 @@ ProfilePtr read_profile(const fs::path& file, ProfileKind kind, const ProfileRea
       }
       single_valued = single_valued && p.y > q.y;
     }
-    u.push_back(p.y);
+    u.push_back(p.y + options.lateral_shift);
     z.push_back(-p.z);
   }
+  RAILTAB_CHECK(std::isfinite(options.lateral_shift) && std::abs(options.lateral_shift) <= limits::kMaxProfileCoordinate,
+                "{}: lateral shift {} m must be finite and at most {} m", file.string(), options.lateral_shift,
+                limits::kMaxProfileCoordinate);
   RAILTAB_CHECK(std::isfinite(options.smoothing_length) && options.smoothing_length >= 0.0,
                 "{}: smoothing length {} m must be finite and >= 0", file.string(), options.smoothing_length);
   // Overhangs, undercuts and vertical faces make a curve that is not a function z(u): parametric.

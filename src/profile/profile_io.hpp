@@ -19,6 +19,10 @@ struct ProfileReadOptions {
   AxisMirror mirror_y = AxisMirror::automatic;  // MiniProf lateral axis
   AxisMirror mirror_z = AxisMirror::automatic;  // MiniProf vertical axis
   bool check_plausibility = true;            // width, height, flange side, rail top (profile_checks.hpp)
+  // Added to the lateral coordinate after reading [m]: a wheel measured from its flange back
+  // (CONTACT's FBPOS = 0, e.g. testbank worn_high_mileage.prw) needs -0.070 to put u = 0 on the
+  // running circle that railtab's wheel frame requires (docs/profiles.md "Plausibility checks").
+  double lateral_shift = 0.0;
 };
 
 // Reads a wheel or rail profile: a SplineProfile (profile/spline_profile.hpp) when the points are

@@ -42,6 +42,8 @@ TEST(StatusBits, MatchTheCore) {
   EXPECT_EQ(status::kNotPlanar, railtab::status::kNotPlanar);
   EXPECT_EQ(RAILTAB_LOOKUP_AREA_TOO_SMALL, railtab::status::kAreaTooSmall);
   EXPECT_EQ(RAILTAB_LOOKUP_NOT_PLANAR, railtab::status::kNotPlanar);
+  EXPECT_EQ(status::kNearEqualMinima, railtab::status::kNearEqualMinima);
+  EXPECT_EQ(RAILTAB_LOOKUP_NEAR_EQUAL_MINIMA, railtab::status::kNearEqualMinima);
   // Every bit has the core's name, and the core names no bit beyond the lookup's count.
   for (int b = 0; b < status::kNumBits; ++b) {
     EXPECT_EQ(status::bit_name(1u << b), railtab::status::describe(1u << b)) << "bit " << b;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -113,24 +114,89 @@ TEST(WornPairs, DISABLED_StripesFlankJumpOnHollowWheel) {
   }
 }
 
-// KNOWN FAILURE (measured MiniProf wheel Car7216, smoothed 2 mm; every model), at 0.05 mm steps:
-// (1) the tread-to-flange load transfer between y = 5.20 and 5.40 mm takes four steps, all next
-// to exempt steps, and the normal force step 5.30 -> 5.35 mm (130 -> 162 kN, Hertz on avg_HR)
-// exceeds 4x the slope beyond them (at 0.025 mm steps it passes); (2) on the worn tread the
-// contact moves between near-equal gap minima without a flag: Car7216 / UIC60 between y = -0.10
-// and -0.05 mm (Hertz approach 0.1143 -> 0.1078 mm; Linder, STRIPES area and approach too),
-// Car7216 / avg_HR between -2.55 and -2.50 mm (Linder, Kik-Piotrowski area). (2) is the
-// hollow-tread jump of issue 20; it needs a flag or a blend in src/geometry / src/normal.
-TEST(WornPairs, DISABLED_MeasuredMiniProfPairContinuity) {
+// Measured MiniProf pairs (Car7216, smoothed 2 mm), 0.05 mm steps: continuity in y except where
+// the character changes (character_change) or the geometry flags near_equal_minima (the primary
+// point may jump: the tread-to-flange takeover at y = 5.25 mm, where the point jumps 37.5 mm
+// (avg_HR) and 24.3 mm (UIC60), and the tread jumps between near-equal minima). Without the
+// flag exemption the flange takeover fails for every model (load transfer between 5.20 and
+// 5.40 mm, 130 -> 162 kN in one step for Hertz on avg_HR).
+// KNOWN FAILURES (the DISABLED test below), none of them at near-equal minima, diagnosed with the
+// rigid points printed:
+// (1) Car7216 / UIC60 hertz, linder, stripes-a/shift, stripes-ab/shift, y = -0.10 -> -0.05 mm:
+// ONE rigid point (no second minimum within 0.5 mm) crosses the UIC60 R300/R80 radius transition
+// (rail u -10.519 -> -10.494 mm); B jumps 11.5 -> 6.9 1/m, so Hertz's approach (0.1143 -> 0.1078
+// mm) and Linder's area (94.8 -> 84.6 mm2) jump. The design rail's curvature jump under point
+// models (RailTransition covers S1002, whose point jumps over it through a two-point state).
+// (2) Car7216 / UIC60 stripes-a/clip, stripes-ab/clip (and stripes-a/shift at 8.65 mm): force and
+// approach step 2 % between y = 8.90 and 8.95 mm on the flange flank (src/normal, STRIPES).
+// (3) Car7216 / avg_HR linder, kik-piotrowski: area steps 1.3 % (84.4 -> 83.3 mm2, Linder)
+// between y = -2.51 and -2.505 mm with the rigid points, separations and B continuous
+// (src/normal band run; cause not found); stripes-ab/shift: area 78.9 -> 79.1 mm2 at 4.95 -> 5.00.
+bool miniprof_known_failure(const Pair& pair, const Variant& v) {
+  if (std::string(pair.label) == "Car7216 / UIC60") return v.label != "kik-piotrowski";
+  if (std::string(pair.label) == "Car7216 / avg_HR")
+    return v.label == "linder" || v.label == "kik-piotrowski" || v.label == "stripes-ab/shift";
+  return false;
+}
+
+void miniprof_continuity(bool known_failures) {
   for (const Pair& pair : worn_pairs()) {
     if (!measured_miniprof_pair(pair)) continue;
     const ContactGeometrySolver solver(pair.wheel, pair.rail, pair.wheel, pair.rail, TrackGeometry{},
                                        WheelsetGeometry{});
     for (const Variant& v : all_variants()) {
+      if (miniprof_known_failure(pair, v) != known_failures) continue;
       expect_continuous(sweep(solver, Side::left, v, sweep_ys()), std::string(pair.label) + " " + v.label,
-                        v.model != NormalModel::hertz);
+                        v.model != NormalModel::hertz, kExemptNearEqualMinima);
     }
   }
+}
+
+TEST(WornPairs, MeasuredMiniProfPairContinuity) { miniprof_continuity(false); }
+TEST(WornPairs, DISABLED_MeasuredMiniProfPairContinuityKnownFailures) { miniprof_continuity(true); }
+
+// Issue 20, hollow-worn treads: the primary rigid contact point moves continuously in y except
+// where the geometry flags near_equal_minima. A step of the sweep in which the primary point
+// moves more than 1 mm (on the rail, side frame) is a jump; at least one of its two samples must
+// carry the flag (it is set where a second point would become primary within a 0.1 mm shift).
+// The sweeps hold 12 such jumps (up to 53 mm: hollow-tread minima and flange takeovers; without the
+// flag, i.e. near_equal_shift = 0, each one fails). The flag must also stay specific: at most a
+// quarter of the samples carry it (42 of 1405 do).
+TEST(WornPairs, PrimaryPointJumpsAreFlagged) {
+  constexpr double kJump = 1e-3;  // [m]; continuous motion is <= 0.52 mm per 0.05 mm step here
+  int jumps = 0, flagged_samples = 0, samples = 0;
+  for (const Pair& pair : worn_pairs()) {
+    const ContactGeometrySolver solver(pair.wheel, pair.rail, pair.wheel, pair.rail, TrackGeometry{},
+                                       WheelsetGeometry{});
+    WheelContactGeometry prev;
+    for (std::size_t k = 0; k < sweep_ys().size(); ++k) {
+      const double y = sweep_ys()[k];
+      WheelContactGeometry g = solver.solve_wheel(Side::left, WheelsetState{y, 0.0});
+      const bool flagged = (g.status & status::kNearEqualMinima) != 0;
+      ++samples;
+      flagged_samples += flagged ? 1 : 0;
+      if (flagged) {  // the flag is on the wheel, the primary point and the point it competes with
+        EXPECT_GE(g.points.size(), 2u);
+        EXPECT_TRUE(g.points.front().status & status::kNearEqualMinima);
+      }
+      if (k > 0) {
+        const ContactPoint& a = prev.points.front();
+        const ContactPoint& b = g.points.front();
+        const double moved = std::hypot(b.y_track - a.y_track, b.z_track - a.z_track);
+        if (moved > kJump) {
+          ++jumps;
+          EXPECT_TRUE((prev.status | g.status) & status::kNearEqualMinima)
+              << pair.label << ": the primary point jumps " << moved * 1e3 << " mm between y = "
+              << sweep_ys()[k - 1] * 1e3 << " and " << y * 1e3 << " mm without near_equal_minima";
+        }
+      }
+      prev = std::move(g);
+    }
+  }
+  EXPECT_GE(jumps, 5);  // the sweeps do cross hollow-tread and flange-onset jumps
+  EXPECT_LT(flagged_samples, samples / 4) << flagged_samples << " of " << samples << " samples flagged";
+  std::printf("[ info ] %d jumps of the primary point, %d of %d samples flagged near_equal_minima\n",
+              jumps, flagged_samples, samples);
 }
 
 // Leaving the tread is flagged: the flange contact on the worn gauge face carries kFlangeContact

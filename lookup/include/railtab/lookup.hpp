@@ -49,7 +49,9 @@ inline constexpr StatusBits kProfileEdge = 1u << 12;      // contact band reache
 inline constexpr StatusBits kFailed = 1u << 13;           // the core threw at a node: outputs 0
 inline constexpr StatusBits kAreaTooSmall = 1u << 14;     // half-space: contact reached the potential area's edge
 inline constexpr StatusBits kNotPlanar = 1u << 15;        // half-space: contact angle varies across the patch
-inline constexpr int kNumBits = 16;                       // bits 0 .. kNumBits-1 are defined
+inline constexpr StatusBits kNearEqualMinima = 1u << 16;  // geometry: two near-equal rigid gap minima,
+                                                          // the contact point may jump between them
+inline constexpr int kNumBits = 17;                       // bits 0 .. kNumBits-1 are defined
 
 // Name of one bit as in the table files and `railtab inspect` ("converged", "two_point", ...;
 // "unknown" for a value that is not a single defined bit).

@@ -206,6 +206,23 @@ TEST(Scene, MiniProfMirrorKeys) {
   EXPECT_NE(m.find("not one of auto, no, yes"), std::string::npos) << m;
 }
 
+// Issue 20: wheels measured from the flange back get profiles.wheel_shift_y; the built-in s1002
+// has its origin on the running circle already, so a shift of it is refused.
+TEST(Scene, WheelShiftYAndNearEqualKeys) {
+  std::string text = kMinimal;
+  text.replace(text.find("rail = \"uic60\"\n"), 15, "rail = \"uic60\"\nwheel_shift_y = 0.0\n");
+  text += "[geometry]\nnear_equal_shift = 2e-4\nnear_equal_distance = 5e-4\n";
+  const Scene s = parse_scene(text, "shift.toml");
+  EXPECT_EQ(s.wheel.lateral_shift, 0.0);
+  EXPECT_EQ(s.geometry.near_equal_shift, 2e-4);
+  EXPECT_EQ(s.geometry.near_equal_distance, 5e-4);
+  std::string bad = kMinimal;
+  bad.replace(bad.find("rail = \"uic60\"\n"), 15, "rail = \"uic60\"\nwheel_shift_y = -0.07\n");
+  const std::string m = error_of(bad);
+  EXPECT_NE(m.find("profiles.wheel_shift_y"), std::string::npos) << m;
+  EXPECT_NE(m.find("wheel profile files only"), std::string::npos) << m;
+}
+
 // Issue 19, finding 3: a device or FIFO given as a scene used to be read without limit
 // (/dev/zero) or to block forever (a FIFO without a writer).
 TEST(Scene, DeviceOrFifoIsRefusedWithoutReading) {
