@@ -17,6 +17,7 @@
 #include "charts/speed_accuracy_states.hpp"
 #include "core/check.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "sweep/halfspace_contact.hpp"
 #include "sweep/sweep.hpp"
 #include "table/table_io.hpp"
 
@@ -106,12 +107,44 @@ struct Chain {
   CreepConditions creep;
   WearOptions wear;
   CoupledLoadOptions coupling;
+  halfspace::HalfspaceOptions halfspace;  // normal model halfspace
 };
+
+// The exact half-space model (the reference without CONTACT data): normal and steady rolling, with
+// the scene's load coupling as for the fast models.
+SaOutcome evaluate_exact(const Chain& c, const WheelContactGeometry& g, const SaState& s) {
+  SaOutcome out;
+  const Creepage creepage{s.xi, s.eta, s.phi};
+  halfspace::Workspace& ws = thread_halfspace_workspace();
+  halfspace::WheelHalfspaceResult r;
+  if (c.coupling.couple) {
+    r = halfspace::solve_halfspace_rolling(g, s.load, creepage, s.friction, c.material, c.halfspace, ws);
+  } else {
+    r = halfspace::solve_halfspace_for_load(g, s.load, c.material, c.halfspace, ws);
+    halfspace::solve_halfspace_tangential(r, creepage, s.friction, c.material, c.halfspace, ws);
+  }
+  double fmax = -1.0;
+  for (const halfspace::HalfspacePatch& p : r.patches) {
+    if (!(p.normal.normal_force > 0.0)) continue;
+    out.fx += p.tangential.fx;
+    out.fy += p.tangential.fy;
+    out.fn += p.normal.normal_force;
+    out.area += p.normal.area;
+    out.pmax = std::max(out.pmax, p.normal.max_pressure);
+    if (p.normal.normal_force > fmax) {
+      fmax = p.normal.normal_force;
+      out.angle = p.contact_angle;
+    }
+    out.ok = true;
+  }
+  return out;
+}
 
 SaOutcome evaluate(const Chain& c, const SaState& s, FastsimWorkspace& ws, WearDistribution& dist,
                    double& sink) {
   SaOutcome out;
   const WheelContactGeometry g = c.solver->solve_wheel(Side::right, WheelsetState{s.y, 0.0});
+  if (c.normal.model == NormalModel::halfspace) return evaluate_exact(c, g, s);
   CreepConditions cc = c.creep;
   cc.friction = s.friction;
   const Creepage creepage{s.xi, s.eta, s.phi};
@@ -223,6 +256,7 @@ std::vector<double> range(double lo, double hi, double step) {
 }  // namespace
 
 std::string SaModelSetting::label() const {
+  if (model == NormalModel::halfspace) return "halfspace exact";
   if (model == NormalModel::hertz) return fmt::format("hertz e{}", elements);
   return fmt::format("{} {}x{}", to_string(model), strips, elements);
 }
@@ -305,6 +339,7 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
   base.creep = creep_conditions(mscene);
   base.wear = wear_options(mscene);
   base.coupling = coupled_load_options(mscene);
+  base.halfspace = halfspace_options(mscene);
   res.setup = fmt::format(
       "right wheel, roll 0, Fz {:g} kN, mu {:g}, E {:g} GPa, nu {:g}, spin {}, negative curvature {}, load coupling {}",
       load * 1e-3, friction, mscene.material.youngs_modulus * 1e-9, mscene.material.poisson_ratio,
@@ -317,7 +352,7 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
   const std::size_t ns = res.states.size();
 
   if (!have_ref) {
-    // Fallback reference: the finest STRIPES A&B discretisation.
+    // Fallback reference: the exact half-space model (default), or a fine fast-model setting.
     Chain c = base;
     c.normal.model = opt.fallback_reference.model;
     c.normal.strips = opt.fallback_reference.strips;
@@ -330,7 +365,11 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
       s.ref_pmax = o.pmax;
       s.ref_angle = o.angle;
     }
-    res.reference = fmt::format("finest STRIPES ({}; no CONTACT reference found)", opt.fallback_reference.label());
+    res.exact_reference = opt.fallback_reference.model == NormalModel::halfspace;
+    res.reference = res.exact_reference
+                        ? fmt::format("exact half-space model (railtab, {:g} mm elements; no CONTACT reference found)",
+                                      base.halfspace.element_size * 1e3)
+                        : fmt::format("finest STRIPES ({}; no CONTACT reference found)", opt.fallback_reference.label());
   } else {
     res.reference = "CONTACT half-space (block C, ../shared/reference)";
   }

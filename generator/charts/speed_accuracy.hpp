@@ -80,7 +80,9 @@ struct SpeedAccuracyOptions {
   int repeats = 11;                          // timed runs per state and model (after 1 warm-up)
   int lookup_passes = 200;                   // timed passes over all states per table
   int table_threads = 0;                     // threads of the table sweeps (0 = all cores)
-  SaModelSetting fallback_reference{NormalModel::stripes_ab, 200, 80};  // without CONTACT data
+  // Reference without CONTACT data: the exact half-space model of the scene (its element_size,
+  // normal + steady rolling, src/halfspace); a fast model here gives the older fine-STRIPES one.
+  SaModelSetting fallback_reference{NormalModel::halfspace, 0, 0};
 };
 
 std::vector<SaModelSetting> default_model_settings();
@@ -126,7 +128,8 @@ struct SaStateRow {
 };
 
 struct SpeedAccuracyResult {
-  bool contact_reference = false;   // true: CONTACT block C; false: fine STRIPES fallback
+  bool contact_reference = false;   // true: CONTACT block C; false: options.fallback_reference
+  bool exact_reference = false;     // the fallback is the exact half-space model
   std::string reference;            // one line: what the reference is
   std::string setup;                // one line: material, roll, load, ...
   std::vector<SaState> states;

@@ -44,7 +44,7 @@ void write_speed_accuracy_csv(const SpeedAccuracyResult& result, const std::file
                        num(r.err_force_flange), num(r.err_area), num(r.err_pmax), num(r.err_angle_mrad), r.n_creep,
                        r.n_normal, r.n_failed, r.file_bytes, r.memory_bytes, int(r.pareto_all),
                        int(r.pareto_tread), int(r.pareto_flange), num(r.err_interp), num(r.err_interp_p90),
-                       result.contact_reference ? "contact" : "stripes");
+                       result.contact_reference ? "contact" : result.exact_reference ? "halfspace" : "stripes");
   }
   write_text_file(path, out.str());
 }

@@ -147,7 +147,7 @@ void add_chart_commands(CLI::App& app) {
   add_scene_and_out(chart, sa->scene_path, sa->out_dir, sa->quiet);
   chart->add_option("--reference", sa->reference,
                     "CONTACT block C CSV (default: <source>/../shared/reference/blockC_sweep_integer_dy.csv; "
-                    "absent: finest STRIPES as reference)");
+                    "absent: the exact half-space model as reference)");
   chart->add_option("--repeats", sa->repeats, "Timed runs per state and model setting")->capture_default_str();
   chart->add_flag("--quick", sa->quick, "Few settings only (smoke run)");
   chart->add_flag("--keep-tables", sa->keep_tables, "Keep the generated tables in OUT/tables");

@@ -46,12 +46,14 @@ void print_text(const nlohmann::json& out) {
                              w["vertical_approach"].get<double>() * 1e3, w["status"].get<std::string>());
     if (w.contains("load_coupling")) {  // issue 14: the load carried by normal and creep forces
       const auto& c = w["load_coupling"];
+      // The half-space model's coupled solve does not report its iterations.
+      const std::string iterations =
+          c.contains("iterations") ? fmt::format("{} iterations, ", c["iterations"].get<int>()) : std::string();
       std::cout << fmt::format("  vertical load {:.2f} kN = normal {:.2f} kN + creep forces {:.2f} kN (load coupling {}, "
-                               "{} iterations, {})\n",
+                               "{}{})\n",
                                w["vertical_load"].get<double>() * 1e-3, w["vertical_load_normal"].get<double>() * 1e-3,
                                w["vertical_load_tangential"].get<double>() * 1e-3,
-                               c["enabled"].get<bool>() ? "on" : "off", c["iterations"].get<int>(),
-                               c["status"].get<std::string>());
+                               c["enabled"].get<bool>() ? "on" : "off", iterations, c["status"].get<std::string>());
     }
     std::cout << "  loaded patches  wheel_y  rail_y   angle    r_roll       N  approach   area   p_max";
     const bool creep = out.contains("creepage");
@@ -106,7 +108,7 @@ void add_eval_command(CLI::App& app) {
                 "Use the kinematic equilibrium roll of the rigid wheelset");
   cmd->add_option("--load", opt->request.load, "Vertical wheel load in track axes [N] (default: scene's first load)");
   cmd->add_option("--model", opt->request.model,
-                  "Normal model: hertz|linder|kik-piotrowski|stripes-a|stripes-ab (default: scene's)");
+                  "Normal model: hertz|linder|kik-piotrowski|stripes-a|stripes-ab|halfspace (default: scene's)");
   cmd->add_option("--creepage", opt->request.creepage,
                   "Creepages XI,ETA,PHI of the wheel relative to the rail: longitudinal, lateral [-], spin "
                   "[rad/m] (docs/conventions.md); adds fx, fy, mz, slip_fraction, wear_rate")

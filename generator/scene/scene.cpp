@@ -326,7 +326,7 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   Section co = section(ctx, root, "contact",
                        {"normal_model", "negative_curvature", "strips", "virtual_penetration", "tolerance",
                         "max_iterations", "friction", "elements_per_strip", "spin_per_strip", "speed",
-                        "load_coupling"});
+                        "load_coupling", "element_size"});
   NormalOptions& no = scene.normal;
   if (auto m = co.parse_string("normal_model", parse_normal_model)) no.model = *m;
   if (auto m = co.parse_string("negative_curvature", parse_negative_curvature)) no.negative_curvature = *m;
@@ -340,6 +340,10 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   ts.spin_per_strip = co.boolean("spin_per_strip", ts.spin_per_strip);
   ts.speed = co.number("speed", ts.speed, positive, "> 0 [m/s]");
   ts.load_coupling = co.boolean("load_coupling", ts.load_coupling);
+  // Half-space elements: below 0.05 mm the grids of a flange contact reach millions of elements.
+  scene.halfspace.element_size =
+      co.number("element_size", scene.halfspace.element_size,
+                [](double v) { return v >= 0.05e-3 && v <= 5e-3; }, "in [0.05e-3, 5e-3] [m]");
 
   Section we = section(ctx, root, "wear", {"hardness", "lubrication_factor"});
   scene.wear.hardness = we.number("hardness", scene.wear.hardness, positive, "> 0 [Pa]");

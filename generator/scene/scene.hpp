@@ -36,6 +36,11 @@ struct TangentialSettings {
                                   //   tangential/coupled_load.hpp); false: normal from the load alone
 };
 
+// The exact half-space model (normal_model = "halfspace", src/halfspace/wheel_rail.hpp).
+struct HalfspaceSettings {
+  double element_size = 0.3e-3;   // square elements of the potential contact area [m]
+};
+
 struct WearSettings {
   double hardness = 2.75e9;       // H of the wheel material [Pa]
   double lubrication_factor = 5.5;  // k_dry is divided by this (5.5 natural, 11 lubricated) [-]
@@ -94,6 +99,7 @@ struct Scene {
   Material material;
   NormalOptions normal;
   TangentialSettings tangential;
+  HalfspaceSettings halfspace;
   WearSettings wear;
   bool equilibrium_roll = false;  // roll follows the kinematic equilibrium instead of the roll grid
   SceneGrids grids;              // adaptive axes hold their starting grid until build_adaptive_grids

@@ -16,7 +16,8 @@ DirectContactModel::DirectContactModel(const Scene& scene)
       normal_options_(scene.normal),
       creep_conditions_(creep_conditions(scene)),
       fastsim_options_(fastsim_options(scene)),
-      coupling_(coupled_load_options(scene)) {}
+      coupling_(coupled_load_options(scene)),
+      halfspace_options_(halfspace_options(scene)) {}
 
 void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels],
                                 vehicle::WheelContacts (&contacts)[vehicle::kWheels]) {
@@ -38,7 +39,13 @@ void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels]
     try {
       if (!roll_ok) throw Error("no equilibrium roll");
       geometry_[w] = solver_.solve_wheel(side, WheelsetState{y, roll});
-      solve_normal_for_load(geometry_[w], load[w], material_, normal_options_, normal_[w]);
+      if (normal_options_.model == NormalModel::halfspace) {
+        exact_[w] = halfspace::solve_halfspace_for_load(geometry_[w], load[w], material_, halfspace_options_,
+                                                        thread_halfspace_workspace());
+        normal_[w] = to_normal_result(exact_[w], geometry_[w]);
+      } else {
+        solve_normal_for_load(geometry_[w], load[w], material_, normal_options_, normal_[w]);
+      }
     } catch (const std::exception&) {
       ++failures_;
       for (int slot = 0; slot < vehicle::kContactSlots; ++slot) contacts[w].slot[slot].status = status::kFailed;
@@ -80,6 +87,10 @@ void DirectContactModel::creep(const vehicle::SlotCreepage (&creepage)[vehicle::
                                vehicle::SlotForces (&forces)[vehicle::kWheels][vehicle::kContactSlots]) {
   FastsimWorkspace& workspace = thread_fastsim_workspace();
   for (int w = 0; w < vehicle::kWheels; ++w) {
+    if (normal_options_.model == NormalModel::halfspace) {
+      creep_exact(w, creepage[w], forces[w]);
+      continue;
+    }
     if (coupling_.couple && (loaded_[w][0] || loaded_[w][1])) {
       creep_coupled(w, creepage[w], forces[w], workspace);
       continue;
@@ -102,6 +113,64 @@ void DirectContactModel::creep(const vehicle::SlotCreepage (&creepage)[vehicle::
         f.status = status::kFailed;
       }
     }
+  }
+}
+
+void DirectContactModel::creep_exact(int w, const vehicle::SlotCreepage (&creepage)[vehicle::kContactSlots],
+                                     vehicle::SlotForces (&forces)[vehicle::kContactSlots]) {
+  for (int slot = 0; slot < vehicle::kContactSlots; ++slot) forces[slot] = {};
+  if (!loaded_[w][0] && !loaded_[w][1]) return;
+  const PatchSlots& before = patches_[w];
+  // Each patch at the creepage of the slot it sat in after normal() (by patch index, as creep_coupled).
+  auto slot_creepage = [&](int slot) {
+    const vehicle::SlotCreepage& c = creepage[slot];
+    return Creepage{c.xi, c.eta, c.phi};
+  };
+  auto creepage_of = [&](std::size_t i, const halfspace::HalfspacePatch&) {
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot)
+      for (int ip : before.patch[slot])
+        if (ip == static_cast<int>(i)) return slot_creepage(slot);
+    return Creepage{};
+  };
+  const bool same_creepage =
+      !(loaded_[w][0] && loaded_[w][1]) ||
+      (creepage[0].xi == creepage[1].xi && creepage[0].eta == creepage[1].eta && creepage[0].phi == creepage[1].phi);
+  const double mu = creep_conditions_.friction;
+  halfspace::Workspace& workspace = thread_halfspace_workspace();
+  try {
+    halfspace::WheelHalfspaceResult result;
+    if (coupling_.couple && same_creepage) {  // the table's call
+      const Creepage c = slot_creepage(loaded_[w][0] ? 0 : 1);
+      result = halfspace::solve_halfspace_rolling(geometry_[w], load_[w], c, mu, material_, halfspace_options_,
+                                                  workspace);
+    } else if (coupling_.couple) {
+      result = solve_halfspace_rolling_per_patch(geometry_[w], load_[w], creepage_of, mu, material_,
+                                                 halfspace_options_, true, workspace);
+    } else {
+      solve_halfspace_tangential_per_patch(exact_[w], creepage_of, mu, material_, halfspace_options_, workspace);
+      result = exact_[w];
+    }
+    const WheelNormalResult normal = to_normal_result(result, geometry_[w]);
+    const PatchSlots slots =
+        coupling_.couple ? assign_patch_slots(normal, geometry_[w].side, solver_.settings().flange_angle) : before;
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+      const auto s = static_cast<std::size_t>(slot);
+      if (!loaded_[w][slot] || !slots.occupied(s)) continue;
+      const FastsimResult r = sum_slot_creep(
+          normal, slots, s, [&](std::size_t ip, WearResult*) { return to_creep_result(result.patches[ip]); });
+      const ContactPatch patch = slot_normal(normal, slots, s);
+      vehicle::SlotForces& f = forces[slot];
+      f.fx = r.fx;
+      f.fy = r.fy;
+      f.mz = r.mz;
+      if (coupling_.couple) f.normal_force = patch.normal_force;
+      f.status = r.status | (patch.status & ~status::kConverged);
+      if (f.status & status::kNotConverged) f.status &= ~status::kConverged;
+    }
+  } catch (const std::exception&) {
+    ++failures_;
+    for (int slot = 0; slot < vehicle::kContactSlots; ++slot)
+      if (loaded_[w][slot]) forces[slot].status = status::kFailed;
   }
 }
 

@@ -7,7 +7,10 @@
 // table holds. The reference run of `railtab simulate --direct`. With the scene's load coupling
 // (issue 14) creep() re-solves the normal contact of each wheel so that normal and creep forces
 // together carry the wheel load, each patch at its slot's creepage, and returns the slot's normal
-// force at that creepage in SlotForces::normal_force.
+// force at that creepage in SlotForces::normal_force. The exact half-space model (normal_model =
+// "halfspace") goes through the same slots; its creep forces come from its steady rolling solution
+// (halfspace_contact.hpp), coupled as the table's when every loaded slot has the same creepage,
+// else per patch at its slot's creepage.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +18,7 @@
 #include "normal/normal_model.hpp"
 #include "scene/scene.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "sweep/halfspace_contact.hpp"
 #include "tangential/coupled_load.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "vehicle/contact_model.hpp"
@@ -39,12 +43,18 @@ class DirectContactModel final : public vehicle::ContactModel {
   void creep_coupled(int w, const vehicle::SlotCreepage (&creepage)[vehicle::kContactSlots],
                      vehicle::SlotForces (&forces)[vehicle::kContactSlots], FastsimWorkspace& workspace);
 
+  // creep() of wheel w with the exact half-space model.
+  void creep_exact(int w, const vehicle::SlotCreepage (&creepage)[vehicle::kContactSlots],
+                   vehicle::SlotForces (&forces)[vehicle::kContactSlots]);
+
   ContactGeometrySolver solver_;
   Material material_;
   NormalOptions normal_options_;
   CreepConditions creep_conditions_;
   FastsimOptions fastsim_options_;
   CoupledLoadOptions coupling_;
+  halfspace::HalfspaceOptions halfspace_options_;
+  halfspace::WheelHalfspaceResult exact_[vehicle::kWheels];  // of the last normal() call (halfspace model)
   double load_[vehicle::kWheels] = {0.0, 0.0};        // of the last normal() call [N]
   CoupledLoadResult coupled_;                          // scratch of creep()
   WheelContactGeometry geometry_[vehicle::kWheels];   // of the last normal() call

@@ -10,6 +10,7 @@
 
 #include "core/check.hpp"
 #include "sweep/finite_status.hpp"
+#include "sweep/halfspace_contact.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
 #include "tangential/fastsim_contact.hpp"
@@ -150,6 +151,7 @@ struct KernelData {
   FastsimOptions fastsim;
   WearOptions wear;
   CoupledLoadOptions coupling;          // couple = false: the creep part has no normal outputs (format 1.0 layout)
+  halfspace::HalfspaceOptions halfspace;  // normal model halfspace ([contact] element_size)
   std::vector<NormalModel> model_by_y;  // per node of the scene's y grid (planned model choice); empty = normal.model
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
@@ -271,6 +273,90 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
   }
 }
 
+// The exact half-space model: per creepage the steady rolling solution of every patch of the wheel
+// (one creepage for all, as solve_creep_coupled), both slots' creep and wear cells of load il.
+// With the load coupling (scene load_coupling, the same meaning as for the fast models: the creep
+// forces carry their share of the vertical load) solve_halfspace_rolling re-solves the normal
+// contact per creepage, from cold (the same call as railtab eval, so a node is reproduced exactly;
+// a warm start from the previous creepage through the public calls was measured slower: 82 s
+// against 70 s CPU on 3 columns of the default grid), and the creep part's normal outputs are
+// written. Without it the tangential problem runs on `uncoupled` (the load's normal solution),
+// each creepage warm-started from the previous one of the sweep; the creepage order is fixed and
+// a column is computed by one thread, so the bytes do not depend on the thread count.
+void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geometry,
+                           const halfspace::WheelHalfspaceResult& uncoupled, const PatchSlots& uncoupled_slots,
+                           const ColumnState& state, std::size_t wheel, std::size_t il, ColumnOutput& out) {
+  halfspace::Workspace& workspace = thread_halfspace_workspace();
+  thread_local std::vector<double> depth;
+  thread_local WearDistribution distribution;  // unused by the exact model's wear (SlotWear needs one)
+  const double load = k.grids.load[il];
+  const double mu = k.creep.friction;
+  const double flange_angle = k.solver.settings().flange_angle;
+  halfspace::WheelHalfspaceResult result = uncoupled;  // holds the warm start without the coupling
+  std::size_t c = il * k.creepages();
+  for (double xi : k.grids.xi) {
+    for (double eta : k.grids.eta) {
+      for (double phi : k.grids.phi) {
+        const std::size_t cells = c++ * kSlots;
+        const Creepage creepage{xi, eta, phi};
+        try {
+          if (k.coupling.couple) {
+            result = halfspace::solve_halfspace_rolling(geometry, load, creepage, mu, k.material, k.halfspace, workspace);
+          } else {
+            halfspace::solve_halfspace_tangential(result, creepage, mu, k.material, k.halfspace, workspace);
+          }
+          const WheelNormalResult normal = to_normal_result(result, geometry);
+          const PatchSlots slots =
+              k.coupling.couple ? assign_patch_slots(normal, geometry.side, flange_angle) : uncoupled_slots;
+          for (std::size_t s = 0; s < kSlots; ++s) {
+            const std::size_t cell = cells + s;
+            const ContactPatch patch = slots.occupied(s) ? slot_normal(normal, slots, s) : ContactPatch{};
+            if (!(patch.normal_force > 0.0)) {
+              // No loaded patch here: zeros; status 0 where the creepage-free solution had none, else
+              // converged,lift_off (as solve_creep and solve_creep_coupled).
+              const StatusBits bits = uncoupled_slots.occupied(s) ? status::kConverged | status::kLiftOff : 0u;
+              out.status(wheel, kCreepPart)[cell] = bits | (bits ? uncoupled_slots.extra[s] : 0u);
+              out.status(wheel, kWearPart)[cell] = bits | (bits ? uncoupled_slots.extra[s] : 0u);
+              continue;
+            }
+            auto where = [&] {
+              return fmt::format("half-space creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
+                                 to_string(geometry.side), state.y, load, xi, eta, phi);
+            };
+            bool normal_finite = true;
+            if (k.coupling.couple)
+              normal_finite = store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where,
+                                           std::size(kCreepOutputs));
+            SlotWear wear{k.wear, distribution, {}};
+            const FastsimResult creep = sum_slot_creep(
+                normal, slots, s,
+                [&](std::size_t ip, WearResult* worn) {
+                  const halfspace::HalfspacePatch& hp = result.patches[ip];
+                  if (worn) *worn = halfspace_wear(hp, k.creep.speed, k.wear, depth);
+                  return to_creep_result(hp);
+                },
+                &wear);
+            const bool creep_finite = store_values(kCreepOutputs, creep, out, wheel, kCreepPart, cell, where);
+            // The patch bits (area_too_small, not_planar, the coupled solve's not_converged) and the
+            // tangential solver's (full_slip, not_converged).
+            StatusBits bits = creep.status | (patch.status & ~status::kConverged) | slots.extra[s];
+            if (bits & status::kNotConverged) bits &= ~status::kConverged;
+            out.status(wheel, kCreepPart)[cell] = normal_finite && creep_finite ? bits : non_finite_status(bits);
+            store(kWearOutputs, wear.result, wear.result.status | slots.extra[s], out, wheel, kWearPart, cell, where);
+          }
+        } catch (const std::exception& e) {
+          out.failure(fmt::format("half-space creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
+                                  to_string(geometry.side), state.y, load, xi, eta, phi, e.what()));
+          for (std::size_t s = 0; s < kSlots; ++s) {
+            out.status(wheel, kCreepPart)[cells + s] = failure_status(state);
+            out.status(wheel, kWearPart)[cells + s] = failure_status(state);
+          }
+        }
+      }
+    }
+  }
+}
+
 // Every cell of a part for load il (or all loads) gets the failure status.
 void fail_cells(ColumnOutput& out, std::size_t wheel, std::size_t part, std::size_t begin, std::size_t end,
                 StatusBits bits) {
@@ -303,10 +389,18 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
   }
 
   const NormalOptions normal_options = uncoupled_options(k, state);
+  const bool exact = normal_options.model == NormalModel::halfspace;
   for (std::size_t il = 0; il < nload; ++il) {
     WheelNormalResult normal;
+    halfspace::WheelHalfspaceResult exact_result;  // the half-space model's own result (exact only)
     try {
-      normal = solve_normal_for_load(geometry, k.grids.load[il], k.material, normal_options);
+      if (exact) {
+        exact_result = halfspace::solve_halfspace_for_load(geometry, k.grids.load[il], k.material, k.halfspace,
+                                                           thread_halfspace_workspace());
+        normal = to_normal_result(exact_result, geometry);
+      } else {
+        normal = solve_normal_for_load(geometry, k.grids.load[il], k.material, normal_options);
+      }
     } catch (const std::exception& e) {
       out.failure(fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N: {}", to_string(side),
                               state.y, state.roll, k.grids.load[il], e.what()));
@@ -318,7 +412,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     }
     const StatusBits solver_bits = normal.status & (status::kConverged | status::kNotConverged);
     const PatchSlots patch_slots = assign_patch_slots(normal, side, k.solver.settings().flange_angle);
-    if (k.coupling.couple && k.creepages() > 0) {
+    if (exact || (k.coupling.couple && k.creepages() > 0)) {
       // The normal part keeps the creepage-free solution; the creep part gets its own per creepage.
       for (std::size_t s = 0; s < kSlots; ++s) {
         if (!patch_slots.occupied(s)) continue;
@@ -329,7 +423,11 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
                                    state.roll, k.grids.load[il]);
               });
       }
-      if (!normal.patches.empty()) solve_creep_coupled(k, geometry, normal, patch_slots, state, wheel, il, out);
+      if (normal.patches.empty() || k.creepages() == 0) continue;
+      if (exact)
+        solve_creep_halfspace(k, geometry, exact_result, patch_slots, state, wheel, il, out);
+      else
+        solve_creep_coupled(k, geometry, normal, patch_slots, state, wheel, il, out);
       continue;
     }
     for (std::size_t s = 0; s < kSlots; ++s) {
@@ -398,6 +496,19 @@ FastsimResult slot_creep(const WheelContactGeometry& geometry, const WheelNormal
                          const PatchSlots& slots, std::size_t slot, const Creepage& creepage,
                          const CreepConditions& conditions, const Material& material, const FastsimOptions& options,
                          FastsimWorkspace& workspace, SlotWear* wear) {
+  return sum_slot_creep(
+      normal, slots, slot,
+      [&](std::size_t ip, WearResult* worn) {
+        const FastsimResult r = fastsim_contact(geometry, normal.patches[ip], creepage, conditions, material, options,
+                                                workspace);
+        if (worn) *worn = archard_wear(workspace, wear->options, wear->distribution);
+        return r;
+      },
+      wear);
+}
+
+FastsimResult sum_slot_creep(const WheelNormalResult& normal, const PatchSlots& slots, std::size_t slot,
+                             const PatchCreep& solve_patch, SlotWear* wear) {
   RAILTAB_CHECK(slot < kSlots, "slot_creep: slot {} of {}", slot, kSlots);
   FastsimResult total;
   WearResult worn;
@@ -407,9 +518,8 @@ FastsimResult slot_creep(const WheelContactGeometry& geometry, const WheelNormal
     if (ip < 0) continue;
     const ContactPatch& patch = normal.patches[static_cast<std::size_t>(ip)];
     if (!(patch.normal_force > 0.0)) continue;
-    const FastsimResult r = fastsim_contact(geometry, patch, creepage, conditions, material, options, workspace);
     WearResult w;
-    if (wear) w = archard_wear(workspace, wear->options, wear->distribution);
+    const FastsimResult r = solve_patch(static_cast<std::size_t>(ip), wear ? &w : nullptr);
     area += patch.area;
     slip_area += r.slip_fraction * patch.area;
     seizure_volume += w.seizure_fraction * w.volume_rate;
@@ -473,7 +583,8 @@ SweepKernel make_contact_kernel(const Scene& scene) {
   }
   auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
                                                             scene.normal, scene.tangential, creep, fastsim, wear,
-                                                            coupled_load_options(scene), model_by_y});
+                                                            coupled_load_options(scene), halfspace_options(scene),
+                                                            model_by_y});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));
@@ -490,7 +601,7 @@ SweepKernel make_contact_kernel(const Scene& scene) {
       {"flange_angle", scene.geometry.flange_angle},
       {"youngs_modulus", scene.material.youngs_modulus},
       {"poisson_ratio", scene.material.poisson_ratio},
-      {"tangential", "fastsim-strips"},
+      {"tangential", n.model == NormalModel::halfspace ? "halfspace-exact" : "fastsim-strips"},
       {"load_coupling", scene.tangential.load_coupling},
       {"spin", to_string(fastsim.spin)},
       {"elements_per_strip", fastsim.elements_per_strip},
@@ -500,6 +611,9 @@ SweepKernel make_contact_kernel(const Scene& scene) {
       {"hardness", scene.wear.hardness},
       {"lubrication_factor", scene.wear.lubrication_factor},
   };
+  const bool any_exact = n.model == NormalModel::halfspace ||
+                         std::find(model_by_y.begin(), model_by_y.end(), NormalModel::halfspace) != model_by_y.end();
+  if (any_exact) kernel.models["element_size"] = scene.halfspace.element_size;
   if (!model_by_y.empty()) {
     // The planned choice is data, not status: kFallbackModel stays reserved for failures.
     nlohmann::json names = nlohmann::json::array();

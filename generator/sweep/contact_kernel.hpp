@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 
 #include "normal/normal_model.hpp"
 #include "scene/scene.hpp"
@@ -61,6 +62,13 @@ FastsimResult slot_creep(const WheelContactGeometry& geometry, const WheelNormal
                          const PatchSlots& slots, std::size_t slot, const Creepage& creepage,
                          const CreepConditions& conditions, const Material& material, const FastsimOptions& options,
                          FastsimWorkspace& workspace, SlotWear* wear = nullptr);
+
+// The summation of slot_creep over a slot's loaded patches, with each patch's creep result (and,
+// when `wear` is given, its wear into the WearResult*) from `solve_patch(patch index, wear)`:
+// FASTSIM for the fast models, the exact solution for the half-space model (halfspace_contact.hpp).
+using PatchCreep = std::function<FastsimResult(std::size_t patch, WearResult* wear)>;
+FastsimResult sum_slot_creep(const WheelNormalResult& normal, const PatchSlots& slots, std::size_t slot,
+                             const PatchCreep& solve_patch, SlotWear* wear = nullptr);
 
 // Builds the profiles and solver of the scene (throws railtab::Error for bad profiles/geometry).
 SweepKernel make_contact_kernel(const Scene& scene);

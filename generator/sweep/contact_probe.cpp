@@ -5,10 +5,12 @@
 
 #include <array>
 
+#include "core/check.hpp"
 #include "core/status.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "sweep/halfspace_contact.hpp"
 #include "tangential/fastsim_contact.hpp"
 
 namespace railtab {
@@ -19,6 +21,7 @@ struct ContactProbe::Data {
   NormalOptions normal;
   CreepConditions creep;
   FastsimOptions fastsim;
+  halfspace::HalfspaceOptions halfspace;  // normal model halfspace
   bool equilibrium_roll = false;
   double roll = 0.0;
 };
@@ -26,7 +29,7 @@ struct ContactProbe::Data {
 
 ContactProbe::ContactProbe(const Scene& scene)
     : data_(new Data{make_geometry_solver(scene), scene.material, scene.normal, creep_conditions(scene),
-                     fastsim_options(scene), scene.equilibrium_roll, scene.grids.roll.front()}) {}
+                     fastsim_options(scene), halfspace_options(scene), scene.equilibrium_roll, scene.grids.roll.front()}) {}
 ContactProbe::~ContactProbe() { delete data_; }
 
 double ContactProbe::roll_at(double y) const { return data_->equilibrium_roll ? data_->solver.equilibrium_roll(y) : data_->roll; }
@@ -80,8 +83,18 @@ std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> ContactProbe::evalu
       Wheel loaded = geo;
       WheelNormalResult normal;
       PatchSlots patch_slots;
+      // The exact model: creep forces from its steady rolling solution on the creepage-free normal
+      // contact (the probe is uncoupled for every model), warm-started along the probe creepages.
+      const bool exact = k.normal.model == NormalModel::halfspace;
+      halfspace::WheelHalfspaceResult exact_result;
       try {
-        normal = solve_normal_for_load(geometry, loads[il], k.material, k.normal);
+        if (exact) {
+          exact_result = halfspace::solve_halfspace_for_load(geometry, loads[il], k.material, k.halfspace,
+                                                             thread_halfspace_workspace());
+          normal = to_normal_result(exact_result, geometry);
+        } else {
+          normal = solve_normal_for_load(geometry, loads[il], k.material, k.normal);
+        }
         patch_slots = assign_patch_slots(normal, side, k.solver.settings().flange_angle);
       } catch (const std::exception&) {
         for (auto& c : out[il]) {
@@ -105,12 +118,25 @@ std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> ContactProbe::evalu
       }
       for (std::size_t ic = 0; ic < creepages.size(); ++ic) {
         Wheel w = loaded;
+        const auto& c = creepages[ic];
+        bool exact_failed = false;
+        if (exact) {
+          try {
+            halfspace::solve_halfspace_tangential(exact_result, Creepage{c[0], c[1], c[2]}, k.creep.friction,
+                                                  k.material, k.halfspace, thread_halfspace_workspace());
+          } catch (const std::exception&) {
+            exact_failed = true;
+          }
+        }
         for (std::size_t s = 0; s < kSlots; ++s) {
           if (!w.slot[s].loaded) continue;
           try {
-            const auto& c = creepages[ic];
-            const FastsimResult r = slot_creep(geometry, normal, patch_slots, s, Creepage{c[0], c[1], c[2]}, k.creep,
-                                               k.material, k.fastsim, workspace);
+            if (exact_failed) throw Error("half-space tangential solve failed");
+            const FastsimResult r =
+                exact ? sum_slot_creep(normal, patch_slots, s,
+                                       [&](std::size_t ip, WearResult*) { return to_creep_result(exact_result.patches[ip]); })
+                      : slot_creep(geometry, normal, patch_slots, s, Creepage{c[0], c[1], c[2]}, k.creep, k.material,
+                                   k.fastsim, workspace);
             w.slot[s].fx = r.fx;
             w.slot[s].fy = r.fy;
           } catch (const std::exception&) {

@@ -66,7 +66,8 @@ SweepSummary generate_table(const GenerateOptions& options) {
   check_table_size(scene.name, points, bytes, options.max_points, options.max_bytes);
   if (log) {
     const unsigned cores = std::thread::hardware_concurrency();
-    *log << describe_table_size(points, bytes, options.threads > 0 ? options.threads : static_cast<int>(cores ? cores : 1));
+    *log << describe_table_size(points, bytes, options.threads > 0 ? options.threads : static_cast<int>(cores ? cores : 1),
+                                scene.normal.model == NormalModel::halfspace);
   }
 
   ProgressPrinter printer(log ? *log : std::cerr, options.terminal);

@@ -7,6 +7,7 @@
 
 #include "core/check.hpp"
 #include "sweep/finite_status.hpp"
+#include "sweep/halfspace_contact.hpp"
 
 namespace railtab {
 namespace {
@@ -22,7 +23,8 @@ struct WheelEval {
   std::vector<CreepOutput> creep;  // per patch, empty without --creepage
   bool coupled = false;            // with creepage: the coupled load control ran
   StatusBits coupling_status = 0;  // its verdict (kConverged / kNotConverged)
-  int coupling_iterations = 0;     // its normal solves beyond the uncoupled one
+  int coupling_iterations = 0;     // its normal solves beyond the uncoupled one (-1: not reported,
+                                   //   the half-space model's coupled solve does not count them)
   double normal_vertical = 0.0;    // sum N cos g [N]
   double tangential_vertical = 0.0;  // sum fy sin g [N]
 };
@@ -73,6 +75,43 @@ nlohmann::json point_json(const ContactPoint& point, int patch) {
           {"status", status::describe(bits)}, {"status_bits", bits}};
 }
 
+// The exact half-space model on one wheel: normal contact, and with a creepage the steady rolling
+// solution (creep forces, element wear) of every patch at that creepage. With the scene's
+// load_coupling the creep forces carry their share of the vertical load, as for the fast models
+// (solve_halfspace_rolling); without it the normal contact comes from the load alone.
+void evaluate_halfspace(const Scene& scene, double load, const std::vector<double>* creep, WheelEval& e) {
+  const halfspace::HalfspaceOptions options = halfspace_options(scene);
+  halfspace::Workspace& workspace = thread_halfspace_workspace();
+  halfspace::WheelHalfspaceResult result;
+  const double mu = scene.tangential.friction;
+  if (creep == nullptr) {
+    result = halfspace::solve_halfspace_for_load(*e.geometry, load, scene.material, options, workspace);
+  } else {
+    const Creepage creepage{(*creep)[0], (*creep)[1], (*creep)[2]};
+    if (scene.tangential.load_coupling) {
+      result = halfspace::solve_halfspace_rolling(*e.geometry, load, creepage, mu, scene.material, options, workspace);
+    } else {
+      result = halfspace::solve_halfspace_for_load(*e.geometry, load, scene.material, options, workspace);
+      halfspace::solve_halfspace_tangential(result, creepage, mu, scene.material, options, workspace);
+    }
+  }
+  e.normal = to_normal_result(result, *e.geometry);
+  if (creep == nullptr) return;
+  const WearOptions wear = wear_options(scene);
+  std::vector<double> depth;
+  e.coupled = true;
+  e.coupling_iterations = -1;
+  e.coupling_status = result.status & (status::kConverged | status::kNotConverged);
+  for (const halfspace::HalfspacePatch& hp : result.patches) {
+    CreepOutput c;
+    c.force = to_creep_result(hp);
+    c.wear = halfspace_wear(hp, scene.tangential.speed, wear, depth);
+    e.normal_vertical += hp.normal.normal_force * std::cos(hp.contact_angle);
+    e.tangential_vertical += hp.tangential.fy * std::sin(hp.contact_angle);
+    e.creep.push_back(c);
+  }
+}
+
 }  // namespace
 
 nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request) {
@@ -120,6 +159,10 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
   for (int w = 0; w < 2; ++w) {
     WheelEval& e = wheels[w];
     e.geometry = &geometry.wheels[w];
+    if (scene.normal.model == NormalModel::halfspace) {
+      evaluate_halfspace(scene, load, with_creep ? &request.creepage : nullptr, e);
+      continue;
+    }
     e.normal = solve_normal_for_load(*e.geometry, load, scene.material, scene.normal);
     if (!with_creep) continue;
     FastsimWorkspace workspace;
@@ -153,8 +196,9 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
   if (with_creep) {
     out["creepage"] = {{"xi", request.creepage[0]}, {"eta", request.creepage[1]}, {"phi", request.creepage[2]}};
     out["friction"] = scene.tangential.friction;
-    out["spin"] = to_string(fastsim.spin);
+    out["spin"] = scene.normal.model == NormalModel::halfspace ? "exact" : to_string(fastsim.spin);
   }
+  if (scene.normal.model == NormalModel::halfspace) out["element_size"] = scene.halfspace.element_size;
   out["rolling_radius_difference"] = geometry.rolling_radius_difference;
   out["wheels"] = nlohmann::json::array();
   for (const WheelEval& e : wheels) {
@@ -168,8 +212,8 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
       wj["vertical_load_normal"] = e.normal_vertical;
       wj["vertical_load_tangential"] = e.tangential_vertical;
       wj["load_coupling"] = {{"enabled", scene.tangential.load_coupling},
-                             {"iterations", e.coupling_iterations},
                              {"status", status::describe(e.coupling_status)}};
+      if (e.coupling_iterations >= 0) wj["load_coupling"]["iterations"] = e.coupling_iterations;
     }
     StatusBits wheel_bits = e.geometry->status | e.normal.status | (e.coupled ? e.coupling_status : 0u);
     if (!all_finite({e.normal.vertical_approach, e.normal.vertical_load, e.normal_vertical, e.tangential_vertical})) {

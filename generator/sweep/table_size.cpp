@@ -86,12 +86,14 @@ void check_table_size(const std::string& scene_name, std::uint64_t points, std::
                 scene_name, human_bytes(static_cast<double>(bytes)), bytes, human_bytes(static_cast<double>(max_bytes)));
 }
 
-std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads) {
+std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads, bool exact) {
   const double per_thread = static_cast<double>(points) / static_cast<double>(threads < 1 ? 1 : threads);
+  const double low = exact ? kExactSecondsPerPointLow : kSecondsPerPointLow;
+  const double high = exact ? kExactSecondsPerPointHigh : kSecondsPerPointHigh;
   return fmt::format("table: {} grid points, {} in memory (the file is smaller: compressed); estimated time {} to {} "
                      "with {} thread{}\n",
-                     points, human_bytes(static_cast<double>(bytes)), human_seconds(per_thread * kSecondsPerPointLow),
-                     human_seconds(per_thread * kSecondsPerPointHigh), threads, threads == 1 ? "" : "s");
+                     points, human_bytes(static_cast<double>(bytes)), human_seconds(per_thread * low),
+                     human_seconds(per_thread * high), threads, threads == 1 ? "" : "s");
 }
 
 }  // namespace railtab

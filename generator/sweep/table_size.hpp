@@ -20,6 +20,10 @@ inline constexpr std::uint64_t kDefaultMaxBytes = 4ull << 30;        // table in
 // (docs/validation.md: 57 us for tables/default.toml; flange-heavy scenes up to ~200 us) [s].
 inline constexpr double kSecondsPerPointLow = 50e-6;
 inline constexpr double kSecondsPerPointHigh = 200e-6;
+// The same for the exact half-space model (normal_model = "halfspace", load coupling on): two
+// coupled solves of about 0.1 s CPU each (measured on the default scene, tread and flange) [s].
+inline constexpr double kExactSecondsPerPointLow = 0.15;
+inline constexpr double kExactSecondsPerPointHigh = 0.35;
 
 // a * b, or railtab::Error naming `what` when the product does not fit in 64 bits.
 std::uint64_t checked_multiply(std::uint64_t a, std::uint64_t b, const std::string& what);
@@ -38,6 +42,7 @@ void check_table_size(const std::string& scene_name, std::uint64_t points, std::
                       std::uint64_t max_points, std::uint64_t max_bytes);
 
 // One line for the log: points, memory and the run time range with `threads` threads.
-std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads);
+// `exact`: the table uses the exact half-space model (its cost per point instead).
+std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads, bool exact = false);
 
 }  // namespace railtab

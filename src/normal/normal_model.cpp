@@ -36,17 +36,18 @@ const char* to_string(NormalModel model) {
     case NormalModel::kik_piotrowski: return "kik-piotrowski";
     case NormalModel::stripes_a: return "stripes-a";
     case NormalModel::stripes_ab: return "stripes-ab";
+    case NormalModel::halfspace: return "halfspace";
   }
   return "unknown";
 }
 
 NormalModel parse_normal_model(std::string_view name) {
   for (NormalModel m : {NormalModel::hertz, NormalModel::linder, NormalModel::kik_piotrowski,
-                        NormalModel::stripes_a, NormalModel::stripes_ab}) {
+                        NormalModel::stripes_a, NormalModel::stripes_ab, NormalModel::halfspace}) {
     if (name == to_string(m)) return m;
   }
   throw Error(fmt::format(
-      "unknown normal model '{}' (expected hertz, linder, kik-piotrowski, stripes-a, stripes-ab)",
+      "unknown normal model '{}' (expected hertz, linder, kik-piotrowski, stripes-a, stripes-ab, halfspace)",
       name));
 }
 
@@ -242,6 +243,7 @@ PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const Norma
       case NormalModel::kik_piotrowski: sums = kik_piotrowski_patch(g, m, o, p, w, dz, out); break;
       case NormalModel::stripes_a:
       case NormalModel::stripes_ab: sums = stripes_patch(g, m, o, p, w, dz, out); break;
+      case NormalModel::halfspace: break;  // refused by check_options
     }
   }
   if (!(sums.normal > 0.0) || !std::isfinite(sums.normal)) sums = PatchSums{};
@@ -266,6 +268,9 @@ double vertical_load(const WheelContactGeometry& g, const Material& m, const Nor
 }
 
 void check_options(const NormalOptions& o) {
+  RAILTAB_CHECK(o.model != NormalModel::halfspace,
+                "normal model 'halfspace' is solved by halfspace::solve_halfspace_for_load "
+                "(src/halfspace/wheel_rail.hpp), not by the fast normal layer");
   RAILTAB_CHECK(o.strips >= 1 && o.strips <= 100000, "normal options: strips = {} must be >= 1",
                 o.strips);
   RAILTAB_CHECK(o.virtual_penetration > 0.0 && o.virtual_penetration <= 1.0,

@@ -47,7 +47,10 @@
 
 namespace railtab {
 
-enum class NormalModel { hertz, linder, kik_piotrowski, stripes_a, stripes_ab };
+// halfspace: Kalker's exact theory on elastic half-spaces (src/halfspace/wheel_rail.hpp). It is a
+// choice of the same scene key and CLI option, but this layer does not solve it: the callers
+// dispatch on it before solve_normal_for_load, which refuses it (railtab::Error).
+enum class NormalModel { hertz, linder, kik_piotrowski, stripes_a, stripes_ab, halfspace };
 const char* to_string(NormalModel model);                 // "hertz", "kik-piotrowski", "stripes-ab", ...
 NormalModel parse_normal_model(std::string_view name);   // throws railtab::Error naming the value
 

@@ -160,5 +160,30 @@ TEST(SpeedAccuracy, TinyRunWithoutContactUsesFineStripes) {
   fs::remove_all(dir);
 }
 
+// Without CONTACT data the default reference is the exact half-space model, and the result says so.
+TEST(SpeedAccuracy, TinyRunWithoutContactUsesTheExactModel) {
+  const fs::path dir = fs::temp_directory_path() / "railtab_speed_accuracy_exact";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  SpeedAccuracyOptions o = tiny(dir / "tables");
+  o.fallback_reference = SpeedAccuracyOptions{}.fallback_reference;
+  ASSERT_EQ(o.fallback_reference.model, NormalModel::halfspace);
+  o.reference_csv = dir / "no-such-reference.csv";
+  const SpeedAccuracyResult r = measure_speed_accuracy(scene, o);
+  EXPECT_FALSE(r.contact_reference);
+  EXPECT_TRUE(r.exact_reference);
+  EXPECT_NE(r.reference.find("exact half-space"), std::string::npos) << r.reference;
+  for (const SaState& s : r.states) {
+    EXPECT_GT(s.ref_area, 20e-6) << s.creep_set;  // a loaded contact in every state
+    if (s.creep_set == "c_lat0.001") {
+      EXPECT_GT(std::abs(s.ref_fy), 1000.0);  // the exact lateral creep force
+      EXPECT_LE(std::abs(s.ref_fy), 0.3 * 120e3);
+    }
+  }
+  check_result(r, dir);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace railtab

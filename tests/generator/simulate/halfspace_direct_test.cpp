@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: Apache-2.0
+// The direct contact model with the exact half-space model (normal_model = "halfspace"): at a grid
+// node it returns what the table sweep stores (same calls: solve_halfspace_for_load for the normal
+// part, solve_halfspace_rolling for the coupled creep part).
+#include <gtest/gtest.h>
+
+#include "core/status.hpp"
+#include "scene/scene.hpp"
+#include "simulate/direct_contact_model.hpp"
+#include "sweep/contact_kernel.hpp"
+#include "sweep/sweep.hpp"
+
+namespace railtab {
+namespace {
+
+TEST(HalfspaceDirect, AgreesWithTheTableAtAGridNode) {
+  const Scene scene = parse_scene(R"(
+[scene]
+name = "halfspace-direct"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[contact]
+normal_model = "halfspace"
+[grid]
+y = [0.0]
+equilibrium_roll = true
+load = [78.5e3]
+xi = [0.0, 0.002]
+eta = [0.0]
+phi = [0.0]
+)", "hd.toml");
+  const SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+  ASSERT_EQ(r.summary.failures, 0u) << r.summary.first_failure;
+  DirectContactModel direct(scene);
+  const double load[vehicle::kWheels] = {78.5e3, 78.5e3};
+  vehicle::WheelContacts contacts[vehicle::kWheels];
+  direct.normal(0.0, load, contacts);
+  vehicle::SlotCreepage creepage[vehicle::kWheels][vehicle::kContactSlots];
+  for (auto& wheel : creepage) wheel[0] = wheel[1] = {0.002, 0.0, 0.0};  // xi node 1
+  vehicle::SlotForces forces[vehicle::kWheels][vehicle::kContactSlots];
+  direct.creep(creepage, forces);
+  EXPECT_EQ(direct.failures(), 0u);
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    const std::string side = w == 0 ? "left" : "right";
+    const TableGroup& nor = *r.table.group(side + "/normal");
+    const TableGroup& creep = *r.table.group(side + "/creep");
+    const vehicle::SlotContact& c = contacts[w].slot[0];  // tread
+    ASSERT_TRUE(c.loaded) << side;
+    EXPECT_EQ(c.normal_force, nor.find("normal_force")->values[0]) << side;
+    EXPECT_EQ(c.area, nor.find("area")->values[0]) << side;
+    EXPECT_EQ(c.status, nor.find("status")->status[0]) << side;
+    const std::size_t cell = 1 * kSlots + 0;  // xi index 1, slot 0
+    EXPECT_EQ(forces[w][0].fx, creep.find("fx")->values[cell]) << side;
+    EXPECT_EQ(forces[w][0].fy, creep.find("fy")->values[cell]) << side;
+    EXPECT_EQ(forces[w][0].mz, creep.find("mz")->values[cell]) << side;
+    EXPECT_EQ(forces[w][0].normal_force, creep.find("normal_force")->values[cell]) << side;
+    EXPECT_LT(forces[w][0].fx, -1e3) << side;
+    EXPECT_TRUE(forces[w][0].status & status::kConverged) << side;
+  }
+}
+
+}  // namespace
+}  // namespace railtab

@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: Apache-2.0
+// The exact half-space model selected as a normal model (issue 13): scene keys, railtab eval and
+// the table sweep (generator/sweep/halfspace_contact.hpp). Small grids only: the slow accuracy
+// checks of the model itself are in tests/halfspace.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/check.hpp"
+#include "generator/test_tables.hpp"
+#include "normal/normal_model.hpp"
+#include "sweep/contact_kernel.hpp"
+#include "sweep/state_eval.hpp"
+
+namespace railtab {
+namespace {
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
+constexpr const char* kScene = R"(
+[scene]
+name = "halfspace-small"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[track]
+rail_inclination = "1:40"
+[contact]
+normal_model = "halfspace"
+friction = 0.3
+[grid]
+y = [0.0, 0.003]
+equilibrium_roll = true
+load = [78.5e3]
+xi = [0.0, 0.002]
+eta = [0.0]
+phi = [0.0]
+)";
+
+TEST(HalfspaceSelectable, SceneKeysAndNames) {
+  EXPECT_EQ(parse_normal_model("halfspace"), NormalModel::halfspace);
+  EXPECT_STREQ(to_string(NormalModel::halfspace), "halfspace");
+  const Scene scene = parse_scene(kScene, "h.toml");
+  EXPECT_EQ(scene.normal.model, NormalModel::halfspace);
+  EXPECT_DOUBLE_EQ(scene.halfspace.element_size, 0.3e-3);  // the default
+  std::string text = kScene;
+  text.replace(text.find("friction = 0.3"), 14, "element_size = 0.4e-3");
+  EXPECT_DOUBLE_EQ(parse_scene(text, "h.toml").halfspace.element_size, 0.4e-3);
+  text.replace(text.find("0.4e-3"), 6, "0.4");  // 0.4 m: a unit mistake, refused with the key named
+  const std::string message = message_of([&] { parse_scene(text, "h.toml"); });
+  EXPECT_NE(message.find("element_size"), std::string::npos) << message;
+  // The fast normal layer refuses the model instead of silently solving something else.
+  NormalOptions options;
+  options.model = NormalModel::halfspace;
+  EXPECT_NE(message_of([&] { solve_normal_for_load(WheelContactGeometry{}, 78.5e3, Material{}, options); })
+                .find("halfspace"),
+            std::string::npos);
+}
+
+// railtab eval --model halfspace at the central S1002/UIC60 state (y = 0, 78.5 kN): the vertical
+// components of the normal forces carry the load; with creepage the creep forces stay within
+// mu N, the load balance includes their vertical part (load coupling) and at a large creepage
+// they saturate near mu N.
+TEST(HalfspaceSelectable, EvalCentralStateLoadAndFrictionBound) {
+  Scene scene = parse_scene(kScene, "h.toml");
+  scene.normal.model = NormalModel::stripes_ab;  // --model must switch it
+  StateEvalRequest request;
+  request.y = 0.0;
+  request.load = 78.5e3;
+  request.model = "halfspace";
+  const nlohmann::json normal = evaluate_state(scene, request);
+  EXPECT_EQ(normal["normal_model"], "halfspace");
+  for (const auto& wheel : normal["wheels"]) {
+    ASSERT_GE(wheel["contacts"].size(), 1u);
+    double vertical = 0.0;
+    for (const auto& c : wheel["contacts"]) {
+      EXPECT_EQ(c["model"], "halfspace");
+      EXPECT_GT(c["area"].get<double>(), 50e-6);  // about 1.5 cm2 on the tread
+      EXPECT_GT(c["max_pressure"].get<double>(), 500e6);
+      EXPECT_NE(c["status"].get<std::string>().find("converged"), std::string::npos) << c["status"];
+      vertical += c["normal_force"].get<double>() * std::cos(c["contact_angle"].get<double>());
+    }
+    EXPECT_NEAR(vertical, 78.5e3, 1e-3 * 78.5e3);
+    EXPECT_NEAR(wheel["vertical_load"].get<double>(), 78.5e3, 1e-3 * 78.5e3);
+  }
+  const double mu = 0.3;
+  for (const double xi : {0.001, 0.02}) {
+    request.creepage = {xi, 0.001, 0.1};
+    const nlohmann::json creep = evaluate_state(scene, request);
+    EXPECT_EQ(creep["spin"], "exact");
+    for (const auto& wheel : creep["wheels"]) {
+      const double load_normal = wheel["vertical_load_normal"].get<double>();
+      const double load_tangential = wheel["vertical_load_tangential"].get<double>();
+      EXPECT_NEAR(load_normal + load_tangential, 78.5e3, 2e-4 * 78.5e3);
+      EXPECT_NE(wheel["load_coupling"]["status"].get<std::string>().find("converged"), std::string::npos);
+      for (const auto& c : wheel["contacts"]) {
+        const double n = c["normal_force"].get<double>();
+        const double f = std::hypot(c["fx"].get<double>(), c["fy"].get<double>());
+        EXPECT_LE(f, mu * n * (1.0 + 1e-9)) << "xi = " << xi;
+        EXPECT_LT(c["fx"].get<double>(), 0.0) << "braking force on the wheel for xi > 0";
+        EXPECT_GT(c["wear_rate"].get<double>(), 0.0);
+        if (xi > 0.01) {
+          EXPECT_GT(f, 0.95 * mu * n) << "xi = " << xi;
+        } else {
+          EXPECT_LT(f, 0.8 * mu * n) << "xi = " << xi;
+        }
+      }
+    }
+  }
+}
+
+// The table sweep with the exact model: the same bytes for one and two threads; the normal part
+// carries the load; the coupled creep part balances N cos g + fy sin g against it; creep forces
+// within mu N.
+TEST(HalfspaceSelectable, SweepDeterministicAndBalanced) {
+  const Scene scene = parse_scene(kScene, "h.toml");
+  ASSERT_TRUE(scene.tangential.load_coupling);
+  SweepKernel kernel = make_contact_kernel(scene);
+  SweepOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  SweepResult a = run_sweep(scene, kernel, one);
+  SweepResult b = run_sweep(scene, kernel, two);
+  testing::expect_same_datasets(a.table, b.table);
+  ASSERT_EQ(a.summary.failures, 0u) << a.summary.first_failure;
+  for (const char* side : {"left", "right"}) {
+    const TableGroup& geo = *a.table.group(std::string(side) + "/geometry");
+    const TableGroup& normal = *a.table.group(std::string(side) + "/normal");
+    const TableGroup& creep = *a.table.group(std::string(side) + "/creep");
+    ASSERT_TRUE(creep.find("normal_force"));
+    for (std::size_t iy = 0; iy < 2; ++iy) {
+      // Tread contact in slot 0 at y = 0 and 3 mm (one patch).
+      const std::size_t s = 0;
+      const double g = geo.find("contact_angle")->values[iy * 2 + s];
+      const double n0 = normal.find("normal_force")->values[iy * 2 + s];
+      EXPECT_TRUE(normal.find("status")->status[iy * 2 + s] & status::kConverged) << side << " y " << iy;
+      EXPECT_NEAR(n0 * std::cos(g), 78.5e3, 2e-3 * 78.5e3) << side << " y " << iy;
+      for (std::size_t ix = 0; ix < 2; ++ix) {
+        const std::size_t cell = (iy * 2 + ix) * 2 + s;
+        const double n = creep.find("normal_force")->values[cell];
+        const double fx = creep.find("fx")->values[cell], fy = creep.find("fy")->values[cell];
+        EXPECT_TRUE(creep.find("status")->status[cell] & status::kConverged) << side << " y " << iy << " xi " << ix;
+        EXPECT_LE(std::hypot(fx, fy), 0.3 * n * (1.0 + 1e-9));
+        EXPECT_NEAR(n * std::cos(g) + fy * std::sin(g), 78.5e3, 3e-3 * 78.5e3) << side << " y " << iy;
+        if (ix == 1) {
+          EXPECT_LT(fx, -1e3) << "xi = 0.002: the creep force on the wheel opposes the slip";
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace railtab
