@@ -126,11 +126,12 @@ Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const SweepLa
     if (scene.creep_normalised && (name == "xi" || name == "eta" || name == "phi")) {
       // Format 2.1: the creep and wear parts' coordinate, uniform in [-1, 1] (sweep/creep_map.hpp);
       // the physical range is in the root attribute creep_map.
-      axis.units = "1";
-      axis.description = "normalised " + name + " coordinate v in [-1, 1]: v = -1 + 2 (m(q/s) - m(lo/s)) / "
-                         "(m(hi/s) - m(lo/s)), m(x) = x/(1+|x|), s the normal part's creep_scale_" + name +
-                         ", [lo, hi] the physical range in the root attribute creep_map";
-      axis.values = creep_map::nodes(axis.values.size());
+      // (A new TableAxis rather than `axis.units = "1"`: GCC 12 warns -Wrestrict on that assignment.)
+      axis = TableAxis{name, std::string(1, '1'),
+                       "normalised " + name + " coordinate v in [-1, 1]: v = -1 + 2 (m(q/s) - m(lo/s)) / "
+                       "(m(hi/s) - m(lo/s)), m(x) = x/(1+|x|), s the normal part's creep_scale_" + name +
+                       ", [lo, hi] the physical range in the root attribute creep_map",
+                       creep_map::nodes(axis.values.size()), false};
     }
     if (name == "y") {
       axis.values.assign(scene.grids.y.begin() + static_cast<std::ptrdiff_t>(l.y_begin),

@@ -19,8 +19,9 @@ struct CreepMap {
   double friction = 0.0;          // mu of F / (mu N)
   bool swept[3] = {};             // xi, eta, phi tabulated (else fixed: their value is used)
   double lo[3] = {}, hi[3] = {};  // physical range of each swept axis (the scene's)
-  // Scales s_xi, s_eta, s_phi per node of the normal part's grid (its axes among y, roll, load,
-  // in file order) and slot: scale[wheel][(slot * nodes + node) * 3 + k].
+  // Reciprocal scales 1/s_xi, 1/s_eta, 1/s_phi per node of the normal part's grid (its axes among
+  // y, roll, load, in file order) and slot: scale[wheel][(slot * nodes + node) * 3 + k]. The
+  // query interpolates the reciprocals (the same at the nodes, and no division on its path).
   int n_dims = 0;
   int var[3] = {};
   int size[3] = {};
@@ -29,12 +30,14 @@ struct CreepMap {
   std::vector<double> scale[2];
 };
 
-// The slot's scales at the located (y, roll, load) cell (multilinear, as the normal part).
+// The slot's reciprocal scales at the located (y, roll, load) cell (multilinear, as the normal part).
 void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc* loc, double out[3]) noexcept;
 
 // The coordinate v in [-1, 1] of physical creepage q in [lo, hi] at scale s > 0:
 // m(x) = x / (1 + |x|), v = -1 + 2 (m(q/s) - m(lo/s)) / (m(hi/s) - m(lo/s)).
 double creep_coordinate(double q, double lo, double hi, double s) noexcept;
+// The same with q, lo, hi already divided by s (x = q / s, a = lo / s, b = hi / s).
+double creep_coordinate_normalised(double x, double a, double b) noexcept;
 
 // The saturation law of the stored forces: F / (mu N) = stored + law(xi', eta', psi'), with
 // x = xi', y = eta' + psi' / 3, r = |(x, y)|, g = 1 - (1 - min(r, 1))^3, law = -g (x, y) / r.

@@ -85,7 +85,8 @@ inline void interpolate_block(const detail::TableData& d, const detail::Block& b
   }
 }
 
-// Format 2.1: the creep block of one slot. The slot's scales at (y, roll, load) map the physical
+// Format 2.1: the creep block of one slot. The slot's scales at (y, roll, load) (their reciprocals
+// interpolated, creep_map.hpp) map the physical
 // creepages to the block's v coordinates; the interpolated F / (mu N) minus the law, plus the law
 // at the query's normalised creepage, times mu N (the creep point's own normal force, already in
 // c.value[kNormalForce]: from the creep part when it has it, else from the normal part) gives N.
@@ -94,18 +95,22 @@ void interpolate_normalised_creep(const detail::TableData& d, const detail::Bloc
                                   Contact& c) noexcept {
   using namespace detail;
   const CreepMap& map = d.creep_map;
-  double scale[3];
-  interpolate_scales(map, w, slot, loc, scale);
+  double inv_scale[3];
+  interpolate_scales(map, w, slot, loc, inv_scale);
   AxisLoc slot_loc[kNumVars];
   for (int var = 0; var < kNumVars; ++var) slot_loc[var] = loc[var];
-  for (int k = 0; k < 3; ++k)
+  double x[3];  // normalised creepages xi', eta', psi'
+  for (int k = 0; k < 3; ++k) {
+    const double inv = inv_scale[k];
+    x[k] = creepage[k] * inv;
     if (map.swept[k])
-      d.axis[kVarXi + k].locate_fast(creep_coordinate(creepage[k], map.lo[k], map.hi[k], scale[k]),
+      d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(x[k], map.lo[k] * inv, map.hi[k] * inv),
                                      slot_loc[kVarXi + k]);
+  }
   interpolate_block(d, block, slot_loc, slot, slot + 1, &c);
   if (!d.has_part[kCreep]) return;
   double law[2];
-  creep_law(creepage[0] / scale[0], creepage[1] / scale[1], creepage[2] / scale[2], law);
+  creep_law(x[0], x[1], x[2], law);
   const double mun = map.friction * c.value[kNormalForce];
   c.value[kFx] = (c.value[kFx] + law[0]) * mun;
   c.value[kFy] = (c.value[kFy] + law[1]) * mun;

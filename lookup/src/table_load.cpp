@@ -381,7 +381,7 @@ void read_creep_map(const Hdf5File& f, TableData& d) {
         if (!(std::isfinite(x) && x > 0.0 && std::isfinite(1.0 / x)))
           f.fail("dataset " + ds + " holds a scale that is not finite and > 0 at flat index " + std::to_string(i));
         const std::size_t node = i / static_cast<std::size_t>(d.n_slots), slot = i % static_cast<std::size_t>(d.n_slots);
-        m.scale[w][(slot * m.nodes + node) * 3 + static_cast<std::size_t>(k)] = x;
+        m.scale[w][(slot * m.nodes + node) * 3 + static_cast<std::size_t>(k)] = 1.0 / x;  // CreepMap::scale
       }
     }
   }

@@ -256,7 +256,7 @@ class TableView {
   double physical_creepage(std::size_t wheel, std::size_t slot, int k, const Point& p, double v) const {
     return creep_map::physical(v, lo_[k], hi_[k], slot_scale(wheel, slot, k, p));
   }
-  // The slot's scale of creepage axis k interpolated at the (y, load) of `p`.
+  // The slot's scale of creepage axis k at the (y, load) of `p`, as the lookup interpolates it.
   double slot_scale(std::size_t wheel, std::size_t slot, int k, const Point& p) const {
     const Cell c = cell(wheel, lk::kNormal, p);
     const PartGrid& pg = grid_[wheel][lk::kNormal];
@@ -265,9 +265,9 @@ class TableView {
       double w = 1.0;
       for (std::size_t a = 0; a < pg.vars.size(); ++a)
         w *= ((corner >> (pg.vars.size() - 1 - a)) & 1u) ? c.t[a] : 1.0 - c.t[a];
-      if (w != 0.0) s += w * (*scale_values_[wheel][k])[corner_index(pg, c, corner) + slot];
+      if (w != 0.0) s += w / (*scale_values_[wheel][k])[corner_index(pg, c, corner) + slot];
     }
-    return s;
+    return 1.0 / s;  // the lookup interpolates the reciprocals (lookup/src/creep_map.hpp)
   }
 
   // The interpolation cell of `p` for a part: lower node index and fraction per axis.
