@@ -369,7 +369,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
     fail(ctx, ac.node("model_tolerance")->source(), "accuracy.model_tolerance", "needs accuracy.models");
   }
 
-  Section gr = section(ctx, root, "grid", {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll"});
+  Section gr = section(ctx, root, "grid", {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll",
+                                          "creep_coordinates"});
   SceneGrids& grids = scene.grids;
   // A grid axis, or an adaptive one ([accuracy] scenes) recorded in scene.accuracy.axes.
   auto grid_axis = [&](const std::string& key, const toml::node& n) -> std::vector<double> {
@@ -384,6 +385,12 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
     if (!(load > 0.0)) fail(ctx, gr.node("load")->source(), "grid.load", "loads must be > 0 [N]");
   }
   scene.equilibrium_roll = gr.boolean("equilibrium_roll", false);
+  if (const auto coordinates = gr.string("creep_coordinates")) {
+    if (*coordinates != "physical" && *coordinates != "normalised")
+      fail(ctx, gr.node("creep_coordinates")->source(), "grid.creep_coordinates",
+           "'" + *coordinates + "' is neither \"physical\" nor \"normalised\"");
+    scene.creep_normalised = *coordinates == "normalised";
+  }
   if (const toml::node* n = gr.node("roll")) {
     if (scene.equilibrium_roll) {
       fail(ctx, n->source(), "grid.roll", "cannot be given together with equilibrium_roll = true");
@@ -410,6 +417,17 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
                          key == std::string("phi") ? "1/m" : ""));
       }
     }
+  }
+  if (scene.creep_normalised && acc.enabled) {
+    // Adaptive grids compare interpolated and direct creep forces on physical creepage nodes.
+    fail(ctx, gr.node("creep_coordinates")->source(), "grid.creep_coordinates",
+         "\"normalised\" cannot be combined with an [accuracy] section (adaptive grids are physical)");
+  }
+  if (scene.creep_normalised && scene.normal.model == NormalModel::halfspace) {
+    // The normalised coordinates' scales are FASTSIM's linear creep slopes (creep_map.hpp); the
+    // exact model's sweep runs on physical creepages.
+    fail(ctx, gr.node("creep_coordinates")->source(), "grid.creep_coordinates",
+         "\"normalised\" cannot be combined with normal_model = \"halfspace\" (use \"physical\")");
   }
   if (acc.enabled && acc.axes.empty()) {
     fail(ctx, root.get("accuracy")->source(), "accuracy",

@@ -102,6 +102,10 @@ struct Scene {
   HalfspaceSettings halfspace;
   WearSettings wear;
   bool equilibrium_roll = false;  // roll follows the kinematic equilibrium instead of the roll grid
+  // [grid] creep_coordinates = "normalised": the creep and wear parts are tabulated over
+  // normalised creepage coordinates (format 2.1, sweep/creep_map.hpp); the creepage lists then
+  // give the range (first and last value) and the node count. false = "physical" (the default).
+  bool creep_normalised = false;
   SceneGrids grids;              // adaptive axes hold their starting grid until build_adaptive_grids
   AccuracyTargets accuracy;      // [accuracy]; enabled = false without the section
 };

@@ -5,10 +5,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
 #include "core/check.hpp"
+#include "sweep/creep_map.hpp"
 #include "sweep/finite_status.hpp"
 #include "sweep/halfspace_contact.hpp"
 #include "geometry/contact_geometry.hpp"
@@ -53,6 +55,14 @@ const Output<ContactPatch> kNormalOutputs[] = {
      [](const ContactPatch& c) { return c.semi_axis_a; }},
     {"b", "m", "lateral semi-axis (elliptic models; 0 for non-elliptic patches)",
      [](const ContactPatch& c) { return c.semi_axis_b; }},
+};
+
+// Normal part, format 2.1 with normalised creep coordinates: the saturation scales of the slot's
+// creepage-free contact (sweep/creep_map.hpp), which map the creep part's coordinates to creepages.
+const OutputInfo kCreepScaleOutputs[] = {
+    {"creep_scale_xi", "1", "longitudinal creepage scale s_xi = 3 mu N / (G c^2 C11) of the creep part's coordinate"},
+    {"creep_scale_eta", "1", "lateral creepage scale s_eta = 3 mu N / (G c^2 C22) of the creep part's coordinate"},
+    {"creep_scale_phi", "rad/m", "spin creepage scale s_phi = mu N / (G c^3 C23) of the creep part's coordinate"},
 };
 
 // Creep part, per loaded patch and creepage (axes y, roll, load, xi, eta, phi, slot).
@@ -153,8 +163,37 @@ struct KernelData {
   CoupledLoadOptions coupling;          // couple = false: the creep part has no normal outputs (format 1.0 layout)
   halfspace::HalfspaceOptions halfspace;  // normal model halfspace ([contact] element_size)
   std::vector<NormalModel> model_by_y;  // per node of the scene's y grid (planned model choice); empty = normal.model
+  bool normalised = false;              // format 2.1 normalised creep coordinates (creep_map.hpp)
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
+
+// The creepage of creep grid node (ix, ie, ip): the grid's values, or with normalised coordinates
+// the physical creepage of the node's v at the slot's scales (an unswept axis keeps its value).
+Creepage node_creepage(const KernelData& k, std::size_t ix, std::size_t ie, std::size_t ip,
+                       const creep_map::Scales* scales) {
+  const SceneGrids& g = k.grids;
+  if (!k.normalised || !scales) return Creepage{g.xi[ix], g.eta[ie], g.phi[ip]};
+  auto map = [](const std::vector<double>& axis, std::size_t i, double s) {
+    if (axis.size() < 2) return axis.front();
+    return creep_map::physical(creep_map::nodes(axis.size())[i], axis.front(), axis.back(), s);
+  };
+  return Creepage{map(g.xi, ix, scales->xi), map(g.eta, ie, scales->eta), map(g.phi, ip, scales->phi)};
+}
+
+// Format 2.1: the creep forces stored as F / (mu N) minus the saturation law at the node's
+// normalised creepage, mz as mz / (mu N) [m] (creep_map.hpp); N is the creep point's own normal
+// force. Zeros stay zeros (no load).
+FastsimResult normalised_forces(const FastsimResult& r, const Creepage& c, double normal_force, double friction,
+                                const creep_map::Scales& s) {
+  FastsimResult out = r;
+  if (!(normal_force > 0.0)) return out;
+  const double mun = friction * normal_force;
+  const std::array<double, 2> law = creep_map::law(c.xi / s.xi, c.eta / s.eta, c.phi / s.phi);
+  out.fx = r.fx / mun - law[0];
+  out.fy = r.fy / mun - law[1];
+  out.mz = r.mz / mun;
+  return out;
+}
 
 // The normal options at this column (the planned model choice per y node).
 NormalOptions uncoupled_options(const KernelData& k, const ColumnState& state) {
@@ -167,19 +206,23 @@ NormalOptions uncoupled_options(const KernelData& k, const ColumnState& state) {
 // into the cells of load il. Without the load coupling.
 void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, const WheelNormalResult& normal,
                  const PatchSlots& slots, const ColumnState& state, std::size_t wheel, std::size_t il,
-                 std::size_t slot, ColumnOutput& out) {
+                 std::size_t slot, const creep_map::Scales* scales, ColumnOutput& out) {
   FastsimWorkspace& workspace = thread_fastsim_workspace();
   thread_local WearDistribution distribution;
   const StatusBits extra = slots.extra[slot];
   std::size_t c = il * k.creepages();
-  for (double xi : k.grids.xi) {
-    for (double eta : k.grids.eta) {
-      for (double phi : k.grids.phi) {
+  const double slot_force = slot_normal(normal, slots, slot).normal_force;
+  for (std::size_t ix = 0; ix < k.grids.xi.size(); ++ix) {
+    for (std::size_t ie = 0; ie < k.grids.eta.size(); ++ie) {
+      for (std::size_t ip = 0; ip < k.grids.phi.size(); ++ip) {
         const std::size_t cell = c++ * kSlots + slot;
+        const Creepage creepage = node_creepage(k, ix, ie, ip, scales ? &scales[slot] : nullptr);
+        const double xi = creepage.xi, eta = creepage.eta, phi = creepage.phi;
         try {
           SlotWear wear{k.wear, distribution, {}};
-          FastsimResult creep = slot_creep(geometry, normal, slots, slot, Creepage{xi, eta, phi}, k.creep,
+          FastsimResult creep = slot_creep(geometry, normal, slots, slot, creepage, k.creep,
                                            k.material, k.fastsim, workspace, &wear);
+          if (scales) creep = normalised_forces(creep, creepage, slot_force, k.creep.friction, scales[slot]);
           auto where = [&] {
             return fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
                                to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi);
@@ -204,18 +247,26 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
 // slots' creep and wear cells and the creep part's normal outputs of that creepage are written.
 void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geometry,
                          const WheelNormalResult& uncoupled, const PatchSlots& uncoupled_slots,
-                         const ColumnState& state, std::size_t wheel, std::size_t il, ColumnOutput& out) {
+                         const ColumnState& state, std::size_t wheel, std::size_t il,
+                         const creep_map::Scales* scales, ColumnOutput& out) {
   FastsimWorkspace& workspace = thread_fastsim_workspace();
   thread_local WearDistribution distribution;
   thread_local CoupledLoadResult coupled;
   const double load = k.grids.load[il];
   const double flange_angle = k.solver.settings().flange_angle;
+  // Physical coordinates: one coupled solve per creepage gives both slots. Normalised ones
+  // (format 2.1): each slot's node is its own creepage (its own scales), so one coupled solve per
+  // slot, keeping that slot's outputs; a slot without a creepage-free patch gets status 0.
+  const bool per_slot = scales != nullptr;
+  for (std::size_t pass = 0; pass < (per_slot ? kSlots : 1); ++pass) {
+  if (per_slot && !uncoupled_slots.occupied(pass)) continue;  // status 0, zeros: no contact
   std::size_t c = il * k.creepages();
-  for (double xi : k.grids.xi) {
-    for (double eta : k.grids.eta) {
-      for (double phi : k.grids.phi) {
+  for (std::size_t ix = 0; ix < k.grids.xi.size(); ++ix) {
+    for (std::size_t ie = 0; ie < k.grids.eta.size(); ++ie) {
+      for (std::size_t ip = 0; ip < k.grids.phi.size(); ++ip) {
         const std::size_t cells = c++ * kSlots;
-        const Creepage creepage{xi, eta, phi};
+        const Creepage creepage = node_creepage(k, ix, ie, ip, per_slot ? &scales[pass] : nullptr);
+        const double xi = creepage.xi, eta = creepage.eta, phi = creepage.phi;
         try {
           solve_coupled_load(geometry, load, uncoupled, k.material, uncoupled_options(k, state),
                              fastsim_tangential(geometry, [&](std::size_t, const ContactPatch&) { return creepage; },
@@ -223,7 +274,7 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
                              k.coupling, coupled);
           const StatusBits not_converged = (coupled.normal.status | coupled.status) & status::kNotConverged;
           const PatchSlots slots = assign_patch_slots(coupled.normal, geometry.side, flange_angle);
-          for (std::size_t s = 0; s < kSlots; ++s) {
+          for (std::size_t s = per_slot ? pass : 0; s < (per_slot ? pass + 1 : kSlots); ++s) {
             const std::size_t cell = cells + s;
             if (!slots.occupied(s)) {
               // No patch here at this creepage: zeros; status 0 (no contact) as in the normal part,
@@ -247,10 +298,11 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
             const bool reuse = coupled.normal.patches.size() == 1 && coupled.creep.size() == 1 &&
                                coupled.normal.patches[0].normal_force > 0.0;
             if (reuse) wear.result = archard_wear(workspace, k.wear, distribution);
-            const FastsimResult creep =
+            FastsimResult creep =
                 reuse ? coupled.creep[0]
                       : slot_creep(geometry, coupled.normal, slots, s, creepage, k.creep, k.material, k.fastsim,
                                    workspace, &wear);
+            if (per_slot) creep = normalised_forces(creep, creepage, patch.normal_force, k.creep.friction, scales[s]);
             const bool creep_finite = store_values(kCreepOutputs, creep, out, wheel, kCreepPart, cell, where);
             // Status: the creep forces' bits as without the coupling, plus not_converged when the
             // coupled solve (or a normal solve in it) missed its tolerance; failed if not finite.
@@ -263,13 +315,14 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
         } catch (const std::exception& e) {
           out.failure(fmt::format("coupled normal/creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
                                   to_string(geometry.side), state.y, load, xi, eta, phi, e.what()));
-          for (std::size_t s = 0; s < kSlots; ++s) {
+          for (std::size_t s = per_slot ? pass : 0; s < (per_slot ? pass + 1 : kSlots); ++s) {
             out.status(wheel, kCreepPart)[cells + s] = failure_status(state);
             out.status(wheel, kWearPart)[cells + s] = failure_status(state);
           }
         }
       }
     }
+  }
   }
 }
 
@@ -363,6 +416,38 @@ void fail_cells(ColumnOutput& out, std::size_t wheel, std::size_t part, std::siz
   for (std::size_t c = begin; c < end; ++c) out.status(wheel, part)[c] = bits;
 }
 
+// Format 2.1: the saturation scales of a slot's creepage-free contact. Kalker's (creep_map::scales:
+// c^2 = area / pi, C_ij at the patch's a/b) set the size of the probe creepages; the scales are
+// then those of the model's own linear creep coefficients, -dF/d(creepage) of FASTSIM on the slot's
+// patches at a creepage of 1e-3 of Kalker's scale (s_xi = 3 mu N / k_xx, s_eta = 3 mu N / k_yy,
+// s_phi = mu N / k_y,phi): for a Hertz patch the same as Kalker's up to FASTSIM's discretisation,
+// for strip patches (STRIPES, Linder), whose strips' own ellipses make them stiffer than the
+// equal-area ellipse, the creepage at which that model's force actually bends, so the saturation
+// law of the stored forces lines up with it. Kalker's stays where a slope is not positive.
+creep_map::Scales slot_scales(const KernelData& k, const WheelContactGeometry& geometry,
+                              const WheelNormalResult& normal, const PatchSlots& slots, std::size_t slot) {
+  const ContactPatch patch = slot_normal(normal, slots, slot);
+  creep_map::Scales s = creep_map::scales(patch, k.material, k.creep.friction);
+  const double mun = k.creep.friction * patch.normal_force;
+  if (!(mun > 0.0)) return s;
+  FastsimWorkspace& workspace = thread_fastsim_workspace();
+  auto force = [&](const Creepage& c) {
+    try {
+      return slot_creep(geometry, normal, slots, slot, c, k.creep, k.material, k.fastsim, workspace);
+    } catch (const std::exception&) {
+      return FastsimResult{};  // keep Kalker's scale; the creep points report the failure
+    }
+  };
+  const double ex = 1e-3 * s.xi, ee = 1e-3 * s.eta, ep = 1e-3 * s.phi;
+  const double kxx = -force(Creepage{ex, 0.0, 0.0}).fx / ex;
+  const double kyy = -force(Creepage{0.0, ee, 0.0}).fy / ee;
+  const double kyp = -force(Creepage{0.0, 0.0, ep}).fy / ep;
+  if (kxx > 0.0 && std::isfinite(kxx)) s.xi = 3.0 * mun / kxx;
+  if (kyy > 0.0 && std::isfinite(kyy)) s.eta = 3.0 * mun / kyy;
+  if (kyp > 0.0 && std::isfinite(kyp)) s.phi = mun / kyp;
+  return s;
+}
+
 void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size_t wheel, ColumnOutput& out) {
   const Side side = wheel == 0 ? Side::left : Side::right;
   const std::size_t nload = k.grids.load.size();
@@ -412,6 +497,22 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     }
     const StatusBits solver_bits = normal.status & (status::kConverged | status::kNotConverged);
     const PatchSlots patch_slots = assign_patch_slots(normal, side, k.solver.settings().flange_angle);
+    // Format 2.1: the saturation scales of each slot's creepage-free contact; an empty slot takes
+    // the other slot's (or nominal ones), so that cells next to it map creepages sensibly.
+    creep_map::Scales scales[kSlots];
+    if (k.normalised) {
+      for (std::size_t s = 0; s < kSlots; ++s)
+        if (patch_slots.occupied(s)) scales[s] = slot_scales(k, geometry, normal, patch_slots, s);
+      for (std::size_t s = 0; s < kSlots; ++s)
+        if (!patch_slots.occupied(s))
+          scales[s] = patch_slots.occupied(1 - s) ? scales[1 - s] : creep_map::kNominal;
+      for (std::size_t s = 0; s < kSlots; ++s) {
+        const double values[3] = {scales[s].xi, scales[s].eta, scales[s].phi};
+        for (std::size_t j = 0; j < 3; ++j)
+          out.values(wheel, kNormalPart, std::size(kNormalOutputs) + j)[il * kSlots + s] = values[j];
+      }
+    }
+    const creep_map::Scales* slot_scales = k.normalised ? scales : nullptr;
     if (exact || (k.coupling.couple && k.creepages() > 0)) {
       // The normal part keeps the creepage-free solution; the creep part gets its own per creepage.
       for (std::size_t s = 0; s < kSlots; ++s) {
@@ -427,7 +528,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
       if (exact)
         solve_creep_halfspace(k, geometry, exact_result, patch_slots, state, wheel, il, out);
       else
-        solve_creep_coupled(k, geometry, normal, patch_slots, state, wheel, il, out);
+        solve_creep_coupled(k, geometry, normal, patch_slots, state, wheel, il, slot_scales, out);
       continue;
     }
     for (std::size_t s = 0; s < kSlots; ++s) {
@@ -447,7 +548,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
         }
         continue;
       }
-      solve_creep(k, geometry, normal, patch_slots, state, wheel, il, s, out);
+      solve_creep(k, geometry, normal, patch_slots, state, wheel, il, s, slot_scales, out);
     }
   }
 }
@@ -584,11 +685,24 @@ SweepKernel make_contact_kernel(const Scene& scene) {
   auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
                                                             scene.normal, scene.tangential, creep, fastsim, wear,
                                                             coupled_load_options(scene), halfspace_options(scene),
-                                                            model_by_y});
+                                                            model_by_y, scene.creep_normalised});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));
+  if (scene.creep_normalised)
+    for (const OutputInfo& o : kCreepScaleOutputs) kernel.parts.back().outputs.push_back(o);
   kernel.parts.push_back(creep_part_spec(kCreepOutputs, kCreepNormalOutputs, scene.tangential.load_coupling));
+  if (scene.creep_normalised) {
+    // Format 2.1: stored forces are normalised (creep_map.hpp); the lookup scales them back to N.
+    std::vector<OutputInfo>& o = kernel.parts.back().outputs;
+    // Other names than fx, fy, mz, so that a reader that does not know format 2.1 refuses the
+    // table (missing fx) instead of returning normalised numbers as forces.
+    o[0] = {"fx_normalised", "1",
+            "fx / (mu N) minus the saturation law's x component at this node's normalised creepage "
+            "(N the creep point's normal force; docs/table-format.md, normalised creep part)"};
+    o[1] = {"fy_normalised", "1", "fy / (mu N) minus the saturation law's y component at this node's normalised creepage"};
+    o[2] = {"mz_normalised", "m", "mz / (mu N): spin moment on the wheel divided by mu N"};
+  }
   kernel.parts.push_back(part_spec("wear", {"load", "xi", "eta", "phi"}, kWearOutputs));
   kernel.points_per_column = scene.grids.load.size() * data->creepages();
   const NormalOptions& n = scene.normal;

@@ -8,6 +8,7 @@
 
 #include "core/check.hpp"
 #include "sweep/checkpoint.hpp"
+#include "sweep/creep_map.hpp"
 #include "sweep/shard_split.hpp"
 #include "sweep/table_size.hpp"
 #include "table/version.hpp"
@@ -82,6 +83,21 @@ nlohmann::json fixed_axes(const Scene& scene) {
   return fixed;
 }
 
+// Root attribute creep_map of a table with normalised creep coordinates (format 2.1): the
+// physical range of every swept creepage axis and the friction coefficient of F / (mu N).
+nlohmann::json creep_map_attribute(const Scene& scene) {
+  nlohmann::json j;
+  j["coordinates"] = "normalised";
+  j["friction"] = scene.tangential.friction;
+  for (const char* name : {"xi", "eta", "phi"}) {
+    const std::vector<double>& g = grid_of(scene, name);
+    if (g.size() < 2) continue;
+    j[std::string(name) + "_min"] = g.front();
+    j[std::string(name) + "_max"] = g.back();
+  }
+  return j;
+}
+
 // The table with every dataset allocated (zeros) and every attribute but `created`.
 Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const SweepLayout& l, const SweepOptions& options) {
   Table t;
@@ -93,6 +109,7 @@ Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const SweepLa
   t.set_attribute("scene_name", scene.name);
   t.set_attribute("models", kernel.models.dump());
   t.set_attribute("fixed_axes", fixed_axes(scene).dump());
+  if (scene.creep_normalised) t.set_attribute("creep_map", creep_map_attribute(scene).dump());
   if (options.shard_count > 1) {
     // A shard is a valid table over its part of y; merge needs to know which part.
     t.set_attribute("shard", fmt::format("{}/{}", options.shard_index, options.shard_count));
@@ -106,6 +123,16 @@ Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const SweepLa
     bool used = name == "y" ? l.y_tabulated : tabulated(scene, name);
     if (!used) continue;
     TableAxis axis{name, info.units, info.description, grid_of(scene, name), false};
+    if (scene.creep_normalised && (name == "xi" || name == "eta" || name == "phi")) {
+      // Format 2.1: the creep and wear parts' coordinate, uniform in [-1, 1] (sweep/creep_map.hpp);
+      // the physical range is in the root attribute creep_map.
+      // (A new TableAxis rather than `axis.units = "1"`: GCC 12 warns -Wrestrict on that assignment.)
+      axis = TableAxis{name, std::string(1, '1'),
+                       "normalised " + name + " coordinate v in [-1, 1]: v = -1 + 2 (m(q/s) - m(lo/s)) / "
+                       "(m(hi/s) - m(lo/s)), m(x) = x/(1+|x|), s the normal part's creep_scale_" + name +
+                       ", [lo, hi] the physical range in the root attribute creep_map",
+                       creep_map::nodes(axis.values.size()), false};
+    }
     if (name == "y") {
       axis.values.assign(scene.grids.y.begin() + static_cast<std::ptrdiff_t>(l.y_begin),
                          scene.grids.y.begin() + static_cast<std::ptrdiff_t>(l.y_end));

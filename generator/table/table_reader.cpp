@@ -157,7 +157,9 @@ class Reader {
           group.datasets.push_back(read_dataset(table, g, path, name));
         }
         for (const std::string& required : required_outputs(part)) {
-          RAILTAB_CHECK(group.find(required), "{}: missing dataset /{}/{}", file_, path, required);
+          // Format 2.1 normalised creep part: fx, fy, mz are stored as <name>_normalised.
+          RAILTAB_CHECK(group.find(required) || (table.attribute("creep_map") && group.find(required + "_normalised")),
+                        "{}: missing dataset /{}/{}", file_, path, required);
         }
         table.groups.push_back(std::move(group));
       }

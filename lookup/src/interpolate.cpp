@@ -23,13 +23,9 @@ inline void store_status(const Block& b, const double* cell_record, Contact& c) 
     std::memcpy(&c.part_status[b.part[p]], st + p * sizeof(StatusBits), sizeof(StatusBits));
 }
 
-// Copies one slot's values (record order: parts, outputs) into `c`, part by part.
+// Copies one slot's values (record order: parts, outputs) into `c` (Block::output_of).
 inline void store_values(const Block& b, const double* values, Contact& c) noexcept {
-  for (int k = 0; k < b.n_parts; ++k) {
-    const PartSpec& spec = kPartSpecs[b.part[k]];
-    for (int o = 0; o < spec.n_out; ++o) c.value[spec.first_output + o] = values[o];
-    values += spec.n_out;
-  }
+  for (int k = 0; k < b.n_values; ++k) c.value[b.output_of[k]] = values[k];
 }
 
 // Multilinear over the cell's 2^D corners, the fractions once for all slots; the status is the

@@ -35,10 +35,14 @@ namespace {
 
 // Places every tabulated variable of `state` in its cell (loc, indexed by Var) and returns the
 // query bits: kOutOfRange (clamped, or a fixed variable off its value), kInvalidInput (NaN/inf).
-StatusBits locate_state(const detail::TableData& d, const State& state,
-                        detail::AxisLoc* loc) noexcept {
+// With normalised creep coordinates (format 2.1) the creepages are not located here (their cell
+// depends on the slot's scales, interpolate_normalised_creep): `creepage` gets them, clamped to the physical
+// range of the table (kOutOfRange when clamped), or their fixed values.
+StatusBits locate_state(const detail::TableData& d, const State& state, detail::AxisLoc* loc,
+                        double* creepage) noexcept {
   using namespace detail;
   const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi};
+  const CreepMap& map = d.creep_map;
   // A variable the table neither tabulates nor fixes does not affect it: ignored.
   bool finite = true, out = false;
   for (int k = 0; k < d.n_tabulated; ++k) {
@@ -48,8 +52,17 @@ StatusBits locate_state(const detail::TableData& d, const State& state,
       finite = false;
       continue;
     }
+    if (map.active && var >= kVarXi) {
+      const int c = var - kVarXi;
+      out |= x < map.lo[c] || x > map.hi[c];
+      creepage[c] = std::min(std::max(x, map.lo[c]), map.hi[c]);
+      continue;
+    }
     out |= d.axis[var].locate_fast(x, loc[var]);
   }
+  if (map.active)
+    for (int c = 0; c < 3; ++c)
+      if (!map.swept[c]) creepage[c] = d.fixed[kVarXi + c] ? d.fixed_value[kVarXi + c] : 0.0;
   for (int k = 0; k < d.n_fixed; ++k) {
     const int var = d.fixed_var[k];
     const double x = v[var];
@@ -59,10 +72,56 @@ StatusBits locate_state(const detail::TableData& d, const State& state,
   }
   return (finite ? 0u : status::kInvalidInput) | (out ? status::kOutOfRange : 0u);
 }
+// Runs one block's kernel for slots [slot_begin, slot_end).
+inline void interpolate_block(const detail::TableData& d, const detail::Block& block,
+                              const detail::AxisLoc* loc, int slot_begin, int slot_end,
+                              Contact* contact) noexcept {
+  if (d.method == Method::kLinear) {
+    block.linear(block, loc, slot_begin, slot_end, contact);
+  } else if (d.method == Method::kCubic) {
+    block.cubic(block, d.axis, loc, slot_begin, slot_end, contact);
+  } else {
+    detail::interpolate_monotone_cubic(block, d.axis, loc, slot_begin, slot_end, contact);
+  }
+}
+
+// Format 2.1: the creep block of one slot. The slot's scales at (y, roll, load) (their reciprocals
+// interpolated, creep_map.hpp) map the physical
+// creepages to the block's v coordinates; the interpolated F / (mu N) minus the law, plus the law
+// at the query's normalised creepage, times mu N (the creep point's own normal force, already in
+// c.value[kNormalForce]: from the creep part when it has it, else from the normal part) gives N.
+void interpolate_normalised_creep(const detail::TableData& d, const detail::Block& block, int w,
+                                  const detail::AxisLoc* loc, const double* creepage, int slot,
+                                  Contact& c) noexcept {
+  using namespace detail;
+  const CreepMap& map = d.creep_map;
+  double inv_scale[3];
+  interpolate_scales(map, w, slot, loc, inv_scale);
+  AxisLoc slot_loc[kNumVars];
+  for (int var = 0; var < kNumVars; ++var) slot_loc[var] = loc[var];
+  double x[3];  // normalised creepages xi', eta', psi'
+  for (int k = 0; k < 3; ++k) {
+    const double inv = inv_scale[k];
+    x[k] = creepage[k] * inv;
+    if (map.swept[k])
+      d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(x[k], map.lo[k] * inv, map.hi[k] * inv),
+                                     slot_loc[kVarXi + k]);
+  }
+  interpolate_block(d, block, slot_loc, slot, slot + 1, &c);
+  if (!d.has_part[kCreep]) return;
+  double law[2];
+  creep_law(x[0], x[1], x[2], law);
+  const double mun = map.friction * c.value[kNormalForce];
+  c.value[kFx] = (c.value[kFx] + law[0]) * mun;
+  c.value[kFy] = (c.value[kFy] + law[1]) * mun;
+  c.value[kMz] *= mun;
+}
+
 // Interpolates slots [slot_begin, slot_end) of wheel w into contact[0 .. slot_end-slot_begin-1]
 // (values, part statuses, combined status | q). The query must be valid.
 void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc* loc,
-                       StatusBits q, int slot_begin, int slot_end, Contact* contact) noexcept {
+                       const double* creepage, StatusBits q, int slot_begin, int slot_end,
+                       Contact* contact) noexcept {
   using namespace detail;
   const int n = slot_end - slot_begin;
   for (int a = 0; a < d.n_absent; ++a) {
@@ -75,13 +134,12 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
   }
   for (int b = 0; b < d.n_blocks; ++b) {
     const Block& block = d.block[w][b];
-    if (d.method == Method::kLinear) {
-      block.linear(block, loc, slot_begin, slot_end, contact);
-    } else if (d.method == Method::kCubic) {
-      block.cubic(block, d.axis, loc, slot_begin, slot_end, contact);
-    } else {
-      interpolate_monotone_cubic(block, d.axis, loc, slot_begin, slot_end, contact);
+    if (d.creep_map.active && b == d.creep_block) {
+      for (int s = slot_begin; s < slot_end; ++s)
+        interpolate_normalised_creep(d, block, w, loc, creepage, s, contact[s - slot_begin]);
+      continue;
     }
+    interpolate_block(d, block, loc, slot_begin, slot_end, contact);
   }
   for (int s = 0; s < n; ++s) {
     StatusBits any = 0, all = ~0u;
@@ -100,7 +158,8 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
 void Table::query(Wheel wheel, const State& state, Result& result) const noexcept {
   const detail::TableData& d = *data_;
   detail::AxisLoc loc[detail::kNumVars];
-  StatusBits q = locate_state(d, state, loc);
+  double creepage[3];
+  StatusBits q = locate_state(d, state, loc, creepage);
   const int w = static_cast<int>(wheel);
   if (w != 0 && w != 1) q |= status::kInvalidInput;
   const int ns = d.n_slots;
@@ -110,20 +169,21 @@ void Table::query(Wheel wheel, const State& state, Result& result) const noexcep
     for (int s = 0; s < ns; ++s) zero_contact(result.contact[s], status::kInvalidInput);
     return;
   }
-  interpolate_slots(d, w, loc, q, 0, ns, result.contact);
+  interpolate_slots(d, w, loc, creepage, q, 0, ns, result.contact);
 }
 
 void Table::query_slot(Wheel wheel, const State& state, int slot, Contact& contact) const noexcept {
   const detail::TableData& d = *data_;
   detail::AxisLoc loc[detail::kNumVars];
-  StatusBits q = locate_state(d, state, loc);
+  double creepage[3];
+  StatusBits q = locate_state(d, state, loc, creepage);
   const int w = static_cast<int>(wheel);
   if ((w != 0 && w != 1) || slot < 0 || slot >= d.n_slots) q |= status::kInvalidInput;
   if (q & status::kInvalidInput) {
     zero_contact(contact, status::kInvalidInput);  // as query() does for every slot
     return;
   }
-  interpolate_slots(d, w, loc, q, slot, slot + 1, &contact);
+  interpolate_slots(d, w, loc, creepage, q, slot, slot + 1, &contact);
 }
 
 Contact Table::query_slot(Wheel wheel, const State& state, int slot) const noexcept {

@@ -31,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "creep_map.hpp"
 #include "grid.hpp"
 #include "railtab/lookup.hpp"
 
@@ -80,6 +81,8 @@ struct Block {
   int status_offset = 0;              // query layout: doubles before the cell statuses (n_values)
   int first_output = -1;              // Output of value 0 when the parts' outputs are one
                                       // contiguous run of Contact::value (always in format 1.0)
+  int output_of[kMaxSlotValues] = {}; // Output of each value (the creep part's per-creepage
+                                      // normal force goes to kNormalForce)
   std::size_t slot_size = 0;          // doubles per slot grid (nodes x record)
   LinearKernel linear = nullptr;      // multilinear kernel (query layout)
   CubicKernel cubic = nullptr;        // tensor cubic Hermite kernel (query layout)
@@ -113,6 +116,8 @@ struct TableData {
   std::vector<AxisInfo> axes_info;    // public copy of the axes, file order
   std::vector<std::pair<std::string, double>> fixed_list;  // public copy of fixed_axes
   bool checksums_verified = false;    // every dataset had Fletcher32, metadata checksummed
+  CreepMap creep_map;                 // format 2.1 normalised creep coordinates (creep_map.hpp)
+  int creep_block = -1;               // block holding the creep part (-1: none)
 };
 
 }  // namespace railtab::lookup::detail

@@ -233,6 +233,7 @@ struct PartArrays {
   std::vector<hsize_t> dims;                 // their sizes
   std::size_t nodes = 1;                     // grid nodes (product of dims)
   std::vector<std::vector<double>> outputs;  // [output][node * n_slots + slot]
+  std::vector<int> output_of;                // Output of each of them
   std::vector<std::uint32_t> status;         // [node * n_slots + slot]
 };
 
@@ -261,8 +262,12 @@ PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& g
       f.fail("dataset " + ds + " has axes='" + *attr + "', expected '" + axes_attr + "'");
   };
   const std::string shape_source = "the table's axes (" + axes_attr + ")";
+  // Format 2.1 normalised creep part: fx, fy, mz stored as <name>_normalised (creep_map.hpp).
+  const bool normalised_creep = std::string(spec.name) == "creep" && f.has_attribute("/", "creep_map");
   for (int k = 0; k < spec.n_out; ++k) {
-    const std::string ds = group + "/" + output_name(static_cast<Output>(spec.first_output + k));
+    const int o = spec.first_output + k;
+    const std::string ds = group + "/" + output_name(static_cast<Output>(o)) +
+                           (normalised_creep && o <= kMz ? "_normalised" : "");
     auto v = f.read_doubles(ds, expected, shape_source);
     check_checksum(f, d, ds, v.checksummed);
     check_axes_attribute(ds);
@@ -271,6 +276,24 @@ PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& g
         f.fail("dataset " + ds + " holds a non-finite value at flat index " + std::to_string(i) +
                " (format 1.0: a cell without contact holds 0)");
     p.outputs.push_back(std::move(v.values));
+    p.output_of.push_back(spec.first_output + k);
+  }
+  // The creep part's per-creepage normal force (load coupling, formats 1.1/1.2 and 2.x): served as
+  // kNormalForce in place of the normal part's creepage-free one (it scales the normalised forces
+  // of format 2.1, and a simulation needs the N that goes with fx, fy). Approach, area and
+  // max_pressure stay the normal part's: one more value per record instead of four (speed).
+  if (std::string(spec.name) == "creep" && f.exists(group + "/normal_force")) {
+    for (int o = kNormalForce; o <= kNormalForce; ++o) {
+      const std::string extra = group + "/" + output_name(static_cast<Output>(o));
+      auto v = f.read_doubles(extra, expected, shape_source);
+      check_checksum(f, d, extra, v.checksummed);
+      check_axes_attribute(extra);
+      for (std::size_t i = 0; i < v.values.size(); ++i)
+        if (!std::isfinite(v.values[i]))
+          f.fail("dataset " + extra + " holds a non-finite value at flat index " + std::to_string(i));
+      p.outputs.push_back(std::move(v.values));
+      p.output_of.push_back(o);
+    }
   }
   const std::string ds = group + "/status";
   auto st = f.read_uint32(ds, expected, shape_source);
@@ -278,6 +301,91 @@ PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& g
   check_axes_attribute(ds);
   p.status = std::move(st.values);
   return p;
+}
+
+// Format 2.1 normalised creep coordinates (creep_map.hpp): the root attribute creep_map (flat
+// JSON: coordinates = "normalised", friction, <axis>_min/_max of every swept creepage axis), the
+// v axes ([-1, 1]) and the normal part's scales creep_scale_xi/_eta/_phi (finite, > 0).
+void read_creep_map(const Hdf5File& f, TableData& d) {
+  const auto text = f.string_attribute("/", "creep_map");
+  if (!text) return;
+  std::vector<FlatJsonEntry> entries;
+  try {
+    entries = parse_flat_json(*text);
+  } catch (const std::runtime_error& e) {
+    f.fail(std::string("root attribute creep_map is not a flat JSON object: ") + e.what());
+  }
+  auto number = [&](const std::string& key) {
+    for (const FlatJsonEntry& e : entries)
+      if (e.key == key && !e.is_text && std::isfinite(e.number)) return e.number;
+    f.fail("root attribute creep_map has no finite number '" + key + "'");
+  };
+  bool normalised = false;
+  for (const FlatJsonEntry& e : entries)
+    if (e.key == "coordinates") normalised = e.is_text && e.text == "normalised";
+  if (!normalised) f.fail("root attribute creep_map: coordinates must be \"normalised\"");
+  CreepMap& m = d.creep_map;
+  m.friction = number("friction");
+  if (!(m.friction > 0.0)) f.fail("root attribute creep_map: friction must be > 0");
+  bool any = false;
+  for (int k = 0; k < 3; ++k) {
+    const int var = kVarXi + k;
+    m.swept[k] = d.tabulated[var];
+    if (!m.swept[k]) continue;
+    any = true;
+    m.lo[k] = number(std::string(var_name(var)) + "_min");
+    m.hi[k] = number(std::string(var_name(var)) + "_max");
+    if (!(m.lo[k] < m.hi[k]))
+      f.fail(std::string("root attribute creep_map: ") + var_name(var) + "_min is not below " + var_name(var) +
+             "_max");
+    const Axis& a = d.axis[var];
+    if (a.nodes()[0] != -1.0 || a.nodes()[a.size() - 1] != 1.0)
+      f.fail(std::string("axis /axes/") + var_name(var) + " of a normalised creep part must run from -1 to 1");
+  }
+  if (!any) return;  // no creepage swept: nothing to map
+  // The public axes (Table::axes, railtab_lookup_axis) of a normalised creepage: its physical
+  // range, first and last value, in physical units (the nodes depend on the contact).
+  for (AxisInfo& info : d.axes_info)
+    for (int k = 0; k < 3; ++k)
+      if (m.swept[k] && info.name == var_name(kVarXi + k)) {
+        info.nodes = {m.lo[k], m.hi[k]};
+        info.units = k == 2 ? "rad/m" : "1";
+      }
+  if (d.creep_block < 0) f.fail("root attribute creep_map but no creep or wear part");
+  if (!d.has_part[kNormal]) f.fail("root attribute creep_map needs the normal part (its creep scales)");
+  std::vector<hsize_t> expected;
+  for (int var = 0; var < kNumVars; ++var) {
+    if (!kPartSpecs[kNormal].uses[var] || !d.tabulated[var]) continue;
+    m.var[m.n_dims] = var;
+    m.size[m.n_dims] = d.axis[var].size();
+    expected.push_back(static_cast<hsize_t>(d.axis[var].size()));
+    ++m.n_dims;
+  }
+  m.nodes = 1;
+  for (int k = m.n_dims - 1; k >= 0; --k) {
+    m.stride[k] = m.nodes;
+    m.nodes *= static_cast<std::size_t>(m.size[k]);
+  }
+  expected.push_back(static_cast<hsize_t>(d.n_slots));
+  static const char* const names[3] = {"creep_scale_xi", "creep_scale_eta", "creep_scale_phi"};
+  static const char* const wheels[2] = {"/left/normal/", "/right/normal/"};
+  for (int w = 0; w < 2; ++w) {
+    m.scale[w].assign(m.nodes * static_cast<std::size_t>(d.n_slots) * 3, 0.0);
+    for (int k = 0; k < 3; ++k) {
+      const std::string ds = std::string(wheels[w]) + names[k];
+      if (!f.exists(ds)) f.fail("missing dataset " + ds + " (root attribute creep_map needs it)");
+      auto v = f.read_doubles(ds, expected, "the normal part's axes");
+      check_checksum(f, d, ds, v.checksummed);
+      for (std::size_t i = 0; i < v.values.size(); ++i) {
+        const double x = v.values[i];
+        if (!(std::isfinite(x) && x > 0.0 && std::isfinite(1.0 / x)))
+          f.fail("dataset " + ds + " holds a scale that is not finite and > 0 at flat index " + std::to_string(i));
+        const std::size_t node = i / static_cast<std::size_t>(d.n_slots), slot = i % static_cast<std::size_t>(d.n_slots);
+        m.scale[w][(slot * m.nodes + node) * 3 + static_cast<std::size_t>(k)] = 1.0 / x;  // CreepMap::scale
+      }
+    }
+  }
+  m.active = true;
 }
 
 // Interleaves the parts that share one grid into a slot-major block (layout in table_data.hpp).
@@ -288,11 +396,13 @@ Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& a
   b.n_dims = static_cast<int>(first.vars.size());
   for (int k = 0; k < b.n_dims; ++k) b.var[k] = first.vars[k];
   b.n_parts = static_cast<int>(parts.size());
-  b.first_output = kPartSpecs[parts[0]].first_output;
+  b.first_output = arrays[parts[0]].output_of.front();
   for (int k = 0; k < b.n_parts; ++k) {
     b.part[k] = parts[k];
-    if (kPartSpecs[parts[k]].first_output != b.first_output + b.n_values) b.first_output = -1;
-    b.n_values += kPartSpecs[parts[k]].n_out;
+    for (int o : arrays[parts[k]].output_of) {
+      if (o != b.first_output + b.n_values) b.first_output = -1;
+      b.output_of[b.n_values++] = o;
+    }
   }
   b.values_padded = (b.n_values + 1) / 2 * 2;
   b.record = b.values_padded + kStatusDoubles;
@@ -394,8 +504,23 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
       if (d->has_part[p])
         arrays[p] = read_part(f, *d, std::string(wheels[w]) + "/" + kPartSpecs[p].name,
                               kPartSpecs[p]);
-    for (int b = 0; b < d->n_blocks; ++b) d->block[w][b] = make_block(groups[b], arrays, d->n_slots);
+    for (int b = 0; b < d->n_blocks; ++b) {
+      // A record holds at most kMaxSlotValues values: when every part shares one block (nothing
+      // but y and roll swept) the creep part's normal contact is left out (the normal part's,
+      // identical without creepage, is served).
+      std::size_t n = 0;
+      for (int p : groups[b]) n += arrays[p].outputs.size();
+      if (n > static_cast<std::size_t>(kMaxSlotValues) && d->has_part[kCreep]) {
+        arrays[kCreep].outputs.resize(static_cast<std::size_t>(kPartSpecs[kCreep].n_out));
+        arrays[kCreep].output_of.resize(static_cast<std::size_t>(kPartSpecs[kCreep].n_out));
+      }
+      d->block[w][b] = make_block(groups[b], arrays, d->n_slots);
+      if (std::find(groups[b].begin(), groups[b].end(), static_cast<int>(kCreep)) != groups[b].end() ||
+          std::find(groups[b].begin(), groups[b].end(), static_cast<int>(kWear)) != groups[b].end())
+        d->creep_block = b;
+    }
   }
+  read_creep_map(f, *d);
   return d;
 }
 

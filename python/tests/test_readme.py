@@ -36,8 +36,9 @@ def test_readme_example_runs_as_written(default_table, tmp_path):
     assert rows.shape == (9, 3)                        # xi, table fx, direct fx
     xi, table, direct = rows.T
     assert np.all(np.diff(table) < 0)                  # the creep curve falls with xi
-    # table against direct: linear interpolation between the creepage nodes of the default scene
-    # (xi nodes 0, +-1, +-2, +-4 e-3); at the nodes they agree to rounding.
-    nodes = np.isin(np.round(xi * 1e3), [-4, -2, -1, 0, 1, 2, 4])
+    # table against direct: the default table's creep part is normalised (format 2.1): its nodes
+    # depend on the contact; 0 and the ends of the scene's range (+-4e-3) are nodes everywhere,
+    # where they agree to rounding; in between the README says 0.7 % of mu N (was 4 %).
+    nodes = np.isin(np.round(xi * 1e3), [-4, 0, 4])
     np.testing.assert_allclose(table[nodes], direct[nodes], rtol=1e-6, atol=1e-3)
-    assert np.max(np.abs(table - direct)) < 0.05 * 0.3 * 78.5e3
+    assert np.max(np.abs(table - direct)) < 0.01 * 0.3 * 78.5e3

@@ -46,10 +46,13 @@ def test_xarray_opens_every_group_with_coordinates_and_units(default_table, engi
     creep = xr.open_dataset(default_table, group="left/creep", engine=engine)
     with h5py.File(default_table) as f:
         np.testing.assert_array_equal(creep["y"].values, f["axes/y"][()])
-        curve = creep.fx.sel(y=0.003, load=78.5e3, eta=0, phi=0, slot=0, method="nearest")
+        # The default table's creep part is normalised (format 2.1): fx / (mu N) minus the saturation
+        # law over the coordinate v_xi in [-1, 1] (docs/table-format.md, "Normalised creep part").
+        curve = creep.fx_normalised.sel(y=0.003, load=78.5e3, eta=0, phi=0, slot=0, method="nearest")
         iy = int(np.abs(f["axes/y"][()] - 0.003).argmin())
-        np.testing.assert_array_equal(curve.values, f["left/creep/fx"][iy, 1, :, 2, 1, 0])
-    assert curve.values[0] > 0 > curve.values[-1]   # braking force grows with xi (sign convention)
+        np.testing.assert_array_equal(curve.values, f["left/creep/fx_normalised"][iy, 1, :, 2, 1, 0])
+    assert creep["xi"].values[0] == -1.0 and creep["xi"].values[-1] == 1.0
+    assert np.all(np.abs(curve.values) < 0.5)   # the law carries the saturating curve, the table the rest
     # roll follows the equilibrium: roll(y) is a coordinate of the group, equal to /equilibrium_roll
     assert "roll" in creep.coords and creep.coords["roll"].dims == ("y",)
     assert creep.coords["roll"].attrs["units"] == "rad"
@@ -60,7 +63,7 @@ def test_xarray_opens_every_group_with_coordinates_and_units(default_table, engi
 
 def test_typed_attributes_and_status_flags(default_table):
     with h5py.File(default_table) as f:
-        assert text(f.attrs["format_version"]) == "2.0"
+        assert text(f.attrs["format_version"]) == "2.1"
         assert "fixed_axes" not in f.attrs and "models" not in f.attrs   # no JSON strings
         models = f["models"].attrs
         assert text(models["normal"]) == "stripes-ab" and models["strips"] == 50
@@ -91,9 +94,9 @@ def test_h5py_example_of_the_docs_runs_as_written(default_table, tmp_path):
     finally:
         os.chdir(old)
     lines = out.getvalue().splitlines()
-    assert lines[0].startswith("y,load,xi,eta,phi,slot N")
+    assert lines[0].startswith("y,load,xi,eta,phi,slot 1")   # fx_normalised: F / (mu N) - law
     assert "equilibrium stripes-ab" in lines[1]
-    assert lines[2].endswith("N at xi = 0.001")
+    assert " N at xi = " in lines[2]
     assert float(lines[2].split()[0]) < 0                                # braking at xi > 0
     assert "converged" in lines[3]
 
@@ -146,6 +149,8 @@ def test_query_command_agrees_with_the_module_and_the_file(railtab_program, defa
             assert c["status"] == railtab.decode_status(r["status"][k, slot])
     with h5py.File(default_table) as f:
         for name, units in j["units"].items():
+            if "creep_map" in f.attrs and name in ("fx", "fy", "mz"):
+                continue  # stored normalised (format 2.1): fx_normalised etc., units 1 and m
             part = next(p for p in ("geometry", "normal", "creep", "wear") if name in f["left"][p])
             assert text(f["left"][part][name].attrs["units"]) == units, name
 
@@ -154,7 +159,7 @@ def test_inspect_json_describes_the_file(railtab_program, default_table):
     out = subprocess.run([railtab_program, "inspect", str(default_table), "--json"], check=True,
                          capture_output=True, text=True)
     j = json.loads(out.stdout)
-    assert j["attributes"]["format_version"] == "2.0"
+    assert j["attributes"]["format_version"] == "2.1"
     assert j["checksums_verified"] is True                             # format 2 always carries them
     assert j["attributes"]["models"]["normal"] == "stripes-ab"        # an object, not JSON text
     assert j["attributes"]["fixed_axes"] == {"roll": "equilibrium"}

@@ -28,6 +28,7 @@
 #include "railtab/lookup.hpp"
 #include "scene/scene.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "sweep/creep_map.hpp"
 #include "sweep/sweep.hpp"
 #include "table/table_io.hpp"
 
@@ -81,16 +82,23 @@ struct WheelValues {
 };
 using Direct = std::array<WheelValues, 2>;  // [wheel] 0 left, 1 right
 
+// The creep part's per-creepage normal force (load coupling), which the lookup serves in place of
+// the normal part's creepage-free one (docs/lookup.md).
+inline bool is_creep_normal(int o) { return o == lk::kNormalForce; }
+
 // The lookup output of every kernel output, in kernel order (-1: an output the lookup does not
-// serve, e.g. the creep part's per-creepage normal contact of format 1.2, docs/table-format.md).
+// serve, e.g. the normal part's creep scales of format 2.1). The creep part's normal_force maps
+// to kNormalForce and, coming later, overrides the normal part's.
 inline std::vector<int> lookup_outputs(const SweepKernel& kernel) {
   std::vector<int> index;
   for (std::size_t p = 0; p < kernel.parts.size(); ++p)
     for (const OutputInfo& info : kernel.parts[p].outputs) {
       int found = -1;
       for (int o = 0; o < lk::kNumOutputs; ++o)
-        if (lk::output_part(static_cast<lk::Output>(o)) == static_cast<int>(p) &&
-            info.name == lk::output_name(static_cast<lk::Output>(o)))
+        if ((lk::output_part(static_cast<lk::Output>(o)) == static_cast<int>(p) ||
+             (static_cast<int>(p) == lk::kCreep && is_creep_normal(o))) &&
+            (info.name == lk::output_name(static_cast<lk::Output>(o)) ||
+             info.name == std::string(lk::output_name(static_cast<lk::Output>(o))) + "_normalised"))
           found = o;
       index.push_back(found);
     }
@@ -98,23 +106,27 @@ inline std::vector<int> lookup_outputs(const SweepKernel& kernel) {
 }
 
 // The kernel's parts and the lookup's outputs must be the kernel's, in the same order
-// (docs/table-format.md); the kernel may have more (format 1.2 creep part), which the lookup skips.
+// (docs/table-format.md); the kernel may have more (the creep part's normal contact, the normal
+// part's creep scales), which are skipped here.
 inline void check_kernel_layout(const SweepKernel& kernel) {
   ASSERT_EQ(kernel.parts.size(), static_cast<std::size_t>(lk::kNumParts));
   for (int p = 0; p < lk::kNumParts; ++p)
     ASSERT_EQ(kernel.parts[static_cast<std::size_t>(p)].name, lk::part_name(static_cast<lk::Part>(p)));
   const std::vector<int> index = lookup_outputs(kernel);
   int o = 0;
-  for (int k : index) {
-    if (k < 0) continue;
-    ASSERT_EQ(k, o++);
-  }
+  std::size_t i = 0;
+  for (std::size_t p = 0; p < kernel.parts.size(); ++p)
+    for (std::size_t k = 0; k < kernel.parts[p].outputs.size(); ++k, ++i) {
+      if (index[i] < 0 || lk::output_part(static_cast<lk::Output>(index[i])) != static_cast<int>(p)) continue;
+      ASSERT_EQ(index[i], o++);
+    }
   ASSERT_EQ(o, lk::kNumOutputs);
 }
 
 // The contact kernel at one state (both wheels), as the sweep computes a grid point.
 inline Direct evaluate_direct(const Scene& scene, const Point& p) {
   Scene one = scene;
+  one.creep_normalised = false;  // the physical creep forces at the state itself
   one.grids.y = {p.v[kY]};
   one.grids.load = {p.v[kLoad]};
   one.grids.xi = {p.v[kXi]};
@@ -194,10 +206,68 @@ class TableView {
           stride *= pg.nodes[a]->size();
         }
         for (int o = 0; o < lk::kNumOutputs; ++o)
-          if (lk::output_part(static_cast<lk::Output>(o)) == p)
-            pg.values[o] = &g->find(lk::output_name(static_cast<lk::Output>(o)))->values;
+          if (lk::output_part(static_cast<lk::Output>(o)) == p) {
+            const std::string name = lk::output_name(static_cast<lk::Output>(o));
+            const TableDataset* ds = g->find(name) ? g->find(name) : g->find(name + "_normalised");
+            pg.values[o] = &ds->values;
+          }
+        if (p == lk::kCreep && g->find("normal_force")) {  // load coupling: served by the lookup
+          coupled_ = true;
+          pg.values[lk::kNormalForce] = &g->find("normal_force")->values;
+        }
+        if (p == lk::kNormal && g->find("creep_scale_xi"))
+          for (int k = 0; k < 3; ++k) scale_values_[w][k] = &g->find(kScaleNames[k])->values;
       }
     }
+    if (const std::string* text = table.attribute("creep_map")) {
+      const nlohmann::json j = nlohmann::json::parse(*text);
+      normalised_ = true;
+      for (int k = 0; k < 3; ++k) {
+        const std::string name = kVarNames[kXi + k];
+        if (!j.contains(name + "_min")) continue;
+        swept_[k] = true;
+        lo_[k] = j.at(name + "_min").get<double>();
+        hi_[k] = j.at(name + "_max").get<double>();
+      }
+    }
+  }
+
+  bool normalised() const { return normalised_; }
+  // The part whose grid and status an output's lookup value comes from: the creep part for the
+  // per-creepage normal contact when the table has it.
+  int part_of(int o) const {
+    return coupled_ && is_creep_normal(o) ? static_cast<int>(lk::kCreep) : lk::output_part(static_cast<lk::Output>(o));
+  }
+  // Format 2.1: `p` with its creepages replaced by the creep part's coordinates v for this wheel
+  // and slot (the slot's scales interpolated at (y, load) as the lookup does); `p` unchanged for a
+  // physical table.
+  Point creep_point(std::size_t wheel, std::size_t slot, const Point& p) const {
+    if (!normalised_) return p;
+    Point q = p;
+    for (int k = 0; k < 3; ++k) {
+      if (!swept_[k]) continue;
+      const double s = slot_scale(wheel, slot, k, p);
+      q.v[kXi + k] = creep_map::coordinate(std::clamp(p.v[kXi + k], lo_[k], hi_[k]), lo_[k], hi_[k], s);
+    }
+    return q;
+  }
+  // Format 2.1: the physical creepage of coordinate v along creepage axis k (0 xi, 1 eta, 2 phi)
+  // at the (y, load) of `p`, wheel and slot.
+  double physical_creepage(std::size_t wheel, std::size_t slot, int k, const Point& p, double v) const {
+    return creep_map::physical(v, lo_[k], hi_[k], slot_scale(wheel, slot, k, p));
+  }
+  // The slot's scale of creepage axis k at the (y, load) of `p`, as the lookup interpolates it.
+  double slot_scale(std::size_t wheel, std::size_t slot, int k, const Point& p) const {
+    const Cell c = cell(wheel, lk::kNormal, p);
+    const PartGrid& pg = grid_[wheel][lk::kNormal];
+    double s = 0.0;
+    for (std::size_t corner = 0; corner < (std::size_t{1} << pg.vars.size()); ++corner) {
+      double w = 1.0;
+      for (std::size_t a = 0; a < pg.vars.size(); ++a)
+        w *= ((corner >> (pg.vars.size() - 1 - a)) & 1u) ? c.t[a] : 1.0 - c.t[a];
+      if (w != 0.0) s += w / (*scale_values_[wheel][k])[corner_index(pg, c, corner) + slot];
+    }
+    return 1.0 / s;  // the lookup interpolates the reciprocals (lookup/src/creep_map.hpp)
   }
 
   // The interpolation cell of `p` for a part: lower node index and fraction per axis.
@@ -231,7 +301,7 @@ class TableView {
 
   // Values of an output at the 2^D corner nodes of its part's cell (slot `slot`).
   std::vector<double> corner_values(std::size_t wheel, int output, const Cell& c, std::size_t slot) const {
-    const PartGrid& pg = grid_[wheel][static_cast<std::size_t>(lk::output_part(static_cast<lk::Output>(output)))];
+    const PartGrid& pg = grid_[wheel][static_cast<std::size_t>(part_of(output))];
     std::vector<double> out;
     for (std::size_t k = 0; k < (std::size_t{1} << pg.vars.size()); ++k)
       out.push_back((*pg.values[output])[corner_index(pg, c, k) + slot]);
@@ -246,7 +316,7 @@ class TableView {
   // table edge, the nearest interior node), using only nodes whose status equals the corner's
   // (a difference across a jump measures the jump, not the curvature).
   double error_estimate(std::size_t wheel, int output, const Cell& c, std::size_t slot) const {
-    const int part = lk::output_part(static_cast<lk::Output>(output));
+    const int part = part_of(output);
     const PartGrid& pg = grid_[wheel][static_cast<std::size_t>(part)];
     const std::vector<double>& f = *pg.values[output];
     double sum = 0.0;
@@ -277,7 +347,7 @@ class TableView {
   // Largest |value| of an output over the table (both wheels, the slot): its scale.
   double scale(int output, std::size_t slot) const {
     double m = 0.0;
-    const int part = lk::output_part(static_cast<lk::Output>(output));
+    const int part = part_of(output);
     for (std::size_t w = 0; w < 2; ++w) {
       const std::vector<double>& f = *grid_[w][static_cast<std::size_t>(part)].values[output];
       for (std::size_t i = slot; i < f.size(); i += kSlots) m = std::max(m, std::abs(f[i]));
@@ -301,6 +371,12 @@ class TableView {
     return index;
   }
   PartGrid grid_[2][lk::kNumParts];
+  static constexpr const char* kScaleNames[3] = {"creep_scale_xi", "creep_scale_eta", "creep_scale_phi"};
+  bool coupled_ = false;     // the creep part holds the per-creepage normal contact
+  bool normalised_ = false;  // format 2.1 normalised creep coordinates
+  bool swept_[3] = {};
+  double lo_[3] = {}, hi_[3] = {};
+  const std::vector<double>* scale_values_[2][3] = {};
 };
 
 // How a (state, wheel, slot, part) compares:
@@ -331,16 +407,20 @@ inline CellKind classify(const std::vector<StatusBits>& corners, StatusBits dire
 // and wear.
 struct PointKinds {
   CellKind kind[lk::kNumParts][kSlots];
-  TableView::Cell cell[lk::kNumParts];
+  TableView::Cell cell[lk::kNumParts][kSlots];  // per slot: normalised creep cells depend on it
 };
 
 inline PointKinds classify_point(const TableView& view, std::size_t wheel, const Point& p, const WheelValues& direct) {
   PointKinds k;
-  for (int part = 0; part < lk::kNumParts; ++part) k.cell[part] = view.cell(wheel, part, p);
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    const Point creep = view.creep_point(wheel, s, p);
+    for (int part = 0; part < lk::kNumParts; ++part)
+      k.cell[part][s] = view.cell(wheel, part, part >= lk::kCreep ? creep : p);
+  }
   for (std::size_t s = 0; s < kSlots; ++s) {
     for (int part = 0; part < lk::kNumParts; ++part)
-      k.kind[part][s] = classify(view.corner_status(wheel, part, k.cell[part], s), direct.status[part][s]);
-    const std::vector<double> a = view.corner_values(wheel, lk::kSemiAxisA, k.cell[lk::kNormal], s);
+      k.kind[part][s] = classify(view.corner_status(wheel, part, k.cell[part][s], s), direct.status[part][s]);
+    const std::vector<double> a = view.corner_values(wheel, lk::kSemiAxisA, k.cell[lk::kNormal][s], s);
     const bool elliptic = direct.value[lk::kSemiAxisA][s] > 0.0;
     const bool model_switch = std::any_of(a.begin(), a.end(), [&](double v) { return (v > 0.0) != elliptic; });
     auto inherit = [&](int part, bool base_jumps) {

@@ -31,6 +31,7 @@ Scene reduced_scene(const std::vector<double>& y, const std::vector<double>& loa
   s.grids.xi = xi;
   s.grids.eta = eta;
   s.grids.phi = phi;
+  s.creep_normalised = false;  // a study of physical creepage spacings (normalised: default test)
   return s;
 }
 

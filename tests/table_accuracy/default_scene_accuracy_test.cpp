@@ -71,6 +71,14 @@ std::string output_label(int o) {
          lk::output_name(static_cast<lk::Output>(o));
 }
 
+// An output's scale for the node test: its largest |value| in the table, or for the normalised
+// creep forces (stored as F / (mu N)) mu times the largest normal force.
+double node_scale(const TableView& view, const Scene& scene, int o, std::size_t s) {
+  if (view.normalised() && (o == lk::kFx || o == lk::kFy || o == lk::kMz))
+    return scene.tangential.friction * view.scale(lk::kNormalForce, s) * (o == lk::kMz ? 0.1 : 1.0);
+  return view.scale(o, s);
+}
+
 // At grid nodes the lookup returns the table's values, so it must equal the direct evaluation
 // there: proof that the direct path is the sweep's (same models, options, roll, slot rules).
 TEST(TableAccuracy, DirectEvaluationReproducesTheNodes) {
@@ -85,21 +93,41 @@ TEST(TableAccuracy, DirectEvaluationReproducesTheNodes) {
       p.v[k] = g[std::min(g.size() - 1, static_cast<std::size_t>(rng.uniform(0.0, static_cast<double>(g.size()))))];
     }
   }
+  // Normalised creep coordinates (format 2.1): a creep node is a physical creepage only for one
+  // wheel and slot (its scales); point i takes the node creepages of wheel i % 2, slot 0, and the
+  // creep-part outputs are compared there only.
+  if (view.normalised()) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      Point& p = points[i];
+      const Point node = p;
+      for (int k = 0; k < 3; ++k) {
+        const std::vector<double>& g = grid(f.scene, kXi + k);
+        if (g.size() < 2) continue;
+        const std::vector<double> v = creep_map::nodes(g.size());
+        const auto it = std::find(g.begin(), g.end(), node.v[kXi + k]);
+        p.v[kXi + k] = view.physical_creepage(i % 2, 0, k, node, v[static_cast<std::size_t>(it - g.begin())]);
+      }
+    }
+  }
   const std::vector<Direct> direct = evaluate_direct(f.scene, points);
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (std::size_t w = 0; w < 2; ++w) {
       const lk::Result r = f.lookup->query(static_cast<lk::Wheel>(w), to_state(*f.lookup, points[i]));
       for (std::size_t s = 0; s < kSlots; ++s)
         for (int o = 0; o < lk::kNumOutputs; ++o)
-          EXPECT_NEAR(r.contact[s].value[o], direct[i][w].value[o][s], 1e-9 * view.scale(o, s))
+          if (!view.normalised() || view.part_of(o) < lk::kCreep || (w == i % 2 && s == 0)) {
+            EXPECT_NEAR(r.contact[s].value[o], direct[i][w].value[o][s], 1e-9 * node_scale(view, f.scene, o, s))
               << output_label(o) << " slot " << s << " wheel " << w << " y " << points[i].v[kY];
+          }
     }
   }
 }
 
 struct Stats {
   std::size_t smooth = 0, jump = 0, over = 0;
-  double sum_sq = 0.0, max_abs = 0.0, max_ratio = 0.0, max_mu_n = 0.0, jump_max = 0.0;
+  Point worst{};
+  double worst_lookup = 0.0, worst_direct = 0.0;
+  double sum_mu_sq = 0.0, sum_sq = 0.0, max_abs = 0.0, max_ratio = 0.0, max_mu_n = 0.0, jump_max = 0.0;
 };
 
 TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
@@ -121,7 +149,10 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
       ASSERT_EQ(r.status & (lk::status::kOutOfRange | lk::status::kInvalidInput), 0u);
       const PointKinds kinds = classify_point(view, w, points[i], direct[i][w]);
       for (int o = 0; o < lk::kNumOutputs; ++o) {
-        const int part = lk::output_part(static_cast<lk::Output>(o));
+        const int part = view.part_of(o);
+        // Normalised creep part (format 2.1): fx, fy, mz are stored as F / (mu N) minus a law, so
+        // the table's second differences do not bound their error in N: judged against mu N below.
+        const bool normalised_force = view.normalised() && (o == lk::kFx || o == lk::kFy || o == lk::kMz);
         for (std::size_t s = 0; s < kSlots; ++s) {
           const CellKind kind = kinds.kind[part][s];
           if (kind == CellKind::kEmpty) continue;
@@ -135,10 +166,20 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
           ++st.smooth;
           st.sum_sq += err * err;
           st.max_abs = std::max(st.max_abs, err);
-          const double tolerance = kSafety * view.error_estimate(w, o, kinds.cell[part], s) + kFloor * view.scale(o, s);
+          if (o == lk::kFx || o == lk::kFy) {
+            const double rel = err / (mu * direct[i][w].value[lk::kNormalForce][s]);
+            if (rel > st.max_mu_n) {
+              st.worst = points[i];
+              st.worst_lookup = r.contact[s].value[o];
+              st.worst_direct = direct[i][w].value[o][s];
+            }
+            st.max_mu_n = std::max(st.max_mu_n, rel);
+            st.sum_mu_sq += rel * rel;
+          }
+          if (normalised_force) continue;
+          const double tolerance =
+              kSafety * view.error_estimate(w, o, kinds.cell[part][s], s) + kFloor * view.scale(o, s);
           st.max_ratio = std::max(st.max_ratio, err / tolerance);
-          if (o == lk::kFx || o == lk::kFy)
-            st.max_mu_n = std::max(st.max_mu_n, err / (mu * direct[i][w].value[lk::kNormalForce][s]));
           if (err > tolerance) {
             ++st.over;
             ADD_FAILURE() << output_label(o) << " slot " << s << " wheel " << w << " at y " << points[i].v[kY]
@@ -166,13 +207,62 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
   }
   for (int o : {lk::kFx, lk::kFy})
     for (std::size_t s = 0; s < kSlots; ++s)
-      std::printf("smooth cells: max |error of %s| / (mu N), slot %zu: %.3f\n", lk::output_name(static_cast<lk::Output>(o)),
-                  s, stats[o][s].max_mu_n);
+      std::printf("smooth cells: max |error of %s| / (mu N), slot %zu: %.3f  rms %.4f  (%zu cells)\n",
+                  lk::output_name(static_cast<lk::Output>(o)), s, stats[o][s].max_mu_n,
+                  std::sqrt(stats[o][s].sum_mu_sq / std::max<double>(1.0, static_cast<double>(stats[o][s].smooth))),
+                  stats[o][s].smooth);
+  for (int o : {lk::kFx, lk::kFy})
+    for (std::size_t s = 0; s < kSlots; ++s) {
+      const Stats& st = stats[o][s];
+      std::printf("  worst %s slot %zu at y %.5f load %.0f creepage (%.5f, %.5f, %.3f): lookup %.1f direct %.1f N\n",
+                  lk::output_name(static_cast<lk::Output>(o)), s, st.worst.v[kY], st.worst.v[kLoad], st.worst.v[kXi],
+                  st.worst.v[kEta], st.worst.v[kPhi], st.worst_lookup, st.worst_direct);
+    }
   // The classification found both kinds where the default scene has them: smooth tread and
   // flange cells, and jumps (tread contact jumps, flange onset, two-point, lift-off).
   for (std::size_t s = 0; s < kSlots; ++s) {
     EXPECT_GT(stats[lk::kFx][s].smooth, points.size() / 10) << "slot " << s;
     EXPECT_GT(stats[lk::kContactAngle][s].jump, 0u) << "slot " << s;
+  }
+}
+
+// The creepage part of the error alone: states on (y, load) nodes, random creepages, so only the
+// creep coordinates are interpolated (the y direction, with its contact jumps, is issue 15 item 2).
+// Reported, not asserted.
+TEST(TableAccuracy, DefaultSceneCreepageOffGrid) {
+  const Fixture& f = fixture();
+  const TableView view(f.table);
+  Random rng(kSeed + 2);
+  std::vector<Point> points(1000);
+  for (Point& p : points) {
+    for (int k = 0; k < kNumVars; ++k) {
+      const std::vector<double>& g = grid(f.scene, k);
+      p.v[k] = k >= kXi ? rng.uniform(g.front(), g.back())
+                        : g[std::min(g.size() - 1, static_cast<std::size_t>(rng.uniform(0.0, static_cast<double>(g.size()))))];
+    }
+  }
+  const std::vector<Direct> direct = evaluate_direct(f.scene, points);
+  const double mu = f.scene.tangential.friction;
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    for (int o : {lk::kFx, lk::kFy}) {
+      double max_rel = 0.0, sum_sq = 0.0;
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        for (std::size_t w = 0; w < 2; ++w) {
+          const PointKinds kinds = classify_point(view, w, points[i], direct[i][w]);
+          if (kinds.kind[lk::kCreep][s] != CellKind::kSmooth) continue;
+          const lk::Result r = f.lookup->query(static_cast<lk::Wheel>(w), to_state(*f.lookup, points[i]));
+          const double rel =
+              std::abs(r.contact[s].value[o] - direct[i][w].value[o][s]) / (mu * direct[i][w].value[lk::kNormalForce][s]);
+          max_rel = std::max(max_rel, rel);
+          sum_sq += rel * rel;
+          ++n;
+        }
+      }
+      std::printf("(y, load) on nodes, random creepages: %s slot %zu: max %.4f rms %.4f of mu N (%zu smooth cells)\n",
+                  lk::output_name(static_cast<lk::Output>(o)), s, max_rel, n ? std::sqrt(sum_sq / static_cast<double>(n)) : 0.0, n);
+      EXPECT_GT(n, 100u);
+    }
   }
 }
 

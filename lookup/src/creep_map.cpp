@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "creep_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace railtab::lookup::detail {
+namespace {
+
+inline double m(double x) noexcept { return x / (1.0 + std::abs(x)); }
+
+}  // namespace
+
+void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc* loc, double out[3]) noexcept {
+  const double* base = map.scale[wheel].data() + static_cast<std::size_t>(slot) * map.nodes * 3;
+  std::size_t origin = 0;
+  for (int d = 0; d < map.n_dims; ++d) origin += static_cast<std::size_t>(loc[map.var[d]].i) * map.stride[d];
+  if (map.n_dims == 2) {  // (y, load), the usual case: bilinear without the corner loop
+    const double t0 = loc[map.var[0]].t, t1 = loc[map.var[1]].t;
+    const double w00 = (1.0 - t0) * (1.0 - t1), w01 = (1.0 - t0) * t1, w10 = t0 * (1.0 - t1), w11 = t0 * t1;
+    const double* p00 = base + origin * 3;
+    const double* p01 = p00 + map.stride[1] * 3;
+    const double* p10 = p00 + map.stride[0] * 3;
+    const double* p11 = p10 + map.stride[1] * 3;
+    for (int k = 0; k < 3; ++k) out[k] = w00 * p00[k] + w01 * p01[k] + w10 * p10[k] + w11 * p11[k];
+    return;
+  }
+  out[0] = out[1] = out[2] = 0.0;
+  for (int corner = 0; corner < (1 << map.n_dims); ++corner) {
+    double w = 1.0;
+    std::size_t node = origin;
+    for (int d = 0; d < map.n_dims; ++d) {
+      const bool upper = (corner >> d) & 1;
+      const double t = loc[map.var[d]].t;
+      w *= upper ? t : 1.0 - t;
+      node += upper ? map.stride[d] : 0;
+    }
+    const double* v = base + node * 3;
+    out[0] += w * v[0];
+    out[1] += w * v[1];
+    out[2] += w * v[2];
+  }
+}
+
+double creep_coordinate(double q, double lo, double hi, double s) noexcept {
+  const double inv = 1.0 / s;
+  return creep_coordinate_normalised(q * inv, lo * inv, hi * inv);
+}
+
+double creep_coordinate_normalised(double x, double a, double b) noexcept {
+  // (m(x) - m(a)) / (m(b) - m(a)) over one common denominator: one division instead of four
+  // (the query path's cost), the same value to rounding.
+  const double ax = 1.0 + std::abs(x), aa = 1.0 + std::abs(a), ab = 1.0 + std::abs(b);
+  return -1.0 + 2.0 * ((x * aa - a * ax) * ab) / ((b * aa - a * ab) * ax);
+}
+
+void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) noexcept {
+  const double x = xi_n, y = eta_n + psi_n / 3.0;
+  const double r = std::sqrt(x * x + y * y);  // O(1) values: no need for hypot's care (or cost)
+  if (!(r > 0.0)) {
+    out[0] = out[1] = 0.0;
+    return;
+  }
+  const double w = 1.0 - std::min(r, 1.0);
+  const double g = 1.0 - w * w * w;
+  out[0] = -g * x / r;
+  out[1] = -g * y / r;
+}
+
+}  // namespace railtab::lookup::detail

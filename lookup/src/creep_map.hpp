@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: Apache-2.0
+// Normalised creep coordinates of format 2.1 (docs/table-format.md, "Normalised creep part";
+// docs/lookup.md): the creep and wear parts of such a table are tabulated over v in [-1, 1] per
+// creepage axis instead of the physical creepage, per (y, roll, load) node and slot, and store
+// the creep forces as F / (mu N) minus a saturation law. A query maps its physical creepages to v
+// with the scales of the slot's normal contact (interpolated at (y, roll, load)), interpolates,
+// and scales back to N. The generator's side is generator/sweep/creep_map.hpp: same formulas.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "grid.hpp"
+
+namespace railtab::lookup::detail {
+
+struct CreepMap {
+  bool active = false;            // the table has normalised creep coordinates
+  double friction = 0.0;          // mu of F / (mu N)
+  bool swept[3] = {};             // xi, eta, phi tabulated (else fixed: their value is used)
+  double lo[3] = {}, hi[3] = {};  // physical range of each swept axis (the scene's)
+  // Reciprocal scales 1/s_xi, 1/s_eta, 1/s_phi per node of the normal part's grid (its axes among
+  // y, roll, load, in file order) and slot: scale[wheel][(slot * nodes + node) * 3 + k]. The
+  // query interpolates the reciprocals (the same at the nodes, and no division on its path).
+  int n_dims = 0;
+  int var[3] = {};
+  int size[3] = {};
+  std::size_t stride[3] = {};     // in nodes
+  std::size_t nodes = 1;
+  std::vector<double> scale[2];
+};
+
+// The slot's reciprocal scales at the located (y, roll, load) cell (multilinear, as the normal part).
+void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc* loc, double out[3]) noexcept;
+
+// The coordinate v in [-1, 1] of physical creepage q in [lo, hi] at scale s > 0:
+// m(x) = x / (1 + |x|), v = -1 + 2 (m(q/s) - m(lo/s)) / (m(hi/s) - m(lo/s)).
+double creep_coordinate(double q, double lo, double hi, double s) noexcept;
+// The same with q, lo, hi already divided by s (x = q / s, a = lo / s, b = hi / s).
+double creep_coordinate_normalised(double x, double a, double b) noexcept;
+
+// The saturation law of the stored forces: F / (mu N) = stored + law(xi', eta', psi'), with
+// x = xi', y = eta' + psi' / 3, r = |(x, y)|, g = 1 - (1 - min(r, 1))^3, law = -g (x, y) / r.
+void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) noexcept;
+
+}  // namespace railtab::lookup::detail

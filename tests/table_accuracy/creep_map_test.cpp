@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: Apache-2.0
+// The normalised creep coordinates of format 2.1 exist twice, in the generator
+// (generator/sweep/creep_map.hpp) and in the lookup (lookup/src/creep_map.hpp, which links
+// nothing of the generator): both must give the same numbers, and the map must be what
+// docs/table-format.md says.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "creep_map.hpp"  // lookup/src
+#include "sweep/creep_map.hpp"
+#include "tangential/kalker_coefficients.hpp"
+
+namespace railtab {
+namespace {
+
+TEST(CreepMap, GeneratorAndLookupAgree) {
+  const double ranges[][2] = {{-0.004, 0.004}, {-0.3, 0.3}, {0.0, 0.01}, {-0.002, 0.006}};
+  for (const auto& r : ranges) {
+    for (double s : {1e-5, 1e-3, 7e-3, 0.2, 3.0}) {
+      for (int i = 0; i <= 40; ++i) {
+        const double v = -1.0 + 2.0 * i / 40.0;
+        const double q = creep_map::physical(v, r[0], r[1], s);
+        EXPECT_GE(q, r[0] - 1e-15);
+        EXPECT_LE(q, r[1] + 1e-15);
+        // Round trip, and the lookup's coordinate of the generator's creepage.
+        EXPECT_NEAR(creep_map::coordinate(q, r[0], r[1], s), v, 1e-9);
+        EXPECT_NEAR(lookup::detail::creep_coordinate(q, r[0], r[1], s), creep_map::coordinate(q, r[0], r[1], s), 1e-12);
+      }
+      EXPECT_DOUBLE_EQ(creep_map::physical(-1.0, r[0], r[1], s), r[0]);
+      EXPECT_DOUBLE_EQ(creep_map::physical(1.0, r[0], r[1], s), r[1]);
+    }
+  }
+  for (double x : {-3.0, -0.7, 0.0, 1e-4, 0.3, 0.99, 1.0, 2.5})
+    for (double y : {-1.2, 0.0, 0.4})
+      for (double p : {-0.5, 0.0, 2.0}) {
+        const std::array<double, 2> g = creep_map::law(x, y, p);
+        double l[2];
+        lookup::detail::creep_law(x, y, p, l);
+        EXPECT_EQ(g[0], l[0]);
+        EXPECT_EQ(g[1], l[1]);
+        EXPECT_LE(std::hypot(g[0], g[1]), 1.0 + 1e-15);  // |F| <= mu N
+      }
+}
+
+// Nodes uniform in v are dense near zero creepage and sparse in saturation: on a range reaching
+// 10 times the saturation creepage, half the nodes lie below about the saturation creepage.
+TEST(CreepMap, NodesFollowTheSaturation) {
+  const std::vector<double> v = creep_map::nodes(9);
+  ASSERT_EQ(v.front(), -1.0);
+  ASSERT_EQ(v[4], 0.0);
+  ASSERT_EQ(v.back(), 1.0);
+  const double s = 1e-3, hi = 10 * s;
+  EXPECT_LT(creep_map::physical(v[6], -hi, hi, s), 1.3 * s);
+  EXPECT_GT(creep_map::physical(v[7], -hi, hi, s), 2.0 * s);
+}
+
+// The law is Kalker's linear theory at small creepage: F / (mu N) = -(3 xi', 3 eta' + psi').
+TEST(CreepMap, LawIsLinearTheoryAtSmallCreepage) {
+  const double e = 1e-6;
+  EXPECT_NEAR(creep_map::law(e, 0, 0)[0], -3 * e, 1e-11);
+  EXPECT_NEAR(creep_map::law(0, e, 0)[1], -3 * e, 1e-11);
+  EXPECT_NEAR(creep_map::law(0, 0, e)[1], -e, 1e-11);
+  EXPECT_DOUBLE_EQ(creep_map::law(5.0, 0, 0)[0], -1.0);  // full slip
+}
+
+// The scales of an elliptic patch are Kalker's: s_xi = 3 mu N / (G ab C11) etc.
+TEST(CreepMap, ScalesOfAnEllipseAreKalkers) {
+  ContactPatch p;
+  p.normal_force = 78.5e3;
+  p.semi_axis_a = 6e-3;
+  p.semi_axis_b = 4e-3;
+  p.area = std::numbers::pi * p.semi_axis_a * p.semi_axis_b;
+  Material m;
+  m.youngs_modulus = 210e9;
+  m.poisson_ratio = 0.3;
+  const creep_map::Scales s = creep_map::scales(p, m, 0.3);
+  const KalkerCoefficients k = kalker_coefficients(1.5, 0.3);
+  const double g = m.shear_modulus(), ab = 24e-6;
+  EXPECT_NEAR(s.xi, 3 * 0.3 * 78.5e3 / (g * ab * k.c11), 1e-12 * s.xi);
+  EXPECT_NEAR(s.eta, 3 * 0.3 * 78.5e3 / (g * ab * k.c22), 1e-12 * s.eta);
+  EXPECT_NEAR(s.phi, 0.3 * 78.5e3 / (g * ab * std::sqrt(ab) * k.c23), 1e-12 * s.phi);
+  ContactPatch empty;
+  EXPECT_EQ(creep_map::scales(empty, m, 0.3).xi, creep_map::kNominal.xi);
+}
+
+}  // namespace
+}  // namespace railtab
