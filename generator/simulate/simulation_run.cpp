@@ -244,7 +244,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
 
       std::vector<std::string> names;
       for (std::size_t p : group) names.push_back(processors[p]);
-      WearPostProcessing wear(scene, names, sim.positions);
+      WearPostProcessing wear(scene, names, sim.positions, WearGrid{}, sim.halfspace_sample_every);
       RunSummary run = run_bogie(sim, *contact_model, lookup, direct, scene.tangential.friction, options.duration,
                                  dir / "trajectory.csv", wear);
       run.label = label;
@@ -355,6 +355,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   j["route_length_m"] = sim.route_length();
   j["running_distance_m"] = sim.running_distance;
   j["wear_steps"] = sim.wear_steps;
+  j["halfspace_sample_every"] = sim.halfspace_sample_every;
   j["lubrication_factor"] = sim.lubrication_factor;
   j["wear_scaling"] = "depth x (running distance per step / route distance sampled)";
   j["simulated_seconds_per_wall_second"] = simulation_speed(summary);
