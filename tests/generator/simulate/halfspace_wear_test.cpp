@@ -183,14 +183,32 @@ TEST(HalfspaceWear, SampledHalfspaceSeesEveryKthSampleWithKTimesItsDistance) {
 struct Table3Case {
   const char* name;
   double radius, load, speed_kmh, displacement;
+  const char* paper_area;      // Table 3 contact area elliptic / CONTACT / STRIPES [mm2]
+  const char* paper_pressure;  // Table 3 maximum pressure, the same order [MPa]
 };
+
+// Table 3's load is the normal force (its Table 6: normal 98.8 kN for R600's 99 kN); the
+// post-processors take the vertical force. Vertical = load x cos(g) with g the half-space patch's
+// reference angle (one fixed-point round from the rigid point's angle), so that the half-space
+// patch carries N = load and the others, whose patches sit within 0.5 mm of it, nearly so.
+double vertical_for_normal(const Scene& scene, const WheelContactGeometry& g, double normal, const Creepage& creepage) {
+  HalfspaceWheelWear exact(scene);
+  std::vector<StripWear> strips;
+  double vertical = normal * std::cos(g.points.at(0).contact_angle);
+  for (int round = 0; round < 3; ++round) {
+    exact.wheel_wear_at(g, vertical, creepage, 20.0, strips);
+    if (exact.last_result().patches.size() != 1) break;  // several patches: keep the rigid point's angle
+    vertical = normal * std::cos(exact.last_result().patches[0].contact_angle);
+  }
+  return vertical;
+}
 
 TEST(Table3PatchWear, DISABLED_AgainstHalfspace) {
   const Scene scene = contact_scene();
-  const Table3Case cases[] = {{"Tangent", 0.0, 78e3, 120.0, 0.0},
-                              {"R600", 600.0, 99e3, 120.0, 5.9e-3},
-                              {"R400", 400.0, 98e3, 93.0, 6.3e-3},
-                              {"R300", 300.0, 101e3, 80.0, 6.5e-3}};
+  const Table3Case cases[] = {{"Tangent", 0.0, 78e3, 120.0, 0.0, "135 / 130 / 125", "867 / 929 / 1229"},
+                              {"R600", 600.0, 99e3, 120.0, 5.9e-3, "74 / 51 / 70", "1994 / 3242 / 2995"},
+                              {"R400", 400.0, 98e3, 93.0, 6.3e-3, "72 / 59 / 84", "2038 / 2694 / 2417"},
+                              {"R300", 300.0, 101e3, 80.0, 6.5e-3, "77 / 77 / 155 (two-point)", "2132 / 3114 / 1782"}};
   const char* processors[] = {"hertz", "stripes-a", "stripes-ab", "kik-piotrowski"};
   std::printf("| case | post-processor | worn area / half-space | L1(depth - half-space) / half-space area | "
               "centroid u [mm] (half-space) | share u < 0 | patches |\n|---|---|---|---|---|---|---|\n");
@@ -199,7 +217,10 @@ TEST(Table3PatchWear, DISABLED_AgainstHalfspace) {
     motion.speed = c.speed_kmh / 3.6;
     motion.curvature = c.radius > 0.0 ? 1.0 / c.radius : 0.0;
     motion.spin_speed = motion.speed / 0.46;
-    const double load[vehicle::kWheels] = {0.0, c.load};  // the outer (right) wheel only
+    const ContactGeometrySolver solver = make_geometry_solver(scene);
+    const WheelContactGeometry g = solver.solve({-c.displacement, solver.equilibrium_roll(-c.displacement)}).wheels[1];
+    ASSERT_FALSE(g.points.empty()) << c.name;
+    const double load[vehicle::kWheels] = {0.0, vertical_for_normal(scene, g, c.load, Creepage{})};  // outer wheel
     WearAccumulator exact(scene, "halfspace");
     const std::uint32_t bits = exact.sample(-c.displacement, load, motion, 1.0);
     ASSERT_EQ(exact.failures(), 0) << c.name;
@@ -218,6 +239,28 @@ TEST(Table3PatchWear, DISABLED_AgainstHalfspace) {
       std::printf("| %s | %s | %.2f | %.2f | %+.2f (%+.2f) | %.1f %% | |\n", c.name, p, d.area / h.area, l1 / h.area,
                   d.centroid * 1e3, (d.centroid - h.centroid) * 1e3, 100 * d.flange_side);
     }
+  }
+  // The half-space patches of the same states beside Table 3's contact columns.
+  std::printf("\n| case | half-space patch: wheel u [mm], contact angle [deg], N [kN], area [mm2], p_max [MPa], "
+              "fx, fy [kN], flags | Table 3 area E / C / S [mm2] | p_max E / C / S [MPa] |\n|---|---|---|---|\n");
+  const ContactGeometrySolver solver = make_geometry_solver(scene);
+  for (const Table3Case& c : cases) {
+    vehicle::WheelsetMotion motion;
+    motion.speed = c.speed_kmh / 3.6;
+    motion.curvature = c.radius > 0.0 ? 1.0 / c.radius : 0.0;
+    motion.spin_speed = motion.speed / 0.46;
+    const double y = -c.displacement;
+    const WheelContactGeometry g = solver.solve({y, solver.equilibrium_roll(y)}).wheels[1];
+    HalfspaceWheelWear exact(scene);
+    std::vector<StripWear> strips;
+    exact.wheel_wear(g, 1, vertical_for_normal(scene, g, c.load, Creepage{}), motion, strips);
+    std::printf("| %s |", c.name);
+    for (const halfspace::HalfspacePatch& hp : exact.last_result().patches) {
+      std::printf(" %+.1f, %.1f, %.1f, %.0f, %.0f, %+.1f, %+.1f, 0x%x;", hp.wheel_u * 1e3,
+                  hp.contact_angle * 180 / std::numbers::pi, hp.normal.normal_force * 1e-3, hp.normal.area * 1e6,
+                  hp.normal.max_pressure * 1e-6, hp.tangential.fx * 1e-3, hp.tangential.fy * 1e-3, hp.status);
+    }
+    std::printf(" | %s | %s |\n", c.paper_area, c.paper_pressure);
   }
 }
 
