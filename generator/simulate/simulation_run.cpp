@@ -286,6 +286,8 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
           WearAccumulator& acc = wear.accumulator(j, i);
           if (acc.distance() > 0.0) acc.scale(step_distance / acc.distance());
           step.wear_failures += acc.failures();
+          step.wear_not_converged += acc.not_converged();
+          step.wear_status |= acc.status_seen();
           step.wear_clipped_area += acc.clipped_area(0) + acc.clipped_area(1);
           depth.push_back({acc.depth(0), acc.depth(1)});
           for (const auto& d : depth.back()) {
@@ -372,6 +374,8 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
                            {"generate_seconds", s.generate_seconds},
                            {"dynamics", s.runs.empty() ? "" : s.runs.front().label},
                            {"wear_failures", s.wear_failures},
+                           {"wear_not_converged", s.wear_not_converged},
+                           {"wear_status", status::describe(s.wear_status)},
                            {"wear_clipped_area_m2", s.wear_clipped_area}};
       jm["steps"].push_back(js);
     }

@@ -171,6 +171,10 @@ TEST(HalfspaceWear, SampledHalfspaceSeesEveryKthSampleWithKTimesItsDistance) {
   EXPECT_DOUBLE_EQ(wear.accumulator(0, 0).distance(), 7 * 2.9);
   EXPECT_DOUBLE_EQ(wear.accumulator(1, 0).distance(), 9 * 2.9);
   EXPECT_EQ(wear.accumulator(1, 0).failures(), 0);
+  // The wear solves' status is kept for summary.json: converged tread contacts, none flagged.
+  EXPECT_NE(wear.accumulator(1, 0).status_seen() & status::kConverged, 0u);
+  EXPECT_EQ(wear.accumulator(1, 0).status_seen() & status::kNotConverged, 0u);
+  EXPECT_EQ(wear.accumulator(1, 0).not_converged(), 0);
   EXPECT_THROW(WearPostProcessing(scene, {"halfspace"}, {"leading"}, WearGrid{}, 0), Error);
 }
 
