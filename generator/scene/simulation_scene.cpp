@@ -155,15 +155,12 @@ void parse_route(const Context& file, const toml::table& root, SimulationScene& 
 }  // namespace
 
 void check_wear_post_processor(const std::string& name) {
-  RAILTAB_CHECK(name != "halfspace",
-                "wear post-processor '{}': the exact half-space model (src/halfspace) is not "
-                "connected to the wear post-processing yet (generator/simulate/wheel_wear.hpp says where)",
-                name);
+  if (name == "halfspace") return;  // the exact half-space model (simulate/halfspace_wheel_wear.hpp)
   try {
     parse_normal_model(name);
   } catch (const Error&) {
     throw Error(fmt::format("unknown wear post-processor '{}' (expected hertz, linder, "
-                            "kik-piotrowski, stripes-a, stripes-ab; halfspace is reserved)",
+                            "kik-piotrowski, stripes-a, stripes-ab, halfspace)",
                             name));
   }
 }
@@ -195,7 +192,7 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
   }
   Section k(file, "simulation", sim,
          {"name", "description", "contact_scene", "dynamics_model", "wear_post_processors", "positions", "speed", "time_step", "initial_y",
-          "wear_steps", "running_distance", "lubrication_factor", "profile_smoothing", "trajectory_interval"});
+          "wear_steps", "running_distance", "lubrication_factor", "profile_smoothing", "halfspace_sample_every", "trajectory_interval"});
   scene.name = k.node("name") ? k.string(*k.node("name"), "name")
                               : std::filesystem::path(source_name).stem().string();
   if (k.node("description")) scene.description = k.string(*k.node("description"), "description");
@@ -222,6 +219,7 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
   scene.running_distance = k.number("running_distance", 0.0, positive, "> 0 m", true);
   scene.lubrication_factor = k.number("lubrication_factor", 5.5, [](double v) { return v >= 1.0; }, ">= 1");
   scene.profile_smoothing = k.number("profile_smoothing", 0.0, non_negative, ">= 0 m");
+  scene.halfspace_sample_every = k.integer("halfspace_sample_every", 1, 1, 1000);
   scene.trajectory_interval = k.number("trajectory_interval", scene.trajectory_interval, positive, "> 0 m");
 
   parse_vehicle(file, root, scene.vehicle);

@@ -32,6 +32,9 @@ struct SimulationScene {
   double running_distance = 0.0;           // total distance the wear stands for [m]
   double lubrication_factor = 5.5;         // k_dry divisor: 5.5 natural, 11 lubricated [-]
   double profile_smoothing = 0.0;          // moving-average length of the wear depth [m]
+  int halfspace_sample_every = 1;          // the "halfspace" post-processor sees every k-th wear
+                                           // sample, standing for k revolutions (its solves are
+                                           // ~1000x slower than the others'); 1 = all [-]
   double trajectory_interval = 0.5;        // distance between trajectory CSV rows [m]
   vehicle::BogieParameters vehicle;        // [vehicle]
   std::vector<vehicle::TrackSection> route;  // [[route.section]], transitions resolved
@@ -42,7 +45,7 @@ struct SimulationScene {
 };
 
 // Throws railtab::Error naming the known wear post-processors (simulate/wheel_wear.hpp) for an
-// unknown name, and saying that "halfspace" (the exact half-space model) is not connected yet.
+// unknown name.
 void check_wear_post_processor(const std::string& name);
 
 // Read a simulation scene. Unknown keys, missing required keys, wrong types, non-finite or

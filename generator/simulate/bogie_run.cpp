@@ -87,14 +87,17 @@ WheelsetSample wheelset_sample(int wheelset, const vehicle::ContactSnapshot& sna
 }
 
 WearPostProcessing::WearPostProcessing(const Scene& scene, const std::vector<std::string>& post_processors,
-                                       const std::vector<std::string>& positions, const WearGrid& grid)
+                                       const std::vector<std::string>& positions, const WearGrid& grid,
+                                       int halfspace_every)
     : post_processors_(post_processors), positions_(positions) {
+  RAILTAB_CHECK(halfspace_every >= 1, "half-space sample stride must be >= 1, got {}", halfspace_every);
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const std::string& p = positions[i];
     RAILTAB_CHECK(p == "leading" || p == "trailing", "wear position '{}': expected \"leading\" or \"trailing\"", p);
     position_of_wheelset_[p == "leading" ? 0 : 1] = static_cast<int>(i);
   }
   for (const std::string& name : post_processors) {
+    every_.push_back(name == "halfspace" ? halfspace_every : 1);
     for (std::size_t i = 0; i < positions.size(); ++i) {
       accumulators_.push_back(std::make_unique<WearAccumulator>(scene, name, grid));
     }
@@ -110,8 +113,11 @@ void WearPostProcessing::sample(const WheelsetSample& sample) {
   const auto t0 = Clock::now();
   if (record_) record_->push_back(sample);
   const auto position = static_cast<std::size_t>(position_of_wheelset_[static_cast<std::size_t>(sample.wheelset)]);
+  const long n = seen_[static_cast<std::size_t>(sample.wheelset)]++;
   for (std::size_t p = 0; p < post_processors_.size(); ++p) {
-    accumulator(p, position).sample(sample.y_relative, sample.vertical_force, sample.motion, sample.distance);
+    if (n % every_[p] != 0) continue;  // a sampled post-processor: this sample stands for `every` of them
+    accumulator(p, position).sample(sample.y_relative, sample.vertical_force, sample.motion,
+                                    sample.distance * every_[p]);
   }
   wall_seconds_ += seconds_since(t0);
 }

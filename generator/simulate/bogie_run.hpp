@@ -40,10 +40,13 @@ WheelsetSample wheelset_sample(int wheelset, const vehicle::ContactSnapshot& sna
 class WearPostProcessing {
  public:
   // `scene`: the contact scene of the wheel profile the dynamics runs on. `positions`: the
-  // wheelsets whose wear is kept ("leading", "trailing"). Throws railtab::Error for an unknown
-  // post-processor or position.
+  // wheelsets whose wear is kept ("leading", "trailing"). `halfspace_every`: the "halfspace"
+  // post-processor gets only every k-th sample of each wheelset (the 1st, k+1-th, ...), with k
+  // times its distance (SimulationScene::halfspace_sample_every). Throws railtab::Error for an
+  // unknown post-processor or position.
   WearPostProcessing(const Scene& scene, const std::vector<std::string>& post_processors,
-                     const std::vector<std::string>& positions, const WearGrid& grid = {});
+                     const std::vector<std::string>& positions, const WearGrid& grid = {},
+                     int halfspace_every = 1);
 
   bool counts(int wheelset) const;            // is this wheelset's wear kept?
   void sample(const WheelsetSample& sample);  // to every post-processor's accumulator
@@ -61,6 +64,8 @@ class WearPostProcessing {
   std::vector<std::string> positions_;
   std::array<int, 2> position_of_wheelset_{-1, -1};  // index into positions_, -1 = not kept
   std::vector<std::unique_ptr<WearAccumulator>> accumulators_;  // post_processor-major
+  std::vector<int> every_;                    // per post-processor: sample stride [-]
+  std::array<long, 2> seen_{0, 0};            // samples handed on per wheelset
   std::vector<WheelsetSample>* record_ = nullptr;
   double wall_seconds_ = 0.0;
 };

@@ -244,7 +244,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
 
       std::vector<std::string> names;
       for (std::size_t p : group) names.push_back(processors[p]);
-      WearPostProcessing wear(scene, names, sim.positions);
+      WearPostProcessing wear(scene, names, sim.positions, WearGrid{}, sim.halfspace_sample_every);
       RunSummary run = run_bogie(sim, *contact_model, lookup, direct, scene.tangential.friction, options.duration,
                                  dir / "trajectory.csv", wear);
       run.label = label;
@@ -286,6 +286,8 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
           WearAccumulator& acc = wear.accumulator(j, i);
           if (acc.distance() > 0.0) acc.scale(step_distance / acc.distance());
           step.wear_failures += acc.failures();
+          step.wear_not_converged += acc.not_converged();
+          step.wear_status |= acc.status_seen();
           step.wear_clipped_area += acc.clipped_area(0) + acc.clipped_area(1);
           depth.push_back({acc.depth(0), acc.depth(1)});
           for (const auto& d : depth.back()) {
@@ -355,6 +357,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   j["route_length_m"] = sim.route_length();
   j["running_distance_m"] = sim.running_distance;
   j["wear_steps"] = sim.wear_steps;
+  j["halfspace_sample_every"] = sim.halfspace_sample_every;
   j["lubrication_factor"] = sim.lubrication_factor;
   j["wear_scaling"] = "depth x (running distance per step / route distance sampled)";
   j["simulated_seconds_per_wall_second"] = simulation_speed(summary);
@@ -371,6 +374,8 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
                            {"generate_seconds", s.generate_seconds},
                            {"dynamics", s.runs.empty() ? "" : s.runs.front().label},
                            {"wear_failures", s.wear_failures},
+                           {"wear_not_converged", s.wear_not_converged},
+                           {"wear_status", status::describe(s.wear_status)},
                            {"wear_clipped_area_m2", s.wear_clipped_area}};
       jm["steps"].push_back(js);
     }

@@ -42,6 +42,8 @@ struct StepSummary {
   double generate_seconds = 0.0;           // table generation wall time [s] (0 with --direct)
   std::vector<RunSummary> runs;            // the dynamics run this step's wear came from
   int wear_failures = 0;                   // wear samples that failed on a wheel [-]
+  int wear_not_converged = 0;              // wheel solves of the wear flagged not_converged [-]
+  std::uint32_t wear_status = 0;           // OR of the wear solves' status bits
   double wear_clipped_area = 0.0;          // wear outside the wear grid, not added [m2]
 };
 

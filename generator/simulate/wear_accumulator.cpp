@@ -68,8 +68,10 @@ std::uint32_t WearAccumulator::sample(double y_relative, const double (&load)[ve
       continue;
     }
     try {
-      bits |= wheel_wear_->wheel_wear(geometry.wheels[static_cast<std::size_t>(w)], w, load[w],
-                                      motion, pending_);
+      const StatusBits wheel_bits = wheel_wear_->wheel_wear(geometry.wheels[static_cast<std::size_t>(w)], w,
+                                                            load[w], motion, pending_);
+      if (wheel_bits & status::kNotConverged) ++not_converged_;
+      bits |= wheel_bits;
     } catch (const Error&) {
       ++failures_;
       bits |= status::kFailed;
@@ -77,6 +79,7 @@ std::uint32_t WearAccumulator::sample(double y_relative, const double (&load)[ve
     }
     for (const StripWear& s : pending_) add_strip(w, s.wheel_u, s.width_u, s.depth_rate * distance);
   }
+  status_seen_ |= bits;
   return bits;
 }
 
@@ -122,6 +125,8 @@ double WearAccumulator::clipped_area(int wheel) const {
 double WearAccumulator::distance() const { return distance_; }
 int WearAccumulator::samples() const { return samples_; }
 int WearAccumulator::failures() const { return failures_; }
+std::uint32_t WearAccumulator::status_seen() const { return status_seen_; }
+int WearAccumulator::not_converged() const { return not_converged_; }
 
 void WearAccumulator::scale(double factor) {
   RAILTAB_CHECK(std::isfinite(factor) && factor >= 0.0, "wear scale factor must be finite and >= 0, got {}", factor);

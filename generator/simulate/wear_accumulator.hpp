@@ -54,6 +54,8 @@ class WearAccumulator {
   double distance() const;                              // sum of sample distances [m]
   int samples() const;
   int failures() const;
+  std::uint32_t status_seen() const;  // OR of the status bits of every wheel solved so far
+  int not_converged() const;          // wheel solves flagged kNotConverged (best estimate kept) [-]
   void scale(double factor);                            // multiply every depth (mileage scaling)
 
   // Worn area of strips that fell outside the grid and was therefore NOT added [m2]: should be 0;
@@ -72,6 +74,8 @@ class WearAccumulator {
   double distance_ = 0.0;
   int samples_ = 0;
   int failures_ = 0;
+  std::uint32_t status_seen_ = 0;
+  int not_converged_ = 0;
   // Reused between samples (it only grows): one accumulator per running simulation.
   std::vector<StripWear> pending_;  // one wheel's strips, added only when its whole chain succeeded
 };

@@ -2,8 +2,8 @@
 // The contact model of each wear post-processor: normal model + FASTSIM + Archard/KTH per wheel.
 #include "simulate/wheel_wear.hpp"
 
-
 #include "core/check.hpp"
+#include "simulate/halfspace_wheel_wear.hpp"
 #include "normal/normal_model.hpp"
 #include "scene/simulation_scene.hpp"
 
@@ -70,6 +70,7 @@ class FastsimWheelWear final : public WheelWear {
 
 std::unique_ptr<WheelWear> make_wheel_wear(const Scene& scene, const std::string& name) {
   check_wear_post_processor(name);
+  if (name == "halfspace") return std::make_unique<HalfspaceWheelWear>(scene);
   return std::make_unique<FastsimWheelWear>(scene, parse_normal_model(name));
 }
 

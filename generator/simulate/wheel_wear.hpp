@@ -8,9 +8,8 @@
 // Post-processors by name: "hertz" (elliptic: Hertz + FASTSIM on the ellipse, as Gensys),
 // "stripes-a", "stripes-ab", "kik-piotrowski", "linder" (the non-elliptic normal models +
 // strip-wise FASTSIM): FastsimWheelWear, one class for all, the normal model is the difference.
-// "halfspace" is reserved for the exact half-space model (src/halfspace): a class implementing
-// WheelWear with that solver, returned by make_wheel_wear; until then the name is refused with
-// a message saying so (check_wear_post_processor).
+// "halfspace": the exact half-space model (src/halfspace), HalfspaceWheelWear
+// (halfspace_wheel_wear.hpp), seed 001's CONTACT.
 #pragma once
 
 #include <memory>
