@@ -314,10 +314,18 @@ std::vector<bool> pareto_front(const std::vector<double>& time, const std::vecto
   return front;
 }
 
+// CONTACT's block C runs are the built-in S1002 wheel on the built-in UIC60 rail at 1:40: a scene with
+// other profiles (a measured worn pair) or another cant is compared with the fallback reference.
+bool contact_reference_applies(const Scene& scene) {
+  return scene.wheel.name == "s1002" && scene.wheel.file.empty() && scene.rail.name == "uic60" &&
+         scene.rail.file.empty() && scene.track.rail_inclination == 1.0 / 40.0;
+}
+
 SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccuracyOptions& opt) {
   const Clock::time_point start = Clock::now();
   SpeedAccuracyResult res;
-  const bool have_ref = !opt.reference_csv.empty() && std::filesystem::exists(opt.reference_csv);
+  const bool have_ref = !opt.reference_csv.empty() && std::filesystem::exists(opt.reference_csv) &&
+                        contact_reference_applies(scene);
   res.contact_reference = have_ref;
   res.states = have_ref ? read_contact_states(opt.reference_csv, opt) : target_states(opt, scene);
   const std::vector<SaState>& st0 = res.states;
@@ -352,6 +360,9 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
   const std::size_t ns = res.states.size();
 
   if (!have_ref) {
+    const char* no_contact_reason = contact_reference_applies(scene)
+                                        ? "no CONTACT reference found"
+                                        : "CONTACT's reference is S1002 on UIC60 at 1:40, not this scene's pair";
     // Fallback reference: the exact half-space model (default), or a fine fast-model setting.
     Chain c = base;
     c.normal.model = opt.fallback_reference.model;
@@ -367,9 +378,9 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
     }
     res.exact_reference = opt.fallback_reference.model == NormalModel::halfspace;
     res.reference = res.exact_reference
-                        ? fmt::format("exact half-space model (railtab, {:g} mm elements; no CONTACT reference found)",
-                                      base.halfspace.element_size * 1e3)
-                        : fmt::format("finest STRIPES ({}; no CONTACT reference found)", opt.fallback_reference.label());
+                        ? fmt::format("exact half-space model (railtab, {:g} mm elements; {})",
+                                      base.halfspace.element_size * 1e3, no_contact_reason)
+                        : fmt::format("finest STRIPES ({}; {})", opt.fallback_reference.label(), no_contact_reason);
   } else {
     res.reference = "CONTACT half-space (block C, ../shared/reference)";
   }

@@ -140,6 +140,10 @@ struct SpeedAccuracyResult {
 
 // Runs everything; throws railtab::Error on fatal problems (unreadable reference, no gnuplot is
 // not its business).
+// Whether CONTACT's block C reference (S1002 on UIC60 at 1:40) describes this scene's pair; when it
+// does not, measure_speed_accuracy uses the fallback reference even if the CSV exists.
+bool contact_reference_applies(const Scene& scene);
+
 SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccuracyOptions& options);
 
 // Marks Pareto-optimal points (minimise both); NaN points are never on the front.

@@ -124,6 +124,17 @@ TEST(SpeedAccuracy, ParetoFrontIsNonDominated) {
   EXPECT_EQ(f, (std::vector<bool>{true, true, false, true, false, false}));
 }
 
+TEST(SpeedAccuracy, ContactReferenceOnlyForItsOwnPair) {
+  // A worn scene must not be measured against CONTACT's S1002/UIC60 runs.
+  const fs::path tables = fs::path(RAILTAB_SOURCE_DIR) / "tables";
+  EXPECT_TRUE(contact_reference_applies(load_scene(tables / "default.toml")));
+  EXPECT_FALSE(contact_reference_applies(load_scene(tables / "worn_rail.toml")));
+  EXPECT_FALSE(contact_reference_applies(load_scene(tables / "worn_miniprof.toml")));
+  Scene canted = load_scene(tables / "default.toml");
+  canted.track.rail_inclination = 1.0 / 20.0;
+  EXPECT_FALSE(contact_reference_applies(canted));
+}
+
 TEST(SpeedAccuracy, TinyRunAgainstContact) {
   const fs::path ref = fs::path(RAILTAB_SHARED_DIR) / "reference" / "blockC_sweep_integer_dy.csv";
   if (!fs::exists(ref)) GTEST_SKIP() << ref.string() << " absent";
