@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace railtab::lookup::detail {
 
@@ -23,10 +24,21 @@ struct RawFileLayout {
   std::size_t sizeof_size = 8;    // bytes of a length
 };
 
+// The layout of the file that holds `object` (any open object or attribute of it), or "" and
+// the problem. Also used by the generator's table reader (generator/CMakeLists.txt compiles this
+// file into railtab::table too: neither library may link the other).
+std::string raw_file_layout(hid_t object, RawFileLayout& out);
+
 // Reads the scalar variable-length string attribute `attr` into `out`. Returns "" on success,
 // else the problem (e.g. "its global heap at 4096 is corrupt: object 3 runs past the
 // collection"). Never reads more than `max_bytes` of string.
 std::string read_vlen_string_attribute(hid_t attr, const RawFileLayout& file,
                                        std::size_t max_bytes, std::string& out);
+
+// The same for a scalar or 1-D attribute of `count` variable-length strings (`count` = the
+// attribute's number of elements, at most 4096); `max_bytes` bounds each string.
+std::string read_vlen_string_attribute(hid_t attr, const RawFileLayout& file,
+                                       std::size_t max_bytes, std::size_t count,
+                                       std::vector<std::string>& out);
 
 }  // namespace railtab::lookup::detail
