@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Builds the libFuzzer targets (fuzz/, clang-14 with ASan+UBSan) and runs each for a bounded time
-# on a scratch copy of its seed corpus (fuzz/corpus/<name>/): the profile readers, the scene
-# reader and the table loader. A crash, a sanitizer report, a timeout (> 10 s for one input) or an
-# allocation above 2 GB fails the run and leaves the input in build/fuzz/artifacts/.
+# Builds the libFuzzer targets (fuzz/, clang 14 with ASan+UBSan, in build/asan) and runs each for
+# a bounded time on a scratch copy of its seed corpus (fuzz/corpus/<name>/): the profile readers,
+# the scene reader and the table loader. Every committed input is run first (libFuzzer runs the
+# whole corpus before it mutates), so the regression inputs (e.g. fuzz/corpus/table/
+# crash_hdf5_vlen_read.h5) are checked on every run. A crash, a sanitizer report, a timeout
+# (> 10 s for one input) or an allocation above 2 GB fails the run (exit != 0, CI fails) and
+# leaves the input in build/fuzz/artifacts/.
 # Usage: bash scripts/fuzz.sh [seconds per target, default 60] [target...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,23 +14,9 @@ seconds=${1:-60}
 shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(fuzz_profile fuzz_scene fuzz_table_load)
-# The fuzz toolchain is not in scripts/install-deps.sh (CI does not run this script): install it here.
-fuzz_packages=(clang-14 libclang-rt-14-dev llvm-14)
-missing=()
-for p in "${fuzz_packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  sudo_cmd=()
-  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-  "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
-fi
-# -fsized-deallocation: clang 14 leaves C++14 sized delete off by default (lookup/src/table_data.hpp uses it).
-flags="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -fsized-deallocation"
-CC=clang-14 CXX=clang++-14 cmake -S . -B build/fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DRAILTAB_BUILD_FUZZ=ON -DRAILTAB_BUILD_TESTS=OFF -DRAILTAB_BUILD_BENCH=OFF \
-  -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" > build/fuzz-configure.log
-cmake --build build/fuzz --parallel "$(nproc)" --target "${targets[@]}"
+# build/asan: the same clang ASan+UBSan build as scripts/sanitize.sh asan (scripts/asan_build.sh,
+# which says why each flag): built once, the fuzz targets only link against it.
+bash scripts/asan_build.sh "${targets[@]}"
 
 mkdir -p build/fuzz/artifacts
 status=0
@@ -42,7 +31,7 @@ for t in "${targets[@]}"; do
   leaks=1
   [ "$t" = fuzz_table_load ] && leaks=0
   if ! ASAN_OPTIONS="detect_leaks=$leaks:allocator_may_return_null=1" UBSAN_OPTIONS=print_stacktrace=1 \
-      build/fuzz/fuzz/"$t" "$work" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+      build/asan/fuzz/"$t" "$work" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
       -malloc_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build/fuzz/artifacts/"$t"- \
       > build/fuzz/"$t".log 2>&1; then
     echo "fuzz: $t FAILED (build/fuzz/$t.log, inputs in build/fuzz/artifacts/):" >&2
