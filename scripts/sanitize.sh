@@ -2,10 +2,11 @@
 # SPDX-License-Identifier: Apache-2.0
 # Sanitizer runs (issue 19, docs/reliability.md). Both are CI stages (.ci/run); any report fails.
 #   asan: build/asan (clang 14, ASan + UBSan, scripts/asan_build.sh) of the core, the profile
-#         readers and the lookup, and their unit tests: test_core, test_profile, test_lookup.
-#         Left out for the CI time budget: the other layers' tests (geometry, normal,
-#         tangential, wear, half-space) and the generator suites; the `debug` preset (gcc
-#         ASan+UBSan) runs the whole suite by hand: docs/reliability.md.
+#         readers, the scene reader (and so src/) and the lookup, and their unit tests:
+#         test_core, test_profile, test_generator_scene, test_lookup. Left out for the CI time
+#         budget: the other layers' tests (geometry, normal, tangential, wear, half-space) and
+#         the other generator suites; the `debug` preset (gcc ASan+UBSan) runs the whole suite
+#         by hand: docs/reliability.md.
 #   tsan: build/tsan (clang 14, ThreadSanitizer) of the lookup and all of test_lookup (its
 #         eight-thread query tests share one Table, as a simulation does), with scripts/tsan.supp.
 #         NOT the sweep (`railtab generate`): its threads are oneTBB's, and Debian's libtbb is not
@@ -23,7 +24,7 @@ run() {  # program [gtest arguments]: one test program, its name and result prin
 }
 case "$mode" in
   asan)
-    tests=(test_core test_profile test_lookup)
+    tests=(test_core test_profile test_generator_scene test_lookup)
     bash scripts/asan_build.sh "${tests[@]}"
     # halt_on_error: the first report ends the program with an error; detect_leaks: a leak too
     # (libhdf5 frees its own at exit). UBSan is built with -fno-sanitize-recover=all.
