@@ -34,6 +34,7 @@ case "$mode" in
     ;;
   tsan)
     flags="-fsanitize=thread -fno-omit-frame-pointer -fsized-deallocation"
+    mkdir -p build
     if [ ! -f build/tsan/CMakeCache.txt ]; then
       CC=clang-14 CXX=clang++-14 cmake -S . -B build/tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug \
         -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
