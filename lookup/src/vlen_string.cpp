@@ -132,6 +132,25 @@ std::string string_from_heap(const unsigned char* ref, const RawFileLayout& file
 
 }  // namespace
 
+std::string unchecksummed_metadata_problem(const std::string& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";  // the caller's own open reports the problem
+  for (std::uint64_t offset = 0;; offset = offset == 0 ? 512 : 2 * offset) {
+    unsigned char head[9] = {};
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(offset));
+    if (!in.read(reinterpret_cast<char*>(head), sizeof head)) return "";
+    if (std::memcmp(head, kSignature, sizeof kSignature) != 0) continue;
+    const unsigned version = head[8];
+    if (version >= 2) return "";
+    return "HDF5 superblock version " + std::to_string(version) +
+           " (metadata without checksums): written by an old railtab (table format 1.0, no "
+           "checksums) or another tool, which this reader refuses: regenerate it with "
+           "`railtab generate <scene.toml>`";
+  }
+}
+
 std::string raw_file_layout(hid_t object, RawFileLayout& out) {
   const hid_t file = H5Iget_file_id(object);
   if (file < 0) return "cannot find the file of the object";
