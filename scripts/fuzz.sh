@@ -59,7 +59,7 @@ for t in "${targets[@]}"; do
   fi
   done_runs=$(sed -n 's/^stat::number_of_executed_units: *//p' build/fuzz/"$t".log)
   if [ -n "$done_runs" ] && [ "$done_runs" -lt "$n" ]; then
-    echo "fuzz: $t: WARNING: the $seconds s cap stopped it after $done_runs of $n executions (not reproducible)" >&2
+    echo "fuzz: $t: WARNING: the $seconds s cap stopped it after $done_runs of $n executions (less work than the fixed count)" >&2
   fi
   # Executions per second and coverage (edges) for the record.
   grep -E "stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb" build/fuzz/"$t".log |
