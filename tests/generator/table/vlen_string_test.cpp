@@ -13,6 +13,7 @@
 
 #include "core/check.hpp"
 #include "table/h5_util.hpp"
+#include "table/table_io.hpp"
 #include "table/typed_attributes.hpp"
 
 namespace railtab {
@@ -61,6 +62,23 @@ TEST(VlenStrings, LegacyVariableLengthStringsReadExactly) {
 // tests/data/corrupt_string_attribute.h5: one byte of the heap reference of the `axes` attribute
 // of /right/normal/max_pressure changed (h5dump -A crashes on it with SIGSEGV). Before: the
 // generator's reader crashed the same way; now: an error naming the problem.
+// The generator's table reader (inspect, merge, generate --resume) refuses a format-1.0 table
+// (HDF5 superblock 0, metadata without checksums) before libhdf5 opens it, with the command
+// that regenerates it (libhdf5 is not safe on corrupt unchecksummed metadata, issue 19 fuzzing).
+TEST(TableReaderRefusal, Format10TableIsRefusedBeforeOpening) {
+  const std::string path = RAILTAB_SOURCE_DIR "/tests/data/corrupt_string_attribute.h5";
+  try {
+    (void)read_table(path);
+    ADD_FAILURE() << "a format-1.0 table was read";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    EXPECT_NE(msg.find("HDF5 superblock version 0"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("table format 1.0, no checksums"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("regenerate it with `railtab generate <scene.toml>`"), std::string::npos) << msg;
+  }
+}
+
 TEST(VlenStrings, CorruptHeapReferenceIsAnErrorNotACrash) {
   const std::string path = RAILTAB_SOURCE_DIR "/tests/data/corrupt_string_attribute.h5";
   h5::silence_errors();
