@@ -21,6 +21,8 @@ packages=(
   python3-dev python3-pybind11   # the Python module railtab (python/)
   python3-numpy python3-pytest   # its arrays and its tests
   python3-xarray python3-h5netcdf python3-netcdf4 python3-h5py  # query results as Datasets; tables opened by xarray and h5py (tests)
+  clang-14 llvm-14         # sanitizer and fuzz builds of CI (.ci/run: sanitize, tsan, fuzz); llvm-symbolizer for their stacks
+  libclang-rt-14-dev       # clang 14's runtimes: ASan, UBSan, TSan and libFuzzer (libclang_rt.fuzzer-x86_64.a)
 )
 
 missing=()

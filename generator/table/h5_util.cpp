@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/check.hpp"
+#include "lookup_vlen/vlen_string.hpp"
 
 namespace railtab::h5 {
 
@@ -85,6 +86,20 @@ bool has_attribute(hid_t object, const std::string& name) {
   return H5Aexists(object, name.c_str()) > 0;
 }
 
+std::vector<std::string> read_vlen_strings(hid_t attr, std::size_t count, const std::string& file,
+                                           const std::string& what) {
+  // Not libhdf5's variable-length read: a corrupt heap reference makes that read out of bounds
+  // (issue #19: `railtab inspect` crashed on 2 in 1000 damaged format-1.0 tables). The lookup's
+  // bounded reader copies each string out of the file after checking every offset and size.
+  namespace vlen = railtab::lookup::detail;
+  vlen::RawFileLayout layout;
+  std::string problem = vlen::raw_file_layout(attr, layout);
+  std::vector<std::string> out;
+  if (problem.empty()) problem = vlen::read_vlen_string_attribute(attr, layout, kMaxStringBytes, count, out);
+  RAILTAB_CHECK(problem.empty(), "{}: {}: {}", file, what, problem);
+  return out;
+}
+
 std::string read_string_attribute(hid_t object, const std::string& name, const std::string& file) {
   std::string what = fmt::format("read attribute '{}'", name);
   Id attr(check_id(H5Aopen(object, name.c_str(), H5P_DEFAULT), file, what), H5Aclose);
@@ -92,16 +107,9 @@ std::string read_string_attribute(hid_t object, const std::string& name, const s
   RAILTAB_CHECK(H5Tget_class(file_type) == H5T_STRING, "{}: attribute '{}' is not a string", file, name);
   Id space(check_id(H5Aget_space(attr), file, what), H5Sclose);
   RAILTAB_CHECK(H5Sget_simple_extent_npoints(space) == 1, "{}: attribute '{}' is not a scalar", file, name);
-  if (H5Tis_variable_str(file_type) > 0) {
-    Id mem = string_type(file);
-    char* data = nullptr;
-    check(H5Aread(attr, mem, &data), file, what);
-    std::string value = data ? data : "";
-    H5free_memory(data);
-    return value;
-  }
+  if (H5Tis_variable_str(file_type) > 0) return read_vlen_strings(attr, 1, file, what).at(0);
   std::size_t size = H5Tget_size(file_type);
-  RAILTAB_CHECK(size > 0 && size <= (std::size_t{64} << 20), "{}: attribute '{}' declares {} bytes", file, name,
+  RAILTAB_CHECK(size > 0 && size <= kMaxStringBytes, "{}: attribute '{}' declares {} bytes", file, name,
                 size);
   Id mem(check_id(H5Tcopy(H5T_C_S1), file, what), H5Tclose);
   check(H5Tset_size(mem, size), file, what);

@@ -7,7 +7,9 @@
 
 #include <hdf5.h>
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace railtab::h5 {
 
@@ -51,8 +53,15 @@ Id string_type(const std::string& file);
 
 void write_string_attribute(hid_t object, const std::string& name, const std::string& value,
                             const std::string& file);
+// Longest string attribute read [bytes] (the scene text is the longest a table holds).
+inline constexpr std::size_t kMaxStringBytes = std::size_t{64} << 20;
+
 // Reads a fixed- or variable-length string attribute.
 std::string read_string_attribute(hid_t object, const std::string& name, const std::string& file);
 bool has_attribute(hid_t object, const std::string& name);
+// The `count` strings of a variable-length string attribute (scalar or 1-D), read with bounds
+// checks instead of libhdf5's variable-length read; throws railtab::Error naming the problem.
+std::vector<std::string> read_vlen_strings(hid_t attr, std::size_t count, const std::string& file,
+                                           const std::string& what);
 
 }  // namespace railtab::h5

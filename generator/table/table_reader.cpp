@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/check.hpp"
+#include "lookup_vlen/vlen_string.hpp"
 #include "table/h5_util.hpp"
 #include "table/table_io.hpp"
 #include "table/typed_attributes.hpp"
@@ -94,6 +95,9 @@ class Reader {
 
   Table read() {
     RAILTAB_CHECK(std::filesystem::exists(file_), "{}: no such file", file_);
+    // Metadata without checksums are refused before libhdf5 parses them (lookup/src/vlen_string.hpp).
+    const std::string unchecked = lookup::detail::unchecksummed_metadata_problem(file_);
+    RAILTAB_CHECK(unchecked.empty(), "{}: {}", file_, unchecked);
     htri_t is_hdf5 = H5Fis_hdf5(file_.c_str());
     h5::last_error();
     RAILTAB_CHECK(is_hdf5 > 0, "{}: not an HDF5 file (or its header is damaged)", file_);

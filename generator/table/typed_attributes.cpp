@@ -45,14 +45,8 @@ std::vector<std::string> read_strings(hid_t attr, hid_t file_type, hssize_t n, c
                                       const std::string& what) {
   std::vector<std::string> out;
   if (H5Tis_variable_str(file_type) > 0) {
-    Id mem = string_type(file);
-    std::vector<char*> data(static_cast<std::size_t>(n), nullptr);
-    check(H5Aread(attr, mem, data.data()), file, what);
-    for (char* s : data) {
-      out.emplace_back(s ? s : "");
-      H5free_memory(s);
-    }
-    return out;
+    if (n <= 0) return out;
+    return read_vlen_strings(attr, static_cast<std::size_t>(n), file, what);
   }
   const std::size_t size = H5Tget_size(file_type);
   RAILTAB_CHECK(size > 0 && size * static_cast<std::size_t>(n) <= (std::size_t{64} << 20),

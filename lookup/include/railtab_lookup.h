@@ -36,7 +36,7 @@ extern "C" {
 #define RAILTAB_LOOKUP_ERROR_RANGE 5    /* an index (axis, fixed axis, slot) out of range */
 
 /* Load options for railtab_lookup_open_options (bit flags). */
-#define RAILTAB_LOOKUP_REQUIRE_CHECKSUMS 1u /* refuse tables without checksums (before 1.1) */
+#define RAILTAB_LOOKUP_REQUIRE_CHECKSUMS 1u /* refuse tables without dataset checksums */
 
 /* Interpolation methods (railtab::lookup::Method). */
 #define RAILTAB_LOOKUP_LINEAR 0         /* multilinear, the default */
@@ -126,8 +126,9 @@ typedef struct railtab_lookup_table railtab_lookup_table; /* opaque */
 
 /* Loads `path` with `method`; on success *table is a handle to close with
  * railtab_lookup_close, on failure *table is NULL. A shard file (`railtab generate --shard`),
- * a corrupt file or one that fails a checksum is RAILTAB_LOOKUP_ERROR_LOAD. A table without
- * checksums (before format 1.1) loads with info.checksums_verified = 0. */
+ * a corrupt file or one that fails a checksum is RAILTAB_LOOKUP_ERROR_LOAD, and so is a format-1.0
+ * table (no metadata checksums). A table with checksummed metadata but no dataset checksums
+ * (another tool's) loads with info.checksums_verified = 0. */
 RAILTAB_LOOKUP_API int railtab_lookup_open(const char* path, int method, railtab_lookup_table** table);
 /* As railtab_lookup_open with option flags (RAILTAB_LOOKUP_REQUIRE_CHECKSUMS). */
 RAILTAB_LOOKUP_API int railtab_lookup_open_options(const char* path, int method, unsigned flags,

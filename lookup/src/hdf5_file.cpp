@@ -77,6 +77,8 @@ Hdf5File::Hdf5File(const std::string& path) : path_(path) {
   if (!std::filesystem::is_regular_file(path, ec)) fail("no such file (or not a regular file)");
   file_size_ = std::filesystem::file_size(path, ec);
   if (ec) fail("cannot read its size: " + ec.message());
+  if (const std::string problem = detail::unchecksummed_metadata_problem(path); !problem.empty())
+    fail(problem);
   if (H5Fis_hdf5(path.c_str()) <= 0)
     fail(with_hdf5_message("not an HDF5 file (or its superblock is corrupt)"));
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);

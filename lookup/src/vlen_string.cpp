@@ -2,6 +2,7 @@
 #include "vlen_string.hpp"
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <vector>
@@ -65,25 +66,10 @@ std::uint64_t little_endian(const unsigned char* p, std::size_t n) {
 
 std::string at(std::uint64_t offset) { return "global heap collection at " + std::to_string(offset); }
 
-}  // namespace
-
-std::string read_vlen_string_attribute(hid_t attr, const RawFileLayout& file,
-                                       std::size_t max_bytes, std::string& out) {
-  static std::mutex registering;  // H5Tregister is process-wide; the first loads may race
-  {
-    std::lock_guard lock(registering);
-    if (!register_conversion()) return "cannot register the heap-reference conversion";
-  }
-  if (file.sizeof_addr != 8 || file.sizeof_size != 8)
-    return "variable-length strings are read only from files with 8-byte addresses";
-  // Stored form of a variable-length string: length (4), collection address (8), index (4).
-  constexpr std::size_t kRefBytes = 16;
-  const hid_t mem = heap_reference_type(kRefBytes);
-  if (mem < 0) return "cannot create a memory type";
-  unsigned char ref[kRefBytes] = {};
-  const herr_t rc = H5Aread(attr, mem, ref);
-  H5Tclose(mem);
-  if (rc < 0) return "cannot read its heap reference";
+// One string from its stored heap reference (length 4, collection address 8, object index 4),
+// every offset and size checked against the collection and the file.
+std::string string_from_heap(const unsigned char* ref, const RawFileLayout& file,
+                             std::size_t max_bytes, std::string& out) {
   const std::uint64_t length = little_endian(ref, 4);
   const std::uint64_t address = little_endian(ref + 4, 8);
   const std::uint64_t index = little_endian(ref + 12, 4);
@@ -142,6 +128,94 @@ std::string read_vlen_string_attribute(hid_t attr, const RawFileLayout& file,
     p += kObjectHeader + padded;
   }
   return "object " + std::to_string(index) + " is not in the " + at(address);
+}
+
+}  // namespace
+
+std::string unchecksummed_metadata_problem(const std::string& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";  // the caller's own open reports the problem
+  for (std::uint64_t offset = 0;; offset = offset == 0 ? 512 : 2 * offset) {
+    unsigned char head[9] = {};
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(offset));
+    if (!in.read(reinterpret_cast<char*>(head), sizeof head)) return "";
+    if (std::memcmp(head, kSignature, sizeof kSignature) != 0) continue;
+    const unsigned version = head[8];
+    if (version >= 2) return "";
+    return "HDF5 superblock version " + std::to_string(version) +
+           " (metadata without checksums): written by an old railtab (table format 1.0, no "
+           "checksums) or another tool, which this reader refuses: regenerate it with "
+           "`railtab generate <scene.toml>`";
+  }
+}
+
+std::string raw_file_layout(hid_t object, RawFileLayout& out) {
+  const hid_t file = H5Iget_file_id(object);
+  if (file < 0) return "cannot find the file of the object";
+  std::string problem;
+  const ssize_t name_length = H5Fget_name(file, nullptr, 0);
+  const hid_t fcpl = H5Fget_create_plist(file);
+  hsize_t user_block = 0;
+  if (name_length <= 0 || fcpl < 0 || H5Pget_userblock(fcpl, &user_block) < 0 ||
+      H5Pget_sizes(fcpl, &out.sizeof_addr, &out.sizeof_size) < 0) {
+    problem = "cannot read the file creation properties";
+  } else {
+    out.path.assign(static_cast<std::size_t>(name_length) + 1, '\0');
+    H5Fget_name(file, out.path.data(), out.path.size());
+    out.path.resize(static_cast<std::size_t>(name_length));
+    std::error_code ec;
+    out.size = std::filesystem::file_size(out.path, ec);
+    if (ec) problem = "cannot read the size of " + out.path;
+    out.base = user_block;
+  }
+  if (fcpl >= 0) H5Pclose(fcpl);
+  H5Fclose(file);
+  return problem;
+}
+
+std::string read_vlen_string_attribute(hid_t attr, const RawFileLayout& file,
+                                       std::size_t max_bytes, std::string& out) {
+  std::vector<std::string> one;
+  const std::string problem = read_vlen_string_attribute(attr, file, max_bytes, 1, one);
+  if (problem.empty()) out = std::move(one.at(0));
+  return problem;
+}
+
+std::string read_vlen_string_attribute(hid_t attr, const RawFileLayout& file,
+                                       std::size_t max_bytes, std::size_t count,
+                                       std::vector<std::string>& out) {
+  static std::mutex registering;  // H5Tregister is process-wide; the first loads may race
+  {
+    std::lock_guard lock(registering);
+    if (!register_conversion()) return "cannot register the heap-reference conversion";
+  }
+  if (file.sizeof_addr != 8 || file.sizeof_size != 8)
+    return "variable-length strings are read only from files with 8-byte addresses";
+  constexpr std::size_t kMaxCount = 4096;  // a table's longest list (axis or output names) is ~50
+  if (count == 0 || count > kMaxCount)
+    return "holds " + std::to_string(count) + " strings (1 to " + std::to_string(kMaxCount) + " expected)";
+  // The attribute's element count must be what the caller sized the buffer for.
+  const hid_t space = H5Aget_space(attr);
+  const hssize_t points = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
+  if (space >= 0) H5Sclose(space);
+  if (points < 0 || static_cast<std::size_t>(points) != count)
+    return "holds " + std::to_string(points) + " strings, not " + std::to_string(count);
+  // Stored form of a variable-length string: length (4), collection address (8), index (4).
+  constexpr std::size_t kRefBytes = 16;
+  const hid_t mem = heap_reference_type(kRefBytes);
+  if (mem < 0) return "cannot create a memory type";
+  std::vector<unsigned char> refs(kRefBytes * count, 0);
+  const herr_t rc = H5Aread(attr, mem, refs.data());
+  H5Tclose(mem);
+  if (rc < 0) return "cannot read its heap reference";
+  out.assign(count, std::string());
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string problem = string_from_heap(refs.data() + i * kRefBytes, file, max_bytes, out[i]);
+    if (!problem.empty()) return count == 1 ? problem : "string " + std::to_string(i) + ": " + problem;
+  }
+  return "";
 }
 
 }  // namespace railtab::lookup::detail

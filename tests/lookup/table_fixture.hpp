@@ -64,6 +64,10 @@ struct FixtureSpec {
   // Format 1.1 integrity (docs/table-format.md): Fletcher32 on every dataset, checksummed
   // metadata (HDF5 1.10 file format), fixed-length strings. false: a legacy 1.0 table.
   bool checksums = true;
+  // With checksums false: still the HDF5 1.10 file format (superblock 3, checksummed metadata)
+  // but no Fletcher32 and any string kind, as other writers make it (h5py with libver="latest").
+  // false (and checksums false): superblock 0, a format-1.0 table, which the lookup refuses.
+  bool checksummed_metadata = false;
   // Variables neither on an axis nor in `fixed` (nor in fixed_text) are written to fixed_axes
   // at 0, as the generator does; false leaves them out (a malformed table).
   bool complete_fixed = true;
@@ -149,7 +153,7 @@ inline void write_fixture(const std::string& path, const FixtureSpec& spec) {
   const bool fl = spec.fixed_length_strings || spec.checksums;
   const bool ck = spec.checksums;
   const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (ck) check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_LATEST), "libver");
+  if (ck || spec.checksummed_metadata) check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_LATEST), "libver");
   const hid_t file = check_id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl),
                               path.c_str());
   H5Pclose(fapl);

@@ -149,7 +149,7 @@ enum class Method : int {
 
 struct LoadOptions {
   Method method = Method::kLinear;  // interpolation method for every part
-  // Refuse a table without checksums (written before format 1.1) instead of loading it with
+  // Refuse a table without dataset checksums (another tool's; format 1.0 is always refused) instead of loading it with
   // Table::checksums_verified() false. docs/table-format.md, "Integrity".
   bool require_checksums = false;
 };
@@ -224,8 +224,9 @@ class RAILTAB_LOOKUP_API Table {
   const std::string& scene_name() const;      // root attribute scene_name ("" if absent)
   std::size_t memory_bytes() const;           // size of the interpolation data
   // Whether every dataset carried HDF5's Fletcher32 checksum and the metadata theirs (format
-  // 1.1 tables): then a corrupt byte is a load error. False for an older table, which loads
-  // unverified unless LoadOptions::require_checksums (docs/table-format.md, "Integrity").
+  // 1.1 tables): then a corrupt byte is a load error. False for a table with checksummed metadata
+  // but no dataset checksums (another tool's), which loads unverified unless
+  // LoadOptions::require_checksums (format 1.0 is refused; docs/table-format.md, "Integrity").
   bool checksums_verified() const;
 
  private:
