@@ -28,6 +28,7 @@
 
 #include "../tests/lookup/table_fixture.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "sweep/jump_locator.hpp"
 #include "railtab/lookup.hpp"
 #include "scene/scene.hpp"
 #include "sweep/sweep.hpp"
@@ -77,6 +78,7 @@ const std::string& table_path(Source source) {
     railtab::SweepResult r =
         railtab::run_sweep(scene, railtab::make_contact_kernel(scene), railtab::SweepOptions{});
     if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    railtab::add_jumps(r.table, scene, railtab::locate_jumps(scene));  // as `railtab generate` (format 2.1)
     path = temp_path("default");
     railtab::write_table(r.table, path);
     remove_at_exit(path);

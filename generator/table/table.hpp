@@ -19,8 +19,8 @@ namespace railtab {
 // (Fletcher32 on every chunked dataset, checksummed metadata, fixed-length strings). The reader
 // also reads format 1.0 and 1.1.
 inline constexpr int kTableFormatMajor = 2;
-inline constexpr int kTableFormatMinor = 0;
-inline constexpr const char* kTableFormatVersion = "2.0";
+inline constexpr int kTableFormatMinor = 1;  // 2.1: located contact jumps (group /jumps)
+inline constexpr const char* kTableFormatVersion = "2.1";
 
 struct TableAxis {
   std::string name;          // "y", "roll", "load", "xi", "eta", "phi", "slot"

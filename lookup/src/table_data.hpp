@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "grid.hpp"
+#include "jump_side.hpp"
 #include "railtab/lookup.hpp"
 
 namespace railtab::lookup::detail {
@@ -113,6 +114,8 @@ struct TableData {
   std::vector<AxisInfo> axes_info;    // public copy of the axes, file order
   std::vector<std::pair<std::string, double>> fixed_list;  // public copy of fixed_axes
   bool checksums_verified = false;    // every dataset had Fletcher32, metadata checksummed
+  bool has_jumps = false;             // the file has /jumps (format 2.1): one-sided jump cells
+  JumpWheel jumps[2];                 // per wheel (jump_side.hpp)
 };
 
 }  // namespace railtab::lookup::detail

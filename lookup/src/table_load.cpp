@@ -396,6 +396,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
                               kPartSpecs[p]);
     for (int b = 0; b < d->n_blocks; ++b) d->block[w][b] = make_block(groups[b], arrays, d->n_slots);
   }
+  read_jumps(f, *d);  // format 2.1; absent: no one-sided cells (as before)
   return d;
 }
 

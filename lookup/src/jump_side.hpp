@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: Apache-2.0
+// Contact jumps along y (format 2.1, docs/lookup.md "Contact jumps"): the lookup never
+// interpolates across a located jump. A query whose (y, load) cell a jump may cut takes the
+// one-sided path: per load node of its cell, the y interpolation uses only grid nodes on the
+// query's side of the jump (the cell of that side nearest the query, extrapolated linearly up to
+// the jump), then the load nodes are blended as usual. Every other query pays one flag test.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "grid.hpp"
+#include "railtab/lookup.hpp"
+
+namespace railtab::lookup::detail {
+
+struct TableData;
+class Hdf5File;
+
+// Jump kinds (docs/table-format.md, "Contact jumps"): bits 0-5 change the rigid contact points,
+// so every part jumps; bits 6-9 change only the loaded patches (normal, creep, wear).
+inline constexpr std::uint32_t kGeometricJumps = 0x3Fu;
+
+// The jumps of one wheel, as the query path reads them.
+struct JumpWheel {
+  bool load_axis = false;   // load is tabulated: one jump list per load node
+  int load_cells = 1;       // cells of the load axis (1 when load is not tabulated)
+  // [0]: every jump (normal, creep, wear blocks and blocks holding them), [1]: geometric jumps
+  // only (a block holding the geometry part alone). y[list][load node], sorted.
+  std::vector<std::vector<double>> y[2];
+  std::vector<unsigned char> matched[2];  // [list][load cell]: same jump count at both nodes
+  std::vector<unsigned char> cut;         // [y cell * load_cells + load cell]: a jump may cut it
+};
+
+// Reads /jumps (left_y, left_kind, right_y, right_kind) when the file has it, checks it and
+// fills d.jumps; a table without it keeps d.has_jumps false (interpolation as before 2.1).
+void read_jumps(const Hdf5File& f, TableData& d);
+
+// Whether the query's (y, load) cell may be cut by a jump of wheel w (d.has_jumps must be true).
+bool jump_cell(const TableData& d, int w, const AxisLoc* loc) noexcept;
+
+// The one-sided interpolation of every block of wheel w, slots [slot_begin, slot_end), into
+// contact[0 ..]: values and part statuses, as the block kernels write them (linear in every
+// method: a cubic stencil would reach across the jump).
+void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, int slot_begin,
+                           int slot_end, Contact* contact) noexcept;
+
+}  // namespace railtab::lookup::detail
