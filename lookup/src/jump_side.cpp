@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -33,6 +34,103 @@ bool cuts(const JumpWheel& j, int list, int l, double x0, double x1) {
   return false;
 }
 
+// First creepage dimension of a block: after y and (when tabulated) load.
+int first_inner(const Block& b) {
+  int d = 0;
+  while (d < b.n_dims && (b.var[d] == kVarY || b.var[d] == kVarLoad || b.var[d] == kVarRoll)) ++d;
+  return d;
+}
+
+int load_dim(const Block& b) {
+  for (int d = 0; d < b.n_dims; ++d)
+    if (b.var[d] == kVarLoad) return d;
+  return -1;
+}
+
+// The one-sided values of block b of wheel w, into the block's query record layout.
+void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_load, std::size_t count) {
+  const Block& b = d.block[w][bi];
+  JumpSamples& js = d.jumps[w].samples[bi];
+  const int inner0 = first_inner(b);
+  std::size_t inner = 1;
+  std::vector<hsize_t> shape;
+  if (d.jumps[w].load_axis) shape.push_back(n_load);
+  shape.push_back(count);
+  shape.push_back(2);
+  for (int k = inner0; k < b.n_dims; ++k) {
+    shape.push_back(static_cast<hsize_t>(b.size[k]));
+    inner *= static_cast<std::size_t>(b.size[k]);
+  }
+  const std::size_t ns = static_cast<std::size_t>(d.n_slots);
+  shape.push_back(ns);
+  const std::size_t rec = static_cast<std::size_t>(b.record);
+  js.side_stride = inner * rec;
+  js.jump_stride = 2 * js.side_stride;
+  js.load_stride = count * js.jump_stride;
+  js.slot_stride = n_load * js.load_stride;
+  js.data.assign(ns * js.slot_stride, 0.0);
+  const std::size_t slices = n_load * count * 2;
+  std::vector<StatusBits> node_status(ns * slices * inner * static_cast<std::size_t>(b.n_parts), 0u);
+  const std::string group = std::string("/jumps/") + (w == 0 ? "left" : "right") + "/";
+  int offset = 0;
+  for (int p = 0; p < b.n_parts; ++p) {
+    const PartSpec& spec = kPartSpecs[b.part[p]];
+    const std::string part = group + spec.name;
+    for (int o = 0; o < spec.n_out; ++o) {
+      const std::string name = part + "/" + output_name(static_cast<Output>(spec.first_output + o));
+      const auto v = f.read_doubles(name, shape, "the jump list and the table's axes");
+      if (d.checksums_verified && !v.checksummed) f.fail("dataset " + name + " has no checksum");
+      for (std::size_t k = 0; k < v.values.size(); ++k) {
+        if (!std::isfinite(v.values[k])) f.fail("dataset " + name + " holds a non-finite value");
+        const std::size_t s = k % ns, node = (k / ns) % inner, slice = k / (ns * inner);
+        js.data[s * js.slot_stride + slice * js.side_stride + node * rec + static_cast<std::size_t>(offset + o)] =
+            v.values[k];
+      }
+    }
+    offset += spec.n_out;
+    const auto st = f.read_uint32(part + "/status", shape, "the jump list and the table's axes");
+    if (d.checksums_verified && !st.checksummed) f.fail("dataset " + part + "/status has no checksum");
+    for (std::size_t k = 0; k < st.values.size(); ++k) {
+      const std::size_t s = k % ns, node = (k / ns) % inner, slice = k / (ns * inner);
+      node_status[((s * slices + slice) * inner + node) * static_cast<std::size_t>(b.n_parts) +
+                  static_cast<std::size_t>(p)] = st.values[k];
+    }
+  }
+  // Cell statuses over the creepage axes, as prepare_query_layout folds the block's.
+  const int n_inner = b.n_dims - inner0;
+  for (std::size_t s = 0; s < ns; ++s)
+    for (std::size_t slice = 0; slice < slices; ++slice)
+      for (std::size_t node = 0; node < inner; ++node) {
+        int idx[kNumVars] = {};
+        std::size_t rest = node;
+        for (int k = n_inner - 1; k >= 0; --k) {
+          const std::size_t n = static_cast<std::size_t>(b.size[inner0 + k]);
+          idx[k] = static_cast<int>(rest % n);
+          rest /= n;
+        }
+        for (int p = 0; p < b.n_parts; ++p) {
+          StatusBits any = 0, all = ~0u;
+          for (int corner = 0; corner < (1 << n_inner); ++corner) {
+            std::size_t other = 0;
+            for (int k = 0; k < n_inner; ++k) {
+              const int n = b.size[inner0 + k];
+              const int i = std::min(idx[k] + ((corner >> k) & 1), n - 1);
+              other = other * static_cast<std::size_t>(n) + static_cast<std::size_t>(i);
+            }
+            const StatusBits bits = node_status[((s * slices + slice) * inner + other) *
+                                                    static_cast<std::size_t>(b.n_parts) +
+                                                static_cast<std::size_t>(p)];
+            any |= bits;
+            all &= bits;
+          }
+          const StatusBits cell = (any & ~status::kConverged) | (all & status::kConverged);
+          double* record = js.data.data() + s * js.slot_stride + slice * js.side_stride + node * rec;
+          std::memcpy(reinterpret_cast<unsigned char*>(record + b.status_offset) + static_cast<std::size_t>(p) * sizeof(StatusBits),
+                      &cell, sizeof cell);
+        }
+      }
+}
+
 void read_wheel(const Hdf5File& f, TableData& d, int w) {
   const std::string name = std::string("/jumps/") + (w == 0 ? "left" : "right");
   const std::vector<hsize_t> shape = f.dataset_shape(name + "_y");
@@ -49,7 +147,10 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
     f.fail("dataset " + name + "_y or _kind has no checksum but the table's other datasets have one");
   const std::size_t count = static_cast<std::size_t>(shape.back());
   const Axis& ya = d.axis[kVarY];
-  for (int list = 0; list < 2; ++list) j.y[list].assign(static_cast<std::size_t>(n_load), {});
+  for (int list = 0; list < 2; ++list) {
+    j.y[list].assign(static_cast<std::size_t>(n_load), {});
+    j.index[list].assign(static_cast<std::size_t>(n_load), {});
+  }
   for (std::size_t l = 0; l < n_load; ++l) {
     bool ended = false;
     double last = -std::numeric_limits<double>::infinity();
@@ -66,7 +167,11 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
                "padding, with a nonzero kind");
       last = v;
       j.y[0][l].push_back(v);
-      if (bits & kGeometricJumps) j.y[1][l].push_back(v);
+      j.index[0][l].push_back(static_cast<int>(k));
+      if (bits & kGeometricJumps) {
+        j.y[1][l].push_back(v);
+        j.index[1][l].push_back(static_cast<int>(k));
+      }
     }
   }
   j.load_cells = j.load_axis ? static_cast<int>(n_load) - 1 : 1;
@@ -83,34 +188,76 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
     for (int l = 0; l < j.load_cells; ++l)
       j.cut[static_cast<std::size_t>(i) * static_cast<std::size_t>(j.load_cells) + static_cast<std::size_t>(l)] =
           cuts(j, 0, l, ya.nodes()[i], ya.nodes()[i + 1]) || cuts(j, 1, l, ya.nodes()[i], ya.nodes()[i + 1]);
+  for (int b = 0; b < d.n_blocks; ++b) read_samples(f, d, w, b, static_cast<std::size_t>(n_load), count);
 }
 
-// The y cell and fraction of load node `node` (0 or 1 of the query's load cell) on the query's
-// side of the jumps of `list`: the jumps' positions interpolated in load when both nodes have the
-// same number of them (else the node's own), the segment between two jumps holding y, the
-// segment's own grid nodes only. No node in the segment: the query's own cell (as before 2.1).
-AxisLoc side_loc(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* loc, double yq, int node) noexcept {
+// One end of a y piece: a grid node of the block, or a one-sided value at a jump.
+struct End {
+  bool sample = false;
+  int index = 0;   // grid node, or the jump's index in list 0
+  int side = 0;    // sample: 0 left of the jump, 1 right
+};
+
+// The y piece of load node `node` (0 or 1 of the query's load cell) on the query's side of the
+// jumps of `list`, and the grid cell whose status it carries (-1: the samples' only). The side
+// comes from the jumps' positions interpolated in load when both nodes have the same number of
+// them (else the node's own): the query lies in the segment between two jumps holding its y. At
+// this node the segment's ends are the node's own jumps; the piece is the segment's grid cell
+// holding y, or the part between a jump and the grid node next to it (one-sided value at the
+// jump), or, with no grid node in the segment, between the two jumps' one-sided values.
+struct Piece {
+  End a, b;
+  double t = 0.0;   // fraction from a to b, clamped to [0, 1]
+  int cell = -1;    // y cell whose status the piece carries, -1: none
+};
+
+Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* loc, double yq, int node) noexcept {
   const int l = j.load_axis ? loc[kVarLoad].i : 0;
   const double s = j.load_axis ? loc[kVarLoad].t : 0.0;
-  const std::vector<double>& own = j.y[list][static_cast<std::size_t>(l + node)];
+  const std::size_t ln = static_cast<std::size_t>(l + node);
+  const std::vector<double>& own = j.y[list][ln];
+  const std::vector<int>& id = j.index[list][ln];
   const bool blend = j.load_axis && j.matched[list][static_cast<std::size_t>(l)];
   const std::vector<double>& lo_list = j.y[list][static_cast<std::size_t>(l)];
   const std::vector<double>& hi_list = j.y[list][static_cast<std::size_t>(j.load_axis ? l + 1 : l)];
   std::size_t m = 0;  // jumps left of the query
   while (m < own.size() && (blend ? (1.0 - s) * lo_list[m] + s * hi_list[m] : own[m]) <= yq) ++m;
-  const double lo = m > 0 ? own[m - 1] : -std::numeric_limits<double>::infinity();
-  const double hi = m < own.size() ? own[m] : std::numeric_limits<double>::infinity();
   const double* x = ya.nodes();
   const int n = ya.size();
+  const bool has_lo = m > 0, has_hi = m < own.size();
+  const double lo = has_lo ? own[m - 1] : -std::numeric_limits<double>::infinity();
+  const double hi = has_hi ? own[m] : std::numeric_limits<double>::infinity();
   int a = 0;
   while (a < n && !(x[a] > lo)) ++a;
   int b = n - 1;
   while (b >= 0 && !(x[b] < hi)) --b;
-  if (b < a) return loc[kVarY];
-  int c = std::clamp(loc[kVarY].i, a, std::max(a, b - 1));
-  c = std::min(c, n - 2);
-  const double t = b > a ? (yq - x[c]) / (x[c + 1] - x[c]) : (x[a] - x[c]) / (x[c + 1] - x[c]);
-  return AxisLoc{c, t};
+  auto fraction = [](double v, double from, double to) { return std::clamp((v - from) / (to - from), 0.0, 1.0); };
+  Piece p;
+  if (b < a) {  // no grid node between the two jumps: their one-sided values
+    p.a = End{true, id[m - 1], 1};
+    p.b = End{true, id[m], 0};
+    p.t = fraction(yq, lo, hi);
+  } else if (has_lo && yq < x[a]) {  // between the lower jump and the segment's first node
+    p.a = End{true, id[m - 1], 1};
+    p.b = End{false, a, 0};
+    p.t = fraction(yq, lo, x[a]);
+    p.cell = a + 1 <= b ? a : -1;
+  } else if (has_hi && yq > x[b]) {  // between the segment's last node and the upper jump
+    p.a = End{false, b, 0};
+    p.b = End{true, id[m], 0};
+    p.t = fraction(yq, x[b], hi);
+    p.cell = b - 1 >= a ? b - 1 : -1;
+  } else if (b > a) {  // a grid cell of the segment
+    const int c = std::clamp(loc[kVarY].i, a, b - 1);
+    p.a = End{false, c, 0};
+    p.b = End{false, c + 1, 0};
+    p.t = fraction(yq, x[c], x[c + 1]);
+    p.cell = c;
+  } else {  // the segment's only node
+    p.a = p.b = End{false, a, 0};
+    p.cell = std::min(a, n - 2);
+  }
+  return p;
 }
 
 bool geometry_only(const Block& b) { return b.n_parts == 1 && b.part[0] == kGeometry; }
@@ -135,29 +282,76 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, int sl
                            Contact* contact) noexcept {
   const JumpWheel& j = d.jumps[w];
   const Axis& ya = d.axis[kVarY];
-  const double yq = ya.nodes()[loc[kVarY].i] + loc[kVarY].t * (ya.nodes()[loc[kVarY].i + 1] - ya.nodes()[loc[kVarY].i]);
+  const double* x = ya.nodes();
+  const double yq = x[loc[kVarY].i] + loc[kVarY].t * (x[loc[kVarY].i + 1] - x[loc[kVarY].i]);
   const int nodes = j.load_axis ? 2 : 1;
+  const int lc = j.load_axis ? loc[kVarLoad].i : 0;
   const double weight[2] = {j.load_axis ? 1.0 - loc[kVarLoad].t : 1.0, j.load_axis ? loc[kVarLoad].t : 0.0};
   const int n = slot_end - slot_begin;
   for (int bi = 0; bi < d.n_blocks; ++bi) {
     const Block& b = d.block[w][bi];
+    const JumpSamples& js = j.samples[bi];
     const int list = geometry_only(b) ? 1 : 0;
-    Contact side[2][kMaxSlots];
+    const int inner0 = first_inner(b), ld = load_dim(b), n_inner = b.n_dims - inner0;
+    std::size_t inner_base = 0;  // the creepage cell's first record within a slice
+    for (int k = inner0; k < b.n_dims; ++k) inner_base += static_cast<std::size_t>(loc[b.var[k]].i) * b.stride[k];
+    double acc[kMaxSlots][kMaxSlotValues] = {};
+    StatusBits any[kMaxSlots][kNumParts] = {}, all[kMaxSlots][kNumParts];
+    for (auto& row : all)
+      for (StatusBits& v : row) v = ~0u;
     for (int k = 0; k < nodes; ++k) {
-      AxisLoc l2[kNumVars];
-      std::copy(loc, loc + kNumVars, l2);
-      l2[kVarY] = side_loc(j, ya, list, loc, yq, k);
-      if (j.load_axis) l2[kVarLoad] = AxisLoc{loc[kVarLoad].i, k == 0 ? 0.0 : 1.0};
-      b.linear(b, l2, slot_begin, slot_end, side[k]);
+      const Piece piece = side_piece(j, ya, list, loc, yq, k);
+      const std::size_t lnode = static_cast<std::size_t>(lc + k);
+      for (int s = 0; s < n; ++s) {
+        const std::size_t slot = static_cast<std::size_t>(slot_begin + s);
+        auto slice = [&](const End& e) -> const double* {
+          if (e.sample)
+            return js.data.data() + slot * js.slot_stride + lnode * js.load_stride +
+                   static_cast<std::size_t>(e.index) * js.jump_stride + static_cast<std::size_t>(e.side) * js.side_stride;
+          return b.data.data() + slot * b.slot_size + static_cast<std::size_t>(e.index) * b.stride[0] +
+                 (ld >= 0 ? lnode * b.stride[ld] : 0);
+        };
+        const double* ends[2] = {slice(piece.a), slice(piece.b)};
+        const double end_w[2] = {1.0 - piece.t, piece.t};
+        for (int e = 0; e < 2; ++e) {
+          const double* base = ends[e] + inner_base;
+          for (int corner = 0; corner < (1 << n_inner); ++corner) {
+            double cw = weight[k] * end_w[e];
+            std::size_t off = 0;
+            for (int q = 0; q < n_inner; ++q) {
+              const bool up = (corner >> q) & 1;
+              const AxisLoc& l = loc[b.var[inner0 + q]];
+              cw *= up ? l.t : 1.0 - l.t;
+              off += up ? b.stride[inner0 + q] : 0;
+            }
+            const double* rec = base + off;
+            for (int v = 0; v < b.n_values; ++v) acc[s][v] += cw * rec[v];
+          }
+        }
+        // Status: the samples' creepage cells and the grid cell of the side the piece uses.
+        auto fold = [&](const double* record) {
+          for (int p = 0; p < b.n_parts; ++p) {
+            StatusBits bits;
+            std::memcpy(&bits, reinterpret_cast<const unsigned char*>(record + b.status_offset) + p * sizeof(StatusBits),
+                        sizeof bits);
+            any[s][p] |= bits;
+            all[s][p] &= bits;
+          }
+        };
+        for (const End& e : {piece.a, piece.b})
+          if (e.sample) fold(slice(e) + inner_base);
+        if (piece.cell >= 0)
+          fold(b.data.data() + slot * b.slot_size + static_cast<std::size_t>(piece.cell) * b.stride[0] +
+               (ld >= 0 ? static_cast<std::size_t>(lc) * b.stride[ld] : 0) + inner_base);
+      }
     }
     for (int s = 0; s < n; ++s) {
+      const double* values = acc[s];
       for (int p = 0; p < b.n_parts; ++p) {
         const PartSpec& spec = kPartSpecs[b.part[p]];
-        for (int o = spec.first_output; o < spec.first_output + spec.n_out; ++o)
-          contact[s].value[o] = nodes == 2 ? weight[0] * side[0][s].value[o] + weight[1] * side[1][s].value[o]
-                                           : side[0][s].value[o];
-        const StatusBits a = side[0][s].part_status[b.part[p]], c = side[nodes - 1][s].part_status[b.part[p]];
-        contact[s].part_status[b.part[p]] = ((a | c) & ~status::kConverged) | (a & c & status::kConverged);
+        for (int o = 0; o < spec.n_out; ++o) contact[s].value[spec.first_output + o] = values[o];
+        values += spec.n_out;
+        contact[s].part_status[b.part[p]] = (any[s][p] & ~status::kConverged) | (all[s][p] & status::kConverged);
       }
     }
   }

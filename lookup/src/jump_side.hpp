@@ -6,6 +6,7 @@
 // the jump), then the load nodes are blended as usual. Every other query pays one flag test.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,15 @@ class Hdf5File;
 // so every part jumps; bits 6-9 change only the loaded patches (normal, creep, wear).
 inline constexpr std::uint32_t kGeometricJumps = 0x3Fu;
 
+// One block's one-sided values at the jumps (format 2.1, /jumps/<wheel>/<part>): per slot, load
+// node, jump and side (0 left, 1 right of the jump) a slice over the block's creepage axes, in the
+// block's query record layout (values, then the statuses of the creepage CELL the record starts,
+// folded as the block's: every bit but converged ORed, converged ANDed).
+struct JumpSamples {
+  std::vector<double> data;
+  std::size_t slot_stride = 0, load_stride = 0, jump_stride = 0, side_stride = 0;  // doubles
+};
+
 // The jumps of one wheel, as the query path reads them.
 struct JumpWheel {
   bool load_axis = false;   // load is tabulated: one jump list per load node
@@ -30,6 +40,8 @@ struct JumpWheel {
   std::vector<std::vector<double>> y[2];
   std::vector<unsigned char> matched[2];  // [list][load cell]: same jump count at both nodes
   std::vector<unsigned char> cut;         // [y cell * load_cells + load cell]: a jump may cut it
+  std::vector<std::vector<int>> index[2];  // [list][load node][k]: the jump's index in list 0
+  JumpSamples samples[kNumParts];          // per block of the wheel
 };
 
 // Reads /jumps (left_y, left_kind, right_y, right_kind) when the file has it, checks it and

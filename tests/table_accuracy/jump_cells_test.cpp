@@ -27,7 +27,8 @@ struct JumpFixture {
   Table table;
   ContactJumps jumps;
   std::optional<lk::Table> with_jumps, without_jumps;
-  double locate_seconds = 0.0;
+  double locate_seconds = 0.0;           // locate_jumps + add_jumps (one-sided values)
+  std::uintmax_t bytes_without = 0, bytes_with = 0;  // table files [B]
 };
 
 const JumpFixture& fixture() {
@@ -42,11 +43,13 @@ const JumpFixture& fixture() {
     x.without_jumps.emplace(lk::Table::load(plain.string()));
     const auto t0 = std::chrono::steady_clock::now();
     x.jumps = locate_jumps(x.scene);
-    x.locate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     Table with = x.table;
     add_jumps(with, x.scene, x.jumps);
+    x.locate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     write_for_lookup(with, jumps);
     x.with_jumps.emplace(lk::Table::load(jumps.string()));
+    x.bytes_without = std::filesystem::file_size(plain);
+    x.bytes_with = std::filesystem::file_size(jumps);
     std::filesystem::remove(plain);
     std::filesystem::remove(jumps);
     return x;
@@ -96,8 +99,10 @@ TEST(JumpCells, LocatedJumpsSeparateTwoConfigurations) {
       EXPECT_TRUE(flange_onset) << "wheel " << w << " load " << f.scene.grids.load[l];
     }
   }
-  std::printf("default scene: %zu jumps located (both wheels, %zu loads) in %.2f s, %zu evaluations\n", total,
-              f.scene.grids.load.size(), f.locate_seconds, f.jumps.evaluations);
+  std::printf("default scene: %zu jumps located (both wheels, %zu loads), %zu evaluations; with the one-sided "
+              "values %.2f s; table file %.0f KiB without jumps, %.0f KiB with\n",
+              total, f.scene.grids.load.size(), f.jumps.evaluations, f.locate_seconds,
+              static_cast<double>(f.bytes_without) / 1024.0, static_cast<double>(f.bytes_with) / 1024.0);
   for (std::size_t w = 0; w < 2; ++w)
     for (std::size_t l = 0; l < f.scene.grids.load.size(); ++l) {
       std::printf("  %s wheel, load %.0f N:", w == 0 ? "left" : "right", f.scene.grids.load[l]);
