@@ -227,10 +227,8 @@ Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* lo
   const bool has_lo = m > 0, has_hi = m < own.size();
   const double lo = has_lo ? own[m - 1] : -std::numeric_limits<double>::infinity();
   const double hi = has_hi ? own[m] : std::numeric_limits<double>::infinity();
-  int a = 0;
-  while (a < n && !(x[a] > lo)) ++a;
-  int b = n - 1;
-  while (b >= 0 && !(x[b] < hi)) --b;
+  const int a = static_cast<int>(std::upper_bound(x, x + n, lo) - x);      // first node above lo
+  const int b = static_cast<int>(std::lower_bound(x, x + n, hi) - x) - 1;  // last node below hi
   auto fraction = [](double v, double from, double to) { return std::clamp((v - from) / (to - from), 0.0, 1.0); };
   Piece p;
   if (b < a) {  // no grid node between the two jumps: their one-sided values
@@ -295,6 +293,19 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, int sl
     const int inner0 = first_inner(b), ld = load_dim(b), n_inner = b.n_dims - inner0;
     std::size_t inner_base = 0;  // the creepage cell's first record within a slice
     for (int k = inner0; k < b.n_dims; ++k) inner_base += static_cast<std::size_t>(loc[b.var[k]].i) * b.stride[k];
+    // The creepage cell's corners (weights and record offsets), once for every end and slot.
+    double corner_w[1 << kMaxDims];
+    std::size_t corner_off[1 << kMaxDims];
+    for (int corner = 0; corner < (1 << n_inner); ++corner) {
+      corner_w[corner] = 1.0;
+      corner_off[corner] = 0;
+      for (int q = 0; q < n_inner; ++q) {
+        const bool up = (corner >> q) & 1;
+        const AxisLoc& l = loc[b.var[inner0 + q]];
+        corner_w[corner] *= up ? l.t : 1.0 - l.t;
+        corner_off[corner] += up ? b.stride[inner0 + q] : 0;
+      }
+    }
     double acc[kMaxSlots][kMaxSlotValues] = {};
     StatusBits any[kMaxSlots][kNumParts] = {}, all[kMaxSlots][kNumParts];
     for (auto& row : all)
@@ -315,16 +326,11 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, int sl
         const double end_w[2] = {1.0 - piece.t, piece.t};
         for (int e = 0; e < 2; ++e) {
           const double* base = ends[e] + inner_base;
+          const double we = weight[k] * end_w[e];
+          if (we == 0.0) continue;  // e.g. a query on a grid node, or at a load node
           for (int corner = 0; corner < (1 << n_inner); ++corner) {
-            double cw = weight[k] * end_w[e];
-            std::size_t off = 0;
-            for (int q = 0; q < n_inner; ++q) {
-              const bool up = (corner >> q) & 1;
-              const AxisLoc& l = loc[b.var[inner0 + q]];
-              cw *= up ? l.t : 1.0 - l.t;
-              off += up ? b.stride[inner0 + q] : 0;
-            }
-            const double* rec = base + off;
+            const double cw = we * corner_w[corner];
+            const double* rec = base + corner_off[corner];
             for (int v = 0; v < b.n_values; ++v) acc[s][v] += cw * rec[v];
           }
         }
