@@ -275,7 +275,14 @@ class Writer {
   void write_coordinates(hid_t group, const TableGroup& g) {
     for (const TableDataset& d : g.datasets) {
       for (const std::string& name : d.axes) {
-        if (local_scales_.count(name) || is_plain_dimension(name)) continue;
+        if (local_scales_.count(name)) continue;
+        if (is_plain_dimension(name)) {  // an index coordinate 0..n-1 (netCDF needs a scale per dimension)
+          TableAxis index{name, "1", name + " index", {}, true};
+          for (std::size_t k = 0; k < d.shape[static_cast<std::size_t>(&name - d.axes.data())]; ++k)
+            index.values.push_back(static_cast<double>(k));
+          local_scales_.emplace(name, write_axis(group, index));
+          continue;
+        }
         local_scales_.emplace(name, write_axis(group, *table_.axis(name)));
       }
     }
@@ -367,7 +374,6 @@ class Writer {
       h5::write_string_attribute(ds, "flag_meanings", flags.second, file_);
     }
     for (std::size_t i = 0; i < d.axes.size(); ++i) {
-      if (is_plain_dimension(d.axes[i])) continue;
       check(H5DSattach_scale(ds, local_scales_.at(d.axes[i]), static_cast<unsigned>(i)),
             fmt::format("{} (attach scale {})", what, d.axes[i]));
     }
