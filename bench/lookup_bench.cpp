@@ -15,6 +15,7 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,6 +29,7 @@
 
 #include "../tests/lookup/table_fixture.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "sweep/jump_locator.hpp"
 #include "railtab/lookup.hpp"
 #include "scene/scene.hpp"
 #include "sweep/sweep.hpp"
@@ -59,6 +61,12 @@ void remove_at_exit(const std::string& path) {
   paths.push_back(path);
 }
 
+// The y of every contact jump of the generated default table (both wheels, every load).
+std::vector<double>& jump_y() {
+  static std::vector<double> y;
+  return y;
+}
+
 // Path of the table file for `source`, written at most once per process.
 const std::string& table_path(Source source) {
   static std::map<Source, std::string> paths;
@@ -77,6 +85,11 @@ const std::string& table_path(Source source) {
     railtab::SweepResult r =
         railtab::run_sweep(scene, railtab::make_contact_kernel(scene), railtab::SweepOptions{});
     if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    const railtab::ContactJumps jumps = railtab::locate_jumps(scene);
+    railtab::add_jumps(r.table, scene, jumps);  // as `railtab generate` (format 2.1)
+    for (const auto& wheel : jumps.wheel)
+      for (const auto& list : wheel)
+        for (const railtab::ContactJump& j : list) jump_y().push_back(j.y);
     path = temp_path("default");
     railtab::write_table(r.table, path);
     remove_at_exit(path);
@@ -123,6 +136,21 @@ std::vector<Query> random_queries(const Table& t, std::size_t n) {
     }
   }
   return q;
+}
+
+// Random states as random_queries, kept only when y is farther than 0.6 mm from every jump (no
+// cell of the default y grid, at most 0.5 mm wide, that holds a jump: the ordinary path, one flag
+// test more than before 2.1) or, with `near`, closer than 0.1 mm to one (the one-sided path).
+std::vector<Query> random_queries_by_jumps(const Table& t, std::size_t n, bool near) {
+  std::vector<Query> pool = random_queries(t, 16 * n), kept;
+  for (const Query& q : pool) {
+    double d = 1.0;
+    for (double y : jump_y()) d = std::min(d, std::abs(q.state.y - y));
+    if ((near && d < 1e-4) || (!near && d > 6e-4)) kept.push_back(q);
+    if (kept.size() == n) break;
+  }
+  if (kept.size() != n) throw std::runtime_error("not enough states for the jump benchmark");
+  return kept;
 }
 
 // Simulation-like: one wheel's state drifting smoothly over 1 ms time steps (hunting in y at
@@ -176,7 +204,28 @@ void run_slot(benchmark::State& bench, Source source, Method method, bool cohere
   bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
 }
 
+// One contact, random states away from / near the contact jumps (random_queries_by_jumps).
+void run_slot_jumps(benchmark::State& bench, bool near) {
+  const Table& t = table(Source::kDefaultScene, Method::kLinear);
+  if (jump_y().empty()) {
+    bench.SkipWithError("jump benchmarks need the in-process default table (no RAILTAB_LOOKUP_BENCH_TABLE)");
+    return;
+  }
+  const auto q = random_queries_by_jumps(t, 1 << 12, near);
+  lk::Contact c;
+  std::size_t k = 0;
+  for (auto _ : bench) {
+    const Query& item = q[k];
+    t.query_slot(item.wheel, item.state, 0, c);
+    benchmark::DoNotOptimize(c);
+    k = (k + 1) & (q.size() - 1);
+  }
+  bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
+}
+
 constexpr Source kDefault = Source::kDefaultScene;
+void BM_LookupSlotLinearRandomAwayFromJumps(benchmark::State& s) { run_slot_jumps(s, false); }
+void BM_LookupSlotLinearRandomNearJumps(benchmark::State& s) { run_slot_jumps(s, true); }
 void BM_LookupSlotLinearRandom(benchmark::State& s) { run_slot(s, kDefault, Method::kLinear, false); }
 void BM_LookupSlotLinearCoherent(benchmark::State& s) { run_slot(s, kDefault, Method::kLinear, true); }
 void BM_LookupLinearRandom(benchmark::State& s) { run_full(s, kDefault, Method::kLinear, false); }
@@ -213,6 +262,8 @@ void BM_FixtureLinearRandom(benchmark::State& s) {
 
 BENCHMARK(BM_LookupSlotLinearRandom);
 BENCHMARK(BM_LookupSlotLinearCoherent);
+BENCHMARK(BM_LookupSlotLinearRandomAwayFromJumps);
+BENCHMARK(BM_LookupSlotLinearRandomNearJumps);
 BENCHMARK(BM_LookupLinearRandom);
 BENCHMARK(BM_LookupLinearCoherent);
 BENCHMARK(BM_LookupSlotCubicRandom);

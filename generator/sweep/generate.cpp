@@ -11,6 +11,7 @@
 
 #include "sweep/adaptive_grid.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "sweep/jump_locator.hpp"
 #include "sweep/progress.hpp"
 #include "sweep/shard_split.hpp"
 #include "sweep/table_size.hpp"
@@ -108,6 +109,19 @@ SweepSummary generate_table(const GenerateOptions& options) {
   if (scene.accuracy.enabled) {
     result.table.set_attribute("accuracy_targets", adaptive.targets_json(scene).dump());
     result.table.set_attribute("accuracy_achieved", adaptive.achieved_json().dump());
+  }
+  // Contact jumps along y (format 2.1): located on the whole y grid, so not in a shard (its merge
+  // would need them joined; a merged table has none and interpolates as before 2.1), and only
+  // with the contact kernel (the probe runs the scene's contact chain).
+  if (options.shard_count == 1 && !options.make_kernel) {
+    const ContactJumps jumps = locate_jumps(scene, {}, options.threads);
+    add_jumps(result.table, scene, jumps);
+    if (log) {
+      std::size_t n = 0;
+      for (const auto& wheel : jumps.wheel)
+        for (const auto& list : wheel) n += list.size();
+      *log << fmt::format("located {} contact jump(s) along y ({} evaluations)\n", n, jumps.evaluations);
+    }
   }
   write_table(result.table, options.output, options.interrupt, {options.scene});
   if (keep_checkpoint) {

@@ -19,7 +19,7 @@ namespace railtab {
 // (Fletcher32 on every chunked dataset, checksummed metadata, fixed-length strings). The reader
 // also reads format 1.0 and 1.1.
 inline constexpr int kTableFormatMajor = 2;
-inline constexpr int kTableFormatMinor = 1;
+inline constexpr int kTableFormatMinor = 1;  // 2.1: normalised creep coordinates, located contact jumps (/jumps)
 inline constexpr const char* kTableFormatVersion = "2.1";
 
 struct TableAxis {

@@ -63,6 +63,9 @@ std::string join_axes(const std::vector<std::string>& axes) {
   return out;
 }
 
+// Dimensions that are not axes: list indices without a coordinate (jump list and side of /jumps).
+bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side"; }
+
 // The table must be consistent before anything touches the disk.
 void validate(const Table& table, const std::string& file) {
   for (const TableAxis& axis : table.axes) {
@@ -77,6 +80,7 @@ void validate(const Table& table, const std::string& file) {
       RAILTAB_CHECK(d.axes.size() == d.shape.size(), "{}: {}/{}: axes and shape differ in rank", file,
                     group.path, d.name);
       for (std::size_t i = 0; i < d.axes.size(); ++i) {
+        if (is_plain_dimension(d.axes[i])) continue;  // e.g. the jump list (no coordinate)
         const TableAxis* axis = table.axis(d.axes[i]);
         RAILTAB_CHECK(axis, "{}: {}/{}: unknown axis '{}'", file, group.path, d.name, d.axes[i]);
         RAILTAB_CHECK(axis->values.size() == d.shape[i], "{}: {}/{}: dimension {} has {} entries, axis '{}' {}",
@@ -272,6 +276,13 @@ class Writer {
     for (const TableDataset& d : g.datasets) {
       for (const std::string& name : d.axes) {
         if (local_scales_.count(name)) continue;
+        if (is_plain_dimension(name)) {  // an index coordinate 0..n-1 (netCDF needs a scale per dimension)
+          TableAxis index{name, "1", name + " index", {}, true};
+          for (std::size_t k = 0; k < d.shape[static_cast<std::size_t>(&name - d.axes.data())]; ++k)
+            index.values.push_back(static_cast<double>(k));
+          local_scales_.emplace(name, write_axis(group, index));
+          continue;
+        }
         local_scales_.emplace(name, write_axis(group, *table_.axis(name)));
       }
     }
@@ -357,7 +368,7 @@ class Writer {
     h5::write_string_attribute(ds, "description", d.description, file_);
     h5::write_string_attribute(ds, "axes", join_axes(d.axes), file_);
     if (!coordinate && !coordinates_.empty()) h5::write_string_attribute(ds, "coordinates", coordinates_, file_);
-    if (d.is_status) {
+    if (d.is_status && d.name == "status") {  // other uint32 datasets (jump kinds) are not status bits
       static const auto flags = status_flags();
       h5::write_uint32_array_attribute(ds, "flag_masks", flags.first, file_);
       h5::write_string_attribute(ds, "flag_meanings", flags.second, file_);

@@ -204,7 +204,7 @@ RAILTAB_LOOKUP_API const char* railtab_lookup_status_bit_name(uint32_t bit);
  * too short and holds a truncated, still terminated, text. buf may be NULL when size is 0. */
 RAILTAB_LOOKUP_API size_t railtab_lookup_status_text(uint32_t status, char* buf, size_t size);
 
-/* Library version ("0.1.0") and the newest table format it reads ("2.0"). */
+/* Library version ("0.1.0") and the newest table format it reads ("2.1"). */
 RAILTAB_LOOKUP_API const char* railtab_lookup_version(void);
 RAILTAB_LOOKUP_API const char* railtab_lookup_format_version(void);
 

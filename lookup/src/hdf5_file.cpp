@@ -260,6 +260,19 @@ Hid Hdf5File::open_dataset(const std::string& dataset) const {
   return d;
 }
 
+std::vector<hsize_t> Hdf5File::dataset_shape(const std::string& dataset) const {
+  const Hid d = open_dataset(dataset);
+  Hid space(H5Dget_space(d.get()), H5Sclose);
+  const int rank = space.get() < 0 ? -1 : H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) fail(with_hdf5_message("cannot read the shape of " + dataset));
+  if (rank > kMaxRank)
+    fail("dataset " + dataset + " has " + std::to_string(rank) + " dimensions (limit " +
+         std::to_string(kMaxRank) + ")");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  return dims;
+}
+
 bool Hdf5File::checksummed(const std::string& dataset) const {
   const Hid d = open_dataset(dataset);
   Hid dcpl(H5Dget_create_plist(d.get()), H5Pclose);

@@ -97,6 +97,8 @@ class Hdf5File {
   // Names of the links in `group` (at most 1000, else an error). Only for files with checksummed
   // metadata, like check_all_string_attributes.
   std::vector<std::string> members(const std::string& group) const;
+  // The shape of `dataset` (nothing else is read), at most kMaxRank dimensions.
+  std::vector<hsize_t> dataset_shape(const std::string& dataset) const;
   // Whether `dataset` has the Fletcher32 filter (nothing but its creation properties is read).
   bool checksummed(const std::string& dataset) const;
 

@@ -132,7 +132,9 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
       contact[s].part_status[p] = 0;
     }
   }
-  for (int b = 0; b < d.n_blocks; ++b) {
+  // A cell a located contact jump may cut: one-sided (jump_side.hpp); all others: one flag test.
+  if (d.has_jumps && jump_cell(d, w, loc)) interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
+  else for (int b = 0; b < d.n_blocks; ++b) {
     const Block& block = d.block[w][b];
     if (d.creep_map.active && b == d.creep_block) {
       for (int s = slot_begin; s < slot_end; ++s)

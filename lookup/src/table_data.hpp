@@ -33,6 +33,7 @@
 
 #include "creep_map.hpp"
 #include "grid.hpp"
+#include "jump_side.hpp"
 #include "railtab/lookup.hpp"
 
 namespace railtab::lookup::detail {
@@ -118,6 +119,8 @@ struct TableData {
   bool checksums_verified = false;    // every dataset had Fletcher32, metadata checksummed
   CreepMap creep_map;                 // format 2.1 normalised creep coordinates (creep_map.hpp)
   int creep_block = -1;               // block holding the creep part (-1: none)
+  bool has_jumps = false;             // the file has /jumps (format 2.1): one-sided jump cells
+  JumpWheel jumps[2];                 // per wheel (jump_side.hpp)
 };
 
 }  // namespace railtab::lookup::detail

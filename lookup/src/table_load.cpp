@@ -521,6 +521,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
     }
   }
   read_creep_map(f, *d);
+  read_jumps(f, *d);  // format 2.1; absent: no one-sided cells (as before)
   return d;
 }
 

@@ -26,6 +26,7 @@
 #include <optional>
 
 #include "accuracy_util.hpp"
+#include "sweep/jump_locator.hpp"
 
 namespace railtab::accuracy {
 namespace {
@@ -52,7 +53,9 @@ const Fixture& fixture() {
     if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
     x.table = std::move(r.table);
     const std::filesystem::path path = temp_table_path("default");
-    write_for_lookup(x.table, path);
+    Table with_jumps = x.table;  // as `railtab generate` writes it (format 2.1, located jumps)
+    add_jumps(with_jumps, x.scene, locate_jumps(x.scene));
+    write_for_lookup(with_jumps, path);
     x.lookup.emplace(lk::Table::load(path.string()));
     std::filesystem::remove(path);
     return x;

@@ -1,0 +1,484 @@
+// SPDX-License-Identifier: Apache-2.0
+// Contact jumps in the lookup (jump_side.hpp): reading /jumps at load and the one-sided query.
+#include "jump_side.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "hdf5_file.hpp"
+#include "part_spec.hpp"
+#include "table_data.hpp"
+
+namespace railtab::lookup::detail {
+namespace {
+
+constexpr hsize_t kMaxJumps = 4096;  // entries of one jump list, at most (limit checked at load)
+
+// Whether the jumps of one list may cut y cell [x0, x1] within load cell l (nodes l, l+1): a jump
+// of either node inside it, or, when the lists match, a jump whose interpolated position sweeps
+// across it.
+bool cuts(const JumpWheel& j, int list, int l, double x0, double x1) {
+  const auto& ys = j.y[list];
+  const int nodes = j.load_axis ? 2 : 1;
+  for (int k = 0; k < nodes; ++k)
+    for (double y : ys[static_cast<std::size_t>(l + k)])
+      if (y >= x0 && y <= x1) return true;
+  if (!j.load_axis || !j.matched[list][static_cast<std::size_t>(l)]) return false;
+  const auto& a = ys[static_cast<std::size_t>(l)];
+  const auto& b = ys[static_cast<std::size_t>(l + 1)];
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (std::min(a[i], b[i]) <= x1 && std::max(a[i], b[i]) >= x0) return true;
+  return false;
+}
+
+// First creepage dimension of a block: after y and (when tabulated) load.
+int first_inner(const Block& b) {
+  int d = 0;
+  while (d < b.n_dims && (b.var[d] == kVarY || b.var[d] == kVarLoad || b.var[d] == kVarRoll)) ++d;
+  return d;
+}
+
+int load_dim(const Block& b) {
+  for (int d = 0; d < b.n_dims; ++d)
+    if (b.var[d] == kVarLoad) return d;
+  return -1;
+}
+
+// The one-sided values of block b of wheel w, into the block's query record layout.
+void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_load, std::size_t count) {
+  const Block& b = d.block[w][bi];
+  JumpSamples& js = d.jumps[w].samples[bi];
+  const int inner0 = first_inner(b);
+  std::size_t inner = 1;
+  std::vector<hsize_t> shape;
+  if (d.jumps[w].load_axis) shape.push_back(n_load);
+  shape.push_back(count);
+  shape.push_back(2);
+  for (int k = inner0; k < b.n_dims; ++k) {
+    shape.push_back(static_cast<hsize_t>(b.size[k]));
+    inner *= static_cast<std::size_t>(b.size[k]);
+  }
+  const std::size_t ns = static_cast<std::size_t>(d.n_slots);
+  shape.push_back(ns);
+  const std::size_t rec = static_cast<std::size_t>(b.record);
+  js.side_stride = inner * rec;
+  js.jump_stride = 2 * js.side_stride;
+  js.load_stride = count * js.jump_stride;
+  js.slot_stride = n_load * js.load_stride;
+  js.data.assign(ns * js.slot_stride, 0.0);
+  const std::size_t slices = n_load * count * 2;
+  std::vector<StatusBits> node_status(ns * slices * inner * static_cast<std::size_t>(b.n_parts), 0u);
+  const std::string group = std::string("/jumps/") + (w == 0 ? "left" : "right") + "/";
+  // The block's values in its own order (Block::output_of): a part's outputs, then (creep part with
+  // load coupling) its per-creepage normal_force; a normalised creep part stores fx, fy, mz as
+  // <name>_normalised (as read_part reads the grid).
+  const bool normalised_creep = f.has_attribute("/", "creep_map");
+  int offset = 0;
+  for (int p = 0; p < b.n_parts; ++p) {
+    const PartSpec& spec = kPartSpecs[b.part[p]];
+    const std::string part = group + spec.name;
+    int n_values = spec.n_out;
+    if (b.part[p] == kCreep && offset + n_values < b.n_values && b.output_of[offset + n_values] == kNormalForce)
+      ++n_values;
+    for (int o = 0; o < n_values; ++o) {
+      const int out = b.output_of[offset + o];
+      const std::string name = part + "/" + output_name(static_cast<Output>(out)) +
+                               (normalised_creep && out >= kFx && out <= kMz ? "_normalised" : "");
+      const auto v = f.read_doubles(name, shape, "the jump list and the table's axes");
+      if (d.checksums_verified && !v.checksummed) f.fail("dataset " + name + " has no checksum");
+      for (std::size_t k = 0; k < v.values.size(); ++k) {
+        if (!std::isfinite(v.values[k])) f.fail("dataset " + name + " holds a non-finite value");
+        const std::size_t s = k % ns, node = (k / ns) % inner, slice = k / (ns * inner);
+        js.data[s * js.slot_stride + slice * js.side_stride + node * rec + static_cast<std::size_t>(offset + o)] =
+            v.values[k];
+      }
+    }
+    offset += n_values;
+    const auto st = f.read_uint32(part + "/status", shape, "the jump list and the table's axes");
+    if (d.checksums_verified && !st.checksummed) f.fail("dataset " + part + "/status has no checksum");
+    for (std::size_t k = 0; k < st.values.size(); ++k) {
+      const std::size_t s = k % ns, node = (k / ns) % inner, slice = k / (ns * inner);
+      node_status[((s * slices + slice) * inner + node) * static_cast<std::size_t>(b.n_parts) +
+                  static_cast<std::size_t>(p)] = st.values[k];
+    }
+  }
+  // Cell statuses over the creepage axes, as prepare_query_layout folds the block's.
+  const int n_inner = b.n_dims - inner0;
+  for (std::size_t s = 0; s < ns; ++s)
+    for (std::size_t slice = 0; slice < slices; ++slice)
+      for (std::size_t node = 0; node < inner; ++node) {
+        int idx[kNumVars] = {};
+        std::size_t rest = node;
+        for (int k = n_inner - 1; k >= 0; --k) {
+          const std::size_t n = static_cast<std::size_t>(b.size[inner0 + k]);
+          idx[k] = static_cast<int>(rest % n);
+          rest /= n;
+        }
+        for (int p = 0; p < b.n_parts; ++p) {
+          StatusBits any = 0, all = ~0u;
+          for (int corner = 0; corner < (1 << n_inner); ++corner) {
+            std::size_t other = 0;
+            for (int k = 0; k < n_inner; ++k) {
+              const int n = b.size[inner0 + k];
+              const int i = std::min(idx[k] + ((corner >> k) & 1), n - 1);
+              other = other * static_cast<std::size_t>(n) + static_cast<std::size_t>(i);
+            }
+            const StatusBits bits = node_status[((s * slices + slice) * inner + other) *
+                                                    static_cast<std::size_t>(b.n_parts) +
+                                                static_cast<std::size_t>(p)];
+            any |= bits;
+            all &= bits;
+          }
+          const StatusBits cell = (any & ~status::kConverged) | (all & status::kConverged);
+          double* record = js.data.data() + s * js.slot_stride + slice * js.side_stride + node * rec;
+          std::memcpy(reinterpret_cast<unsigned char*>(record + b.status_offset) + static_cast<std::size_t>(p) * sizeof(StatusBits),
+                      &cell, sizeof cell);
+        }
+      }
+}
+
+// The normal part's one-sided creepage scales (normalised creep coordinates): finite and > 0 at
+// every jump (the padding is not read by the query and holds 0).
+void read_scales(const Hdf5File& f, TableData& d, int w, std::size_t n_load, std::size_t count) {
+  JumpWheel& j = d.jumps[w];
+  const std::size_t ns = static_cast<std::size_t>(d.n_slots);
+  std::vector<hsize_t> shape;
+  if (j.load_axis) shape.push_back(n_load);
+  shape.push_back(count);
+  shape.push_back(2);
+  shape.push_back(ns);
+  j.inv_scale.assign(ns * n_load * count * 2 * 3, 0.0);
+  static const char* const names[3] = {"creep_scale_xi", "creep_scale_eta", "creep_scale_phi"};
+  for (int k = 0; k < 3; ++k) {
+    const std::string name = std::string("/jumps/") + (w == 0 ? "left" : "right") + "/normal/" + names[k];
+    if (!f.exists(name)) f.fail("missing dataset " + name + " (root attribute creep_map and group /jumps need it)");
+    const auto v = f.read_doubles(name, shape, "the jump list and the table's axes");
+    if (d.checksums_verified && !v.checksummed) f.fail("dataset " + name + " has no checksum");
+    for (std::size_t i = 0; i < v.values.size(); ++i) {
+      const std::size_t s = i % ns, slice = i / ns, l = slice / (count * 2), jump = (slice / 2) % count;
+      if (jump >= j.y[0][l].size()) continue;  // padding
+      const double x = v.values[i];
+      if (!(std::isfinite(x) && x > 0.0 && std::isfinite(1.0 / x)))
+        f.fail("dataset " + name + " holds a scale that is not finite and > 0 at flat index " + std::to_string(i));
+      j.inv_scale[((s * n_load * count * 2) + slice) * 3 + static_cast<std::size_t>(k)] = 1.0 / x;
+    }
+  }
+}
+
+void read_wheel(const Hdf5File& f, TableData& d, int w) {
+  const std::string name = std::string("/jumps/") + (w == 0 ? "left" : "right");
+  const std::vector<hsize_t> shape = f.dataset_shape(name + "_y");
+  JumpWheel& j = d.jumps[w];
+  j.load_axis = d.tabulated[kVarLoad];
+  const hsize_t n_load = j.load_axis ? static_cast<hsize_t>(d.axis[kVarLoad].size()) : 1;
+  const std::size_t rank = j.load_axis ? 2 : 1;
+  if (shape.size() != rank || (rank == 2 && shape[0] != n_load) || shape.back() > kMaxJumps)
+    f.fail("dataset " + name + "_y must have shape [" + (rank == 2 ? std::to_string(n_load) + ", " : "") +
+           "jumps] with at most " + std::to_string(kMaxJumps) + " jumps");
+  const auto y = f.read_doubles(name + "_y", shape, name + "_y's own jump count");
+  const auto kind = f.read_uint32(name + "_kind", shape, name + "_y");
+  if (d.checksums_verified && !(y.checksummed && kind.checksummed))
+    f.fail("dataset " + name + "_y or _kind has no checksum but the table's other datasets have one");
+  const std::size_t count = static_cast<std::size_t>(shape.back());
+  const Axis& ya = d.axis[kVarY];
+  for (int list = 0; list < 2; ++list) {
+    j.y[list].assign(static_cast<std::size_t>(n_load), {});
+    j.index[list].assign(static_cast<std::size_t>(n_load), {});
+  }
+  for (std::size_t l = 0; l < n_load; ++l) {
+    bool ended = false;
+    double last = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < count; ++k) {
+      const double v = y.values[l * count + k];
+      const std::uint32_t bits = kind.values[l * count + k];
+      if (std::isnan(v)) {
+        if (bits != 0) f.fail(name + "_kind is not 0 where " + name + "_y is NaN (no jump)");
+        ended = true;
+        continue;
+      }
+      if (ended || !(v > last) || !(v > ya.nodes()[0]) || !(v < ya.nodes()[ya.size() - 1]) || bits == 0)
+        f.fail(name + "_y: jumps must be finite, strictly increasing, inside the y axis, before the NaN "
+               "padding, with a nonzero kind");
+      last = v;
+      j.y[0][l].push_back(v);
+      j.index[0][l].push_back(static_cast<int>(k));
+      if (bits & kGeometricJumps) {
+        j.y[1][l].push_back(v);
+        j.index[1][l].push_back(static_cast<int>(k));
+      }
+    }
+  }
+  j.load_cells = j.load_axis ? static_cast<int>(n_load) - 1 : 1;
+  for (int list = 0; list < 2; ++list) {
+    j.matched[list].assign(static_cast<std::size_t>(j.load_cells), 0);
+    if (j.load_axis)
+      for (int l = 0; l < j.load_cells; ++l)
+        j.matched[list][static_cast<std::size_t>(l)] =
+            j.y[list][static_cast<std::size_t>(l)].size() == j.y[list][static_cast<std::size_t>(l) + 1].size();
+  }
+  const int y_cells = ya.size() - 1;
+  j.cut.assign(static_cast<std::size_t>(y_cells) * static_cast<std::size_t>(j.load_cells), 0);
+  for (int i = 0; i < y_cells; ++i)
+    for (int l = 0; l < j.load_cells; ++l)
+      j.cut[static_cast<std::size_t>(i) * static_cast<std::size_t>(j.load_cells) + static_cast<std::size_t>(l)] =
+          cuts(j, 0, l, ya.nodes()[i], ya.nodes()[i + 1]) || cuts(j, 1, l, ya.nodes()[i], ya.nodes()[i + 1]);
+  for (int b = 0; b < d.n_blocks; ++b) read_samples(f, d, w, b, static_cast<std::size_t>(n_load), count);
+  j.n_load_nodes = static_cast<std::size_t>(n_load);
+  j.n_jumps = count;
+  if (d.creep_map.active) read_scales(f, d, w, static_cast<std::size_t>(n_load), count);
+}
+
+// One end of a y piece: a grid node of the block, or a one-sided value at a jump.
+struct End {
+  bool sample = false;
+  int index = 0;   // grid node, or the jump's index in list 0
+  int side = 0;    // sample: 0 left of the jump, 1 right
+};
+
+// The y piece of load node `node` (0 or 1 of the query's load cell) on the query's side of the
+// jumps of `list`, and the grid cell whose status it carries (-1: the samples' only). The side
+// comes from the jumps' positions interpolated in load when both nodes have the same number of
+// them (else the node's own): the query lies in the segment between two jumps holding its y. At
+// this node the segment's ends are the node's own jumps; the piece is the segment's grid cell
+// holding y, or the part between a jump and the grid node next to it (one-sided value at the
+// jump), or, with no grid node in the segment, between the two jumps' one-sided values.
+struct Piece {
+  End a, b;
+  double t = 0.0;   // fraction from a to b, clamped to [0, 1]
+  int cell = -1;    // y cell whose status the piece carries, -1: none
+};
+
+Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* loc, double yq, int node) noexcept {
+  const int l = j.load_axis ? loc[kVarLoad].i : 0;
+  const double s = j.load_axis ? loc[kVarLoad].t : 0.0;
+  const std::size_t ln = static_cast<std::size_t>(l + node);
+  const std::vector<double>& own = j.y[list][ln];
+  const std::vector<int>& id = j.index[list][ln];
+  const bool blend = j.load_axis && j.matched[list][static_cast<std::size_t>(l)];
+  const std::vector<double>& lo_list = j.y[list][static_cast<std::size_t>(l)];
+  const std::vector<double>& hi_list = j.y[list][static_cast<std::size_t>(j.load_axis ? l + 1 : l)];
+  std::size_t m = 0;  // jumps left of the query
+  while (m < own.size() && (blend ? (1.0 - s) * lo_list[m] + s * hi_list[m] : own[m]) <= yq) ++m;
+  const double* x = ya.nodes();
+  const int n = ya.size();
+  const bool has_lo = m > 0, has_hi = m < own.size();
+  const double lo = has_lo ? own[m - 1] : -std::numeric_limits<double>::infinity();
+  const double hi = has_hi ? own[m] : std::numeric_limits<double>::infinity();
+  const int a = static_cast<int>(std::upper_bound(x, x + n, lo) - x);      // first node above lo
+  const int b = static_cast<int>(std::lower_bound(x, x + n, hi) - x) - 1;  // last node below hi
+  auto fraction = [](double v, double from, double to) { return std::clamp((v - from) / (to - from), 0.0, 1.0); };
+  Piece p;
+  if (b < a) {  // no grid node between the two jumps: their one-sided values
+    p.a = End{true, id[m - 1], 1};
+    p.b = End{true, id[m], 0};
+    p.t = fraction(yq, lo, hi);
+  } else if (has_lo && yq < x[a]) {  // between the lower jump and the segment's first node
+    p.a = End{true, id[m - 1], 1};
+    p.b = End{false, a, 0};
+    p.t = fraction(yq, lo, x[a]);
+    p.cell = a + 1 <= b ? a : -1;
+  } else if (has_hi && yq > x[b]) {  // between the segment's last node and the upper jump
+    p.a = End{false, b, 0};
+    p.b = End{true, id[m], 0};
+    p.t = fraction(yq, x[b], hi);
+    p.cell = b - 1 >= a ? b - 1 : -1;
+  } else if (b > a) {  // a grid cell of the segment
+    const int c = std::clamp(loc[kVarY].i, a, b - 1);
+    p.a = End{false, c, 0};
+    p.b = End{false, c + 1, 0};
+    p.t = fraction(yq, x[c], x[c + 1]);
+    p.cell = c;
+  } else {  // the segment's only node
+    p.a = p.b = End{false, a, 0};
+    p.cell = std::min(a, n - 2);
+  }
+  return p;
+}
+
+bool geometry_only(const Block& b) { return b.n_parts == 1 && b.part[0] == kGeometry; }
+
+}  // namespace
+
+void read_jumps(const Hdf5File& f, TableData& d) {
+  if (!f.exists("/jumps")) return;  // before 2.1, or a table without jumps
+  if (!d.tabulated[kVarY] || d.tabulated[kVarRoll])
+    f.fail("group /jumps needs a y axis and no roll axis (jumps are located per load node)");
+  for (int w = 0; w < 2; ++w) read_wheel(f, d, w);
+  d.has_jumps = true;
+}
+
+bool jump_cell(const TableData& d, int w, const AxisLoc* loc) noexcept {
+  const JumpWheel& j = d.jumps[w];
+  const std::size_t l = j.load_axis ? static_cast<std::size_t>(loc[kVarLoad].i) : 0;
+  return j.cut[static_cast<std::size_t>(loc[kVarY].i) * static_cast<std::size_t>(j.load_cells) + l] != 0;
+}
+
+namespace {
+
+// The corners of the query's cell over the creepage axes of block b (weights and record offsets
+// from the cell's first record), and that first record's offset within a slice.
+struct CreepCell {
+  std::size_t base = 0;
+  double w[1 << kMaxDims];
+  std::size_t off[1 << kMaxDims];
+};
+
+void creep_cell(const Block& b, int inner0, const AxisLoc* loc, CreepCell& c) noexcept {
+  const int n_inner = b.n_dims - inner0;
+  c.base = 0;
+  for (int k = inner0; k < b.n_dims; ++k) c.base += static_cast<std::size_t>(loc[b.var[k]].i) * b.stride[k];
+  for (int corner = 0; corner < (1 << n_inner); ++corner) {
+    c.w[corner] = 1.0;
+    c.off[corner] = 0;
+    for (int q = 0; q < n_inner; ++q) {
+      const bool up = (corner >> q) & 1;
+      const AxisLoc& l = loc[b.var[inner0 + q]];
+      c.w[corner] *= up ? l.t : 1.0 - l.t;
+      c.off[corner] += up ? b.stride[inner0 + q] : 0;
+    }
+  }
+}
+
+// The slot's reciprocal creepage scales on the query's side (normalised creep coordinates): the
+// pieces of list 0 (the normal part's), ends at grid nodes from CreepMap::scale, at jumps from
+// JumpWheel::inv_scale, blended in load as the values.
+void one_sided_scales(const TableData& d, int w, const Piece* piece, int nodes, int lc, const double* weight,
+                      int slot, double inv[3]) noexcept {
+  const CreepMap& map = d.creep_map;
+  const JumpWheel& j = d.jumps[w];
+  int ydim = -1, ldim = -1;
+  for (int k = 0; k < map.n_dims; ++k) {
+    if (map.var[k] == kVarY) ydim = k;
+    if (map.var[k] == kVarLoad) ldim = k;
+  }
+  inv[0] = inv[1] = inv[2] = 0.0;
+  for (int k = 0; k < nodes; ++k) {
+    const std::size_t lnode = static_cast<std::size_t>(lc + k);
+    auto end_scale = [&](const End& e) -> const double* {
+      if (e.sample)
+        return j.inv_scale.data() +
+               ((((static_cast<std::size_t>(slot) * j.n_load_nodes + lnode) * j.n_jumps +
+                  static_cast<std::size_t>(e.index)) * 2 + static_cast<std::size_t>(e.side)) * 3);
+      std::size_t node = static_cast<std::size_t>(e.index) * map.stride[ydim] + (ldim >= 0 ? lnode * map.stride[ldim] : 0);
+      return map.scale[w].data() + (static_cast<std::size_t>(slot) * map.nodes + node) * 3;
+    };
+    const double* a = end_scale(piece[k].a);
+    const double* b = end_scale(piece[k].b);
+    const double t = piece[k].t;
+    for (int c = 0; c < 3; ++c) inv[c] += weight[k] * ((1.0 - t) * a[c] + t * b[c]);
+  }
+}
+
+}  // namespace
+
+void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const double* creepage, int slot_begin,
+                           int slot_end, Contact* contact) noexcept {
+  const JumpWheel& j = d.jumps[w];
+  const Axis& ya = d.axis[kVarY];
+  const double* x = ya.nodes();
+  const double yq = x[loc[kVarY].i] + loc[kVarY].t * (x[loc[kVarY].i + 1] - x[loc[kVarY].i]);
+  const int nodes = j.load_axis ? 2 : 1;
+  const int lc = j.load_axis ? loc[kVarLoad].i : 0;
+  const double weight[2] = {j.load_axis ? 1.0 - loc[kVarLoad].t : 1.0, j.load_axis ? loc[kVarLoad].t : 0.0};
+  const int n = slot_end - slot_begin;
+  // The pieces of both jump lists at both load nodes, shared by the blocks.
+  Piece pieces[2][2];
+  for (int list = 0; list < 2; ++list)
+    for (int k = 0; k < nodes; ++k) pieces[list][k] = side_piece(j, ya, list, loc, yq, k);
+  const CreepMap& map = d.creep_map;
+  for (int bi = 0; bi < d.n_blocks; ++bi) {
+    const Block& b = d.block[w][bi];
+    const JumpSamples& js = j.samples[bi];
+    const int list = geometry_only(b) ? 1 : 0;
+    const int inner0 = first_inner(b), ld = load_dim(b), n_inner = b.n_dims - inner0;
+    // The creepage cell per slot: the query's own creepages, or (normalised creep block) its v
+    // coordinates at the slot's one-sided scales.
+    const bool normalised = map.active && bi == d.creep_block;
+    CreepCell cell[kMaxSlots];
+    double xn[kMaxSlots][3] = {};  // normalised creepages xi', eta', psi' (normalised block)
+    for (int s = 0; s < n; ++s) {
+      if (!normalised) {
+        if (s == 0) creep_cell(b, inner0, loc, cell[0]);
+        else cell[s] = cell[0];
+        continue;
+      }
+      double inv[3];
+      one_sided_scales(d, w, pieces[0], nodes, lc, weight, slot_begin + s, inv);
+      AxisLoc slot_loc[kNumVars];
+      for (int var = 0; var < kNumVars; ++var) slot_loc[var] = loc[var];
+      for (int k = 0; k < 3; ++k) {
+        xn[s][k] = creepage[k] * inv[k];
+        if (map.swept[k])
+          d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(xn[s][k], map.lo[k] * inv[k], map.hi[k] * inv[k]),
+                                         slot_loc[kVarXi + k]);
+      }
+      creep_cell(b, inner0, slot_loc, cell[s]);
+    }
+    double acc[kMaxSlots][kMaxSlotValues] = {};
+    StatusBits any[kMaxSlots][kNumParts] = {}, all[kMaxSlots][kNumParts];
+    for (auto& row : all)
+      for (StatusBits& v : row) v = ~0u;
+    for (int k = 0; k < nodes; ++k) {
+      const Piece& piece = pieces[list][k];
+      const std::size_t lnode = static_cast<std::size_t>(lc + k);
+      for (int s = 0; s < n; ++s) {
+        const std::size_t slot = static_cast<std::size_t>(slot_begin + s);
+        const CreepCell& cc = cell[s];
+        auto slice = [&](const End& e) -> const double* {
+          if (e.sample)
+            return js.data.data() + slot * js.slot_stride + lnode * js.load_stride +
+                   static_cast<std::size_t>(e.index) * js.jump_stride + static_cast<std::size_t>(e.side) * js.side_stride;
+          return b.data.data() + slot * b.slot_size + static_cast<std::size_t>(e.index) * b.stride[0] +
+                 (ld >= 0 ? lnode * b.stride[ld] : 0);
+        };
+        const double* ends[2] = {slice(piece.a), slice(piece.b)};
+        const double end_w[2] = {1.0 - piece.t, piece.t};
+        for (int e = 0; e < 2; ++e) {
+          const double* base = ends[e] + cc.base;
+          const double we = weight[k] * end_w[e];
+          if (we == 0.0) continue;  // e.g. a query on a grid node, or at a load node
+          for (int corner = 0; corner < (1 << n_inner); ++corner) {
+            const double cw = we * cc.w[corner];
+            const double* rec = base + cc.off[corner];
+            for (int v = 0; v < b.n_values; ++v) acc[s][v] += cw * rec[v];
+          }
+        }
+        // Status: the samples' creepage cells and the grid cell of the side the piece uses.
+        auto fold = [&](const double* record) {
+          for (int p = 0; p < b.n_parts; ++p) {
+            StatusBits bits;
+            std::memcpy(&bits, reinterpret_cast<const unsigned char*>(record + b.status_offset) + p * sizeof(StatusBits),
+                        sizeof bits);
+            any[s][p] |= bits;
+            all[s][p] &= bits;
+          }
+        };
+        for (const End& e : {piece.a, piece.b})
+          if (e.sample) fold(slice(e) + cc.base);
+        if (piece.cell >= 0)
+          fold(b.data.data() + slot * b.slot_size + static_cast<std::size_t>(piece.cell) * b.stride[0] +
+               (ld >= 0 ? static_cast<std::size_t>(lc) * b.stride[ld] : 0) + cc.base);
+      }
+    }
+    for (int s = 0; s < n; ++s) {
+      Contact& c = contact[s];
+      for (int v = 0; v < b.n_values; ++v) c.value[b.output_of[v]] = acc[s][v];  // Block::output_of
+      for (int p = 0; p < b.n_parts; ++p)
+        c.part_status[b.part[p]] = (any[s][p] & ~status::kConverged) | (all[s][p] & status::kConverged);
+      if (!normalised || !d.has_part[kCreep]) continue;
+      // F / (mu N) minus the law, plus the law at the query's normalised creepages, times mu N (the
+      // creep point's own N, already in kNormalForce), as interpolate_normalised_creep (table.cpp).
+      double law[2];
+      creep_law(xn[s][0], xn[s][1], xn[s][2], law);
+      const double mun = map.friction * c.value[kNormalForce];
+      c.value[kFx] = (c.value[kFx] + law[0]) * mun;
+      c.value[kFy] = (c.value[kFy] + law[1]) * mun;
+      c.value[kMz] *= mun;
+    }
+  }
+}
+
+}  // namespace railtab::lookup::detail

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: Apache-2.0
+// Contact jumps along y (format 2.1, docs/lookup.md "Contact jumps"): the lookup never
+// interpolates across a located jump. A query whose (y, load) cell a jump may cut takes the
+// one-sided path: per load node of its cell, the y interpolation uses only grid nodes on the
+// query's side of the jump (the cell of that side nearest the query, extrapolated linearly up to
+// the jump), then the load nodes are blended as usual. Every other query pays one flag test.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "grid.hpp"
+#include "railtab/lookup.hpp"
+
+namespace railtab::lookup::detail {
+
+struct TableData;
+class Hdf5File;
+
+// Jump kinds (docs/table-format.md, "Contact jumps"): bits 0-5 change the rigid contact points,
+// so every part jumps; bits 6-9 change only the loaded patches (normal, creep, wear).
+inline constexpr std::uint32_t kGeometricJumps = 0x3Fu;
+
+// One block's one-sided values at the jumps (format 2.1, /jumps/<wheel>/<part>): per slot, load
+// node, jump and side (0 left, 1 right of the jump) a slice over the block's creepage axes, in the
+// block's query record layout (values, then the statuses of the creepage CELL the record starts,
+// folded as the block's: every bit but converged ORed, converged ANDed).
+struct JumpSamples {
+  std::vector<double> data;
+  std::size_t slot_stride = 0, load_stride = 0, jump_stride = 0, side_stride = 0;  // doubles
+};
+
+// The jumps of one wheel, as the query path reads them.
+struct JumpWheel {
+  bool load_axis = false;   // load is tabulated: one jump list per load node
+  int load_cells = 1;       // cells of the load axis (1 when load is not tabulated)
+  // [0]: every jump (normal, creep, wear blocks and blocks holding them), [1]: geometric jumps
+  // only (a block holding the geometry part alone). y[list][load node], sorted.
+  std::vector<std::vector<double>> y[2];
+  std::vector<unsigned char> matched[2];  // [list][load cell]: same jump count at both nodes
+  std::vector<unsigned char> cut;         // [y cell * load_cells + load cell]: a jump may cut it
+  std::vector<std::vector<int>> index[2];  // [list][load node][k]: the jump's index in list 0
+  JumpSamples samples[kNumParts];          // per block of the wheel
+  // Normalised creep coordinates (creep_map.hpp): the one-sided reciprocal creepage scales at the
+  // jumps (the normal part's creep_scale_* at both ends of each jump, as the grid's in
+  // CreepMap::scale), [(((slot * load nodes + load node) * jumps + jump) * 2 + side) * 3 + k].
+  std::vector<double> inv_scale;
+  std::size_t n_load_nodes = 1, n_jumps = 0;
+};
+
+// Reads /jumps (left_y, left_kind, right_y, right_kind) when the file has it, checks it and
+// fills d.jumps; a table without it keeps d.has_jumps false (interpolation as before 2.1).
+void read_jumps(const Hdf5File& f, TableData& d);
+
+// Whether the query's (y, load) cell may be cut by a jump of wheel w (d.has_jumps must be true).
+bool jump_cell(const TableData& d, int w, const AxisLoc* loc) noexcept;
+
+// The one-sided interpolation of every block of wheel w, slots [slot_begin, slot_end), into
+// contact[0 ..]: values and part statuses, as the block kernels write them (linear in every
+// method: a cubic stencil would reach across the jump).
+// With normalised creep coordinates (d.creep_map.active) `creepage` holds the query's physical
+// creepages (locate_state): the creep block's v cell and the law use the slot's scales taken from
+// the query's side of the jumps too (one-sided, as the normal part's values).
+void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const double* creepage,
+                           int slot_begin, int slot_end, Contact* contact) noexcept;
+
+}  // namespace railtab::lookup::detail

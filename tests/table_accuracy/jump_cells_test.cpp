@@ -1,0 +1,282 @@
+// SPDX-License-Identifier: Apache-2.0
+// Contact jumps (issue 15 item 2, docs/lookup.md "Contact jumps"): the generator locates every jump
+// along y per wheel and load node (jump_locator.hpp) and the lookup interpolates a cell cut by one
+// from the query's side only. Measured here on the default scene at the random states of
+// default_scene_accuracy_test (same seed): the creep forces of every JUMP cell (classify_point)
+// with the metric of the smooth cells, |F_lookup - F_direct| / (mu N), for the table with its
+// jumps (format 2.1) and the same table without them (the lookup of format 2.0).
+//
+// Run: build/<dir>/tests/test_table_accuracy --gtest_filter='JumpCells*' (prints the numbers).
+#include <chrono>
+#include <cstdio>
+#include <optional>
+
+#include "accuracy_util.hpp"
+#include "sweep/contact_probe.hpp"
+#include "sweep/jump_locator.hpp"
+
+namespace railtab::accuracy {
+namespace {
+
+constexpr std::uint64_t kSeed = 20240611;  // the states of DefaultSceneRandomOffGrid
+constexpr std::size_t kPoints = 4000;
+constexpr double kLimit = 0.02;            // of mu N (issue 15 acceptance)
+
+struct JumpFixture {
+  Scene scene;
+  Table table;
+  ContactJumps jumps;
+  Table with_table;                      // the generator's table with /jumps
+  std::optional<lk::Table> with_jumps, without_jumps;
+  double locate_seconds = 0.0;           // locate_jumps + add_jumps (one-sided values)
+  std::uintmax_t bytes_without = 0, bytes_with = 0;  // table files [B]
+};
+
+const JumpFixture& fixture() {
+  static const JumpFixture f = [] {
+    JumpFixture x;
+    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
+    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    x.table = std::move(r.table);
+    const std::filesystem::path plain = temp_table_path("jumps_plain"), jumps = temp_table_path("jumps");
+    write_for_lookup(x.table, plain);
+    x.without_jumps.emplace(lk::Table::load(plain.string()));
+    const auto t0 = std::chrono::steady_clock::now();
+    x.jumps = locate_jumps(x.scene);
+    Table with = x.table;
+    add_jumps(with, x.scene, x.jumps);
+    x.locate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    write_for_lookup(with, jumps);
+    x.with_table = with;
+    x.with_jumps.emplace(lk::Table::load(jumps.string()));
+    x.bytes_without = std::filesystem::file_size(plain);
+    x.bytes_with = std::filesystem::file_size(jumps);
+    std::filesystem::remove(plain);
+    std::filesystem::remove(jumps);
+    return x;
+  }();
+  return f;
+}
+
+// Nearest located jump of the wheel to y over the load nodes around `load` [m].
+double distance_to_jump(const JumpFixture& f, std::size_t wheel, double y, double load) {
+  const std::vector<double>& loads = f.scene.grids.load;
+  std::size_t l = static_cast<std::size_t>(std::upper_bound(loads.begin(), loads.end(), load) - loads.begin());
+  l = std::clamp<std::size_t>(l, 1, loads.size() - 1) - 1;
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t k : {l, l + 1})
+    for (const ContactJump& j : f.jumps.wheel[wheel][k]) d = std::min(d, std::abs(y - j.y));
+  return d;
+}
+
+// Every jump found is a real one: the contact chain differs between the ends of its interval (the
+// located y -+ half the tolerance), and the flange onset is found for both wheels at every load.
+TEST(JumpCells, LocatedJumpsSeparateTwoConfigurations) {
+  const JumpFixture& f = fixture();
+  const ContactProbe probe(f.scene);
+  const JumpLocatorOptions options;
+  std::size_t total = 0;
+  for (std::size_t w = 0; w < 2; ++w) {
+    ASSERT_EQ(f.jumps.wheel[w].size(), f.scene.grids.load.size());
+    for (std::size_t l = 0; l < f.scene.grids.load.size(); ++l) {
+      bool flange_onset = false;
+      double last = -1.0;
+      for (const ContactJump& j : f.jumps.wheel[w][l]) {
+        ++total;
+        EXPECT_GT(j.y, last);
+        last = j.y;
+        flange_onset |= (j.kind & jump_kind::kPatchSlot1) != 0;
+        const double load = f.scene.grids.load[l];
+        const auto a = probe.evaluate(j.y - 0.5 * options.tolerance, {load}, {{0.0, 0.0, 0.0}})[0][0][w];
+        const auto b = probe.evaluate(j.y + 0.5 * options.tolerance, {load}, {{0.0, 0.0, 0.0}})[0][0][w];
+        bool differ = false;
+        for (int s = 0; s < 2; ++s) {
+          differ |= a.slot[s].status != b.slot[s].status;
+          differ |= std::abs(a.slot[s].rolling_radius - b.slot[s].rolling_radius) > options.radius_step;
+          differ |= std::abs(a.slot[s].patch_radius - b.slot[s].patch_radius) > options.radius_step;
+        }
+        EXPECT_TRUE(differ) << "wheel " << w << " load " << load << " y " << j.y << " kind " << j.kind;
+      }
+      EXPECT_TRUE(flange_onset) << "wheel " << w << " load " << f.scene.grids.load[l];
+    }
+  }
+  std::printf("default scene: %zu jumps located (both wheels, %zu loads), %zu evaluations; with the one-sided "
+              "values %.2f s; table file %.0f KiB without jumps, %.0f KiB with\n",
+              total, f.scene.grids.load.size(), f.jumps.evaluations, f.locate_seconds,
+              static_cast<double>(f.bytes_without) / 1024.0, static_cast<double>(f.bytes_with) / 1024.0);
+  for (std::size_t w = 0; w < 2; ++w)
+    for (std::size_t l = 0; l < f.scene.grids.load.size(); ++l) {
+      std::printf("  %s wheel, load %.0f N:", w == 0 ? "left" : "right", f.scene.grids.load[l]);
+      for (const ContactJump& j : f.jumps.wheel[w][l]) std::printf(" %.6f m (kind %u)", j.y, j.kind);
+      std::printf("\n");
+    }
+}
+
+struct JumpStats {
+  std::size_t cells = 0, within = 0;
+  double max_error = 0.0;
+};
+
+// `creepage_nodes`: xi, eta, phi on random grid nodes, so that only the y and load interpolation
+// (where the jumps are) contributes; else uniform like y and load (the states of
+// DefaultSceneRandomOffGrid), where the coarse creepage axes add their own error (issue 15 item 1).
+void creep_forces_on_jump_cells(bool creepage_nodes) {
+  const JumpFixture& f = fixture();
+  const TableView view(f.table);
+  const std::vector<double>* grids[kNumVars] = {&f.scene.grids.y, &f.scene.grids.load, &f.scene.grids.xi,
+                                                &f.scene.grids.eta, &f.scene.grids.phi};
+  Random rng(kSeed);
+  std::vector<Point> points(kPoints);
+  for (Point& p : points)
+    for (int k = 0; k < kNumVars; ++k) {
+      p.v[k] = rng.uniform(grids[k]->front(), grids[k]->back());
+      if (creepage_nodes && k >= kXi) {
+        const std::vector<double>& g = *grids[k];
+        const double u = rng.uniform(0.0, static_cast<double>(g.size()));
+        p.v[k] = g[std::min(g.size() - 1, static_cast<std::size_t>(u))];
+      }
+    }
+  const std::vector<Direct> direct = evaluate_direct(f.scene, points);
+  const double mu = f.scene.tangential.friction;
+
+  JumpStats stats[2][kSlots];  // [0 without jumps, 1 with][slot]
+  struct Miss {
+    double error, distance, y, load;
+    std::size_t wheel, slot;
+    int output;
+  };
+  std::vector<Miss> misses;
+  std::size_t states_in_jump_cells = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      const PointKinds kinds = classify_point(view, w, points[i], direct[i][w]);
+      const lk::Result r[2] = {f.without_jumps->query(static_cast<lk::Wheel>(w), to_state(*f.without_jumps, points[i])),
+                               f.with_jumps->query(static_cast<lk::Wheel>(w), to_state(*f.with_jumps, points[i]))};
+      bool any = false;
+      for (std::size_t s = 0; s < kSlots; ++s) {
+        if (kinds.kind[lk::kCreep][s] != CellKind::kJump) continue;
+        any = true;
+        for (int v = 0; v < 2; ++v) {
+          double worst = 0.0;
+          int worst_output = lk::kFx;
+          for (int o : {lk::kFx, lk::kFy}) {
+            const double err = std::abs(r[v].contact[s].value[o] - direct[i][w].value[o][s]);
+            // N: the slot's creepage-free normal force (the lookup serves no other), the larger of
+            // lookup and direct; both 0 (a flange loaded only at this creepage, load coupling): the load.
+            double n = std::max(direct[i][w].value[lk::kNormalForce][s], r[v].contact[s].value[lk::kNormalForce]);
+            if (!(n > 0.0)) n = points[i].v[kLoad];
+            const double rel = err / (mu * n);
+            if (rel > worst) worst = rel, worst_output = o;
+          }
+          JumpStats& st = stats[v][s];
+          ++st.cells;
+          st.within += worst <= kLimit;
+          st.max_error = std::max(st.max_error, worst);
+          if (v == 1 && worst > kLimit)
+            misses.push_back({worst, distance_to_jump(f, w, points[i].v[kY], points[i].v[kLoad]), points[i].v[kY],
+                              points[i].v[kLoad], w, s, worst_output});
+        }
+      }
+      states_in_jump_cells += any;
+    }
+  }
+  std::printf("%s\n", creepage_nodes ? "CREEPAGES ON GRID NODES (y, load uniform: the jumps' own error)"
+                                      : "ALL UNIFORM (y, load, xi, eta, phi: with the creepage interpolation error)");
+  std::printf("default scene, creep forces on jump cells: %zu random states x 2 wheels (seed %llu), %zu wheel-states "
+              "(%.1f %%) have a jump cell in a slot; error = max over fx, fy of |lookup - direct| / (mu N), N the "
+              "slot's larger creepage-free normal force of lookup and direct (the load where both are 0)\n",
+              points.size(), static_cast<unsigned long long>(kSeed), states_in_jump_cells,
+              100.0 * static_cast<double>(states_in_jump_cells) / (2.0 * static_cast<double>(points.size())));
+  for (int v = 0; v < 2; ++v)
+    for (std::size_t s = 0; s < kSlots; ++s) {
+      const JumpStats& st = stats[v][s];
+      std::printf("  %-26s slot %zu: %5zu jump cells, %5.1f %% within %.0f %% of mu N, max %.3g mu N\n",
+                  v == 0 ? "without jumps (format 2.0)" : "with jumps (format 2.1)", s, st.cells,
+                  st.cells ? 100.0 * static_cast<double>(st.within) / static_cast<double>(st.cells) : 100.0,
+                  100.0 * kLimit, st.max_error);
+    }
+  std::sort(misses.begin(), misses.end(), [](const Miss& a, const Miss& b) { return a.error > b.error; });
+  std::printf("  with jumps, beyond %.0f %% of mu N: %zu (largest first; distance = nearest located jump of the "
+              "wheel at the two load nodes around the state):\n",
+              100.0 * kLimit, misses.size());
+  for (std::size_t k = 0; k < misses.size(); ++k) {
+    const Miss& m = misses[k];
+    if (k >= 40) {
+      std::printf("    ... %zu more\n", misses.size() - k);
+      break;
+    }
+    std::printf("    %s wheel slot %zu y %.6f m load %.0f N: %s error %.3f mu N, %.3f mm from a jump\n",
+                m.wheel == 0 ? "left" : "right", m.slot, m.y, m.load, lk::output_name(static_cast<lk::Output>(m.output)),
+                m.error, m.distance * 1e3);
+  }
+  // The one-sided lookup must not be worse than blending across the jump on the same states.
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    EXPECT_GT(stats[1][s].cells, 0u);
+    EXPECT_GE(stats[1][s].within, stats[0][s].within) << "slot " << s;
+  }
+}
+
+// Normalised creep coordinates with jumps (s4-15c + s4-15j): a query just left of (right of) a
+// jump in a cut cell takes the one-sided values of that side, the creep part's scales included.
+// At a physical xi that is an interior v node at the side's own scale (eta, phi 0: their middle
+// nodes, symmetric ranges), the lookup must give the kernel's value at the sample's own y, up to
+// the 1e-12 m between the query and the stored jump y. A scale from the other side (or the grid)
+// would put xi between v nodes and differ by the creep interpolation error (~1e-3 of mu N or more).
+TEST(JumpCells, NormalisedCreepTakesTheQuerysSideScales) {
+  const JumpFixture& f = fixture();
+  if (!f.scene.creep_normalised) GTEST_SKIP() << "the default scene does not use normalised creep coordinates";
+  const double mu = f.scene.tangential.friction;
+  const std::vector<double>& xi = f.scene.grids.xi;
+  ASSERT_EQ(f.scene.grids.eta.front(), -f.scene.grids.eta.back());
+  ASSERT_EQ(f.scene.grids.phi.front(), -f.scene.grids.phi.back());
+  ASSERT_EQ(f.scene.grids.eta.size() % 2, 1u);
+  ASSERT_EQ(f.scene.grids.phi.size() % 2, 1u);
+  const std::vector<double> v_nodes = creep_map::nodes(xi.size());
+  const double v = v_nodes[v_nodes.size() / 2 + 1];  // first node above 0: below saturation
+  const char* names[2] = {"left", "right"};
+  std::size_t checked = 0;
+  double worst = 0.0;
+  for (std::size_t w = 0; w < 2; ++w) {
+    const TableGroup* normal = f.with_table.group(std::string("jumps/") + names[w] + "/normal");
+    ASSERT_NE(normal, nullptr);
+    const TableDataset* scale = normal->find("creep_scale_xi");
+    ASSERT_NE(scale, nullptr) << "one-sided creep scales missing";
+    const std::size_t count = scale->shape[1];
+    for (std::size_t l = 0; l < f.scene.grids.load.size(); ++l)
+      for (std::size_t j = 0; j < f.jumps.wheel[w][l].size(); ++j) {
+        const ContactJump& jump = f.jumps.wheel[w][l][j];
+        for (std::size_t side = 0; side < 2; ++side) {
+          Point at;
+          at.v[kLoad] = f.scene.grids.load[l];
+          at.v[kY] = side == 0 ? jump.left : jump.right;
+          Point query = at;
+          query.v[kY] = jump.y + (side == 0 ? -1e-12 : 1e-12);
+          for (std::size_t s = 0; s < kSlots; ++s) {
+            const double sxi = scale->values[((l * count + j) * 2 + side) * kSlots + s];
+            at.v[kXi] = query.v[kXi] = creep_map::physical(v, xi.front(), xi.back(), sxi);
+            const Direct direct = evaluate_direct(f.scene, at);
+            const double n = direct[w].value[lk::kNormalForce][s];
+            if (!(n > 0.0)) continue;  // no loaded patch in this slot at this side
+            const lk::Result r = f.with_jumps->query(static_cast<lk::Wheel>(w), to_state(*f.with_jumps, query));
+            for (int o : {lk::kFx, lk::kFy}) {
+              const double err = std::abs(r.contact[s].value[o] - direct[w].value[o][s]) / (mu * n);
+              worst = std::max(worst, err);
+              EXPECT_LT(err, 1e-4) << names[w] << " wheel, load " << at.v[kLoad] << " N, jump at " << jump.y
+                                   << " m, side " << side << ", slot " << s << ", output " << o;
+            }
+            ++checked;
+          }
+        }
+      }
+  }
+  std::printf("one-sided normalised creep at %zu (jump, side, slot) states: max |lookup - kernel| = %.2e mu N\n",
+              checked, worst);
+  EXPECT_GT(checked, 0u);
+}
+
+TEST(JumpCells, CreepForcesOnJumpCellsAtCreepageNodes) { creep_forces_on_jump_cells(true); }
+TEST(JumpCells, CreepForcesOnJumpCells) { creep_forces_on_jump_cells(false); }
+
+}  // namespace
+}  // namespace railtab::accuracy
