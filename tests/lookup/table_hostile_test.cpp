@@ -86,6 +86,12 @@ TEST(HostileTable, AxisDeclaring1e9NodesIsRefusedBeforeAllocating) {
   const long before = max_rss_kib();
   const std::string msg = load_error(data_file("axis_declares_1e9_nodes.h5"));
   EXPECT_NE(msg.find(kOldTable), std::string::npos) << msg;
+  // The same axis in a checksummed table (superblock 3, so it reaches the extent check): a fresh
+  // fixture (railtab_lookup_write_fixture) whose /axes/eta h5py replaced by a chunked, unwritten,
+  // Fletcher32 dataset of shape (1e9,), made a dimension scale again (124 KB file).
+  const std::string fresh = load_error(data_file("axis_declares_1e9_nodes_checksummed.h5"));
+  EXPECT_NE(fresh.find("dataset /axes/eta declares shape [1000000000], more than 1000000 values"), std::string::npos)
+      << fresh;
   EXPECT_LT(max_rss_kib() - before, 64 * 1024) << "peak memory grew by more than 64 MiB";
 }
 
