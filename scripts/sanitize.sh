@@ -7,17 +7,20 @@
 #         budget: the other layers' tests (geometry, normal, tangential, wear, half-space) and
 #         the other generator suites; the `debug` preset (gcc ASan+UBSan) runs the whole suite
 #         by hand: docs/reliability.md.
-#   tsan: build/tsan (clang 14, ThreadSanitizer) of the lookup and all of test_lookup (its
-#         eight-thread query tests share one Table, as a simulation does), with scripts/tsan.supp.
-#         NOT the sweep (`railtab generate`): its threads are oneTBB's, and Debian's libtbb is not
-#         built with TSan, so TSan reports races even in a correct 10-line parallel_for, some in
-#         the loop body itself; no suppression can remove those without hiding races of railtab's
-#         own code (scripts/tsan.supp, docs/reliability.md "ThreadSanitizer and oneTBB").
+#   tsan: build/tsan (clang 14, ThreadSanitizer) of the lookup and the sweep: all of test_lookup
+#         (its eight-thread query tests share one Table, as a simulation does) and the sweep's
+#         multi-threaded tests (below), with scripts/tsan.supp. The sweep is built with
+#         RAILTAB_PLAIN_THREADS: its parallel loops (sweep/parallel_for.cpp, the generator's only
+#         way to run in parallel) use std::threads there, because Debian's libtbb is not built
+#         with TSan and TSan reports races even in a correct 10-line tbb::parallel_for, some in
+#         the loop body itself (scripts/tsan.supp, docs/reliability.md "ThreadSanitizer and
+#         oneTBB"). So the stage checks railtab's own loop bodies and shared state, not oneTBB.
 # Usage: bash scripts/sanitize.sh asan|tsan
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:?usage: sanitize.sh asan|tsan}
 jobs=$(nproc)
+sweep_threaded_tests='Sweep.BitIdenticalForAnyThreadCount:Generate.ResumeAfterInterruptEqualsFreshRun:Sweep.PreSetInterruptComputesNothing:ContactSweep.DefaultProfilesSmallGrid:AdaptiveContact.GridsDoNotDependOnThreads:ModelChoice.TableRecordsTheChoiceAndIsByteIdenticalForAnyThreadCount:HalfspaceSelectable.SweepDeterministicAndBalanced'
 run() {  # program [gtest arguments]: one test program, its name and result printed
   echo "sanitize: $mode: $*"
   "$@" --gtest_brief=1
@@ -40,12 +43,15 @@ case "$mode" in
         -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
         -DCMAKE_C_FLAGS_DEBUG="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" \
         -DRAILTAB_BUILD_BENCH=OFF -DRAILTAB_BUILD_PYTHON=OFF -DRAILTAB_MPI=OFF \
-        -DRAILTAB_LOOKUP_SHARED=OFF > build/tsan-configure.log
+        -DRAILTAB_LOOKUP_SHARED=OFF -DRAILTAB_PLAIN_THREADS=ON > build/tsan-configure.log
     fi
-    cmake --build build/tsan --parallel "$jobs" --target test_lookup
+    cmake --build build/tsan --parallel "$jobs" --target test_lookup test_generator_sweep
     # halt_on_error + exitcode: the first report fails the program (and so CI).
     export TSAN_OPTIONS="halt_on_error=1:exitcode=66:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan.supp"
     run build/tsan/tests/test_lookup
+    # The sweep's tests that run on two or more threads: the table sweep (fast and exact models,
+    # load and creep axes), the adaptive grids, the model choice, contact jumps, generate, resume.
+    run build/tsan/tests/test_generator_sweep --gtest_filter="$sweep_threaded_tests"
     ;;
   *) echo "sanitize.sh: unknown mode '$mode' (asan or tsan)" >&2; exit 2 ;;
 esac

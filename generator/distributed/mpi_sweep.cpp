@@ -4,9 +4,6 @@
 
 #include <fmt/format.h>
 #include <mpi.h>
-#include <oneapi/tbb/info.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include <chrono>
 #include <condition_variable>
@@ -21,6 +18,7 @@
 
 #include "core/check.hpp"
 #include "sweep/checkpoint.hpp"
+#include "sweep/parallel_for.hpp"
 #include "sweep/sweep_plan.hpp"
 #include "table/interrupt.hpp"
 #include "table/version.hpp"
@@ -55,12 +53,8 @@ struct BlockResult {
 std::vector<BlockResult> compute_blocks(SweepPlan& plan, const std::vector<std::size_t>& blocks, int threads) {
   const std::size_t nroll = plan.layout().nroll;
   std::vector<ColumnReport> reports(blocks.size() * nroll);
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, reports.size(), [&](std::size_t i) {
-      reports[i] = plan.compute_column(blocks[i / nroll], i % nroll);
-    });
-  });
+  parallel_for_index(threads, reports.size(),
+                     [&](std::size_t i) { reports[i] = plan.compute_column(blocks[i / nroll], i % nroll); });
   std::vector<BlockResult> results(blocks.size());
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     results[b].block = blocks[b];
@@ -149,7 +143,7 @@ std::optional<SweepResult> run_sweep_mpi(const Scene& scene, const SweepKernel& 
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  const int threads = effective_threads(options.threads);
   SweepPlan plan(scene, kernel, options);
   if (rank != 0) {
     run_worker(plan, threads);

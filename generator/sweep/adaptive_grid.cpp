@@ -3,9 +3,6 @@
 #include "sweep/adaptive_grid.hpp"
 
 #include <fmt/format.h>
-#include <oneapi/tbb/info.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -13,6 +10,7 @@
 #include <cmath>
 
 #include "core/check.hpp"
+#include "sweep/parallel_for.hpp"
 #include "sweep/contact_kernel.hpp"
 #include "sweep/model_choice.hpp"
 
@@ -75,10 +73,7 @@ std::vector<std::array<double, 3>> creep_probes(const Scene& scene) {
 template <class F>
 std::vector<AxisSample> batch(const std::vector<double>& x, int threads, F f) {
   std::vector<AxisSample> out(x.size());
-  tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, x.size(), [&](std::size_t i) { out[i] = f(x[i]); });
-  });
+  parallel_for_index(threads, x.size(), [&](std::size_t i) { out[i] = f(x[i]); });
   return out;
 }
 

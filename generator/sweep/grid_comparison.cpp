@@ -4,9 +4,6 @@
 #include "sweep/grid_comparison.hpp"
 
 #include <fmt/format.h>
-#include <oneapi/tbb/info.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -17,6 +14,7 @@
 #include "core/check.hpp"
 #include "sweep/contact_kernel.hpp"
 #include "sweep/model_choice.hpp"
+#include "sweep/parallel_for.hpp"
 
 namespace railtab {
 
@@ -210,15 +208,12 @@ GridComparison compare_adaptive_with_uniform(const Scene& base, std::size_t stat
   std::vector<State> drawn(states);
   for (State& s : drawn) s = {draw("y"), draw("load"), {draw("xi"), draw("eta"), draw("phi")}};
   std::vector<std::vector<StateErrors>> errors(states, std::vector<StateErrors>(all.size()));
-  tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, states, [&](std::size_t i) {
-      const State& s = drawn[i];
-      auto direct = probe.evaluate(s.y, {s.load}, {s.c})[0][0];
-      for (std::size_t k = 0; k < all.size(); ++k) {
-        errors[i][k] = state_errors(probe, all[k]->grids, node_probes[k], s.y, s.load, s.c, direct);
-      }
-    });
+  parallel_for_index(threads, states, [&](std::size_t i) {
+    const State& s = drawn[i];
+    auto direct = probe.evaluate(s.y, {s.load}, {s.c})[0][0];
+    for (std::size_t k = 0; k < all.size(); ++k) {
+      errors[i][k] = state_errors(probe, all[k]->grids, node_probes[k], s.y, s.load, s.c, direct);
+    }
   });
   cmp.states = states;
   for (std::size_t k = 0; k < all.size(); ++k) {

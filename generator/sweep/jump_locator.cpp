@@ -4,8 +4,6 @@
 // bisection to the tolerance.
 #include "sweep/jump_locator.hpp"
 
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -17,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "sweep/contact_probe.hpp"
+#include "sweep/parallel_for.hpp"
 
 namespace railtab {
 namespace {
@@ -152,24 +151,19 @@ ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options,
   const ContactProbe probe(scene);
   // The configuration at every node, all loads at once (one geometry per y).
   std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> nodes(y.size());
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, y.size(), [&](std::size_t i) {
-      auto all = probe.evaluate(y[i], loads, {{0.0, 0.0, 0.0}});
-      nodes[i].resize(loads.size());
-      for (std::size_t l = 0; l < loads.size(); ++l) nodes[i][l] = all[l][0];
-    });
+  parallel_for_index(threads, y.size(), [&](std::size_t i) {
+    auto all = probe.evaluate(y[i], loads, {{0.0, 0.0, 0.0}});
+    nodes[i].resize(loads.size());
+    for (std::size_t l = 0; l < loads.size(); ++l) nodes[i][l] = all[l][0];
   });
   const std::size_t cells = y.size() - 1, tasks = 2 * loads.size() * cells;
   std::vector<std::vector<ContactJump>> found(tasks);
   std::vector<std::size_t> spent(tasks, 0);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, tasks, [&](std::size_t task) {
-      const std::size_t wheel = task / (loads.size() * cells), l = (task / cells) % loads.size(), i = task % cells;
-      Bisection bisection(probe, wheel, loads[l], options);
-      bisection.find(y[i], signature(nodes[i][l][wheel]), y[i + 1], signature(nodes[i + 1][l][wheel]), {}, found[task]);
-      spent[task] = bisection.evaluations();
-    });
+  parallel_for_index(threads, tasks, [&](std::size_t task) {
+    const std::size_t wheel = task / (loads.size() * cells), l = (task / cells) % loads.size(), i = task % cells;
+    Bisection bisection(probe, wheel, loads[l], options);
+    bisection.find(y[i], signature(nodes[i][l][wheel]), y[i + 1], signature(nodes[i + 1][l][wheel]), {}, found[task]);
+    spent[task] = bisection.evaluations();
   });
   for (std::size_t wheel = 0; wheel < 2; ++wheel) {
     result.wheel[wheel].resize(loads.size());

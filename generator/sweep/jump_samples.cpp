@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // One-sided values at the contact jumps (jump_locator.hpp, add_jump_samples): the contact kernel
 // (the sweep's own code path) at the two ends of every jump's final interval.
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <string>
@@ -11,6 +9,7 @@
 
 #include "sweep/contact_kernel.hpp"
 #include "sweep/jump_locator.hpp"
+#include "sweep/parallel_for.hpp"
 
 namespace railtab {
 namespace {
@@ -75,15 +74,12 @@ void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jump
   }
   const std::size_t tasks = 2 * n_load * count * 2;
   std::vector<Column> columns(tasks);
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, tasks, [&](std::size_t t) {
-      const std::size_t w = t / (n_load * count * 2), l = (t / (count * 2)) % n_load, j = (t / 2) % count,
-                        side = t % 2;
-      if (j >= jumps.wheel[w][l].size()) return;
-      const ContactJump& jump = jumps.wheel[w][l][j];
-      columns[t] = compute_column(kernels[l], one[l], side == 0 ? jump.left : jump.right);
-    });
+  parallel_for_index(threads, tasks, [&](std::size_t t) {
+    const std::size_t w = t / (n_load * count * 2), l = (t / (count * 2)) % n_load, j = (t / 2) % count,
+                      side = t % 2;
+    if (j >= jumps.wheel[w][l].size()) return;
+    const ContactJump& jump = jumps.wheel[w][l][j];
+    columns[t] = compute_column(kernels[l], one[l], side == 0 ? jump.left : jump.right);
   });
   const SweepKernel& kernel = kernels.front();
   const bool load_axis = table.axis("load") != nullptr;

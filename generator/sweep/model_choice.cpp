@@ -2,9 +2,6 @@
 // Model choice per y node for [accuracy] scenes: the cheapest model within the targets.
 #include "sweep/model_choice.hpp"
 
-#include <oneapi/tbb/info.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +11,7 @@
 
 #include "core/check.hpp"
 #include "core/status.hpp"
+#include "sweep/parallel_for.hpp"
 #include "sweep/sweep.hpp"
 
 namespace railtab {
@@ -135,21 +133,18 @@ ModelChoice choose_models(const Scene& scene, int threads) {
     *t *= scene.accuracy.model_tolerance;
   }
   // Each y node writes only its own entries: the same choice for any thread count.
-  tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, ys.size(), [&](std::size_t iy) {
-      const ProbeResults reference = probes.back()->evaluate(ys[iy], states.loads, states.creepages);
-      for (std::size_t m = 0; m + 1 < choice.models.size(); ++m) {
-        const ProbeResults candidate = probes[m]->evaluate(ys[iy], states.loads, states.creepages);
-        choice.error[iy][m] = model_error(candidate, reference, targets, mu);
+  parallel_for_index(threads, ys.size(), [&](std::size_t iy) {
+    const ProbeResults reference = probes.back()->evaluate(ys[iy], states.loads, states.creepages);
+    for (std::size_t m = 0; m + 1 < choice.models.size(); ++m) {
+      const ProbeResults candidate = probes[m]->evaluate(ys[iy], states.loads, states.creepages);
+      choice.error[iy][m] = model_error(candidate, reference, targets, mu);
+    }
+    for (std::size_t m = 0; m < choice.models.size(); ++m) {
+      if (choice.error[iy][m] <= 1.0) {
+        choice.by_y[iy] = m;
+        break;
       }
-      for (std::size_t m = 0; m < choice.models.size(); ++m) {
-        if (choice.error[iy][m] <= 1.0) {
-          choice.by_y[iy] = m;
-          break;
-        }
-      }
-    });
+    }
   });
   choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return choice;

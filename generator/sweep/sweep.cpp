@@ -3,13 +3,8 @@
 #include "sweep/sweep.hpp"
 
 #include <fmt/format.h>
-#include <oneapi/tbb/blocked_range.h>
-#include <oneapi/tbb/info.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/partitioner.h>
-#include <oneapi/tbb/task_arena.h>
-#include <oneapi/tbb/task_group.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -21,6 +16,7 @@
 
 #include "core/check.hpp"
 #include "sweep/checkpoint.hpp"
+#include "sweep/parallel_for.hpp"
 #include "sweep/sweep_plan.hpp"
 #include "table/version.hpp"
 
@@ -61,7 +57,7 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
     for (std::size_t r = 0; r < l.nroll; ++r) tasks.push_back({b, r});
   }
   const std::size_t points_todo = tasks.size() * kernel.points_per_column;
-  summary.threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  summary.threads = effective_threads(options.threads);
 
   std::atomic<std::size_t> points_done{0};
   std::vector<std::atomic<std::size_t>> remaining(l.ny);
@@ -92,25 +88,15 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
     if (block_complete) wake.notify_one();
   };
 
-  tbb::task_group_context context;
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  std::atomic<bool> abandoned{false};  // set by this thread when it gives up (an exception)
   std::thread worker([&] {
     try {
-      tbb::task_arena arena(summary.threads);  // caps the threads of this sweep only
-      arena.execute([&] {
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, tasks.size(), 1),
-            [&](const tbb::blocked_range<std::size_t>& range) {
-              for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                if (interrupted()) {
-                  context.cancel_group_execution();
-                  return;
-                }
-                run_task(i);
-              }
-            },
-            tbb::simple_partitioner(), context);
+      // After an interrupt, or a failure of this thread's checkpoint writing, the remaining tasks
+      // return at once: the checkpoint keeps what is done.
+      parallel_for_index(summary.threads, tasks.size(), [&](std::size_t i) {
+        if (!interrupted() && !abandoned) run_task(i);
       });
     } catch (...) {
       std::lock_guard lock(mutex);
@@ -138,7 +124,6 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
         if (checkpoint) checkpoint->append(b, pack_block(plan.table(), l.ny, b));
         ++summary.blocks_done;
       }
-      if (interrupted()) context.cancel_group_execution();
       double now = elapsed();
       if (options.progress && (finished || now - last_report >= options.progress_interval)) {
         options.progress({points_done.load(), points_todo, now});
@@ -148,7 +133,7 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
       if (finished && finished_blocks.empty()) break;
     }
   } catch (...) {
-    context.cancel_group_execution();
+    abandoned = true;
     worker.join();
     throw;
   }
