@@ -129,13 +129,16 @@ TEST(WornPairs, DISABLED_StripesFlankJumpOnHollowWheel) {
 // models (RailTransition covers S1002, whose point jumps over it through a two-point state).
 // (2) Car7216 / UIC60 stripes-a/clip, stripes-ab/clip (and stripes-a/shift at 8.65 mm): force and
 // approach step 2 % between y = 8.90 and 8.95 mm on the flange flank (src/normal, STRIPES).
-// (3) Car7216 / avg_HR linder, kik-piotrowski: area steps 1.3 % (84.4 -> 83.3 mm2, Linder)
-// between y = -2.51 and -2.505 mm with the rigid points, separations and B continuous
-// (src/normal band run; cause not found); stripes-ab/shift: area 78.9 -> 79.1 mm2 at 4.95 -> 5.00.
+// (3) Car7216 / avg_HR stripes-ab/shift: area 78.9 -> 79.1 mm2 at 4.95 -> 5.00.
+// Formerly also Car7216 / avg_HR linder, kik-piotrowski: the area stepped 1.3 % (84.40 -> 83.30 mm2,
+// Linder) between y = -2.510 and -2.505 mm with the rigid points and the approach continuous: a
+// vanishing second point (weight 0.003) 3.7 mm from the primary one split the band domains at the
+// largest-gap sample, the primary's run ended at that sample and the cell beyond it belonged to
+// no run; when the saddle passed a sample the run lost a 0.1 mm cell of overlap. Fixed in
+// src/normal (normal_model.cpp, normal_band.cpp): the planar runs end at the continuous saddle.
 bool miniprof_known_failure(const Pair& pair, const Variant& v) {
   if (std::string(pair.label) == "Car7216 / UIC60") return v.label != "kik-piotrowski";
-  if (std::string(pair.label) == "Car7216 / avg_HR")
-    return v.label == "linder" || v.label == "kik-piotrowski" || v.label == "stripes-ab/shift";
+  if (std::string(pair.label) == "Car7216 / avg_HR") return v.label == "stripes-ab/shift";
   return false;
 }
 
