@@ -7,7 +7,7 @@
 namespace railtab::status {
 
 std::string describe(StatusBits bits) {
-  static constexpr std::array<std::pair<StatusBits, const char*>, 17> kNames{{
+  static constexpr std::array<std::pair<StatusBits, const char*>, 18> kNames{{
       {kConverged, "converged"},
       {kNotConverged, "not_converged"},
       {kTwoPoint, "two_point"},
@@ -25,6 +25,7 @@ std::string describe(StatusBits bits) {
       {kAreaTooSmall, "area_too_small"},
       {kNotPlanar, "not_planar"},
       {kNearEqualMinima, "near_equal_minima"},
+      {kCurvatureStep, "curvature_step"},
   }};
   std::string out;
   for (const auto& [bit, name] : kNames) {

@@ -34,6 +34,12 @@ inline constexpr StatusBits kNotPlanar = 1u << 15;        // contact angle varie
 // near_equal_gap, e.g. the two minima of a hollow-worn tread: the primary point (and its radius
 // and angle) may jump between them from one lateral position to the next.
 inline constexpr StatusBits kNearEqualMinima = 1u << 16;
+// Geometry: a lateral curvature step of the wheel or rail profile (a radius transition, e.g.
+// UIC60's R300/R80 at |u| = 10.5 mm) lies within one band step of the rigid point. The point's
+// B, and every model answer that depends on it (Hertz; Linder's load closure; STRIPES' virtual
+// penetration and curvature treatment), steps where the point crosses it: the models' constant-
+// curvature assumption at the point fails there. Set on the point and on the wheel.
+inline constexpr StatusBits kCurvatureStep = 1u << 17;
 
 // Comma-separated names of the set bits, e.g. "converged,two_point"; "none" for 0.
 std::string describe(StatusBits bits);

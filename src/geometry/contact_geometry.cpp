@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "core/check.hpp"
@@ -61,6 +62,69 @@ void flag_near_equal_minima(const GeometrySettings& settings, WheelContactGeomet
       p.status |= status::kNearEqualMinima;
       primary.status |= status::kNearEqualMinima;
       out.status |= status::kNearEqualMinima;
+    }
+  }
+}
+
+// A lateral curvature step of either profile (a radius transition: UIC60's R300/R80 at |u| =
+// 10.5 mm and R80/R13 at 26 mm, S1002's section joins) within half a band step of a rigid point.
+// B at the point is the profiles' curvature there, so it steps by half the curvature step where
+// the point crosses a transition, and with it Hertz, Linder's load closure and STRIPES'
+// virtual penetration (Car7216 / UIC60: B 11.5 -> 6.9 1/m, Hertz's approach 0.1143 -> 0.1078 mm
+// between y = -0.10 and -0.05 mm). A cell [i, i + 1] of the band holds a step when its curvature
+// difference exceeds 1 1/m and 10 % of the larger value (the thresholds of the STRIPES cell
+// averages, src/normal/stripes.cpp) and 4 times the differences of both neighbouring cells (a
+// steep but smooth curvature, e.g. of a smoothed measured profile, is no step). The step is
+// located inside its cell as STRIPES locates it: a rail step from the change of the contact
+// angle (-d angle/ds = k_rail), a wheel step from the second difference of the gap (k_wheel +
+// k_rail plus a smooth remainder taken from the neighbouring samples). Half a band step: when
+// the point moves less than a band step per step of a y sweep, one of the two samples around
+// the crossing carries the flag, and the flag stays narrow (the continuity checks lose no more
+// neighbouring steps than needed).
+void flag_curvature_steps(WheelContactGeometry& out) {
+  const std::vector<BandSample>& band = out.band;
+  const int nb = static_cast<int>(band.size());
+  const double h = out.band_step;
+  if (nb < 6 || !(h > 0.0)) return;
+  auto is_step = [&](int i, double BandSample::*k) {  // cell [i, i + 1], reads i - 1 .. i + 2
+    const double d = band[i + 1].*k - band[i].*k;
+    const double dl = band[i].*k - band[i - 1].*k, dr = band[i + 2].*k - band[i + 1].*k;
+    return std::abs(d) > 1.0 &&
+           std::abs(d) > 0.1 * std::max(std::abs(band[i].*k), std::abs(band[i + 1].*k)) &&
+           std::abs(d) > 4.0 * std::max(std::abs(dl), std::abs(dr));
+  };
+  auto gap_excess = [&](int j) {  // second difference of the gap minus k_wheel + k_rail at j
+    const double D = (band[j + 1].gap - 2.0 * band[j].gap + band[j - 1].gap) / (h * h);
+    return D - (band[j].curvature_wheel + band[j].curvature_rail);
+  };
+  // Arc length of the step in cell i (NaN: none there).
+  auto step_s = [&](int i) {
+    if (i < 2 || i + 3 >= nb) return std::numeric_limits<double>::quiet_NaN();
+    if (is_step(i, &BandSample::curvature_rail)) {
+      const double k0 = band[i].curvature_rail, k1 = band[i + 1].curvature_rail;
+      const double kbar = -(band[i + 1].contact_angle - band[i].contact_angle) / h;
+      const double t = (kbar - k1) / (k0 - k1);  // fraction of the cell carrying k0
+      return band[i].s + (std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0.5) * h;
+    }
+    if (is_step(i, &BandSample::curvature_wheel)) {
+      const double a = band[i].curvature_wheel, b = band[i + 1].curvature_wheel;
+      const double r = 0.5 * (gap_excess(i - 1) + gap_excess(i + 2));
+      const double t = 0.5 - (gap_excess(i) + gap_excess(i + 1) - 2.0 * r) / (b - a);
+      return band[i].s + (std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0.5) * h;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  for (ContactPoint& p : out.points) {
+    const double pos = (p.band_s - band.front().s) / h;
+    if (!std::isfinite(pos)) continue;
+    const int c = static_cast<int>(std::floor(pos));
+    for (int i = c - 1; i <= c + 1; ++i) {  // the cells within half a step of the point
+      const double st = step_s(i);
+      if (std::abs(st - p.band_s) < 0.5 * h) {
+        p.status |= status::kCurvatureStep;
+        out.status |= status::kCurvatureStep;
+        break;
+      }
     }
   }
 }
@@ -187,6 +251,7 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
   flag_near_equal_minima(settings_, out);
 
   const bool band_edge = detail::build_band(rail, wheel, pose, settings_, out);
+  flag_curvature_steps(out);
   if (out.points.size() > 1) out.status |= status::kTwoPoint;
   const bool point_edge = std::any_of(out.points.begin(), out.points.end(), [](const ContactPoint& p) {
     return (p.status & status::kProfileEdge) != 0;

@@ -240,15 +240,33 @@ double planar_strip_lengths(const WheelContactGeometry& g, PointContext& p, Work
   const double width = (run.s_hi - run.s_lo) / n;
   int j0, j1;
   strip_sample_range(g, run.s_lo, width, n, &j0, &j1);
-  ensure_samples(g, p, w, j0, j1, o);
+  // Only the point's own samples are made ready (the arrays are shared between the domains); a
+  // run ending at a continuous split (find_run) reads the samples beyond from the band.
+  ensure_samples(g, p, w, std::max(j0, p.lo), std::min(j1, p.hi), o);
+  const double* vw = w.v.data();
+  const double* Aw = w.A.data();
+  auto v_at = [&](int j) {
+    return j >= p.lo && j <= p.hi ? vw[j] : run.vp - (g.band[j].gap - run.hc);
+  };
+  auto A_at = [&](int j) {  // as compute_sample (planar): A from the local rolling radius
+    if (j >= p.lo && j <= p.hi) return Aw[j];
+    const double r = g.band[j].rolling_radius > 0.0 ? g.band[j].rolling_radius : p.r_ref;
+    return p.A0 * (p.r_ref > 0.0 ? p.r_ref / r : 1.0);
+  };
   double L_max = 0.0;
   for (int k = 0; k < n; ++k) {
     const double s = run.s_lo + (k + 0.5) * width;
     int j;
     double t;
     locate(g, s, &j, &t);
-    const double v = std::max(lerp_at(w.v.data(), j, t), 0.0);
-    const double A = lerp_at(w.A.data(), j, t);
+    double v, A;
+    if (j >= p.lo && (t == 0.0 ? j : j + 1) <= p.hi) {
+      v = std::max(lerp_at(vw, j, t), 0.0);
+      A = lerp_at(Aw, j, t);
+    } else {
+      v = std::max(t == 0.0 ? v_at(j) : v_at(j) + t * (v_at(j + 1) - v_at(j)), 0.0);
+      A = t == 0.0 ? A_at(j) : A_at(j) + t * (A_at(j + 1) - A_at(j));
+    }
     const double L = A > 0.0 ? std::sqrt(v / A) : 0.0;
     w.strip_len[k] = L;
     w.strip_pos[k] = s - s_ref;
@@ -256,6 +274,62 @@ double planar_strip_lengths(const WheelContactGeometry& g, PointContext& p, Work
   }
   return L_max;
 }
+
+namespace {
+
+// Planar models: a run that still overlaps at a split of the band domains (normal_model.cpp) ends
+// at the continuous saddle s_lo_split / s_hi_split (or where its overlap, evaluated from the band
+// beyond the domain, reaches zero first), not at the domain's last sample: a sample-bound end
+// made the area jump by a cell of overlap whenever the saddle passed a sample. The samples beyond
+// the domain belong to the neighbouring point (shared workspace arrays): read, never written.
+void planar_split_ends(const WheelContactGeometry& g, const PointContext& p, const Workspace& w,
+                       Run* run) {
+  const BandSample* band = g.band.data();
+  const double step = g.band_step;
+  const int nb = static_cast<int>(g.band.size());
+  auto ov = [&](int j) { return run->vp - (band[j].gap - run->hc); };
+  if (std::isfinite(p.s_hi_split)) {
+    double end = p.s_hi_split;
+    if (run->s_hi == band[p.hi].s && w.v[p.hi] > 0.0) {  // reached the domain end overlapping
+      int j = p.hi;
+      double vj = w.v[p.hi];
+      while (j + 1 < nb && band[j].s < end) {
+        const double vn = ov(j + 1);
+        if (!(vn > 0.0)) {
+          end = std::min(end, band[j].s + step * vj / (vj - vn));
+          break;
+        }
+        ++j;
+        vj = vn;
+      }
+    } else {
+      end = std::min(end, run->s_hi);
+    }
+    run->s_hi = end;
+  }
+  if (std::isfinite(p.s_lo_split)) {
+    double start = p.s_lo_split;
+    if (run->s_lo == band[p.lo].s && w.v[p.lo] > 0.0) {
+      int j = p.lo;
+      double vj = w.v[p.lo];
+      while (j > 0 && band[j].s > start) {
+        const double vn = ov(j - 1);
+        if (!(vn > 0.0)) {
+          start = std::max(start, band[j].s - step * vj / (vj - vn));
+          break;
+        }
+        --j;
+        vj = vn;
+      }
+    } else {
+      start = std::max(start, run->s_lo);
+    }
+    run->s_lo = start;
+  }
+  if (!(run->s_hi > run->s_lo)) run->loaded = false;
+}
+
+}  // namespace
 
 Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, double dz,
              const NormalOptions& /*options*/) {
@@ -268,7 +342,11 @@ Run find_run(const WheelContactGeometry& g, PointContext& p, Workspace& w, doubl
     // like its force by the run weight (w^(2/3), normal_internal.hpp), so the patch matches it.
     const double wscale = p.weight != 1.0 ? std::cbrt(p.weight * p.weight) : 1.0;
     const double vp = eps * (dz - p.h) * p.cos_ref * wscale, hc = p.h * p.cos_ref;
-    return scan_run(g, p.i0, p.lo, p.hi, [&](int j) { return v[j] = vp - (band[j].gap - hc); });
+    Run run = scan_run(g, p.i0, p.lo, p.hi, [&](int j) { return v[j] = vp - (band[j].gap - hc); });
+    run.vp = vp;
+    run.hc = hc;
+    if (run.loaded) planar_split_ends(g, p, w, &run);
+    return run;
   }
   // STRIPES (own angle): v = eps dz cos g - gap + (1 - eps) h cos g. cos is ready on a block
   // around the last run (grown in blocks of 16: the run moves little between evaluations).

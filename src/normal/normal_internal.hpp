@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -34,6 +35,9 @@ struct PointContext {
   int i0 = -1;                 // band sample nearest to the point (-1: no usable band)
   int lo = 0;                  // first band sample belonging to this point
   int hi = -1;                 // last band sample belonging to this point
+  double s_lo_split = std::numeric_limits<double>::quiet_NaN();  // planar models: where the run
+  double s_hi_split = std::numeric_limits<double>::quiet_NaN();  //   ends at the split towards a
+                               //   neighbouring point (continuous saddle, find_run; NaN: none) [m]
   double eps = 0.55;           // virtual penetration factor [-]
   double pmax_coef = 0.0;      // STRIPES: p_max = pmax_coef sqrt(delta0) [Pa/m^0.5]
   bool hertz_valid = false;    // A0 > 0 and B0 > 0
@@ -204,6 +208,7 @@ struct Run {
   double s_hi = 0.0;
   double v_max = 0.0;    // largest sample overlap [m]
   bool at_band_end = false;  // the run was cut by the end of the band
+  double vp = 0.0, hc = 0.0;  // planar models: overlap v(j) = vp - (gap_j - hc)
 };
 
 struct PatchSums {

@@ -44,6 +44,8 @@ TEST(StatusBits, MatchTheCore) {
   EXPECT_EQ(RAILTAB_LOOKUP_NOT_PLANAR, railtab::status::kNotPlanar);
   EXPECT_EQ(status::kNearEqualMinima, railtab::status::kNearEqualMinima);
   EXPECT_EQ(RAILTAB_LOOKUP_NEAR_EQUAL_MINIMA, railtab::status::kNearEqualMinima);
+  EXPECT_EQ(status::kCurvatureStep, railtab::status::kCurvatureStep);
+  EXPECT_EQ(RAILTAB_LOOKUP_CURVATURE_STEP, railtab::status::kCurvatureStep);
   // Every bit has the core's name, and the core names no bit beyond the lookup's count.
   for (int b = 0; b < status::kNumBits; ++b) {
     EXPECT_EQ(status::bit_name(1u << b), railtab::status::describe(1u << b)) << "bit " << b;

@@ -174,8 +174,9 @@ inline std::string creep_violation(const ContactPatch& patch, const CreepWear& c
 // Scalar summary of a wheel's normal result used by the continuity checks.
 struct Summary {
   int patches = 0;
-  StatusBits bits = 0;       // status without kConverged (solver bookkeeping) and kNearEqualMinima
+  StatusBits bits = 0;       // status without kConverged (solver bookkeeping) and the jump flags
   bool near_equal = false;   // the geometry flags near_equal_minima (the primary point may jump)
+  bool curvature_step = false;  // the geometry flags curvature_step (B at a point steps)
   double normal = 0.0;       // sum of patch normal forces [N]
   double lateral = 0.0;      // sum of N_i sin(gamma_i), side-frame sign: lateral (flange) force [N]
   double area = 0.0;         // total area [m2]
@@ -192,10 +193,13 @@ inline Summary summarise(const WheelContactGeometry& g, const WheelNormalResult&
   s.patches = static_cast<int>(r.patches.size());
   // Geometry flags count too: a rigid contact point appearing (kTwoPoint of the geometry) changes
   // the point-based models' answer by construction.
-  // near_equal_minima is kept apart (Summary::near_equal): a bit that differs exempts a step, and
-  // the continuity tests written before the flag existed keep their exemptions unchanged.
-  s.bits = (r.status | g.status) & ~(status::kConverged | status::kNearEqualMinima);
+  // near_equal_minima and curvature_step are kept apart (Summary::near_equal, curvature_step): a
+  // bit that differs exempts a step, and the continuity tests written before the flags existed
+  // keep their exemptions unchanged.
+  s.bits = (r.status | g.status) &
+           ~(status::kConverged | status::kNearEqualMinima | status::kCurvatureStep);
   s.near_equal = (g.status & status::kNearEqualMinima) != 0;
+  s.curvature_step = (g.status & status::kCurvatureStep) != 0;
   s.points = static_cast<int>(g.points.size());
   s.approach = r.vertical_approach;
   s.max_angle = -10.0;
@@ -317,13 +321,15 @@ inline std::vector<double> grid(double from, double to, double step) {
 // lateral force sum N_i sin(gamma_i), the total area and the vertical approach along a sweep.
 // `with_area` false skips the area (Hertz: the area follows the point's curvature, which jumps
 // where the profiles' radii change). `exempt_near_equal` also exempts a step when either sample
-// carries near_equal_minima (the primary point may jump there: issue 20's "continuity in y except
-// at flagged jumps"); off by default so that the two-point tests keep checking those steps.
+// carries near_equal_minima (the primary point may jump there) or curvature_step (B at a point
+// steps where it crosses a profile radius transition): issue 20's "continuity in y except at
+// flagged jumps"; off by default so that the two-point and transition tests keep checking them.
 inline constexpr bool kExemptNearEqualMinima = true;
 inline void expect_continuous(const std::vector<Sample>& s, const std::string& what,
                               bool with_area = true, bool exempt_near_equal = false) {
   auto exempt = [&](int k) {
-    const bool flagged = s[k].summary.near_equal || s[k + 1].summary.near_equal;
+    const bool flagged = s[k].summary.near_equal || s[k + 1].summary.near_equal ||
+                         s[k].summary.curvature_step || s[k + 1].summary.curvature_step;
     return character_change(s[k].summary, s[k + 1].summary) || (exempt_near_equal && flagged);
   };
   auto check = [&](const char* name, double Summary::*field) {

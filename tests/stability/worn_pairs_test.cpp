@@ -117,25 +117,47 @@ TEST(WornPairs, DISABLED_StripesFlankJumpOnHollowWheel) {
 // Measured MiniProf pairs (Car7216, smoothed 2 mm), 0.05 mm steps: continuity in y except where
 // the character changes (character_change) or the geometry flags near_equal_minima (the primary
 // point may jump: the tread-to-flange takeover at y = 5.25 mm, where the point jumps 37.5 mm
-// (avg_HR) and 24.3 mm (UIC60), and the tread jumps between near-equal minima). Without the
-// flag exemption the flange takeover fails for every model (load transfer between 5.20 and
-// 5.40 mm, 130 -> 162 kN in one step for Hertz on avg_HR).
-// KNOWN FAILURES (the DISABLED test below), none of them at near-equal minima, diagnosed with the
-// rigid points printed:
-// (1) Car7216 / UIC60 hertz, linder, stripes-a/shift, stripes-ab/shift, y = -0.10 -> -0.05 mm:
-// ONE rigid point (no second minimum within 0.5 mm) crosses the UIC60 R300/R80 radius transition
-// (rail u -10.519 -> -10.494 mm); B jumps 11.5 -> 6.9 1/m, so Hertz's approach (0.1143 -> 0.1078
-// mm) and Linder's area (94.8 -> 84.6 mm2) jump. The design rail's curvature jump under point
-// models (RailTransition covers S1002, whose point jumps over it through a two-point state).
-// (2) Car7216 / UIC60 stripes-a/clip, stripes-ab/clip (and stripes-a/shift at 8.65 mm): force and
-// approach step 2 % between y = 8.90 and 8.95 mm on the flange flank (src/normal, STRIPES).
-// (3) Car7216 / avg_HR linder, kik-piotrowski: area steps 1.3 % (84.4 -> 83.3 mm2, Linder)
-// between y = -2.51 and -2.505 mm with the rigid points, separations and B continuous
-// (src/normal band run; cause not found); stripes-ab/shift: area 78.9 -> 79.1 mm2 at 4.95 -> 5.00.
+// (avg_HR) and 24.3 mm (UIC60), and the tread jumps between near-equal minima) or curvature_step
+// (B at the point steps: UIC60's R300/R80 transition, below). Without the flag exemptions the
+// flange takeover fails for every model (load transfer between 5.20 and 5.40 mm, 130 -> 162 kN in
+// one step for Hertz on avg_HR), and the transition for Hertz, Linder and STRIPES with the shift.
+// Formerly known failures, fixed:
+// - Car7216 / UIC60 hertz, linder (and stripes-a/shift, stripes-ab/shift there), y = -0.10 ->
+//   -0.05 mm: ONE rigid point (no second minimum within 0.5 mm) crosses the UIC60 R300/R80 radius
+//   transition (rail u -10.519 -> -10.494 mm); B steps 11.5 -> 6.9 1/m, so Hertz's approach
+//   (0.1143 -> 0.1078 mm) and Linder's area (94.8 -> 84.6 mm2) step. A point model is
+//   discontinuous there by construction (constant curvature at the point): the geometry now
+//   flags curvature_step on the samples within half a band step of the transition (y = -0.15 ..
+//   0.00 mm here), and the step is exempt as a flagged jump.
+// - Car7216 / avg_HR linder, kik-piotrowski: the area stepped 1.3 % (84.40 -> 83.30 mm2, Linder)
+//   between y = -2.510 and -2.505 mm with the rigid points and the approach continuous: a
+//   vanishing second point (weight 0.003) 3.7 mm from the primary one split the band domains at
+//   the largest-gap sample, the primary's run ended at that sample and the cell beyond it belonged
+//   to no run; when the saddle passed a sample the run lost a 0.1 mm cell of overlap. Fixed in
+//   src/normal (normal_model.cpp, normal_band.cpp): the planar runs end at the continuous saddle.
+// KNOWN FAILURES (the DISABLED test below), measured with the sweep at 5 um steps:
+// (1) Car7216 / UIC60 stripes-a/clip, stripes-ab/shift, stripes-ab/clip, stripes-a/shift: N,
+// lateral force and approach step 2 % between y = 8.90 and 8.95 mm on the flange flank
+// (stripes-a/clip: 157.5 -> 160.4 kN, approach 0.358 -> 0.372 mm). Smooth at 5 um steps (N rises
+// by 381 .. 176 N per 5 um, monotone, to its maximum 160.7 kN at 9.0 mm): the relaxation of the
+// STRIPES patch after the second rigid point vanishes (a fold at y = 8.857 mm: near_equal_minima
+// at 8.80 and 8.85, one point from 8.86). Every step on its left within three is exempt (point
+// count, near_equal_minima) and the two on its right straddle the maximum (+310, -534 N), so the
+// measure has no slope to compare it with. Not a model jump as far as measured, but not shown
+// continuous by the measure either: kept disabled. stripes-a/shift also at 8.65 -> 8.70 mm (N
+// 138.5 -> 141.6 kN): smooth at 10 um steps (N +50 .. +724 N per 10 um, steepening) as the
+// second minimum forms (two points, near_equal_minima, from 8.71 mm: its right-hand neighbours
+// are exempt).
+// (2) Car7216 / avg_HR stripes-ab/shift: area 78.89 -> 79.13 mm2 between 4.95 and 5.00 mm, one
+// point, approach continuous. At 10 um steps the area is continuous but oscillates by 0.2-0.4 mm2
+// (0.3 %) with kinks at 4.87, 4.93 and 5.03 mm, about one band step (0.1 mm of rail arc) apart:
+// a band-sampling artefact of the STRIPES curvature shift (only the shift variant of stripes-ab
+// shows it), not located further.
 bool miniprof_known_failure(const Pair& pair, const Variant& v) {
-  if (std::string(pair.label) == "Car7216 / UIC60") return v.label != "kik-piotrowski";
-  if (std::string(pair.label) == "Car7216 / avg_HR")
-    return v.label == "linder" || v.label == "kik-piotrowski" || v.label == "stripes-ab/shift";
+  if (std::string(pair.label) == "Car7216 / UIC60") return v.model != NormalModel::hertz &&
+                                                            v.model != NormalModel::linder &&
+                                                            v.model != NormalModel::kik_piotrowski;
+  if (std::string(pair.label) == "Car7216 / avg_HR") return v.label == "stripes-ab/shift";
   return false;
 }
 
@@ -197,6 +219,55 @@ TEST(WornPairs, PrimaryPointJumpsAreFlagged) {
   EXPECT_LT(flagged_samples, samples / 4) << flagged_samples << " of " << samples << " samples flagged";
   std::printf("[ info ] %d jumps of the primary point, %d of %d samples flagged near_equal_minima\n",
               jumps, flagged_samples, samples);
+}
+
+// B at the primary rigid point steps only where the geometry flags curvature_step (a profile
+// radius transition within half a band step of the point): along each sweep, B is continuous
+// by the measure of the continuity tests (first_jump) once the steps where the point jumps
+// (> 1 mm, PrimaryPointJumpsAreFlagged), the point count changes, near_equal_minima or
+// curvature_step is set are exempt. Without the curvature_step exemption the Car7216 / UIC60
+// sweep fails (B 11.5 -> 6.9 1/m where the point crosses UIC60's R300/R80 transition), so the flag
+// is what passes it. The flag stays specific: at most 5 % of the samples carry it.
+TEST(WornPairs, CurvatureStepsAreFlagged) {
+  int unflagged_fails = 0, flagged_samples = 0, samples = 0;
+  std::vector<Pair> pairs = worn_pairs();
+  pairs.push_back({"S1002 / UIC60", make_s1002_profile(), make_uic60_profile()});
+  for (const Pair& pair : pairs) {
+    const ContactGeometrySolver solver(pair.wheel, pair.rail, pair.wheel, pair.rail, TrackGeometry{},
+                                       WheelsetGeometry{});
+    std::vector<WheelContactGeometry> g;
+    std::vector<double> b;
+    for (double y : sweep_ys()) {
+      g.push_back(solver.solve_wheel(Side::left, WheelsetState{y, 0.0}));
+      b.push_back(g.back().points.front().curvature_b);
+      const bool flagged = (g.back().status & status::kCurvatureStep) != 0;
+      ++samples;
+      flagged_samples += flagged ? 1 : 0;
+      if (flagged) {  // on the wheel and on at least one point
+        bool on_point = false;
+        for (const ContactPoint& p : g.back().points) on_point = on_point || (p.status & status::kCurvatureStep);
+        EXPECT_TRUE(on_point) << pair.label << " y = " << y * 1e3 << " mm";
+      }
+    }
+    auto exempt = [&](int k, StatusBits flags) {
+      const ContactPoint& p = g[k].points.front();
+      const ContactPoint& q = g[k + 1].points.front();
+      return g[k].points.size() != g[k + 1].points.size() ||
+             std::hypot(q.y_track - p.y_track, q.z_track - p.z_track) > 1e-3 ||
+             ((g[k].status | g[k + 1].status) & flags) != 0;
+    };
+    const int k = first_jump(b, [&](int j) {
+      return exempt(j, status::kNearEqualMinima | status::kCurvatureStep);
+    });
+    EXPECT_EQ(k, -1) << pair.label << ": B at the primary point steps " << b[k < 0 ? 0 : k] << " -> "
+                     << b[k < 0 ? 0 : k + 1] << " 1/m between y = " << sweep_ys()[k < 0 ? 0 : k] * 1e3
+                     << " and " << sweep_ys()[k < 0 ? 0 : k + 1] * 1e3 << " mm without curvature_step";
+    if (first_jump(b, [&](int j) { return exempt(j, status::kNearEqualMinima); }) >= 0) ++unflagged_fails;
+  }
+  EXPECT_GE(unflagged_fails, 1);  // Car7216 / UIC60 crosses the R300/R80 transition
+  EXPECT_LT(flagged_samples, samples / 20) << flagged_samples << " of " << samples << " samples flagged";
+  std::printf("[ info ] %d sweeps fail without the flag, %d of %d samples flagged curvature_step\n",
+              unflagged_fails, flagged_samples, samples);
 }
 
 // Leaving the tread is flagged: the flange contact on the worn gauge face carries kFlangeContact

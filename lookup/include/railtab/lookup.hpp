@@ -51,7 +51,9 @@ inline constexpr StatusBits kAreaTooSmall = 1u << 14;     // half-space: contact
 inline constexpr StatusBits kNotPlanar = 1u << 15;        // half-space: contact angle varies across the patch
 inline constexpr StatusBits kNearEqualMinima = 1u << 16;  // geometry: two near-equal rigid gap minima,
                                                           // the contact point may jump between them
-inline constexpr int kNumBits = 17;                       // bits 0 .. kNumBits-1 are defined
+inline constexpr StatusBits kCurvatureStep = 1u << 17;    // geometry: a profile radius transition at
+                                                          // the point: B and the point models step
+inline constexpr int kNumBits = 18;                       // bits 0 .. kNumBits-1 are defined
 
 // Name of one bit as in the table files and `railtab inspect` ("converged", "two_point", ...;
 // "unknown" for a value that is not a single defined bit).
