@@ -272,23 +272,37 @@ struct Piece {
   int cell = -1;    // y cell whose status the piece carries, -1: none
 };
 
-Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* loc, double yq, int node) noexcept {
+// Jumps of `list` left of the query at load node `node` of its cell (0 or 1), counted without a
+// branch per jump. The positions are sorted (the blend of two increasing lists with weights >= 0
+// rounds to a non-decreasing one), so this is the first position above yq, as a search finds it.
+// Blended positions do not depend on the node: callers count once for both.
+std::size_t jumps_left(const JumpWheel& j, int list, const AxisLoc* loc, double yq, int node) noexcept {
   const int l = j.load_axis ? loc[kVarLoad].i : 0;
-  const double s = j.load_axis ? loc[kVarLoad].t : 0.0;
+  const bool blend = j.load_axis && j.matched[list][static_cast<std::size_t>(l)];
+  std::size_t m = 0;
+  if (blend) {
+    const double s = loc[kVarLoad].t;
+    const std::vector<double>& lo_list = j.y[list][static_cast<std::size_t>(l)];
+    const std::vector<double>& hi_list = j.y[list][static_cast<std::size_t>(l + 1)];
+    for (std::size_t k = 0; k < lo_list.size(); ++k) m += ((1.0 - s) * lo_list[k] + s * hi_list[k]) <= yq;
+  } else {
+    const std::vector<double>& own = j.y[list][static_cast<std::size_t>(l + node)];
+    for (std::size_t k = 0; k < own.size(); ++k) m += own[k] <= yq;
+  }
+  return m;
+}
+
+bool blended(const JumpWheel& j, int list, const AxisLoc* loc) noexcept {
+  return j.load_axis && j.matched[list][static_cast<std::size_t>(loc[kVarLoad].i)];
+}
+
+// The piece of load node `node` with m jumps (jumps_left) left of the query.
+Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* loc, double yq, int node,
+                 std::size_t m) noexcept {
+  const int l = j.load_axis ? loc[kVarLoad].i : 0;
   const std::size_t ln = static_cast<std::size_t>(l + node);
   const std::vector<double>& own = j.y[list][ln];
   const std::vector<int>& id = j.index[list][ln];
-  const bool blend = j.load_axis && j.matched[list][static_cast<std::size_t>(l)];
-  const std::vector<double>& lo_list = j.y[list][static_cast<std::size_t>(l)];
-  const std::vector<double>& hi_list = j.y[list][static_cast<std::size_t>(j.load_axis ? l + 1 : l)];
-  // Jumps left of the query: counted without a branch per jump. The positions are sorted (the
-  // blend of two increasing lists with weights >= 0 rounds to a non-decreasing one), so this is
-  // the first position above yq, as a search would find it.
-  std::size_t m = 0;
-  if (blend)
-    for (std::size_t k = 0; k < own.size(); ++k) m += ((1.0 - s) * lo_list[k] + s * hi_list[k]) <= yq;
-  else
-    for (std::size_t k = 0; k < own.size(); ++k) m += own[k] <= yq;
   const double* x = ya.nodes();
   const int n = ya.size();
   const bool has_lo = m > 0, has_hi = m < own.size();
@@ -355,14 +369,17 @@ void creep_cell(const Block& b, int inner0, const AxisLoc* loc, CreepCell& c) no
   const int n_inner = b.n_dims - inner0;
   c.base = 0;
   for (int k = inner0; k < b.n_dims; ++k) c.base += static_cast<std::size_t>(loc[b.var[k]].i) * b.stride[k];
-  for (int corner = 0; corner < (1 << n_inner); ++corner) {
-    c.w[corner] = 1.0;
-    c.off[corner] = 0;
-    for (int q = 0; q < n_inner; ++q) {
-      const bool up = (corner >> q) & 1;
-      const AxisLoc& l = loc[b.var[inner0 + q]];
-      c.w[corner] *= up ? l.t : 1.0 - l.t;
-      c.off[corner] += up ? b.stride[inner0 + q] : 0;
+  // Corner bit q = upper node along creepage axis q; the weight is the product of the axes'
+  // factors in axis order, 1.0 * f_0 * f_1 * .., built by doubling the corner list per axis.
+  c.w[0] = 1.0;
+  c.off[0] = 0;
+  for (int q = 0; q < n_inner; ++q) {
+    const AxisLoc& l = loc[b.var[inner0 + q]];
+    const int half = 1 << q;
+    for (int corner = 0; corner < half; ++corner) {
+      c.w[corner + half] = c.w[corner] * l.t;
+      c.w[corner] *= 1.0 - l.t;
+      c.off[corner + half] = c.off[corner] + b.stride[inner0 + q];
     }
   }
 }
@@ -411,8 +428,13 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
   const int n = slot_end - slot_begin;
   // The pieces of both jump lists at both load nodes, shared by the blocks.
   Piece pieces[2][2];
+  std::size_t m0 = 0;
   for (int list = 0; list < 2; ++list)
-    for (int k = 0; k < nodes; ++k) pieces[list][k] = side_piece(j, ya, list, loc, yq, k);
+    for (int k = 0; k < nodes; ++k) {
+      const std::size_t m = k > 0 && blended(j, list, loc) ? m0 : jumps_left(j, list, loc, yq, k);
+      if (k == 0) m0 = m;
+      pieces[list][k] = side_piece(j, ya, list, loc, yq, k, m);
+    }
   const CreepMap& map = d.creep_map;
   for (int bi = 0; bi < d.n_blocks; ++bi) {
     const Block& b = d.block[w][bi];
@@ -488,7 +510,8 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       double values[kMaxSlotValues];
       js.sum(end, end_w, n_ends, cc.w, cc.off, values);
       Contact& c = contact[s];
-      for (int v = 0; v < b.n_values; ++v) c.value[b.output_of[v]] = values[v];  // Block::output_of
+      if (b.first_output >= 0) std::memcpy(c.value + b.first_output, values, static_cast<std::size_t>(b.n_values) * sizeof(double));
+      else for (int v = 0; v < b.n_values; ++v) c.value[b.output_of[v]] = values[v];  // Block::output_of
       for (int p = 0; p < b.n_parts; ++p)
         c.part_status[b.part[p]] = (any[p] & ~status::kConverged) | (all[p] & status::kConverged);
       if (!normalised || !d.has_part[kCreep]) continue;
