@@ -271,6 +271,20 @@ constexpr std::array<CubicKernel, sizeof...(V)> cubic_table(
 constexpr auto kCubicSse2 = cubic_table<false>(std::make_integer_sequence<int, kMaxSlotValues>());
 constexpr auto kCubicAvx2 = cubic_table<true>(std::make_integer_sequence<int, kMaxSlotValues>());
 
+template <int NI, bool kAvx2, int... V>
+constexpr std::array<JumpKernel, sizeof...(V)> jump_kernels_for(
+    std::integer_sequence<int, V...>) noexcept {
+  if constexpr (kAvx2) return {&jump_sum_avx2<NI, V + 1>...};
+  else return {&jump_sum_sse2<NI, V + 1>...};
+}
+template <bool kAvx2, int... NI>
+constexpr std::array<std::array<JumpKernel, kMaxSlotValues>, sizeof...(NI)> jump_table(
+    std::integer_sequence<int, NI...>) noexcept {
+  return {jump_kernels_for<NI, kAvx2>(std::make_integer_sequence<int, kMaxSlotValues>())...};
+}
+constexpr auto kJumpSse2 = jump_table<false>(std::make_integer_sequence<int, kMaxJumpInner + 1>());
+constexpr auto kJumpAvx2 = jump_table<true>(std::make_integer_sequence<int, kMaxJumpInner + 1>());
+
 bool use_avx2() noexcept {
   if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_AVX2"); env && *env && *env != '0')
     return false;
@@ -280,6 +294,10 @@ bool use_avx2() noexcept {
 
 LinearKernel linear_kernel_for(int n_dims, int n_values) noexcept {
   return (use_avx2() ? kLinearAvx2 : kLinearSse2)[n_dims][n_values - 1];
+}
+
+JumpKernel jump_kernel_for(int n_inner, int n_values) noexcept {
+  return (use_avx2() ? kJumpAvx2 : kJumpSse2)[n_inner][n_values - 1];
 }
 
 CubicKernel cubic_kernel_for(int n_values) noexcept {

@@ -24,6 +24,11 @@ LinearKernel linear_kernel_for(int n_dims, int n_values) noexcept;
 // have 3 nodes). Status as in the linear kernel (the cell's). Chosen at load by `n_values`.
 CubicKernel cubic_kernel_for(int n_values) noexcept;
 
+// The one-sided sum of a jump cell (jump_side.hpp) for blocks with n_inner creepage dimensions
+// (0..kMaxJumpInner) and records of n_values values, chosen once at load.
+inline constexpr int kMaxJumpInner = 3;  // xi, eta, phi
+JumpKernel jump_kernel_for(int n_inner, int n_values) noexcept;
+
 // As the cubic with slopes limited per node so that 0 <= slope / secant <= 3 on both sides
 // (Fritsch-Carlson sufficient condition; zero slope at a data extremum), which keeps the result
 // C1 and free of overshoot. Nonlinear in the data: successive 1-D passes over the 4^D stencil.

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "hdf5_file.hpp"
+#include "interpolate.hpp"
 #include "part_spec.hpp"
 #include "table_data.hpp"
 
@@ -64,6 +65,12 @@ void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_
   const std::size_t ns = static_cast<std::size_t>(d.n_slots);
   shape.push_back(ns);
   const std::size_t rec = static_cast<std::size_t>(b.record);
+  js.list = b.n_parts == 1 && b.part[0] == kGeometry ? 1 : 0;  // geometry alone: geometric jumps
+  js.inner0 = inner0;
+  js.load_dim = load_dim(b);
+  js.n_inner = b.n_dims - inner0;
+  if (js.n_inner > kMaxJumpInner) f.fail("a block with jumps has more than 3 creepage axes");
+  js.sum = jump_kernel_for(js.n_inner, b.n_values);
   js.side_stride = inner * rec;
   js.jump_stride = 2 * js.side_stride;
   js.load_stride = count * js.jump_stride;
@@ -225,6 +232,20 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
     for (int l = 0; l < j.load_cells; ++l)
       j.cut[static_cast<std::size_t>(i) * static_cast<std::size_t>(j.load_cells) + static_cast<std::size_t>(l)] =
           cuts(j, 0, l, ya.nodes()[i], ya.nodes()[i + 1]) || cuts(j, 1, l, ya.nodes()[i], ya.nodes()[i + 1]);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double* x = ya.nodes();
+  for (int list = 0; list < 2; ++list) {
+    j.seg_first[list].assign(static_cast<std::size_t>(n_load), {});
+    j.seg_last[list].assign(static_cast<std::size_t>(n_load), {});
+    for (std::size_t l = 0; l < n_load; ++l) {
+      const std::vector<double>& own = j.y[list][l];
+      for (std::size_t m = 0; m <= own.size(); ++m) {
+        const double lo = m > 0 ? own[m - 1] : -inf, hi = m < own.size() ? own[m] : inf;
+        j.seg_first[list][l].push_back(static_cast<int>(std::upper_bound(x, x + ya.size(), lo) - x));
+        j.seg_last[list][l].push_back(static_cast<int>(std::lower_bound(x, x + ya.size(), hi) - x) - 1);
+      }
+    }
+  }
   for (int b = 0; b < d.n_blocks; ++b) read_samples(f, d, w, b, static_cast<std::size_t>(n_load), count);
   j.n_load_nodes = static_cast<std::size_t>(n_load);
   j.n_jumps = count;
@@ -251,24 +272,44 @@ struct Piece {
   int cell = -1;    // y cell whose status the piece carries, -1: none
 };
 
-Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* loc, double yq, int node) noexcept {
+// Jumps of `list` left of the query at load node `node` of its cell (0 or 1), counted without a
+// branch per jump. The positions are sorted (the blend of two increasing lists with weights >= 0
+// rounds to a non-decreasing one), so this is the first position above yq, as a search finds it.
+// Blended positions do not depend on the node: callers count once for both.
+std::size_t jumps_left(const JumpWheel& j, int list, const AxisLoc* loc, double yq, int node) noexcept {
   const int l = j.load_axis ? loc[kVarLoad].i : 0;
-  const double s = j.load_axis ? loc[kVarLoad].t : 0.0;
+  const bool blend = j.load_axis && j.matched[list][static_cast<std::size_t>(l)];
+  std::size_t m = 0;
+  if (blend) {
+    const double s = loc[kVarLoad].t;
+    const std::vector<double>& lo_list = j.y[list][static_cast<std::size_t>(l)];
+    const std::vector<double>& hi_list = j.y[list][static_cast<std::size_t>(l + 1)];
+    for (std::size_t k = 0; k < lo_list.size(); ++k) m += ((1.0 - s) * lo_list[k] + s * hi_list[k]) <= yq;
+  } else {
+    const std::vector<double>& own = j.y[list][static_cast<std::size_t>(l + node)];
+    for (std::size_t k = 0; k < own.size(); ++k) m += own[k] <= yq;
+  }
+  return m;
+}
+
+bool blended(const JumpWheel& j, int list, const AxisLoc* loc) noexcept {
+  return j.load_axis && j.matched[list][static_cast<std::size_t>(loc[kVarLoad].i)];
+}
+
+// The piece of load node `node` with m jumps (jumps_left) left of the query.
+Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* loc, double yq, int node,
+                 std::size_t m) noexcept {
+  const int l = j.load_axis ? loc[kVarLoad].i : 0;
   const std::size_t ln = static_cast<std::size_t>(l + node);
   const std::vector<double>& own = j.y[list][ln];
   const std::vector<int>& id = j.index[list][ln];
-  const bool blend = j.load_axis && j.matched[list][static_cast<std::size_t>(l)];
-  const std::vector<double>& lo_list = j.y[list][static_cast<std::size_t>(l)];
-  const std::vector<double>& hi_list = j.y[list][static_cast<std::size_t>(j.load_axis ? l + 1 : l)];
-  std::size_t m = 0;  // jumps left of the query
-  while (m < own.size() && (blend ? (1.0 - s) * lo_list[m] + s * hi_list[m] : own[m]) <= yq) ++m;
   const double* x = ya.nodes();
   const int n = ya.size();
   const bool has_lo = m > 0, has_hi = m < own.size();
   const double lo = has_lo ? own[m - 1] : -std::numeric_limits<double>::infinity();
   const double hi = has_hi ? own[m] : std::numeric_limits<double>::infinity();
-  const int a = static_cast<int>(std::upper_bound(x, x + n, lo) - x);      // first node above lo
-  const int b = static_cast<int>(std::lower_bound(x, x + n, hi) - x) - 1;  // last node below hi
+  const int a = j.seg_first[list][ln][m];  // first node above lo
+  const int b = j.seg_last[list][ln][m];   // last node below hi
   auto fraction = [](double v, double from, double to) { return std::clamp((v - from) / (to - from), 0.0, 1.0); };
   Piece p;
   if (b < a) {  // no grid node between the two jumps: their one-sided values
@@ -298,8 +339,6 @@ Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const AxisLoc* lo
   return p;
 }
 
-bool geometry_only(const Block& b) { return b.n_parts == 1 && b.part[0] == kGeometry; }
-
 }  // namespace
 
 void read_jumps(const Hdf5File& f, TableData& d) {
@@ -322,22 +361,25 @@ namespace {
 // from the cell's first record), and that first record's offset within a slice.
 struct CreepCell {
   std::size_t base = 0;
-  double w[1 << kMaxDims];
-  std::size_t off[1 << kMaxDims];
+  double w[1 << kMaxJumpInner];
+  std::size_t off[1 << kMaxJumpInner];
 };
 
 void creep_cell(const Block& b, int inner0, const AxisLoc* loc, CreepCell& c) noexcept {
   const int n_inner = b.n_dims - inner0;
   c.base = 0;
   for (int k = inner0; k < b.n_dims; ++k) c.base += static_cast<std::size_t>(loc[b.var[k]].i) * b.stride[k];
-  for (int corner = 0; corner < (1 << n_inner); ++corner) {
-    c.w[corner] = 1.0;
-    c.off[corner] = 0;
-    for (int q = 0; q < n_inner; ++q) {
-      const bool up = (corner >> q) & 1;
-      const AxisLoc& l = loc[b.var[inner0 + q]];
-      c.w[corner] *= up ? l.t : 1.0 - l.t;
-      c.off[corner] += up ? b.stride[inner0 + q] : 0;
+  // Corner bit q = upper node along creepage axis q; the weight is the product of the axes'
+  // factors in axis order, 1.0 * f_0 * f_1 * .., built by doubling the corner list per axis.
+  c.w[0] = 1.0;
+  c.off[0] = 0;
+  for (int q = 0; q < n_inner; ++q) {
+    const AxisLoc& l = loc[b.var[inner0 + q]];
+    const int half = 1 << q;
+    for (int corner = 0; corner < half; ++corner) {
+      c.w[corner + half] = c.w[corner] * l.t;
+      c.w[corner] *= 1.0 - l.t;
+      c.off[corner + half] = c.off[corner] + b.stride[inner0 + q];
     }
   }
 }
@@ -386,14 +428,18 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
   const int n = slot_end - slot_begin;
   // The pieces of both jump lists at both load nodes, shared by the blocks.
   Piece pieces[2][2];
+  std::size_t m0 = 0;
   for (int list = 0; list < 2; ++list)
-    for (int k = 0; k < nodes; ++k) pieces[list][k] = side_piece(j, ya, list, loc, yq, k);
+    for (int k = 0; k < nodes; ++k) {
+      const std::size_t m = k > 0 && blended(j, list, loc) ? m0 : jumps_left(j, list, loc, yq, k);
+      if (k == 0) m0 = m;
+      pieces[list][k] = side_piece(j, ya, list, loc, yq, k, m);
+    }
   const CreepMap& map = d.creep_map;
   for (int bi = 0; bi < d.n_blocks; ++bi) {
     const Block& b = d.block[w][bi];
     const JumpSamples& js = j.samples[bi];
-    const int list = geometry_only(b) ? 1 : 0;
-    const int inner0 = first_inner(b), ld = load_dim(b), n_inner = b.n_dims - inner0;
+    const int list = js.list, inner0 = js.inner0, ld = js.load_dim;
     // The creepage cell per slot: the query's own creepages, or (normalised creep block) its v
     // coordinates at the slot's one-sided scales.
     const bool normalised = map.active && bi == d.creep_block;
@@ -417,16 +463,29 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       }
       creep_cell(b, inner0, slot_loc, cell[s]);
     }
-    double acc[kMaxSlots][kMaxSlotValues] = {};
-    StatusBits any[kMaxSlots][kNumParts] = {}, all[kMaxSlots][kNumParts];
-    for (auto& row : all)
-      for (StatusBits& v : row) v = ~0u;
-    for (int k = 0; k < nodes; ++k) {
-      const Piece& piece = pieces[list][k];
-      const std::size_t lnode = static_cast<std::size_t>(lc + k);
-      for (int s = 0; s < n; ++s) {
-        const std::size_t slot = static_cast<std::size_t>(slot_begin + s);
-        const CreepCell& cc = cell[s];
+    // Per slot: the ends of both load nodes' pieces with their weights (load x y fraction), in
+    // the order load node, end; one kernel call sums their creepage corners.
+    for (int s = 0; s < n; ++s) {
+      const std::size_t slot = static_cast<std::size_t>(slot_begin + s);
+      const CreepCell& cc = cell[s];
+      const double* end[4];
+      double end_w[4];
+      int n_ends = 0;
+      StatusBits any[kNumParts] = {}, all[kNumParts];
+      for (StatusBits& v : all) v = ~0u;
+      // Status: the samples' creepage cells and the grid cell of the side the piece uses.
+      auto fold = [&](const double* record) {
+        for (int p = 0; p < b.n_parts; ++p) {
+          StatusBits bits;
+          std::memcpy(&bits, reinterpret_cast<const unsigned char*>(record + b.status_offset) + p * sizeof(StatusBits),
+                      sizeof bits);
+          any[p] |= bits;
+          all[p] &= bits;
+        }
+      };
+      for (int k = 0; k < nodes; ++k) {
+        const Piece& piece = pieces[list][k];
+        const std::size_t lnode = static_cast<std::size_t>(lc + k);
         auto slice = [&](const End& e) -> const double* {
           if (e.sample)
             return js.data.data() + slot * js.slot_stride + lnode * js.load_stride +
@@ -435,39 +494,26 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
                  (ld >= 0 ? lnode * b.stride[ld] : 0);
         };
         const double* ends[2] = {slice(piece.a), slice(piece.b)};
-        const double end_w[2] = {1.0 - piece.t, piece.t};
+        const double ends_w[2] = {1.0 - piece.t, piece.t};
         for (int e = 0; e < 2; ++e) {
-          const double* base = ends[e] + cc.base;
-          const double we = weight[k] * end_w[e];
+          const double we = weight[k] * ends_w[e];
           if (we == 0.0) continue;  // e.g. a query on a grid node, or at a load node
-          for (int corner = 0; corner < (1 << n_inner); ++corner) {
-            const double cw = we * cc.w[corner];
-            const double* rec = base + cc.off[corner];
-            for (int v = 0; v < b.n_values; ++v) acc[s][v] += cw * rec[v];
-          }
+          end[n_ends] = ends[e] + cc.base;
+          end_w[n_ends++] = we;
         }
-        // Status: the samples' creepage cells and the grid cell of the side the piece uses.
-        auto fold = [&](const double* record) {
-          for (int p = 0; p < b.n_parts; ++p) {
-            StatusBits bits;
-            std::memcpy(&bits, reinterpret_cast<const unsigned char*>(record + b.status_offset) + p * sizeof(StatusBits),
-                        sizeof bits);
-            any[s][p] |= bits;
-            all[s][p] &= bits;
-          }
-        };
-        for (const End& e : {piece.a, piece.b})
-          if (e.sample) fold(slice(e) + cc.base);
+        if (piece.a.sample) fold(ends[0] + cc.base);
+        if (piece.b.sample) fold(ends[1] + cc.base);
         if (piece.cell >= 0)
           fold(b.data.data() + slot * b.slot_size + static_cast<std::size_t>(piece.cell) * b.stride[0] +
                (ld >= 0 ? static_cast<std::size_t>(lc) * b.stride[ld] : 0) + cc.base);
       }
-    }
-    for (int s = 0; s < n; ++s) {
+      double values[kMaxSlotValues];
+      js.sum(end, end_w, n_ends, cc.w, cc.off, values);
       Contact& c = contact[s];
-      for (int v = 0; v < b.n_values; ++v) c.value[b.output_of[v]] = acc[s][v];  // Block::output_of
+      if (b.first_output >= 0) std::memcpy(c.value + b.first_output, values, static_cast<std::size_t>(b.n_values) * sizeof(double));
+      else for (int v = 0; v < b.n_values; ++v) c.value[b.output_of[v]] = values[v];  // Block::output_of
       for (int p = 0; p < b.n_parts; ++p)
-        c.part_status[b.part[p]] = (any[s][p] & ~status::kConverged) | (all[s][p] & status::kConverged);
+        c.part_status[b.part[p]] = (any[p] & ~status::kConverged) | (all[p] & status::kConverged);
       if (!normalised || !d.has_part[kCreep]) continue;
       // F / (mu N) minus the law, plus the law at the query's normalised creepages, times mu N (the
       // creep point's own N, already in kNormalForce), as interpolate_normalised_creep (table.cpp).

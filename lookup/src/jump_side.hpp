@@ -26,9 +26,20 @@ inline constexpr std::uint32_t kGeometricJumps = 0x3Fu;
 // node, jump and side (0 left, 1 right of the jump) a slice over the block's creepage axes, in the
 // block's query record layout (values, then the statuses of the creepage CELL the record starts,
 // folded as the block's: every bit but converged ORed, converged ANDed).
+// One jump cell's sum over one block (weighted_sum.hpp, jump_sum): the records at end[e] +
+// corner_off[c] weighted by end_w[e] x corner_w[c], into out[0 .. n_values-1].
+using JumpKernel = void (*)(const double* const* end, const double* end_w, int n_ends,
+                            const double* corner_w, const std::size_t* corner_off,
+                            double* out) noexcept;
+
 struct JumpSamples {
   std::vector<double> data;
   std::size_t slot_stride = 0, load_stride = 0, jump_stride = 0, side_stride = 0;  // doubles
+  // The block's shape as the one-sided query walks it, fixed at load: jump list (0 every jump,
+  // 1 geometric only), first creepage dimension, load dimension (-1: none), creepage dimensions,
+  // and the sum kernel for (creepage dimensions, values per record).
+  int list = 0, inner0 = 0, load_dim = -1, n_inner = 0;
+  JumpKernel sum = nullptr;
 };
 
 // The jumps of one wheel, as the query path reads them.
@@ -40,6 +51,10 @@ struct JumpWheel {
   std::vector<std::vector<double>> y[2];
   std::vector<unsigned char> matched[2];  // [list][load cell]: same jump count at both nodes
   std::vector<unsigned char> cut;         // [y cell * load_cells + load cell]: a jump may cut it
+  // Per list and load node, for the segment right of m jumps (m = 0 .. jumps): its first grid
+  // node above the jump m-1 and its last grid node below jump m (the binary searches of the
+  // query, done at load).
+  std::vector<std::vector<int>> seg_first[2], seg_last[2];
   std::vector<std::vector<int>> index[2];  // [list][load node][k]: the jump's index in list 0
   JumpSamples samples[kNumParts];          // per block of the wheel
   // Normalised creep coordinates (creep_map.hpp): the one-sided reciprocal creepage scales at the

@@ -45,20 +45,22 @@ StatusBits locate_state(const detail::TableData& d, const State& state, detail::
   const CreepMap& map = d.creep_map;
   // A variable the table neither tabulates nor fixes does not affect it: ignored.
   bool finite = true, out = false;
-  for (int k = 0; k < d.n_tabulated; ++k) {
-    const int var = d.tabulated_var[k];
+  for (int k = 0; k < d.n_located; ++k) {
+    const int var = d.located_var[k];
     const double x = v[var];
     if (!std::isfinite(x)) {
       finite = false;
       continue;
     }
-    if (map.active && var >= kVarXi) {
-      const int c = var - kVarXi;
-      out |= x < map.lo[c] || x > map.hi[c];
-      creepage[c] = std::min(std::max(x, map.lo[c]), map.hi[c]);
-      continue;
-    }
     out |= d.axis[var].locate_fast(x, loc[var]);
+  }
+  for (int k = 0; k < d.n_clamped; ++k) {  // normalised creep coordinates' creepages
+    const int c = d.clamped_var[k] - kVarXi;
+    const double x = v[kVarXi + c];
+    const bool ok = std::isfinite(x);  // not finite: kInvalidInput alone, as for the others
+    finite &= ok;
+    out |= ok && (x < map.lo[c] || x > map.hi[c]);
+    creepage[c] = std::min(std::max(x, map.lo[c]), map.hi[c]);
   }
   if (map.active)
     for (int c = 0; c < 3; ++c)

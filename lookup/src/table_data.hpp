@@ -106,6 +106,10 @@ struct TableData {
   double fixed_value[kNumVars] = {};  // its value, SI
   int n_tabulated = 0;                // tabulated variables, and which (Var), in table order:
   int tabulated_var[kNumVars] = {};   // the query locates only these
+  int n_located = 0;                  // tabulated variables placed on their axis (all but the
+  int located_var[kNumVars] = {};     // creepages of normalised creep coordinates), which
+  int n_clamped = 0;                  // tabulated creepages of normalised creep coordinates
+  int clamped_var[kNumVars] = {};     // (only clamped to their physical range at first)
   int n_fixed = 0;                    // fixed variables, and which (Var)
   int fixed_var[kNumVars] = {};
   double fixed_tolerance[kNumVars] = {};  // |query - fixed_value| above this: kOutOfRange

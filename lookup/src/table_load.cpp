@@ -522,6 +522,12 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   }
   read_creep_map(f, *d);
   read_jumps(f, *d);  // format 2.1; absent: no one-sided cells (as before)
+  // What the query does with each tabulated variable, fixed here so its loop has no branch on it.
+  for (int k = 0; k < d->n_tabulated; ++k) {
+    const int var = d->tabulated_var[k];
+    if (d->creep_map.active && var >= kVarXi) d->clamped_var[d->n_clamped++] = var;
+    else d->located_var[d->n_located++] = var;
+  }
   return d;
 }
 

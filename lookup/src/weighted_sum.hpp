@@ -163,4 +163,25 @@ __attribute__((noinline, target("avx2"))) void stencil_sum_avx2(
   sums.store(out);
 }
 
+// One-sided sum of a jump cell (jump_side.cpp): per end (a grid node or a one-sided sample slice of
+// the query's side, in the caller's order) with weight end_w[e], the 2^NI creepage corners
+// (weights corner_w, offsets corner_off): every record weighted by end_w[e] x corner_w[c]. The
+// same products and sums, in the same order, as the scalar loop it replaces, lane by lane.
+#define RAILTAB_JUMP_SUM(NAME, SUMS, ATTRIBUTES)                                                  \
+  template <int NI, int NV>                                                                     \
+  ATTRIBUTES void NAME(const double* const* end, const double* end_w, int n_ends,              \
+                       const double* corner_w, const std::size_t* corner_off,                  \
+                       double* out) noexcept {                                                 \
+    SUMS<NV> sums;                                                                              \
+    sums.zero();                                                                                \
+    for (int e = 0; e < n_ends; ++e) {                                                          \
+      _Pragma("GCC unroll 8") for (int c = 0; c < (1 << NI); ++c)                               \
+        sums.add(end_w[e] * corner_w[c], end[e] + corner_off[c]);                               \
+    }                                                                                           \
+    sums.store(out);                                                                            \
+  }
+RAILTAB_JUMP_SUM(jump_sum_sse2, SumsSse2, __attribute__((noinline)))
+RAILTAB_JUMP_SUM(jump_sum_avx2, SumsAvx2, __attribute__((noinline, target("avx2"))))
+#undef RAILTAB_JUMP_SUM
+
 }  // namespace railtab::lookup::detail
