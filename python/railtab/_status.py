@@ -19,6 +19,10 @@ STATUS_FLAGS = (
     ("invalid_input", 1 << 11),
     ("profile_edge", 1 << 12),
     ("failed", 1 << 13),
+    ("area_too_small", 1 << 14),
+    ("not_planar", 1 << 15),
+    ("near_equal_minima", 1 << 16),
+    ("curvature_step", 1 << 17),
 )
 _MASK = dict(STATUS_FLAGS)
 

@@ -114,7 +114,9 @@ def test_status_names_match_the_core():
     assert railtab.decode_status(0) == "none"
     assert railtab.decode_status(1 | 4 | 1024) == "converged,two_point,out_of_range"
     assert railtab.decode_status(1 << 13) == "failed"
-    assert [m for _, m in railtab.STATUS_FLAGS] == [1 << i for i in range(14)]
+    assert [m for _, m in railtab.STATUS_FLAGS] == [1 << i for i in range(18)]
+    assert railtab.decode_status((1 << 16) | (1 << 17)) == "near_equal_minima,curvature_step"
+    assert railtab.decode_status(1 << 14 | 1 << 15) == "area_too_small,not_planar"
 
 
 def test_query_on_a_generated_table(default_table):
