@@ -370,7 +370,7 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   }
 
   Section gr = section(ctx, root, "grid", {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll",
-                                          "creep_coordinates"});
+                                          "creep_coordinates", "creep_knee"});
   SceneGrids& grids = scene.grids;
   // A grid axis, or an adaptive one ([accuracy] scenes) recorded in scene.accuracy.axes.
   auto grid_axis = [&](const std::string& key, const toml::node& n) -> std::vector<double> {
@@ -390,6 +390,20 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
       fail(ctx, gr.node("creep_coordinates")->source(), "grid.creep_coordinates",
            "'" + *coordinates + "' is neither \"physical\" nor \"normalised\"");
     scene.creep_normalised = *coordinates == "normalised";
+  }
+  if (const toml::node* n = gr.node("creep_knee")) {
+    // [k_xi, k_eta, k_phi] > 0: the knees of the normalised node maps (scene.hpp, creep_map.hpp).
+    const toml::array* a = n->as_array();
+    if (!scene.creep_normalised)
+      fail(ctx, n->source(), "grid.creep_knee", "needs creep_coordinates = \"normalised\"");
+    if (!a || a->size() != 3)
+      fail(ctx, n->source(), "grid.creep_knee", "must be an array of three numbers [xi, eta, phi]");
+    for (std::size_t i = 0; i < 3; ++i) {
+      const std::optional<double> v = (*a)[i].value<double>();
+      if (!v || !(*v > 0.0) || !(*v < 1e6))
+        fail(ctx, n->source(), "grid.creep_knee", "every knee must be a number > 0 (and < 1e6)");
+      scene.creep_knee[i] = *v;
+    }
   }
   if (const toml::node* n = gr.node("roll")) {
     if (scene.equilibrium_roll) {

@@ -3,6 +3,8 @@
 // read from a TOML file in tables/. The file format is documented in docs/scenes.md.
 #pragma once
 
+#include <array>
+
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -106,6 +108,10 @@ struct Scene {
   // normalised creepage coordinates (format 2.1, sweep/creep_map.hpp); the creepage lists then
   // give the range (first and last value) and the node count. false = "physical" (the default).
   bool creep_normalised = false;
+  // [grid] creep_knee = [k_xi, k_eta, k_phi] (normalised coordinates only, default 1): the knee of
+  // each axis's node map m(x) = x / (k + |x|), x the normalised creepage (creep_map.hpp); a larger
+  // k spreads the nodes more evenly over the range (an axis that does not saturate inside it).
+  std::array<double, 3> creep_knee = {1.0, 1.0, 1.0};
   SceneGrids grids;              // adaptive axes hold their starting grid until build_adaptive_grids
   AccuracyTargets accuracy;      // [accuracy]; enabled = false without the section
 };

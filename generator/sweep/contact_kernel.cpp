@@ -301,7 +301,7 @@ SweepKernel make_contact_kernel(const Scene& scene) {
   auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
                                                             scene.normal, scene.tangential, creep, fastsim, wear,
                                                             coupled_load_options(scene), halfspace_options(scene),
-                                                            model_by_y, scene.creep_normalised});
+                                                            model_by_y, scene.creep_normalised, scene.creep_knee});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));

@@ -69,6 +69,16 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
   // (format 2.1): each slot's node is its own creepage (its own scales), so one coupled solve per
   // slot, keeping that slot's outputs; a slot without a creepage-free patch gets status 0.
   const bool per_slot = scales != nullptr;
+  // Normalised tables: the creep part's normal_force holds the slot's vertical load share
+  // N cos(delta) + Fy sin(delta), delta the geometry part's contact angle of the slot (0 for an
+  // empty geometry slot), which stays nearly constant over the creepages where N itself does not
+  // (flange: Fy carries load; creep_map.hpp, vertical_share). The lookup recovers N from it.
+  double slot_angle[kSlots] = {};
+  if (per_slot) {
+    const SlotAssignment points = assign_slots(geometry);
+    for (std::size_t s = 0; s < kSlots; ++s)
+      if (points.point[s] >= 0) slot_angle[s] = geometry.points[static_cast<std::size_t>(points.point[s])].contact_angle;
+  }
   for (std::size_t pass = 0; pass < (per_slot ? kSlots : 1); ++pass) {
   if (per_slot && !uncoupled_slots.occupied(pass)) continue;  // status 0, zeros: no contact
   std::size_t c = il * k.creepages();
@@ -99,9 +109,7 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
               return fmt::format("coupled creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
                                  to_string(geometry.side), state.y, load, xi, eta, phi);
             };
-            const ContactPatch patch = slot_normal(coupled.normal, slots, s);
-            const bool normal_finite =
-                store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where, std::size(kCreepOutputs));
+            ContactPatch patch = slot_normal(coupled.normal, slots, s);
             SlotWear wear{k.wear, distribution, {}};
             // One patch on the wheel: the coupled solve's last FASTSIM solve was this patch at this
             // creepage and is still in the workspace, so its result and wear are slot_creep's
@@ -113,7 +121,13 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
                 reuse ? coupled.creep[0]
                       : slot_creep(geometry, coupled.normal, slots, s, creepage, k.creep, k.material, k.fastsim,
                                    workspace, &wear);
-            if (per_slot) creep = normalised_forces(creep, creepage, patch.normal_force, k.creep.friction, scales[s]);
+            const double n = patch.normal_force;
+            if (per_slot) {
+              patch.normal_force = creep_map::vertical_share(n, creep.fy, slot_angle[s]);
+              creep = normalised_forces(creep, creepage, n, k.creep.friction, scales[s]);
+            }
+            const bool normal_finite =
+                store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where, std::size(kCreepOutputs));
             const bool creep_finite = store_values(kCreepOutputs, creep, out, wheel, kCreepPart, cell, where);
             // Status: the creep forces' bits as without the coupling, plus not_converged when the
             // coupled solve (or a normal solve in it) missed its tolerance; failed if not finite.

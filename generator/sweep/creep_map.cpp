@@ -58,6 +58,10 @@ std::array<double, 2> law(double xi_n, double eta_n, double psi_n) {
   return {-g * x / r, -g * y / r};
 }
 
+double vertical_share(double normal_force, double fy, double angle) {
+  return normal_force * std::cos(angle) + fy * std::sin(angle);
+}
+
 std::vector<double> nodes(std::size_t count) {
   std::vector<double> v(count);
   for (std::size_t i = 0; i < count; ++i)

@@ -48,6 +48,13 @@ double coordinate(double q, double lo, double hi, double s);
 // under pure longitudinal or lateral creepage with a parabolic bound; the table holds the rest.
 std::array<double, 2> law(double xi_n, double eta_n, double psi_n);
 
+// The slot's vertical load share N cos(angle) + fy sin(angle) [N] (angle: the geometry part's
+// contact angle of the slot, track frame) that normalised tables store as the creep part's
+// normal_force (creep_map "normal_force": "vertical_share"), and N back from it given
+// fy / (mu N) = r_y: N = share / (cos(angle) + mu r_y sin(angle)). The lookup has the inverse
+// (lookup/src/creep_map.hpp, normal_from_share).
+double vertical_share(double normal_force, double fy, double angle);
+
 // The file's nodes of one normalised axis: `count` values uniform in [-1, 1].
 std::vector<double> nodes(std::size_t count);
 

@@ -170,6 +170,7 @@ struct KernelData {
   halfspace::HalfspaceOptions halfspace;  // normal model halfspace ([contact] element_size)
   std::vector<NormalModel> model_by_y;  // per node of the scene's y grid (planned model choice); empty = normal.model
   bool normalised = false;              // format 2.1 normalised creep coordinates (creep_map.hpp)
+  std::array<double, 3> knee = {1.0, 1.0, 1.0};  // node map knee per creepage axis (scene.creep_knee)
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
 
@@ -179,11 +180,13 @@ inline Creepage node_creepage(const KernelData& k, std::size_t ix, std::size_t i
                        const creep_map::Scales* scales) {
   const SceneGrids& g = k.grids;
   if (!k.normalised || !scales) return Creepage{g.xi[ix], g.eta[ie], g.phi[ip]};
+  // The knee k of m(x) = x / (k + |x|) is m(x / k): the map at scale s k.
   auto map = [](const std::vector<double>& axis, std::size_t i, double s) {
     if (axis.size() < 2) return axis.front();
     return creep_map::physical(creep_map::nodes(axis.size())[i], axis.front(), axis.back(), s);
   };
-  return Creepage{map(g.xi, ix, scales->xi), map(g.eta, ie, scales->eta), map(g.phi, ip, scales->phi)};
+  return Creepage{map(g.xi, ix, scales->xi * k.knee[0]), map(g.eta, ie, scales->eta * k.knee[1]),
+                  map(g.phi, ip, scales->phi * k.knee[2])};
 }
 
 // Format 2.1: the creep forces stored as F / (mu N) minus the saturation law at the node's

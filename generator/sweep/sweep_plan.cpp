@@ -89,11 +89,16 @@ nlohmann::json creep_map_attribute(const Scene& scene) {
   nlohmann::json j;
   j["coordinates"] = "normalised";
   j["friction"] = scene.tangential.friction;
+  // The creep part's normal_force is the vertical load share (creep_map.hpp, vertical_share).
+  if (scene.tangential.load_coupling) j["normal_force"] = "vertical_share";
   for (const char* name : {"xi", "eta", "phi"}) {
     const std::vector<double>& g = grid_of(scene, name);
     if (g.size() < 2) continue;
     j[std::string(name) + "_min"] = g.front();
     j[std::string(name) + "_max"] = g.back();
+    // Written only when not 1, so tables of scenes without creep_knee keep their bytes.
+    const double knee = scene.creep_knee[static_cast<std::size_t>(name == std::string("xi") ? 0 : name == std::string("eta") ? 1 : 2)];
+    if (knee != 1.0) j[std::string(name) + "_knee"] = knee;
   }
   return j;
 }

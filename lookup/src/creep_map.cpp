@@ -54,6 +54,13 @@ double creep_coordinate_normalised(double x, double a, double b) noexcept {
   return -1.0 + 2.0 * ((x * aa - a * ax) * ab) / ((b * aa - a * ab) * ax);
 }
 
+double normal_from_share(double share, double angle, double mu_ry) noexcept {
+  const double den = std::cos(angle) + mu_ry * std::sin(angle);
+  // The coupled solve keeps den well above 0 (a flange at 70 deg: >= 0.1 for |r_y| <= 1); the
+  // guard only keeps a corrupt or extrapolated value finite.
+  return share / (std::abs(den) > 1e-3 ? den : std::copysign(1e-3, den));
+}
+
 void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) noexcept {
   const double x = xi_n, y = eta_n + psi_n / 3.0;
   const double r = std::sqrt(x * x + y * y);  // O(1) values: no need for hypot's care (or cost)

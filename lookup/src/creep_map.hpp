@@ -19,6 +19,12 @@ struct CreepMap {
   double friction = 0.0;          // mu of F / (mu N)
   bool swept[3] = {};             // xi, eta, phi tabulated (else fixed: their value is used)
   double lo[3] = {}, hi[3] = {};  // physical range of each swept axis (the scene's)
+  // Knee k of each axis's node map m(x / k) (creep_map `<axis>_knee`, 1 when absent): the
+  // coordinate is taken of x / k on the range [lo, hi] / k (kinv = 1 / k, lo_k = lo / k, hi_k = hi / k;
+  // with k = 1 the same numbers as before the knee).
+  double kinv[3] = {1.0, 1.0, 1.0};
+  bool vertical_share = false;    // the creep part's normal_force is N cos(angle) + Fy sin(angle)
+  double lo_k[3] = {}, hi_k[3] = {};
   // Reciprocal scales 1/s_xi, 1/s_eta, 1/s_phi per node of the normal part's grid (its axes among
   // y, roll, load, in file order) and slot: scale[wheel][(slot * nodes + node) * 3 + k]. The
   // query interpolates the reciprocals (the same at the nodes, and no division on its path).
@@ -38,6 +44,11 @@ void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc*
 double creep_coordinate(double q, double lo, double hi, double s) noexcept;
 // The same with q, lo, hi already divided by s (x = q / s, a = lo / s, b = hi / s).
 double creep_coordinate_normalised(double x, double a, double b) noexcept;
+
+// N from the creep part's stored vertical load share (creep_map "normal_force": "vertical_share";
+// generator/sweep/creep_map.hpp): N = share / (cos(angle) + mu r_y sin(angle)), r_y = fy / (mu N)
+// the interpolated normalised force, angle the slot's contact angle (geometry part).
+double normal_from_share(double share, double angle, double mu_ry) noexcept;
 
 // The saturation law of the stored forces: F / (mu N) = stored + law(xi', eta', psi'), with
 // x = xi', y = eta' + psi' / 3, r = |(x, y)|, g = 1 - (1 - min(r, 1))^3, law = -g (x, y) / r.

@@ -458,7 +458,8 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       for (int k = 0; k < 3; ++k) {
         xn[s][k] = creepage[k] * inv[k];
         if (map.swept[k])
-          d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(xn[s][k], map.lo[k] * inv[k], map.hi[k] * inv[k]),
+          d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(xn[s][k] * map.kinv[k], map.lo_k[k] * inv[k],
+                                                                     map.hi_k[k] * inv[k]),
                                          slot_loc[kVarXi + k]);
       }
       creep_cell(b, inner0, slot_loc, cell[s]);
@@ -519,6 +520,9 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       // creep point's own N, already in kNormalForce), as interpolate_normalised_creep (table.cpp).
       double law[2];
       creep_law(xn[s][0], xn[s][1], xn[s][2], law);
+      if (map.vertical_share)
+        c.value[kNormalForce] =
+            normal_from_share(c.value[kNormalForce], c.value[kContactAngle], map.friction * (c.value[kFy] + law[1]));
       const double mun = map.friction * c.value[kNormalForce];
       c.value[kFx] = (c.value[kFx] + law[0]) * mun;
       c.value[kFy] = (c.value[kFy] + law[1]) * mun;

@@ -106,13 +106,16 @@ void interpolate_normalised_creep(const detail::TableData& d, const detail::Bloc
     const double inv = inv_scale[k];
     x[k] = creepage[k] * inv;
     if (map.swept[k])
-      d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(x[k], map.lo[k] * inv, map.hi[k] * inv),
+      d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(x[k] * map.kinv[k], map.lo_k[k] * inv, map.hi_k[k] * inv),
                                      slot_loc[kVarXi + k]);
   }
   interpolate_block(d, block, slot_loc, slot, slot + 1, &c);
   if (!d.has_part[kCreep]) return;
   double law[2];
   creep_law(x[0], x[1], x[2], law);
+  if (map.vertical_share)
+    c.value[kNormalForce] =
+        normal_from_share(c.value[kNormalForce], c.value[kContactAngle], map.friction * (c.value[kFy] + law[1]));
   const double mun = map.friction * c.value[kNormalForce];
   c.value[kFx] = (c.value[kFx] + law[0]) * mun;
   c.value[kFy] = (c.value[kFy] + law[1]) * mun;

@@ -324,6 +324,12 @@ void read_creep_map(const Hdf5File& f, TableData& d) {
   for (const FlatJsonEntry& e : entries)
     if (e.key == "coordinates") normalised = e.is_text && e.text == "normalised";
   if (!normalised) f.fail("root attribute creep_map: coordinates must be \"normalised\"");
+  for (const FlatJsonEntry& e : entries)
+    if (e.key == "normal_force") {
+      if (!e.is_text || e.text != "vertical_share")
+        f.fail("root attribute creep_map: normal_force must be \"vertical_share\"");
+      d.creep_map.vertical_share = true;
+    }
   CreepMap& m = d.creep_map;
   m.friction = number("friction");
   if (!(m.friction > 0.0)) f.fail("root attribute creep_map: friction must be > 0");
@@ -338,6 +344,14 @@ void read_creep_map(const Hdf5File& f, TableData& d) {
     if (!(m.lo[k] < m.hi[k]))
       f.fail(std::string("root attribute creep_map: ") + var_name(var) + "_min is not below " + var_name(var) +
              "_max");
+    double knee = 1.0;  // optional: the node map's knee (absent in tables before it: 1)
+    for (const FlatJsonEntry& e : entries)
+      if (e.key == std::string(var_name(var)) + "_knee") knee = number(e.key);
+    if (!(knee > 0.0) || !std::isfinite(1.0 / knee))
+      f.fail(std::string("root attribute creep_map: ") + var_name(var) + "_knee must be > 0");
+    m.kinv[k] = 1.0 / knee;
+    m.lo_k[k] = m.lo[k] / knee;
+    m.hi_k[k] = m.hi[k] / knee;
     const Axis& a = d.axis[var];
     if (a.nodes()[0] != -1.0 || a.nodes()[a.size() - 1] != 1.0)
       f.fail(std::string("axis /axes/") + var_name(var) + " of a normalised creep part must run from -1 to 1");

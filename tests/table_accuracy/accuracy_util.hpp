@@ -222,17 +222,53 @@ class TableView {
     if (const std::string* text = table.attribute("creep_map")) {
       const nlohmann::json j = nlohmann::json::parse(*text);
       normalised_ = true;
+      friction_ = j.at("friction").get<double>();
       for (int k = 0; k < 3; ++k) {
         const std::string name = kVarNames[kXi + k];
         if (!j.contains(name + "_min")) continue;
         swept_[k] = true;
         lo_[k] = j.at(name + "_min").get<double>();
         hi_[k] = j.at(name + "_max").get<double>();
+        knee_[k] = j.value(name + "_knee", 1.0);
       }
+      if (coupled_ && j.value("normal_force", std::string()) == "vertical_share")
+        for (std::size_t w = 0; w < 2; ++w) normal_from_share(w);
     }
   }
 
   bool normalised() const { return normalised_; }
+  // The creep part's normal_force holds the vertical share N cos(angle) + fy sin(angle) (creep_map
+  // "normal_force": "vertical_share"): N at every creep node, as the lookup recovers it there, so
+  // that the tolerances see N's own curvature. Needs the creep part over (y, load, xi, eta, phi).
+  void normal_from_share(std::size_t w) {
+    PartGrid& pc = grid_[w][lk::kCreep];
+    const PartGrid& pg = grid_[w][lk::kGeometry];
+    if (pc.vars != std::vector<int>{kY, kLoad, kXi, kEta, kPhi} || pg.vars != std::vector<int>{kY})
+      throw std::runtime_error("vertical share: unexpected creep or geometry axes");
+    const std::vector<double>& share = *pc.values[lk::kNormalForce];
+    const std::vector<double>& fy = *pc.values[lk::kFy];
+    const std::vector<double>& angle = *pg.values[lk::kContactAngle];
+    std::vector<double>& n = n_creep_[w];
+    n.resize(share.size());
+    const std::size_t nl = pc.nodes[1]->size();
+    for (std::size_t i = 0; i < share.size(); ++i) {
+      std::size_t idx[5];
+      for (std::size_t a = 0; a < 5; ++a) idx[a] = (i / pc.stride[a]) % pc.nodes[a]->size();
+      const std::size_t s = i % kSlots;
+      const std::size_t normal_node = (idx[0] * nl + idx[1]) * kSlots + s;
+      double x[3];
+      for (int k = 0; k < 3; ++k) {
+        const double scale = (*scale_values_[w][k])[normal_node];
+        const double v = (*pc.nodes[2 + static_cast<std::size_t>(k)])[idx[2 + k]];
+        x[k] = creep_map::physical(v, lo_[k], hi_[k], scale * knee_[k]) / scale;
+      }
+      const double ry = fy[i] + creep_map::law(x[0], x[1], x[2])[1];
+      const double a = angle[idx[0] * kSlots + s];
+      n[i] = share[i] / (std::cos(a) + friction_ * ry * std::sin(a));
+    }
+    pc.values[lk::kNormalForce] = &n;
+  }
+
   // The part whose grid and status an output's lookup value comes from: the creep part for the
   // per-creepage normal contact when the table has it.
   int part_of(int o) const {
@@ -246,7 +282,7 @@ class TableView {
     Point q = p;
     for (int k = 0; k < 3; ++k) {
       if (!swept_[k]) continue;
-      const double s = slot_scale(wheel, slot, k, p);
+      const double s = slot_scale(wheel, slot, k, p) * knee_[k];  // m(x / k): the map at scale s k
       q.v[kXi + k] = creep_map::coordinate(std::clamp(p.v[kXi + k], lo_[k], hi_[k]), lo_[k], hi_[k], s);
     }
     return q;
@@ -254,7 +290,7 @@ class TableView {
   // Format 2.1: the physical creepage of coordinate v along creepage axis k (0 xi, 1 eta, 2 phi)
   // at the (y, load) of `p`, wheel and slot.
   double physical_creepage(std::size_t wheel, std::size_t slot, int k, const Point& p, double v) const {
-    return creep_map::physical(v, lo_[k], hi_[k], slot_scale(wheel, slot, k, p));
+    return creep_map::physical(v, lo_[k], hi_[k], slot_scale(wheel, slot, k, p) * knee_[k]);
   }
   // The slot's scale of creepage axis k at the (y, load) of `p`, as the lookup interpolates it.
   double slot_scale(std::size_t wheel, std::size_t slot, int k, const Point& p) const {
@@ -376,6 +412,9 @@ class TableView {
   bool normalised_ = false;  // format 2.1 normalised creep coordinates
   bool swept_[3] = {};
   double lo_[3] = {}, hi_[3] = {};
+  double knee_[3] = {1.0, 1.0, 1.0};  // creep_map <axis>_knee
+  double friction_ = 0.0;             // creep_map friction
+  std::vector<double> n_creep_[2];    // creep part's N recovered from the vertical share
   const std::vector<double>* scale_values_[2][3] = {};
 };
 

@@ -65,6 +65,21 @@ TEST(CreepMap, LawIsLinearTheoryAtSmallCreepage) {
   EXPECT_DOUBLE_EQ(creep_map::law(5.0, 0, 0)[0], -1.0);  // full slip
 }
 
+// The vertical load share the generator stores (creep part normal_force, "vertical_share") gives
+// back N in the lookup, for tread and flange angles of both wheels and either sign of fy.
+TEST(CreepMap, VerticalShareGivesBackTheNormalForce) {
+  const double mu = 0.3;
+  for (double angle : {0.0, 0.03, -0.03, 1.16, -1.16})
+    for (double ry : {-0.9, -0.2, 0.0, 0.5, 0.95}) {
+      const double n = 150e3, fy = ry * mu * n;
+      const double share = creep_map::vertical_share(n, fy, angle);
+      EXPECT_NEAR(lookup::detail::normal_from_share(share, angle, mu * ry), n, 1e-9 * n) << angle << " " << ry;
+    }
+  // Flange, 66 deg: the share changes far less than N when fy carries part of the load.
+  EXPECT_NEAR(creep_map::vertical_share(100281.0, 0.7663 * 0.3 * 100281.0, 1.1585),
+              creep_map::vertical_share(200158.0, -0.3556 * 0.3 * 200158.0, 1.1585), 0.015 * 61300.0);
+}
+
 // The scales of an elliptic patch are Kalker's: s_xi = 3 mu N / (G ab C11) etc.
 TEST(CreepMap, ScalesOfAnEllipseAreKalkers) {
   ContactPatch p;

@@ -221,6 +221,18 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
                   lk::output_name(static_cast<lk::Output>(o)), s, st.worst.v[kY], st.worst.v[kLoad], st.worst.v[kXi],
                   st.worst.v[kEta], st.worst.v[kPhi], st.worst_lookup, st.worst_direct);
     }
+  // Creep forces on smooth cells against mu N (issue 15): measured 0.0071 / 0.0080 (tread fx, fy) and
+  // 0.0069 / 0.0235 (flange) RMS, flange fx max 0.038, with the vertical share and creep_knee
+  // (docs/lookup.md "Accuracy"); before them the flange fx was 0.021 RMS, 0.19 max. Limits: the
+  // measured values with ~25 % margin (the issue's targets, 0.005 RMS and 0.02 max, are not met).
+  const double rms_limit[2][2] = {{0.009, 0.010}, {0.009, 0.030}};  // [slot][fx, fy]
+  for (std::size_t s = 0; s < kSlots; ++s)
+    for (int o : {lk::kFx, lk::kFy}) {
+      const Stats& st = stats[o][s];
+      const double rms = std::sqrt(st.sum_mu_sq / std::max<double>(1.0, static_cast<double>(st.smooth)));
+      EXPECT_LT(rms, rms_limit[s][o - lk::kFx]) << lk::output_name(static_cast<lk::Output>(o)) << " slot " << s;
+    }
+  EXPECT_LT(stats[lk::kFx][1].max_mu_n, 0.05) << "flange fx: the vertical share keeps N's error out of it";
   // The classification found both kinds where the default scene has them: smooth tread and
   // flange cells, and jumps (tread contact jumps, flange onset, two-point, lift-off).
   for (std::size_t s = 0; s < kSlots; ++s) {
