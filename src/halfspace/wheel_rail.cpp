@@ -101,6 +101,21 @@ void build_grid(const WheelContactGeometry& geometry, const ContactPatch& np, do
   }
 }
 
+// Start of the load-controlled BCCG where no previous pressure fits the grid: Hertz's shape
+// from the gap, p ~ sqrt(level - h), level halfway from the gap's minimum to the normal approach
+// dn of the normal layer (for a paraboloid gap exactly Hertz's distribution: the contact is where
+// the rigid overlap exceeds half the approach); the solver scales it to the load. Left empty
+// (the solver's own start) when dn does not reach the gap. The solution does not depend on the
+// start; the iterations do (central case: 52 -> 47).
+void hertz_like_start(const std::vector<double>& gap, double dn, std::vector<double>& p) {
+  if (gap.empty()) return;
+  const double hmin = *std::min_element(gap.begin(), gap.end());
+  if (!(dn > hmin)) return;
+  const double level = hmin + 0.5 * (dn - hmin);
+  p.resize(gap.size());
+  for (size_t k = 0; k < gap.size(); ++k) p[k] = std::sqrt(std::max(0.0, level - gap[k]));
+}
+
 // Contact-angle spread over the lateral extent of the contact.
 double angle_spread(const HalfspacePatch& hp, const std::vector<PlaneSample>& samples) {
   double lo = 1e9, hi = -1e9;
@@ -273,6 +288,8 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
         const Grid before = hp.grid;
         build_grid(geometry, first.patches[k], dz * c, grow, o, hp, samples[k]);
         if (!(before.nx == hp.grid.nx && before.ny == hp.grid.ny)) hp.normal.pressure.clear();
+        if (single_load && hp.normal.pressure.empty())
+          hertz_like_start(hp.gap, dz * c, hp.normal.pressure);
         if (single_load)
           solve_normal_for_force(hp.grid, hp.gap, vertical_load / c, material, o.normal, ws,
                                  hp.normal);
@@ -383,12 +400,16 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
   };
   // One round: normal for the load F_z - tz, then tangential; returns the new tz.
   // The first round only has to give the tangential vertical load tz to the accuracy of the
-  // load balance (1e-4 F_z, tz = fy sin g): its tangential problem is solved to a looser
-  // tolerance (measured on block C: a third fewer steps over the two rounds). Every later round
-  // uses the full tolerance, so the result always comes from a fully converged solve.
+  // load balance (1e-4 F_z, tz = fy sin g), and the start of the second: its tangential and
+  // normal problems are solved to looser tolerances (measured on block C: a third fewer
+  // tangential steps over the two rounds; normal 1e-4: median case 20 -> 17 ms CPU, no force
+  // of block C moved by 0.5 N). Every later round uses the full tolerances, so the result always
+  // comes from fully converged solves.
   constexpr double kFirstRoundTolerance = 1e-3;
+  constexpr double kFirstRoundNormalTolerance = 1e-4;
   HalfspaceOptions first_round = o;
   first_round.tangential.tolerance = std::max(o.tangential.tolerance, kFirstRoundTolerance);
+  first_round.normal.tolerance = std::max(o.normal.tolerance, kFirstRoundNormalTolerance);
   std::vector<std::vector<PlaneSample>> samples;  // of the round that built the grids
   auto round = [&](double tz) {
     const HalfspaceOptions& oo = r.patches.empty() ? first_round : o;
