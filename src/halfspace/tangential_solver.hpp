@@ -26,8 +26,8 @@
 // traction change just made at the element ahead, through B's coefficient there. B is the
 // rolling-direction difference of the displacements, so that coefficient is about minus the
 // diagonal: the Jacobi update leaves the dominant coupling a full step behind, and errors travel
-// down the row one element per step (Anderson needed 20-400 steps on block C); with it, a sweep
-// carries them through the row at once (15-35 steps on the same cases, the same forces to within
+// down the row one element per step (18-407 Anderson steps on blocks A and C); with it, a sweep
+// carries them through the row at once (13-44 steps on the same cases, the same forces to within
 // the tolerance: a fixed point satisfies the element conditions whatever the coupling).
 // Optional (not the default): Gauss-Seidel coupling of all neighbours within `window` elements
 // in the update, with the steady kernel B or (steady_sweep = false) with A / dx (the transient
