@@ -17,6 +17,8 @@
 // evaluated at the four corners X = x -+ hx, Y = y -+ hy.
 #pragma once
 
+#include <vector>
+
 #include "core/material.hpp"
 
 namespace railtab::halfspace {
@@ -34,5 +36,16 @@ double normal_influence(double x, double y, double hx, double hy, const Material
 // Tangential displacement differences at (x, y) from unit traction on the same rectangle.
 TangentialInfluence tangential_influence(double x, double y, double hx, double hy,
                                          const Material& material);
+
+// The same coefficients for every element offset (di, dj), |di| <= mx, |dj| <= my, of a grid of
+// dx x dy elements (field minus source at (di dx, dj dy)), at index (dj + my) (2 mx + 1) + di + mx.
+// Neighbouring offsets share corners, and the antiderivatives are odd (asinh parts) or even (r)
+// in X and Y, so each is evaluated once per corner of one quadrant: (mx + 1)(my + 1) evaluations
+// instead of four per offset, 16 times fewer. Equal to the functions above to rounding (the
+// corner coordinates (di + 1/2) dx instead of di dx + dx / 2).
+void normal_influence_table(int mx, int my, double dx, double dy, const Material& material,
+                            std::vector<double>& out);
+void tangential_influence_table(int mx, int my, double dx, double dy, const Material& material,
+                                std::vector<TangentialInfluence>& out);
 
 }  // namespace railtab::halfspace

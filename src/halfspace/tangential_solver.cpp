@@ -64,8 +64,10 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
     return;
   }
   // The Gauss-Seidel sweeps use A / dx between every pair of contact elements (exact).
-  const TangentialKernels K = w.tangential_kernels(
-      grid, material, options.window < 0 ? std::max(grid.nx, grid.ny) : options.window);
+  // (The upwind coupling needs the kernel at the element behind: a window of at least 1.)
+  const int window = options.window < 0 ? std::max(grid.nx, grid.ny) : options.window;
+  const TangentialKernels K =
+      w.tangential_kernels(grid, material, options.upwind ? std::max(window, 1) : window);
   const NearKernel& near = options.steady_sweep ? *K.near_b : *K.near;
   const double dxx = near.at(near.xx, 0, 0), dyy = near.at(near.yy, 0, 0);
   std::vector<double>& px = out.traction_x;
@@ -112,8 +114,13 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
     spin_y[a] = creepage.phi * grid.x(i);
   }
   // With one sweep and no neighbours coupled, the slip update after an element's own step is
-  // never read again: skipped.
-  const bool couple = W != 0 || options.max_inner_sweeps > 1;
+  // never read again: skipped. The upwind coupling alone (window 0) updates only the element
+  // behind in the same row, the next one in the sweep order.
+  const bool upwind_only = options.upwind && W == 0;
+  const bool couple = W != 0 || upwind_only || options.max_inner_sweeps > 1;
+  const double bxx_behind = upwind_only ? near.at(near.xx, -1, 0) : 0.0;
+  const double bxy_behind = upwind_only ? near.at(near.xy, -1, 0) : 0.0;
+  const double byy_behind = upwind_only ? near.at(near.yy, -1, 0) : 0.0;
   // One rolling step Phi: the tractions p (list order) -> the tractions p' that satisfy the
   // element conditions with the displacements of p at the previous position frozen,
   // s = w + B p + A (p' - p) / dx, by Gauss-Seidel (convex: converges).
@@ -154,7 +161,13 @@ void solve_tangential(const Grid& grid, const std::vector<double>& pressure,
         change += std::abs(dpx) + std::abs(dpy);
         if (!couple) continue;
         const int i = k % grid.nx, j = k / grid.nx;
-        if (W < 0) {
+        if (upwind_only) {
+          const int b = i > 0 ? pos[k - 1] : -1;
+          if (b >= 0) {
+            lsx[b] += bxx_behind * dpx + bxy_behind * dpy;
+            lsy[b] += bxy_behind * dpx + byy_behind * dpy;
+          }
+        } else if (W < 0) {
           for (int b = 0; b < m; ++b) {
             const int kb = list[b];
             const int di = kb % grid.nx - i, dj = kb / grid.nx - j;

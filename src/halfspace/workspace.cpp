@@ -9,13 +9,8 @@ const Spectrum& Workspace::normal_kernel(const Grid& grid, const Material& mater
   const Key key = key_of(grid, material, 0);
   fft.resize(grid.nx, grid.ny);
   if (!(key == normal_key_) || k_nn_.empty()) {
-    const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy;
-    const int ax = 2 * grid.nx - 1, ay = 2 * grid.ny - 1;
-    k_nn_offsets_.resize(static_cast<size_t>(ax) * ay);
-    for (int dj = 1 - grid.ny; dj < grid.ny; ++dj)
-      for (int di = 1 - grid.nx; di < grid.nx; ++di)
-        k_nn_offsets_[static_cast<size_t>(dj + grid.ny - 1) * ax + (di + grid.nx - 1)] =
-            normal_influence(di * grid.dx, dj * grid.dy, hx, hy, material);
+    const int ax = 2 * grid.nx - 1;
+    normal_influence_table(grid.nx - 1, grid.ny - 1, grid.dx, grid.dy, material, k_nn_offsets_);
     fft.kernel_spectrum(
         [&](int di, int dj) {
           return k_nn_offsets_[static_cast<size_t>(dj + grid.ny - 1) * ax + (di + grid.nx - 1)];
@@ -54,11 +49,10 @@ TangentialKernels Workspace::tangential_kernels(const Grid& grid, const Material
     return TangentialInfluence{c.xx / dx, c.xy / dx, c.yy / dx};
   };
   // A / dx once per offset |di| <= nx, |dj| < ny (each is needed by three kernels, twice).
-  const int ax = 2 * grid.nx + 1, ay = 2 * grid.ny - 1;
-  std::vector<TangentialInfluence> table(static_cast<size_t>(ax) * ay);
-  for (int dj = 1 - grid.ny; dj < grid.ny; ++dj)
-    for (int di = -grid.nx; di <= grid.nx; ++di)
-      table[static_cast<size_t>(dj + grid.ny - 1) * ax + (di + grid.nx)] = a(di, dj);
+  const int ax = 2 * grid.nx + 1;
+  std::vector<TangentialInfluence> table;
+  tangential_influence_table(grid.nx, grid.ny - 1, grid.dx, grid.dy, material, table);
+  for (TangentialInfluence& c : table) c = {c.xx / dx, c.xy / dx, c.yy / dx};
   auto at = [&](int di, int dj) -> const TangentialInfluence& {
     return table[static_cast<size_t>(dj + grid.ny - 1) * ax + (di + grid.nx)];
   };
