@@ -22,21 +22,38 @@ struct Plans {
   fftw_plan row_c2r = nullptr;  // rows 0..ny-1 back along x (only those are read)
 };
 
+void destroy(const Plans& p) {
+  for (fftw_plan q : {p.r2c, p.row_r2c, p.col_fwd, p.col_bwd, p.row_c2r})
+    if (q != nullptr) fftw_destroy_plan(q);
+}
+
+// The plans made so far, destroyed at exit (a leak checker then sees every FFTW allocation freed).
+struct PlanCache {
+  std::mutex mutex;
+  std::map<std::tuple<int, int, int>, Plans> plans;
+  ~PlanCache() {
+    for (const auto& entry : plans) destroy(entry.second);
+  }
+};
+
 // One set of plans per padded size and field height for the life of the program (a few in
 // practice). The 2D transform of a zero-padded field is done as row transforms of the ny
 // non-zero rows followed by column transforms, and the inverse as column transforms followed by
 // row transforms of the ny rows that are kept: about a quarter fewer operations than the full
 // 2D transforms and no internal copies; the result is the same transform.
 Plans plans_for(int px, int py, int ny) {
-  static std::mutex mutex;
-  static std::map<std::tuple<int, int, int>, Plans> cache;
-  const std::lock_guard<std::mutex> lock(mutex);
-  auto it = cache.find({px, py, ny});
-  if (it != cache.end()) return it->second;
+  static PlanCache cache;
+  const std::lock_guard<std::mutex> lock(cache.mutex);
+  auto it = cache.plans.find({px, py, ny});
+  if (it != cache.plans.end()) return it->second;
   const int cx = px / 2 + 1;  // complex values per row
   double* in = fftw_alloc_real(static_cast<size_t>(px) * py);
   fftw_complex* out = fftw_alloc_complex(static_cast<size_t>(py) * cx);
-  if (in == nullptr || out == nullptr) throw std::bad_alloc();
+  if (in == nullptr || out == nullptr) {
+    fftw_free(in);
+    fftw_free(out);
+    throw std::bad_alloc();
+  }
   Plans p;
   // Row-major py x px: the last (contiguous) dimension is x.
   p.r2c = fftw_plan_dft_r2c_2d(py, px, in, out, FFTW_ESTIMATE);
@@ -51,9 +68,11 @@ Plans plans_for(int px, int py, int ny) {
   fftw_free(in);
   fftw_free(out);
   if (p.r2c == nullptr || p.row_r2c == nullptr || p.col_fwd == nullptr ||
-      p.col_bwd == nullptr || p.row_c2r == nullptr)
+      p.col_bwd == nullptr || p.row_c2r == nullptr) {
+    destroy(p);
     throw std::bad_alloc();
-  cache.emplace(std::make_tuple(px, py, ny), p);
+  }
+  cache.plans.emplace(std::make_tuple(px, py, ny), p);
   return p;
 }
 
