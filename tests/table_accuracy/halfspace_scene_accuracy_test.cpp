@@ -157,10 +157,11 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
       }
     }
   }
-  std::printf("exact half-space table (%s, element %.2g mm, %zu points, generated in %.1f s incl. jumps): %zu random "
+  std::printf("exact half-space table (%s, element %.2g mm, %zu points, %s %.1f s incl. jumps): %zu random "
               "off-grid states x 2 wheels, seed %llu (direct evaluation %.1f s)\n",
-              full_table() ? full_table() : "reduced", f.scene.halfspace.element_size * 1e3,
-              f.points, f.generate_seconds, points.size(), static_cast<unsigned long long>(kSeed), direct_seconds);
+              full_table() ? full_table() : "reduced", f.scene.halfspace.element_size * 1e3, f.points,
+              full_table() ? "read from the file, not generated:" : "generated in", f.generate_seconds, points.size(),
+              static_cast<unsigned long long>(kSeed), direct_seconds);
   std::printf("%-16s %4s | %6s %10s %10s %8s %8s %5s | %6s %10s\n", "output", "slot", "smooth", "max", "scale",
               "max/scl", "err/tol", "over", "jump", "max_jump");
   for (int o = 0; o < lk::kNumOutputs; ++o)
