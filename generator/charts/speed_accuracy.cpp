@@ -71,7 +71,8 @@ struct Grids {
   std::vector<double> y, xi, eta, phi;
 };
 
-Scene derive_scene(const Scene& base, double load, double friction, bool contact_material, const Grids* grids) {
+Scene derive_scene(const Scene& base, double load, double friction, bool contact_material, const Grids* grids,
+                   const char* normal_model = nullptr) {
   toml::table t = toml::parse(base.text);
   if (contact_material) {
     if (!t.contains("material")) t.insert("material", toml::table{});
@@ -81,6 +82,7 @@ Scene derive_scene(const Scene& base, double load, double friction, bool contact
   }
   if (!t.contains("contact")) t.insert("contact", toml::table{});
   t["contact"].as_table()->insert_or_assign("friction", friction);
+  if (normal_model) t["contact"].as_table()->insert_or_assign("normal_model", normal_model);
   toml::table g;
   g.insert("y", grids ? to_array(grids->y) : to_array({0.0}));
   g.insert("equilibrium_roll", false);
@@ -255,44 +257,6 @@ std::vector<double> range(double lo, double hi, double step) {
 
 }  // namespace
 
-std::string SaModelSetting::label() const {
-  if (model == NormalModel::halfspace) return "halfspace exact";
-  if (model == NormalModel::hertz) return fmt::format("hertz e{}", elements);
-  return fmt::format("{} {}x{}", to_string(model), strips, elements);
-}
-
-std::string SaTableSetting::label() const {
-  return fmt::format("table y{:g}mm{}", y_step * 1e3, fine_creep ? " fine-creep" : "");
-}
-
-std::vector<SaModelSetting> default_model_settings() {
-  std::vector<SaModelSetting> v;
-  for (int e : {10, 20, 40}) v.push_back({NormalModel::hertz, 0, e});
-  for (NormalModel m : {NormalModel::linder, NormalModel::kik_piotrowski}) {
-    v.push_back({m, 10, 20});
-    v.push_back({m, 25, 20});
-    v.push_back({m, 50, 10});
-    v.push_back({m, 50, 20});
-    v.push_back({m, 50, 40});
-    v.push_back({m, 100, 20});
-  }
-  for (NormalModel m : {NormalModel::stripes_a, NormalModel::stripes_ab})
-    for (int s : {10, 25, 50, 100})
-      for (int e : {10, 20, 40}) v.push_back({m, s, e});
-  return v;
-}
-
-std::vector<SaTableSetting> default_table_settings() {
-  return {{2e-3, false}, {1e-3, false}, {0.5e-3, false}, {0.25e-3, false}, {0.5e-3, true}, {0.25e-3, true}};
-}
-
-std::vector<SaModelSetting> quick_model_settings() {
-  return {{NormalModel::hertz, 0, 20}, {NormalModel::linder, 50, 20}, {NormalModel::kik_piotrowski, 50, 20},
-          {NormalModel::stripes_a, 25, 20}, {NormalModel::stripes_ab, 25, 20}, {NormalModel::stripes_ab, 50, 20}};
-}
-
-std::vector<SaTableSetting> quick_table_settings() { return {{1e-3, false}, {0.5e-3, false}}; }
-
 double force_error(const SaOutcome& out, const SaState& s) {
   const double ref = std::hypot(s.ref_fx, s.ref_fy);
   if (!(ref > 0.0)) return kNaN;
@@ -417,11 +381,12 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
     row.time_geometry_us = time_geometry;
     std::vector<SaOutcome> outs(ns);
     std::vector<double> times(ns);
+    const int repeats = m.model == NormalModel::halfspace ? std::min(opt.repeats, opt.exact_repeats) : opt.repeats;
     for (std::size_t i = 0; i < ns; ++i) {
       try {
         outs[i] = evaluate(c, states[i], ws, dist, sink);  // warm-up, and the result
         std::vector<double> t;
-        for (int r = 0; r < opt.repeats; ++r) {
+        for (int r = 0; r < repeats; ++r) {
           const Clock::time_point t0 = Clock::now();
           const SaOutcome o = evaluate(c, states[i], ws, dist, sink);
           t.push_back(us_since(t0));
@@ -457,10 +422,17 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
       ylo = std::min(ylo, s.y), yhi = std::max(yhi, s.y);
     }
     const std::vector<SaTableSetting> tables = opt.tables.empty() ? default_table_settings() : opt.tables;
-    // The tables' own model setting evaluated directly: separates interpolation from model error.
-    std::vector<SaOutcome> direct(ns);
+    // The tables' own model setting evaluated directly: separates interpolation from model error
+    // (the scene's model, and the exact model for the exact tables).
+    std::vector<SaOutcome> direct(ns), direct_exact;
     for (std::size_t i = 0; i < ns; ++i) direct[i] = evaluate(base, states[i], ws, dist, sink);
     for (const SaTableSetting& ts : tables) {
+      if (ts.exact && direct_exact.empty()) {
+        Chain c = base;
+        c.normal.model = NormalModel::halfspace;
+        for (std::size_t i = 0; i < ns; ++i) direct_exact.push_back(evaluate(c, states[i], ws, dist, sink));
+      }
+      const std::vector<SaOutcome>& own = ts.exact ? direct_exact : direct;
       Grids g;
       // Nodes shifted by 0.63 mm against the integer-mm states, so that no state sits on a node
       // (there the lookup would show only the creepage interpolation).
@@ -476,12 +448,12 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
         g.eta = covering(scene.grids.eta, elo, ehi);
         g.phi = covering(scene.grids.phi, plo, phi_hi);
       }
-      const Scene tscene = derive_scene(scene, load, friction, have_ref, &g);
+      const Scene tscene = derive_scene(scene, load, friction, have_ref, &g, ts.exact ? "halfspace" : nullptr);
       SweepOptions so;
       so.threads = opt.table_threads;
       const SweepResult sr = run_sweep(tscene, make_contact_kernel(tscene), so);
-      const std::filesystem::path file =
-          opt.work_dir / fmt::format("speed_accuracy_y{:g}mm{}.h5", h * 1e3, ts.fine_creep ? "_fine" : "");
+      const std::filesystem::path file = opt.work_dir / fmt::format("speed_accuracy_y{:g}mm{}{}.h5", h * 1e3,
+                                                                   ts.fine_creep ? "_fine" : "", ts.exact ? "_exact" : "");
       write_table(sr.table, file);
       const std::uintmax_t file_bytes = std::filesystem::file_size(file);
       std::vector<lk::Method> methods{lk::Method::kLinear};
@@ -531,7 +503,7 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
         const bool linear = method == lk::Method::kLinear;
         row.label = ts.label() + (linear ? "" : " cubic");
         row.kind = "lookup";
-        row.family = linear ? "lookup-linear" : "lookup-cubic";
+        row.family = std::string(linear ? "lookup-linear" : "lookup-cubic") + (ts.exact ? "-exact" : "");
         row.table_y_step = h;
         row.table_creep_grid = ts.fine_creep ? "fine" : "scene";
         summarise_times(row, states, times);
@@ -542,10 +514,10 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
         summarise_errors(row, states, outs, e);
         std::vector<double> ei;
         for (std::size_t i = 0; i < ns; ++i) {
-          if (!states[i].creep || !direct[i].ok) continue;
+          if (!states[i].creep || !own[i].ok) continue;
           SaState d = states[i];
-          d.ref_fx = direct[i].fx;
-          d.ref_fy = direct[i].fy;
+          d.ref_fx = own[i].fx;
+          d.ref_fy = own[i].fy;
           ei.push_back(outs[i].ok ? force_error(outs[i], d) : kNaN);
         }
         row.err_interp = median(ei);

@@ -64,7 +64,8 @@ struct SaModelSetting {
 struct SaTableSetting {
   double y_step = 0.5e-3;     // [m]
   bool fine_creep = false;
-  std::string label() const;  // e.g. "table y0.5mm" / "table y0.25mm fine-creep"
+  bool exact = false;         // a table of the exact half-space model (else of the scene's model)
+  std::string label() const;  // e.g. "table y0.5mm" / "table y0.25mm fine-creep" / "table y0.5mm exact"
 };
 
 struct SpeedAccuracyOptions {
@@ -78,6 +79,7 @@ struct SpeedAccuracyOptions {
   std::filesystem::path work_dir;            // temporary tables go here (required for tables)
   bool keep_tables = false;                  // keep the .h5 files in work_dir
   int repeats = 11;                          // timed runs per state and model (after 1 warm-up)
+  int exact_repeats = 3;                     //   at most this many for the exact model (~0.1 s each)
   int lookup_passes = 200;                   // timed passes over all states per table
   int table_threads = 0;                     // threads of the table sweeps (0 = all cores)
   // Reference without CONTACT data: the exact half-space model of the scene (its element_size,
@@ -95,7 +97,8 @@ std::vector<SaTableSetting> quick_table_settings();
 struct SaRow {
   std::string label;
   std::string kind;            // "model" or "lookup"
-  std::string family;          // model name, or "lookup-linear" / "lookup-cubic"
+  std::string family;          // model name, or "lookup-linear" / "lookup-cubic" (+ "-exact": a table of
+                               //   the exact model)
   int strips = 0, elements = 0;          // model settings (0 where not applicable)
   double table_y_step = 0.0;             // [m] (lookup rows)
   std::string table_creep_grid;          // "scene" or "fine" (lookup rows)

@@ -69,7 +69,10 @@ SpeedAccuracyResult draw_speed_accuracy_charts(const Scene& scene, const std::fi
                              {"stripes-a", "STRIPES A (strips x elements)", 5, "#e7298a"},
                              {"stripes-ab", "STRIPES A\\&B (strips x elements)", 13, "#66a61e"},
                              {"lookup-linear", "table lookup, linear (y step)", 15, "#000000"},
-                             {"lookup-cubic", "table lookup, cubic (y step)", 4, "#7f7f7f"}};
+                             {"lookup-cubic", "table lookup, cubic (y step)", 4, "#7f7f7f"},
+                             {"halfspace", "exact half-space model (railtab)", 3, "#a6761d"},
+                             {"lookup-linear-exact", "table of the exact model, linear", 6, "#a6761d"},
+                             {"lookup-cubic-exact", "table of the exact model, cubic", 12, "#a6761d"}};
   auto panel = [&](int tcol, int ecol, int pcol, int block, const char* title) {
     std::string s = fmt::format("set title '{}'\nplot ", title);
     for (const Family& f : families) {

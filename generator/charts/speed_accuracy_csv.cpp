@@ -73,7 +73,7 @@ void write_table_memory_csv(const SpeedAccuracyResult& result, const std::filesy
   for (const SaRow& r : result.rows) {
     if (r.kind != "lookup") continue;
     out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.label,
-                       r.family == "lookup-linear" ? "linear" : "cubic", num(r.table_y_step * 1e3),
+                       r.family.starts_with("lookup-linear") ? "linear" : "cubic", num(r.table_y_step * 1e3),
                        r.table_creep_grid, r.file_bytes, r.memory_bytes, num(r.time_us), num(r.err_force),
                        num(r.err_force_p90), num(r.err_force_tread), num(r.err_force_flange), num(r.err_area),
                        num(r.err_angle_mrad), num(r.err_interp), num(r.err_interp_p90));

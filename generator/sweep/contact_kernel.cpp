@@ -364,7 +364,8 @@ SweepKernel make_contact_kernel(const Scene& scene) {
   }
   kernel.equilibrium_roll = [data](double y) { return data->solver.equilibrium_roll(y); };
   kernel.compute = [data](const ColumnState& state, ColumnOutput& out) {
-    for (std::size_t wheel = 0; wheel < 2; ++wheel) solve_wheel_column(*data, state, wheel, out);
+    for (std::size_t wheel = 0; wheel < 2; ++wheel)
+      if (state.wheels & (1u << wheel)) solve_wheel_column(*data, state, wheel, out);
   };
   return kernel;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -53,6 +54,13 @@ class ContactProbe {
   // one geometry; result [load][creepage][wheel].
   std::vector<std::vector<std::array<Wheel, 2>>> evaluate(double y, const std::vector<double>& loads,
                                                            const std::vector<std::array<double, 3>>& creepages) const;
+  // The contact configuration of one wheel (0 left, 1 right) at (y, roll of the scene at y, load)
+  // without creep forces (fx = fy = 0): the slots' geometry and loaded-patch bits, contact angles
+  // and rolling radii as evaluate() gives them. normal_force and patch_status are the normal
+  // model's, except for the exact model in a state with at most one patch, where they are the
+  // candidate patch's (halfspace::candidate_patches: same patch, slot and reference point, no
+  // exact solve). For the contact-jump locator.
+  Wheel configuration(double y, std::size_t wheel, double load) const;
   double roll_at(double y) const;   // equilibrium roll or the roll grid's first value [rad]
   double friction() const;          // mu [-]
 

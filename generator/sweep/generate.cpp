@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -114,13 +115,27 @@ SweepSummary generate_table(const GenerateOptions& options) {
   // would need them joined; a merged table has none and interpolates as before 2.1), and only
   // with the contact kernel (the probe runs the scene's contact chain).
   if (options.shard_count == 1 && !options.make_kernel) {
-    const ContactJumps jumps = locate_jumps(scene, {}, options.threads);
-    add_jumps(result.table, scene, jumps);
+    // Its own progress lines (the one-sided values cost columns of the kernel: minutes for the
+    // exact model); none with --quiet.
+    ProgressPrinter locating(log ? *log : std::cerr, options.terminal, "locating contact jumps", "tasks");
+    ProgressPrinter sampling(log ? *log : std::cerr, options.terminal, "one-sided jump values", "columns");
+    StageProgress locate_progress, sample_progress;
+    if (log) locate_progress = [&locating](const SweepProgress& p) { locating(p); };
+    if (log) sample_progress = [&sampling](const SweepProgress& p) { sampling(p); };
+    const auto t0 = std::chrono::steady_clock::now();
+    const ContactJumps jumps = locate_jumps(scene, {}, options.threads, locate_progress);
+    locating.finish();
+    const auto t1 = std::chrono::steady_clock::now();
+    add_jumps(result.table, scene, jumps, {}, options.threads, sample_progress);
+    sampling.finish();
+    const auto t2 = std::chrono::steady_clock::now();
     if (log) {
       std::size_t n = 0;
       for (const auto& wheel : jumps.wheel)
         for (const auto& list : wheel) n += list.size();
-      *log << fmt::format("located {} contact jump(s) along y ({} evaluations)\n", n, jumps.evaluations);
+      *log << fmt::format("located {} contact jump(s) along y ({} evaluations) in {:.2f} s, one-sided values in {:.2f} s\n",
+                          n, jumps.evaluations, std::chrono::duration<double>(t1 - t0).count(),
+                          std::chrono::duration<double>(t2 - t1).count());
     }
   }
   write_table(result.table, options.output, options.interrupt, {options.scene});

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Contact jumps along y (jump_locator.hpp): the contact chain at every y node, then, in every
+// Contact jumps along y (jump_locator.hpp): the contact configuration at every y node, then, in every
 // cell whose end nodes differ in contact configuration (or whose contact point moves a lot),
 // bisection to the tolerance.
 #include "sweep/jump_locator.hpp"
@@ -16,6 +16,7 @@
 
 #include "sweep/contact_probe.hpp"
 #include "sweep/parallel_for.hpp"
+#include "sweep/progress.hpp"
 
 namespace railtab {
 namespace {
@@ -76,7 +77,7 @@ class Bisection {
 
   Signature at(double y) {
     ++evaluations_;
-    return signature(probe_.evaluate(y, {load_}, {{0.0, 0.0, 0.0}})[0][0][wheel_]);
+    return signature(probe_.configuration(y, wheel_, load_));
   }
 
   // Jumps in [a, b]. A configuration change is followed into every half that shows it. A position
@@ -143,42 +144,48 @@ bool roll_is_axis(const Scene& scene) {
 
 }  // namespace
 
-ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options, int threads) {
+ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options, int threads,
+                          const StageProgress& progress) {
   ContactJumps result;
   const std::vector<double>& y = scene.grids.y;
   const std::vector<double>& loads = scene.grids.load;
   if (roll_is_axis(scene) || y.size() < 2 || loads.empty()) return result;
   const ContactProbe probe(scene);
-  // The configuration at every node, all loads at once (one geometry per y).
-  std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> nodes(y.size());
-  parallel_for_index(threads, y.size(), [&](std::size_t i) {
-    auto all = probe.evaluate(y[i], loads, {{0.0, 0.0, 0.0}});
-    nodes[i].resize(loads.size());
-    for (std::size_t l = 0; l < loads.size(); ++l) nodes[i][l] = all[l][0];
-  });
-  const std::size_t cells = y.size() - 1, tasks = 2 * loads.size() * cells;
+  // The configuration at every node, per wheel and load (no creep forces: the signature has none).
+  const std::size_t n_load = loads.size(), cells = y.size() - 1, tasks = 2 * n_load * cells;
+  std::vector<Signature> nodes(2 * n_load * y.size());  // [wheel][load][y]
   std::vector<std::vector<ContactJump>> found(tasks);
   std::vector<std::size_t> spent(tasks, 0);
-  parallel_for_index(threads, tasks, [&](std::size_t task) {
-    const std::size_t wheel = task / (loads.size() * cells), l = (task / cells) % loads.size(), i = task % cells;
-    Bisection bisection(probe, wheel, loads[l], options);
-    bisection.find(y[i], signature(nodes[i][l][wheel]), y[i + 1], signature(nodes[i + 1][l][wheel]), {}, found[task]);
-    spent[task] = bisection.evaluations();
+  TaskProgress ticks(progress, nodes.size() + tasks);  // nodes, then cells (most without a jump)
+  parallel_for_index(threads, nodes.size(), [&](std::size_t t) {
+    const std::size_t wheel = t / (n_load * y.size()), l = (t / y.size()) % n_load, i = t % y.size();
+    nodes[t] = signature(probe.configuration(y[i], wheel, loads[l]));
+    ticks.tick();
   });
+  parallel_for_index(threads, tasks, [&](std::size_t task) {
+    const std::size_t wheel = task / (n_load * cells), l = (task / cells) % n_load, i = task % cells;
+    const std::size_t node = (wheel * n_load + l) * y.size() + i;
+    Bisection bisection(probe, wheel, loads[l], options);
+    bisection.find(y[i], nodes[node], y[i + 1], nodes[node + 1], {}, found[task]);
+    spent[task] = bisection.evaluations();
+    ticks.tick();
+  });
+  ticks.finish();
   for (std::size_t wheel = 0; wheel < 2; ++wheel) {
-    result.wheel[wheel].resize(loads.size());
-    for (std::size_t l = 0; l < loads.size(); ++l)
+    result.wheel[wheel].resize(n_load);
+    for (std::size_t l = 0; l < n_load; ++l)
       for (std::size_t i = 0; i < cells; ++i) {
-        const std::vector<ContactJump>& f = found[(wheel * loads.size() + l) * cells + i];
+        const std::vector<ContactJump>& f = found[(wheel * n_load + l) * cells + i];
         result.wheel[wheel][l].insert(result.wheel[wheel][l].end(), f.begin(), f.end());
       }
   }
-  result.evaluations = y.size();
+  result.evaluations = nodes.size();
   for (std::size_t s : spent) result.evaluations += s;
   return result;
 }
 
-void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, const JumpLocatorOptions& options) {
+void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, const JumpLocatorOptions& options,
+               int threads, const StageProgress& progress) {
   if (roll_is_axis(scene)) return;
   std::size_t count = 0;
   for (const auto& wheel : jumps.wheel)
@@ -207,7 +214,7 @@ void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, cons
     group.datasets.push_back(std::move(kind));
   }
   table.groups.push_back(std::move(group));
-  add_jump_samples(table, scene, jumps);
+  add_jump_samples(table, scene, jumps, threads, progress);
 }
 
 }  // namespace railtab

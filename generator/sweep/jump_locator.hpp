@@ -6,9 +6,11 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "scene/scene.hpp"
+#include "sweep/sweep.hpp"
 #include "table/table.hpp"
 
 namespace railtab {
@@ -45,23 +47,35 @@ struct ContactJump {
 // jumps[wheel][load node] sorted by y (wheel 0 left, 1 right; one load entry when load is fixed).
 struct ContactJumps {
   std::vector<std::vector<ContactJump>> wheel[2];
-  std::size_t evaluations = 0;  // contact-chain evaluations spent (both wheels each) [-]
+  std::size_t evaluations = 0;  // configuration evaluations spent (one wheel and load each) [-]
 };
+
+// Progress of a stage (tasks done of all; called from the workers, serialised, at most every
+// 0.25 s and once at the end); empty = none.
+using StageProgress = std::function<void(const SweepProgress&)>;
 
 // Every jump inside the y grid of `scene` (between its first and last node), per wheel and load
 // node. Deterministic; `threads` as the sweep's (0 = all cores). Scenes with a roll axis are not
-// supported (returns no jumps: the caller writes none).
-ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options = {}, int threads = 0);
+// supported (returns no jumps: the caller writes none). Each step evaluates the contact
+// configuration of one wheel at one load (ContactProbe::configuration: geometry and normal
+// contact, no creep forces; for the exact model the exact normal problem only in states with
+// two or more candidate patches). progress counts the y nodes and the cells.
+ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options = {}, int threads = 0,
+                          const StageProgress& progress = {});
 
 // Adds the group `jumps` (datasets left_y, left_kind, right_y, right_kind over (load, jump) or
 // (jump)) and the one-sided values (add_jump_samples) to `table`. Nothing is added when the scene
 // has a roll axis or no jump was found.
-void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, const JumpLocatorOptions& options = {});
+// threads and progress: those of add_jump_samples.
+void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, const JumpLocatorOptions& options = {},
+               int threads = 0, const StageProgress& progress = {});
 
 // One-sided values: every output of every part of the contact kernel at the ends of each jump's
 // final interval (side 0 = left end, 1 = right end), added as groups jumps/<wheel>/<part> with
-// datasets over ([load,] jump, side, the part's creepage axes, slot). add_jumps calls it.
-void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads = 0);
+// datasets over ([load,] jump, side, the part's creepage axes, slot). add_jumps calls it. Each
+// column is computed for the jump's wheel only (ColumnState::wheels); progress counts columns.
+void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads = 0,
+                      const StageProgress& progress = {});
 
 // The names of the jump-list and side dimensions: plain dimensions, not axes (no coordinate).
 inline constexpr const char* kJumpDimension = "jump";

@@ -10,6 +10,7 @@
 #include "sweep/contact_kernel.hpp"
 #include "sweep/jump_locator.hpp"
 #include "sweep/parallel_for.hpp"
+#include "sweep/progress.hpp"
 
 namespace railtab {
 namespace {
@@ -22,7 +23,7 @@ struct Column {
   std::vector<std::vector<StatusBits>> status;  // [wheel * parts + part]
 };
 
-Column compute_column(const SweepKernel& kernel, const Scene& one, double y) {
+Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std::size_t wheel) {
   Column c;
   for (const PartSpec& part : kernel.parts) {
     c.first_output.push_back(c.first_output.back() + part.outputs.size());
@@ -50,6 +51,7 @@ Column compute_column(const SweepKernel& kernel, const Scene& one, double y) {
   ColumnOutput out(value_ptr, status_ptr, c.first_output, parts);
   ColumnState state;
   state.y = y;
+  state.wheels = 1u << wheel;  // the other wheel's cells stay zero (not read)
   state.roll = one.equilibrium_roll ? kernel.equilibrium_roll(y) : one.grids.roll.front();
   kernel.compute(state, out);
   return c;
@@ -57,7 +59,8 @@ Column compute_column(const SweepKernel& kernel, const Scene& one, double y) {
 
 }  // namespace
 
-void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads) {
+void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads,
+                      const StageProgress& progress) {
   const TableGroup* list = table.group("jumps");
   if (!list) return;  // no jumps
   const std::size_t n_load = scene.grids.load.size();
@@ -74,13 +77,19 @@ void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jump
   }
   const std::size_t tasks = 2 * n_load * count * 2;
   std::vector<Column> columns(tasks);
+  std::size_t todo = 0;  // columns of real jumps (the rest is padding)
+  for (const auto& wheel : jumps.wheel)
+    for (const auto& l : wheel) todo += 2 * l.size();
+  TaskProgress ticks(progress, todo);
   parallel_for_index(threads, tasks, [&](std::size_t t) {
     const std::size_t w = t / (n_load * count * 2), l = (t / (count * 2)) % n_load, j = (t / 2) % count,
                       side = t % 2;
     if (j >= jumps.wheel[w][l].size()) return;
     const ContactJump& jump = jumps.wheel[w][l][j];
-    columns[t] = compute_column(kernels[l], one[l], side == 0 ? jump.left : jump.right);
+    columns[t] = compute_column(kernels[l], one[l], side == 0 ? jump.left : jump.right, w);
+    ticks.tick();
   });
+  ticks.finish();
   const SweepKernel& kernel = kernels.front();
   const bool load_axis = table.axis("load") != nullptr;
   const char* names[2] = {"left", "right"};

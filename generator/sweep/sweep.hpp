@@ -50,6 +50,8 @@ struct ColumnState {
   std::size_t iroll = 0;  // index into the roll grid (0 with equilibrium roll)
   double y = 0.0;         // lateral displacement [m]
   double roll = 0.0;      // roll angle (grid value or equilibrium roll) [rad]
+  unsigned wheels = 3u;   // wheels the contact kernel computes: bit 0 left, bit 1 right (the
+                          //   sweep: both; the one-sided jump values: the jump's wheel only)
 };
 
 // Where a kernel writes one column. For part p the column holds the part's inner grid x slot in

@@ -213,6 +213,14 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
 
 }  // namespace
 
+WheelNormalResult candidate_patches(const WheelContactGeometry& geometry, double vertical_load,
+                                    const Material& material) {
+  NormalOptions no;
+  no.model = NormalModel::stripes_ab;
+  no.combine_patches = true;
+  return solve_normal_for_load(geometry, vertical_load, material, no);
+}
+
 WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,
                                               double vertical_load, const Material& material,
                                               const HalfspaceOptions& o, Workspace& ws) {
@@ -250,10 +258,7 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
   RAILTAB_CHECK(o.element_size > 0.0 && std::isfinite(o.element_size),
                 "halfspace: element_size must be > 0, got {}", o.element_size);
   WheelHalfspaceResult r;
-  NormalOptions no;
-  no.model = NormalModel::stripes_ab;
-  no.combine_patches = true;
-  const WheelNormalResult first = solve_normal_for_load(geometry, vertical_load, material, no);
+  const WheelNormalResult first = candidate_patches(geometry, vertical_load, material);
   r.vertical_approach = first.vertical_approach;
   if (first.patches.empty() || vertical_load == 0.0) {
     r.status = status::kLiftOff | (first.status & status::kInvalidInput);

@@ -34,6 +34,7 @@
 #include "geometry/contact_geometry.hpp"
 #include "halfspace/normal_solver.hpp"
 #include "halfspace/tangential_solver.hpp"
+#include "normal/normal_model.hpp"
 #include "tangential/fastsim.hpp"
 #include "wear/archard.hpp"
 
@@ -70,6 +71,15 @@ struct WheelHalfspaceResult {
   double vertical_load = 0.0;           // sum N_k cos(g_k) [N]
   StatusBits status = 0;                // union of the patch flags; kLiftOff when none
 };
+
+// The patches the exact model solves (the first step of solve_halfspace_for_load): the normal
+// layer's STRIPES A&B with CONTACT's patch combination at `vertical_load`. The exact result has
+// exactly these patches, in this order, with their reference points (band_s, contact_angle,
+// rolling_radius, wheel_u, rail_u); with one patch its normal force is the load's share
+// F_z / cos(g) > 0, so the patch configuration of a one-patch state is known without the exact
+// solve (the contact-jump locator uses this).
+WheelNormalResult candidate_patches(const WheelContactGeometry& geometry, double vertical_load,
+                                    const Material& material);
 
 // Normal problem for a prescribed vertical wheel load [N].
 WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,

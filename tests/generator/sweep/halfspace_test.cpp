@@ -4,13 +4,20 @@
 // checks of the model itself are in tests/halfspace.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "core/check.hpp"
+#include "halfspace/wheel_rail.hpp"
 #include "generator/test_tables.hpp"
 #include "normal/normal_model.hpp"
+#include "scene/scene.hpp"
 #include "sweep/contact_kernel.hpp"
+#include "sweep/contact_probe.hpp"
 #include "sweep/state_eval.hpp"
 
 namespace railtab {
@@ -156,6 +163,72 @@ TEST(HalfspaceSelectable, SweepDeterministicAndBalanced) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace railtab
+
+namespace railtab {
+namespace {
+
+// The contact-jump locator's configuration probe (ContactProbe::configuration: one wheel, no creep,
+// the exact normal problem only with two or more candidate patches) gives the signature the full
+// contact chain (ContactProbe::evaluate, which solves the exact normal and tangential problems at
+// every state) gives: the jumps it locates are those of the exact model, found cheaper. States
+// across the default exact scene's y range, tread and flange, where one and two patches occur.
+TEST(HalfspaceSelectable, JumpConfigurationIsTheContactChains) {
+  namespace pb = probe_slot_bits;
+  constexpr std::uint32_t kConfig = pb::kGeometry | pb::kGeometryTwo | pb::kGeometryFirst | pb::kLoaded;
+  int two_patch = 0, loaded = 0;
+  std::size_t compared = 0;
+  // The default exact scene every 0.7 mm at the nominal load (one candidate patch throughout: its
+  // S1002/UIC60 contacts lie within the 8 mm that merge into one patch), and the worn pairs' scenes
+  // with the exact model at the first states with two candidate patches (0.05 mm scan, no exact solve).
+  for (const char* file : {"default_halfspace.toml", "worn_rail.toml", "worn_miniprof.toml"}) {
+    Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / file);
+    scene.normal.model = NormalModel::halfspace;
+    const ContactProbe probe(scene);
+    const ContactGeometrySolver solver = make_geometry_solver(scene);
+    auto candidates = [&](double y, std::size_t w, double load) {
+      const WheelContactGeometry g =
+          solver.solve_wheel(w == 0 ? Side::left : Side::right, WheelsetState{y, probe.roll_at(y)});
+      return halfspace::candidate_patches(g, load, scene.material).patches.size();
+    };
+    struct State {
+      double y, load;
+    };
+    std::vector<State> states;
+    if (std::string(file) == "default_halfspace.toml")
+      for (double y = -0.0101; y <= 0.0101; y += 0.0007) states.push_back({y, 78.5e3});
+    const std::vector<double>& y_grid = scene.grids.y;
+    int scanned = 0;
+    for (double y = y_grid.front(); y <= y_grid.back() && scanned < 3; y += 0.00005)
+      if (candidates(y, 0, scene.grids.load.front()) > 1 || candidates(y, 1, scene.grids.load.front()) > 1)
+        states.push_back({y, scene.grids.load.front()}), ++scanned;
+    for (const State& st : states) {
+      const auto chain = probe.evaluate(st.y, {st.load}, {{0.0, 0.0, 0.0}})[0][0];
+      for (std::size_t w = 0; w < 2; ++w) {
+        const ContactProbe::Wheel c = probe.configuration(st.y, w, st.load);
+        for (std::size_t s = 0; s < kSlots; ++s) {
+          const ContactProbe::Slot &a = chain[w].slot[s], &b = c.slot[s];
+          const std::string where = fmt::format("{} y {} load {} wheel {} slot {}", file, st.y, st.load, w, s);
+          EXPECT_EQ(a.status & kConfig, b.status & kConfig) << where;
+          EXPECT_EQ(a.contact_angle, b.contact_angle) << where;
+          EXPECT_EQ(a.rolling_radius, b.rolling_radius) << where;
+          EXPECT_EQ(a.patch_angle, b.patch_angle) << where;
+          EXPECT_EQ(a.patch_radius, b.patch_radius) << where;
+          EXPECT_EQ(b.fx, 0.0);
+          if (a.loaded) ++loaded;
+        }
+        if (candidates(st.y, w, st.load) > 1) ++two_patch;
+        ++compared;
+      }
+    }
+  }
+  std::printf("%zu wheel states compared, %d with two candidate patches (the exact normal path)\n", compared,
+              two_patch);
+  EXPECT_GT(loaded, 40);    // both wheels loaded nearly everywhere
+  EXPECT_GT(two_patch, 0);  // the exact path was compared too
 }
 
 }  // namespace

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
+# Lookup against direct evaluation of the exact half-space model on the FULL default exact table
+# (tables/default_halfspace.toml), with the metric of tests/table_accuracy (issue 13). The test
+# suite runs the same check on a reduced table; this one needs the generated default table
+# (about 20 min CPU, docs/validation.md "Exact half-space model") and about 400 direct exact
+# evaluations of both wheels (a few min CPU).
+# Usage: scripts/halfspace_table_accuracy.sh [TABLE.h5]   (build/release; generates TABLE if absent)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+table="${1:-/tmp/default_halfspace.h5}"
+if [[ ! -f "$table" ]]; then
+  build/release/generator/railtab generate tables/default_halfspace.toml -o "$table" --threads 2
+fi
+RAILTAB_HALFSPACE_TABLE="$table" build/release/tests/test_table_accuracy --gtest_filter='HalfspaceTableAccuracy*'
