@@ -61,11 +61,11 @@ SweepSummary generate_table(const GenerateOptions& options) {
   // SweepPlan checks the exact range again before it allocates.
   const auto [y_begin, y_end] = shard_range(scene.grids.y.size(), options.shard_index, options.shard_count);
   const std::uint64_t points = table_points(scene, y_end - y_begin);
-  check_table_size(scene.name, points, 0, options.max_points, options.max_bytes);
+  check_table_size(scene, points, 0, options.max_points, options.max_bytes);
   const SweepKernel kernel = options.make_kernel ? options.make_kernel(scene) : make_contact_kernel(scene);
   std::ostream* log = options.log;
   const std::uint64_t bytes = table_bytes(scene, kernel, y_end - y_begin);
-  check_table_size(scene.name, points, bytes, options.max_points, options.max_bytes);
+  check_table_size(scene, points, bytes, options.max_points, options.max_bytes);
   if (log) {
     const unsigned cores = std::thread::hardware_concurrency();
     *log << describe_table_size(points, bytes, options.threads > 0 ? options.threads : static_cast<int>(cores ? cores : 1),

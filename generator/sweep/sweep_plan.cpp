@@ -233,7 +233,7 @@ SweepPlan::SweepPlan(const Scene& scene, const SweepKernel& kernel, const SweepO
   layout_ = make_layout(scene, kernel, options);
   // Before any allocation (every engine makes its skeleton here): every size of the skeleton fits
   // once the totals do. make_layout only does arithmetic on the grid sizes.
-  check_table_size(scene.name, table_points(scene, layout_.ny), table_bytes(scene, kernel, layout_.ny),
+  check_table_size(scene, table_points(scene, layout_.ny), table_bytes(scene, kernel, layout_.ny),
                    options.max_points, options.max_bytes);
   table_ = make_skeleton(scene, kernel, layout_, options);
   TableGroup* root = table_.group("");

@@ -27,6 +27,13 @@ std::string human_seconds(double s) {
   return fmt::format("{:.3g} days", s / 86400.0);
 }
 
+// "50-200 us", "40-120 ms": a cost range per point in the unit of its upper end.
+std::string cost_range(double low, double high) {
+  if (high < 1e-3) return fmt::format("{:.0f}-{:.0f} us", low * 1e6, high * 1e6);
+  if (high < 1.0) return fmt::format("{:.0f}-{:.0f} ms", low * 1e3, high * 1e3);
+  return fmt::format("{:.3g}-{:.3g} s", low, high);
+}
+
 std::uint64_t axis_count(const std::vector<double>& axis) { return axis.empty() ? 1 : axis.size(); }
 
 }  // namespace
@@ -71,19 +78,21 @@ std::uint64_t table_bytes(const Scene& scene, const SweepKernel& kernel, std::ui
   return total;
 }
 
-void check_table_size(const std::string& scene_name, std::uint64_t points, std::uint64_t bytes,
-                      std::uint64_t max_points, std::uint64_t max_bytes) {
+void check_table_size(const Scene& scene, std::uint64_t points, std::uint64_t bytes, std::uint64_t max_points,
+                      std::uint64_t max_bytes) {
+  const bool exact = scene.normal.model == NormalModel::halfspace;
+  const double low = exact ? kExactSecondsPerPointLow : kSecondsPerPointLow;
+  const double high = exact ? kExactSecondsPerPointHigh : kSecondsPerPointHigh;
   RAILTAB_CHECK(points <= max_points,
                 "scene '{}': the table has {} grid points ({:.3g}), above the limit of {} (--max-points); at "
-                "{:.0f}-{:.0f} us per point per thread that is {} to {} on one thread. Coarsen the grid, split it "
+                "{} per point per thread that is {} to {} on one thread. Coarsen the grid, split it "
                 "with --shard, or raise --max-points",
-                scene_name, points, static_cast<double>(points), max_points, kSecondsPerPointLow * 1e6,
-                kSecondsPerPointHigh * 1e6, human_seconds(static_cast<double>(points) * kSecondsPerPointLow),
-                human_seconds(static_cast<double>(points) * kSecondsPerPointHigh));
+                scene.name, points, static_cast<double>(points), max_points, cost_range(low, high),
+                human_seconds(static_cast<double>(points) * low), human_seconds(static_cast<double>(points) * high));
   RAILTAB_CHECK(bytes <= max_bytes,
                 "scene '{}': the table needs {} in memory ({} bytes), above the limit of {} (--max-bytes). Coarsen "
                 "the grid, split it with --shard, or raise --max-bytes",
-                scene_name, human_bytes(static_cast<double>(bytes)), bytes, human_bytes(static_cast<double>(max_bytes)));
+                scene.name, human_bytes(static_cast<double>(bytes)), bytes, human_bytes(static_cast<double>(max_bytes)));
 }
 
 std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads, bool exact) {

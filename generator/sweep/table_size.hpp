@@ -21,9 +21,11 @@ inline constexpr std::uint64_t kDefaultMaxBytes = 4ull << 30;        // table in
 inline constexpr double kSecondsPerPointLow = 50e-6;
 inline constexpr double kSecondsPerPointHigh = 200e-6;
 // The same for the exact half-space model (normal_model = "halfspace", load coupling on): two
-// coupled solves of about 0.1 s CPU each (measured on the default scene, tread and flange) [s].
-inline constexpr double kExactSecondsPerPointLow = 0.15;
-inline constexpr double kExactSecondsPerPointHigh = 0.35;
+// coupled solves (both wheels) and the share of the contact jumps' one-sided values; measured
+// 0.06 s CPU per point on tables/default_halfspace.toml (2026-11-26), up to twice that on
+// flange-heavy grids [s].
+inline constexpr double kExactSecondsPerPointLow = 0.04;
+inline constexpr double kExactSecondsPerPointHigh = 0.12;
 
 // a * b, or railtab::Error naming `what` when the product does not fit in 64 bits.
 std::uint64_t checked_multiply(std::uint64_t a, std::uint64_t b, const std::string& what);
@@ -37,9 +39,10 @@ std::uint64_t table_points(const Scene& scene, std::uint64_t y_count);
 std::uint64_t table_bytes(const Scene& scene, const SweepKernel& kernel, std::uint64_t y_count);
 
 // Throws railtab::Error when `points` exceeds `max_points` or `bytes` exceeds `max_bytes`,
-// saying the size, the limit and the flag that raises it.
-void check_table_size(const std::string& scene_name, std::uint64_t points, std::uint64_t bytes,
-                      std::uint64_t max_points, std::uint64_t max_bytes);
+// saying the size, the limit, the run time at the scene's model's cost per point and the flag
+// that raises the limit.
+void check_table_size(const Scene& scene, std::uint64_t points, std::uint64_t bytes, std::uint64_t max_points,
+                      std::uint64_t max_bytes);
 
 // One line for the log: points, memory and the run time range with `threads` threads.
 // `exact`: the table uses the exact half-space model (its cost per point instead).

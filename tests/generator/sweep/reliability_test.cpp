@@ -127,6 +127,17 @@ TEST(TableSize, LimitsRefuseAndAFlagRaisesThem) {
   EXPECT_NE(log.str().find("estimated time"), std::string::npos);
 }
 
+// The refusal states the run time at the scene's model's cost per point: microseconds for a fast
+// model, tens of milliseconds for the exact one (3 points: 150-600 us, or 120-360 ms).
+TEST(TableSize, RefusalUsesTheModelsCostPerPoint) {
+  Scene scene = parse_scene(testing::kSyntheticScene, "s.toml");
+  const std::string fast = message_of([&] { check_table_size(scene, 3, 0, 2, kDefaultMaxBytes); });
+  EXPECT_NE(fast.find("50-200 us per point"), std::string::npos) << fast;
+  scene.normal.model = NormalModel::halfspace;
+  const std::string exact = message_of([&] { check_table_size(scene, 3, 0, 2, kDefaultMaxBytes); });
+  EXPECT_NE(exact.find("40-120 ms per point"), std::string::npos) << exact;
+}
+
 constexpr const char* kTreadScene = R"(
 [scene]
 name = "tread"
