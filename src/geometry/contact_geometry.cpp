@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/check.hpp"
+#include "geometry/curvature_steps.hpp"
 #include "geometry/placement.hpp"
 #include "profile/profile_checks.hpp"
 
@@ -75,9 +76,7 @@ void flag_near_equal_minima(const GeometrySettings& settings, WheelContactGeomet
 // difference exceeds 1 1/m and 10 % of the larger value (the thresholds of the STRIPES cell
 // averages, src/normal/stripes.cpp) and 4 times the differences of both neighbouring cells (a
 // steep but smooth curvature, e.g. of a smoothed measured profile, is no step). The step is
-// located inside its cell as STRIPES locates it: a rail step from the change of the contact
-// angle (-d angle/ds = k_rail), a wheel step from the second difference of the gap (k_wheel +
-// k_rail plus a smooth remainder taken from the neighbouring samples). Half a band step: when
+// located inside its cell as STRIPES locates it (geometry/curvature_steps.hpp). Half a band step: when
 // the point moves less than a band step per step of a y sweep, one of the two samples around
 // the crossing carries the flag, and the flag stays narrow (the continuity checks lose no more
 // neighbouring steps than needed).
@@ -86,33 +85,21 @@ void flag_curvature_steps(WheelContactGeometry& out) {
   const int nb = static_cast<int>(band.size());
   const double h = out.band_step;
   if (nb < 6 || !(h > 0.0)) return;
-  auto is_step = [&](int i, double BandSample::*k) {  // cell [i, i + 1], reads i - 1 .. i + 2
+  // A step stands out from both neighbouring cells' differences (reads samples i - 1 .. i + 2).
+  auto stands_out = [&](int i, double BandSample::*k) {
     const double d = band[i + 1].*k - band[i].*k;
     const double dl = band[i].*k - band[i - 1].*k, dr = band[i + 2].*k - band[i + 1].*k;
-    return std::abs(d) > 1.0 &&
-           std::abs(d) > 0.1 * std::max(std::abs(band[i].*k), std::abs(band[i + 1].*k)) &&
-           std::abs(d) > 4.0 * std::max(std::abs(dl), std::abs(dr));
-  };
-  auto gap_excess = [&](int j) {  // second difference of the gap minus k_wheel + k_rail at j
-    const double D = (band[j + 1].gap - 2.0 * band[j].gap + band[j - 1].gap) / (h * h);
-    return D - (band[j].curvature_wheel + band[j].curvature_rail);
+    return std::abs(d) > 4.0 * std::max(std::abs(dl), std::abs(dr));
   };
   // Arc length of the step in cell i (NaN: none there).
   auto step_s = [&](int i) {
     if (i < 2 || i + 3 >= nb) return std::numeric_limits<double>::quiet_NaN();
-    if (is_step(i, &BandSample::curvature_rail)) {
-      const double k0 = band[i].curvature_rail, k1 = band[i + 1].curvature_rail;
-      const double kbar = -(band[i + 1].contact_angle - band[i].contact_angle) / h;
-      const double t = (kbar - k1) / (k0 - k1);  // fraction of the cell carrying k0
-      return band[i].s + (std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0.5) * h;
-    }
-    if (is_step(i, &BandSample::curvature_wheel)) {
-      const double a = band[i].curvature_wheel, b = band[i + 1].curvature_wheel;
-      const double r = 0.5 * (gap_excess(i - 1) + gap_excess(i + 2));
-      const double t = 0.5 - (gap_excess(i) + gap_excess(i + 1) - 2.0 * r) / (b - a);
-      return band[i].s + (std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0.5) * h;
-    }
-    return std::numeric_limits<double>::quiet_NaN();
+    const double tr = stands_out(i, &BandSample::curvature_rail) ? detail::rail_step_fraction(out, i)
+                                                                  : std::numeric_limits<double>::quiet_NaN();
+    if (std::isfinite(tr)) return band[i].s + tr * h;
+    const double tw = stands_out(i, &BandSample::curvature_wheel) ? detail::wheel_step_fraction(out, i)
+                                                                   : std::numeric_limits<double>::quiet_NaN();
+    return band[i].s + tw * h;  // NaN when neither steps
   };
   for (ContactPoint& p : out.points) {
     const double pos = (p.band_s - band.front().s) / h;

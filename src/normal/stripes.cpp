@@ -46,6 +46,7 @@
 #include <immintrin.h>
 #endif
 
+#include "geometry/curvature_steps.hpp"
 #include "normal/elliptic.hpp"
 #include "normal/normal_internal.hpp"
 
@@ -67,44 +68,9 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
   // is located inside its cell from the change of the contact angle, -d angle/ds = k_r (s is the
   // rail arc length): fraction t of the cell [s_j, s_j+1] carries k_j, the rest k_j+1. Away from
   // transitions (and wherever the angles do not locate one) the sampled curvature is used as is.
-  const int nb = static_cast<int>(g.band.size());
-  auto step_fraction = [&](int j, double* t) {  // cell [j, j + 1] holds a transition at fraction t
-    if (j < 0 || j + 1 >= nb) return false;
-    const double k0 = g.band[j].curvature_rail, k1 = g.band[j + 1].curvature_rail;
-    const double dk = k0 - k1;
-    if (!(std::abs(dk) > 1.0)) return false;  // (fast rejection: the threshold below is >= 1)
-    if (!(std::abs(dk) > 0.1 * std::max(std::abs(k0), std::abs(k1)))) return false;
-    const double kbar =
-        -(g.band[j + 1].contact_angle - g.band[j].contact_angle) / g.band_step;
-    const double f = (kbar - k1) / dk;
-    if (!std::isfinite(f)) return false;
-    *t = std::clamp(f, 0.0, 1.0);
-    return true;
-  };
   // The wheel's curvature steps too (S1002: the straight flange flank meets the flange-root arc, the
-  // section joins of the tread). Its transition is located from the gap, whose second derivative
-  // is k_w + k_r (plus a smooth remainder from the finite gap and the inclination): the second
-  // difference D_j at sample j is the hat-weighted mean of it, so with the jump at fraction t of
-  // the cell [j, j + 1] (k_w = a before, b after), D_j + D_j+1 - (a + k_r,j) - (b + k_r,j+1)
-  // = 2 r + (b - a)(1 - 2t)/2; the remainder r is taken from the neighbouring samples, whose
-  // hats do not reach the jump.
-  auto gap_excess = [&](int j) {  // D_j - (k_w + k_r) at sample j (1 <= j <= nb - 2)
-    const double h2 = g.band_step * g.band_step;
-    const double D = (g.band[j + 1].gap - 2.0 * g.band[j].gap + g.band[j - 1].gap) / h2;
-    return D - (g.band[j].curvature_wheel + g.band[j].curvature_rail);
-  };
-  auto wheel_step_fraction = [&](int j, double* t) {
-    if (j < 2 || j + 3 >= nb) return false;
-    const double a = g.band[j].curvature_wheel, b = g.band[j + 1].curvature_wheel;
-    const double dk = b - a;
-    if (!(std::abs(dk) > 1.0)) return false;
-    if (!(std::abs(dk) > 0.1 * std::max(std::abs(a), std::abs(b)))) return false;
-    const double r = 0.5 * (gap_excess(j - 1) + gap_excess(j + 2));
-    const double f = 0.5 - (gap_excess(j) + gap_excess(j + 1) - 2.0 * r) / dk;
-    if (!std::isfinite(f)) return false;
-    *t = std::clamp(f, 0.0, 1.0);
-    return true;
-  };
+  // section joins of the tread); both are located by geometry/curvature_steps.hpp.
+  const int nb = static_cast<int>(g.band.size());
   // One pass: sampled B on the domain, then the two samples next to each located transition
   // corrected towards their cell averages (raw, untreated B in w.B_treated[lo..hi]).
   double* Bw = w.B_treated.data();
@@ -124,9 +90,10 @@ void prepare_stripes(const WheelContactGeometry& g, const Material& m, const Nor
       const double kr1 = band[j + 1].curvature_rail, kw1 = band[j + 1].curvature_wheel;
       // Cheap pre-test (both thresholds are >= 1 1/m): most cells hold no transition.
       if (std::abs(kr1 - kr0) > 1.0 || std::abs(kw1 - kw0) > 1.0) [[unlikely]] {
-        double t;
-        if (step_fraction(j, &t)) correct(j, t, &BandSample::curvature_rail);
-        if (wheel_step_fraction(j, &t)) correct(j, t, &BandSample::curvature_wheel);
+        // A step the samples do not locate (NaN) or that sits mid-cell (0.5) needs no correction.
+        const double tr = rail_step_fraction(g, j), tw = wheel_step_fraction(g, j);
+        if (std::isfinite(tr)) correct(j, tr, &BandSample::curvature_rail);
+        if (std::isfinite(tw)) correct(j, tw, &BandSample::curvature_wheel);
       }
       kr0 = kr1;
       kw0 = kw1;
