@@ -5,11 +5,6 @@
 #include <cmath>
 
 namespace railtab::lookup::detail {
-namespace {
-
-inline double m(double x) noexcept { return x / (1.0 + std::abs(x)); }
-
-}  // namespace
 
 void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc* loc, double out[3]) noexcept {
   const double* base = map.scale[wheel].data() + static_cast<std::size_t>(slot) * map.nodes * 3;
@@ -48,7 +43,7 @@ double creep_coordinate(double q, double lo, double hi, double s) noexcept {
 }
 
 double creep_coordinate_normalised(double x, double a, double b) noexcept {
-  // (m(x) - m(a)) / (m(b) - m(a)) over one common denominator: one division instead of four
+  // (m(x) - m(a)) / (m(b) - m(a)), m(x) = x / (1 + |x|), over one common denominator: one division instead of four
   // (the query path's cost), the same value to rounding.
   const double ax = 1.0 + std::abs(x), aa = 1.0 + std::abs(a), ab = 1.0 + std::abs(b);
   return -1.0 + 2.0 * ((x * aa - a * ax) * ab) / ((b * aa - a * ab) * ax);
