@@ -75,6 +75,23 @@ class Random {
   std::uint64_t state_;
 };
 
+// The scene's grid of one state variable (kY, kLoad, kXi, kEta, kPhi).
+inline const std::vector<double>& scene_grid(const Scene& scene, int var) {
+  const std::vector<double>* grids[kNumVars] = {&scene.grids.y, &scene.grids.load, &scene.grids.xi, &scene.grids.eta,
+                                                &scene.grids.phi};
+  return *grids[var];
+}
+
+// n states drawn uniformly over the ranges of the scene's grids (off the nodes with probability 1),
+// the same on every platform for one seed.
+inline std::vector<Point> random_states(const Scene& scene, std::size_t n, std::uint64_t seed) {
+  Random rng(seed);
+  std::vector<Point> points(n);
+  for (Point& p : points)
+    for (int k = 0; k < kNumVars; ++k) p.v[k] = rng.uniform(scene_grid(scene, k).front(), scene_grid(scene, k).back());
+  return points;
+}
+
 // Every output and status of both slots of one wheel, indexed like the lookup (lk::Output, lk::Part).
 struct WheelValues {
   double value[lk::kNumOutputs][kSlots] = {};

@@ -124,12 +124,7 @@ int main(int argc, char** argv) {
   const std::size_t ne = argc > 4 ? std::stoul(argv[3]) : scene.grids.eta.size();
   const std::size_t np = argc > 4 ? std::stoul(argv[4]) : scene.grids.phi.size();
   const std::size_t n_worst = argc > 5 ? std::stoul(argv[5]) : 12;
-  const std::vector<double>* grids[kNumVars] = {&scene.grids.y, &scene.grids.load, &scene.grids.xi,
-                                                &scene.grids.eta, &scene.grids.phi};
-  Random rng(20240611);
-  std::vector<Point> points(4000);
-  for (Point& p : points)
-    for (int k = 0; k < kNumVars; ++k) p.v[k] = rng.uniform(grids[k]->front(), grids[k]->back());
+  const std::vector<Point> points = random_states(scene, 4000, 20240611);  // DefaultSceneRandomOffGrid's
   std::vector<Direct> direct(points.size());
   {
     std::ifstream in(cache, std::ios::binary);

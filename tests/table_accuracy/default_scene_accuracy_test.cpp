@@ -63,12 +63,6 @@ const Fixture& fixture() {
   return f;
 }
 
-const std::vector<double>& grid(const Scene& scene, int var) {
-  const std::vector<double>* grids[kNumVars] = {&scene.grids.y, &scene.grids.load, &scene.grids.xi, &scene.grids.eta,
-                                                &scene.grids.phi};
-  return *grids[var];
-}
-
 std::string output_label(int o) {
   return std::string(lk::part_name(lk::output_part(static_cast<lk::Output>(o)))) + "/" +
          lk::output_name(static_cast<lk::Output>(o));
@@ -92,7 +86,7 @@ TEST(TableAccuracy, DirectEvaluationReproducesTheNodes) {
   std::vector<Point> points(60);
   for (Point& p : points) {
     for (int k = 0; k < kNumVars; ++k) {
-      const std::vector<double>& g = grid(f.scene, k);
+      const std::vector<double>& g = scene_grid(f.scene, k);
       p.v[k] = g[std::min(g.size() - 1, static_cast<std::size_t>(rng.uniform(0.0, static_cast<double>(g.size()))))];
     }
   }
@@ -104,7 +98,7 @@ TEST(TableAccuracy, DirectEvaluationReproducesTheNodes) {
       Point& p = points[i];
       const Point node = p;
       for (int k = 0; k < 3; ++k) {
-        const std::vector<double>& g = grid(f.scene, kXi + k);
+        const std::vector<double>& g = scene_grid(f.scene, kXi + k);
         if (g.size() < 2) continue;
         const std::vector<double> v = creep_map::nodes(g.size());
         const auto it = std::find(g.begin(), g.end(), node.v[kXi + k]);
@@ -136,10 +130,7 @@ struct Stats {
 TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);
-  Random rng(kSeed);
-  std::vector<Point> points(kPoints);
-  for (Point& p : points)
-    for (int k = 0; k < kNumVars; ++k) p.v[k] = rng.uniform(grid(f.scene, k).front(), grid(f.scene, k).back());
+  const std::vector<Point> points = random_states(f.scene, kPoints, kSeed);
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<Direct> direct = evaluate_direct(f.scene, points);
   const double direct_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -251,7 +242,7 @@ TEST(TableAccuracy, DefaultSceneCreepageOffGrid) {
   std::vector<Point> points(1000);
   for (Point& p : points) {
     for (int k = 0; k < kNumVars; ++k) {
-      const std::vector<double>& g = grid(f.scene, k);
+      const std::vector<double>& g = scene_grid(f.scene, k);
       p.v[k] = k >= kXi ? rng.uniform(g.front(), g.back())
                         : g[std::min(g.size() - 1, static_cast<std::size_t>(rng.uniform(0.0, static_cast<double>(g.size()))))];
     }

@@ -91,12 +91,6 @@ const Fixture& fixture() {
   return f;
 }
 
-const std::vector<double>& grid(const Scene& scene, int var) {
-  const std::vector<double>* grids[kNumVars] = {&scene.grids.y, &scene.grids.load, &scene.grids.xi, &scene.grids.eta,
-                                                &scene.grids.phi};
-  return *grids[var];
-}
-
 // Outputs of the discrete contact (element counts): reported only (file comment).
 bool staircase(int o) { return o == lk::kArea || o == lk::kMaxPressure || o == lk::kApproach; }
 
@@ -109,10 +103,7 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);
   ASSERT_FALSE(view.normalised());
-  Random rng(kSeed);
-  std::vector<Point> points(full_table() ? 400 : 150);
-  for (Point& p : points)
-    for (int k = 0; k < kNumVars; ++k) p.v[k] = rng.uniform(grid(f.scene, k).front(), grid(f.scene, k).back());
+  const std::vector<Point> points = random_states(f.scene, full_table() ? 400 : 150, kSeed);
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<Direct> direct = evaluate_direct(f.scene, points);
   const double direct_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
