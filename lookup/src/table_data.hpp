@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "creep_map.hpp"
+#include "fast_path.hpp"
 #include "grid.hpp"
 #include "jump_side.hpp"
 #include "railtab/lookup.hpp"
@@ -125,6 +126,7 @@ struct TableData {
   int creep_block = -1;               // block holding the creep part (-1: none)
   bool has_jumps = false;             // the file has /jumps (format 2.1): one-sided jump cells
   JumpWheel jumps[2];                 // per wheel (jump_side.hpp)
+  FastPath fast;                      // the fused query when the table has its shape (fast_path.hpp)
 };
 
 }  // namespace railtab::lookup::detail
