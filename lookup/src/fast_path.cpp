@@ -7,6 +7,7 @@
 #include "fast_path.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include "interpolate.hpp"
@@ -223,6 +224,8 @@ FastQuery pick(bool avx2) noexcept {
 
 void prepare_fast_path(TableData& d) noexcept {
   d.fast = FastPath{};
+  // RAILTAB_LOOKUP_NO_FAST_PATH=1: the generic path for every table (to compare the two).
+  if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_FAST_PATH"); env && *env && *env != '0') return;
   const CreepMap& map = d.creep_map;
   if (d.method != Method::kLinear || !map.active || d.n_blocks != 3) return;
   if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll])) return;
