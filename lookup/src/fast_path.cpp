@@ -29,13 +29,6 @@ double state_var(const State& s, int var) noexcept {
   }
 }
 
-// The cell's part statuses of a block (query layout: after the values of the cell's first record).
-inline void store_status(const Block& b, const double* cell_record, Contact& c) noexcept {
-  const auto* st = reinterpret_cast<const unsigned char*>(cell_record + b.status_offset);
-  for (int p = 0; p < b.n_parts; ++p)
-    std::memcpy(&c.part_status[b.part[p]], st + p * sizeof(StatusBits), sizeof(StatusBits));
-}
-
 template <int NV>
 inline void store_values(const Block& b, const SumsSse2<NV>& sums, Contact& c) noexcept {
   if (b.first_output >= 0) {
@@ -45,6 +38,14 @@ inline void store_values(const Block& b, const SumsSse2<NV>& sums, Contact& c) n
     sums.store(v);
     for (int k = 0; k < NV; ++k) c.value[b.output_of[k]] = v[k];
   }
+}
+
+// The cell's part statuses of a block (query layout: after the values of the cell's first record)
+// whose NP parts are consecutive from `first` (checked at load): one copy.
+template <int NP>
+inline void store_status_run(int first, const Block& b, const double* cell_record, Contact& c) noexcept {
+  std::memcpy(&c.part_status[first], reinterpret_cast<const unsigned char*>(cell_record + b.status_offset),
+              NP * sizeof(StatusBits));
 }
 
 // Zeroes the parts the table does not hold (interpolate_slots does it first).
@@ -69,8 +70,8 @@ inline void fold_status(const TableData& d, StatusBits q, Contact& c) noexcept {
 }
 
 // One slot of a cell no jump cuts. NG, NN, NC: values per record of the geometry, normal and creep
-// blocks.
-template <int NG, int NN, int NC, bool kAvx2>
+// blocks; NP: parts of the creep block (creep, or creep and wear).
+template <int NG, int NN, int NC, int NP, bool kAvx2>
 void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, StatusBits q,
                   int s, Contact& c) noexcept {
   const FastPath& fp = d.fast;
@@ -92,7 +93,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     sums.zero();
     walk_corners_sse2<1, 0>(g, 1.0, t2, u2, gb.stride, sums);
     store_values(gb, sums, c);
-    store_status(gb, g, c);
+    store_status_run<1>(kGeometry, gb, g, c);
   }
   double cos_angle = 0.0, sin_angle = 0.0;
   if (map.vertical_share) {
@@ -135,7 +136,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     sums.zero();
     walk_corners_sse2<2, 0>(n, 1.0, t2, u2, nb.stride, sums);
     store_values(nb, sums, c);
-    store_status(nb, n, c);
+    store_status_run<1>(kNormal, nb, n, c);
   }
 
   // Creep and wear (y, load, v_xi, v_eta, v_phi): 32 corners.
@@ -145,7 +146,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     else corner_sum_sse2<5, NC>(cr, t5, u5, cb.stride, values);
     if (cb.first_output >= 0) std::memcpy(c.value + cb.first_output, values, sizeof values);
     else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
-    store_status(cb, cr, c);
+    store_status_run<NP>(kCreep, cb, cr, c);
   }
 
   // F / (mu N) minus the law, plus the law, times mu N (interpolate_normalised_creep).
@@ -161,7 +162,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   fold_status(d, q, c);
 }
 
-template <int NG, int NN, int NC, bool kAvx2>
+template <int NG, int NN, int NC, int NP, bool kAvx2>
 bool fast_query(const TableData& d, int w, const State& state, int slot_begin, int slot_end, Contact* contact,
                 StatusBits& q) noexcept {
   const double y = state.y, load = state.load;
@@ -187,7 +188,8 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
     out |= std::abs(state_var(state, var) - d.fixed_value[var]) > d.fixed_tolerance[var];
   }
   q = out ? status::kOutOfRange : 0u;
-  if (d.has_jumps && jump_cell(d, w, loc)) {  // one-sided (jump_side.hpp), as interpolate_slots
+  if (d.has_jumps && d.jumps[w].cut[static_cast<std::size_t>(loc[kVarY].i) * static_cast<std::size_t>(d.jumps[w].load_cells) +
+                                     static_cast<std::size_t>(loc[kVarLoad].i)]) {  // jump_cell, with a load axis  // one-sided (jump_side.hpp), as interpolate_slots
     const int n = slot_end - slot_begin;
     for (int s = 0; s < n; ++s) zero_absent(d, contact[s]);
     interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
@@ -195,7 +197,7 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
     return true;
   }
   for (int s = slot_begin; s < slot_end; ++s)
-    regular_slot<NG, NN, NC, kAvx2>(d, w, loc, creepage, q, s, contact[s - slot_begin]);
+    regular_slot<NG, NN, NC, NP, kAvx2>(d, w, loc, creepage, q, s, contact[s - slot_begin]);
   return true;
 }
 
@@ -216,8 +218,9 @@ bool block_over(const Block& b, std::initializer_list<int> vars) noexcept {
 }
 
 template <int NG, int NN, int NC>
-FastQuery pick(bool avx2) noexcept {
-  return avx2 ? &fast_query<NG, NN, NC, true> : &fast_query<NG, NN, NC, false>;
+FastQuery pick(bool avx2, int np) noexcept {
+  if (np == 2) return avx2 ? &fast_query<NG, NN, NC, 2, true> : &fast_query<NG, NN, NC, 2, false>;
+  return avx2 ? &fast_query<NG, NN, NC, 1, true> : &fast_query<NG, NN, NC, 1, false>;
 }
 
 }  // namespace
@@ -250,14 +253,20 @@ void prepare_fast_path(TableData& d) noexcept {
     if (d.block[w][g].n_values != gb.n_values || d.block[w][n].n_values != nb.n_values ||
         d.block[w][c].n_values != cb.n_values)
       return;
+  // Part statuses copied in one run per block: geometry alone, normal alone, creep (and wear).
+  const int np = cb.n_parts;
+  if (gb.n_parts != 1 || nb.n_parts != 1 || gb.part[0] != kGeometry || nb.part[0] != kNormal) return;
+  if (!(cb.part[0] == kCreep && (np == 1 || (np == 2 && cb.part[1] == kWear)))) return;
+  for (int w = 1; w < 2; ++w)
+    if (d.block[w][c].n_parts != np) return;
   const bool avx2 = use_avx2();
   FastQuery q = nullptr;
   // The shapes railtab generate writes: creep with its per-creepage normal force (load coupling)
   // and wear, or without either.
   if (gb.n_values == 7 && nb.n_values == 6) {
-    if (cb.n_values == 6) q = pick<7, 6, 6>(avx2);
-    else if (cb.n_values == 5) q = pick<7, 6, 5>(avx2);
-    else if (cb.n_values == 4) q = pick<7, 6, 4>(avx2);
+    if (cb.n_values == 6) q = pick<7, 6, 6>(avx2, np);
+    else if (cb.n_values == 5) q = pick<7, 6, 5>(avx2, np);
+    else if (cb.n_values == 4) q = pick<7, 6, 4>(avx2, np);
   }
   if (!q) return;
   d.fast.query = q;
