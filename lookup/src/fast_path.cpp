@@ -6,9 +6,11 @@
 // FastPath.SameBytesAsTheGenericPath runs both on the default table's shape).
 #include "fast_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 
 #include "interpolate.hpp"
 #include "part_spec.hpp"

@@ -459,7 +459,7 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
     // coordinates at the slot's one-sided scales.
     const bool normalised = map.active && bi == d.creep_block;
     CreepCell cell[kMaxSlots];
-    double xn[kMaxSlots][3] = {};  // normalised creepages xi', eta', psi' (normalised block)
+    double xn[kMaxSlots][3];  // normalised creepages xi', eta', psi' (set and read only when normalised)
     for (int s = 0; s < n; ++s) {
       if (!normalised) {
         if (s == 0) creep_cell(b, inner0, loc, cell[0]);
