@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "creep_map.hpp"
 
-#include <algorithm>
-#include <cmath>
-
 namespace railtab::lookup::detail {
 
 void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc* loc, double out[3]) noexcept {
@@ -40,33 +37,6 @@ void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc*
 double creep_coordinate(double q, double lo, double hi, double s) noexcept {
   const double inv = 1.0 / s;
   return creep_coordinate_normalised(q * inv, lo * inv, hi * inv);
-}
-
-double creep_coordinate_normalised(double x, double a, double b) noexcept {
-  // (m(x) - m(a)) / (m(b) - m(a)), m(x) = x / (1 + |x|), over one common denominator: one division instead of four
-  // (the query path's cost), the same value to rounding.
-  const double ax = 1.0 + std::abs(x), aa = 1.0 + std::abs(a), ab = 1.0 + std::abs(b);
-  return -1.0 + 2.0 * ((x * aa - a * ax) * ab) / ((b * aa - a * ab) * ax);
-}
-
-double normal_from_share(double share, double angle, double mu_ry) noexcept {
-  const double den = std::cos(angle) + mu_ry * std::sin(angle);
-  // The coupled solve keeps den well above 0 (a flange at 70 deg: >= 0.1 for |r_y| <= 1); the
-  // guard only keeps a corrupt or extrapolated value finite.
-  return share / (std::abs(den) > 1e-3 ? den : std::copysign(1e-3, den));
-}
-
-void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) noexcept {
-  const double x = xi_n, y = eta_n + psi_n / 3.0;
-  const double r = std::sqrt(x * x + y * y);  // O(1) values: no need for hypot's care (or cost)
-  if (!(r > 0.0)) {
-    out[0] = out[1] = 0.0;
-    return;
-  }
-  const double w = 1.0 - std::min(r, 1.0);
-  const double g = 1.0 - w * w * w;
-  out[0] = -g * x / r;
-  out[1] = -g * y / r;
 }
 
 }  // namespace railtab::lookup::detail

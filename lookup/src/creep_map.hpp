@@ -7,6 +7,8 @@
 // and scales back to N. The generator's side is generator/sweep/creep_map.hpp: same formulas.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -42,16 +44,43 @@ void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc*
 // The coordinate v in [-1, 1] of physical creepage q in [lo, hi] at scale s > 0:
 // m(x) = x / (1 + |x|), v = -1 + 2 (m(q/s) - m(lo/s)) / (m(hi/s) - m(lo/s)).
 double creep_coordinate(double q, double lo, double hi, double s) noexcept;
-// The same with q, lo, hi already divided by s (x = q / s, a = lo / s, b = hi / s).
-double creep_coordinate_normalised(double x, double a, double b) noexcept;
+// The same with q, lo, hi already divided by s (x = q / s, a = lo / s, b = hi / s). Inline (with
+// the two below): the query path runs it three times per slot.
+inline double creep_coordinate_normalised(double x, double a, double b) noexcept {
+  // (m(x) - m(a)) / (m(b) - m(a)), m(x) = x / (1 + |x|), over one common denominator: one division instead of four
+  // (the query path's cost), the same value to rounding.
+  const double ax = 1.0 + std::abs(x), aa = 1.0 + std::abs(a), ab = 1.0 + std::abs(b);
+  return -1.0 + 2.0 * ((x * aa - a * ax) * ab) / ((b * aa - a * ab) * ax);
+}
 
 // N from the creep part's stored vertical load share (creep_map "normal_force": "vertical_share";
 // generator/sweep/creep_map.hpp): N = share / (cos(angle) + mu r_y sin(angle)), r_y = fy / (mu N)
 // the interpolated normalised force, angle the slot's contact angle (geometry part).
-double normal_from_share(double share, double angle, double mu_ry) noexcept;
+// `cos_angle`, `sin_angle`: std::cos and std::sin of the angle (the fast path computes them early,
+// off the critical path, fast_path.cpp).
+inline double normal_from_share(double share, double cos_angle, double sin_angle, double mu_ry) noexcept {
+  const double den = cos_angle + mu_ry * sin_angle;
+  // The coupled solve keeps den well above 0 (a flange at 70 deg: >= 0.1 for |r_y| <= 1); the
+  // guard only keeps a corrupt or extrapolated value finite.
+  return share / (std::abs(den) > 1e-3 ? den : std::copysign(1e-3, den));
+}
+inline double normal_from_share(double share, double angle, double mu_ry) noexcept {
+  return normal_from_share(share, std::cos(angle), std::sin(angle), mu_ry);
+}
 
 // The saturation law of the stored forces: F / (mu N) = stored + law(xi', eta', psi'), with
 // x = xi', y = eta' + psi' / 3, r = |(x, y)|, g = 1 - (1 - min(r, 1))^3, law = -g (x, y) / r.
-void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) noexcept;
+inline void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) noexcept {
+  const double x = xi_n, y = eta_n + psi_n / 3.0;
+  const double r = std::sqrt(x * x + y * y);  // O(1) values: no need for hypot's care (or cost)
+  if (!(r > 0.0)) {
+    out[0] = out[1] = 0.0;
+    return;
+  }
+  const double w = 1.0 - std::min(r, 1.0);
+  const double g = 1.0 - w * w * w;
+  out[0] = -g * x / r;
+  out[1] = -g * y / r;
+}
 
 }  // namespace railtab::lookup::detail

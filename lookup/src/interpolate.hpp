@@ -17,6 +17,9 @@ namespace railtab::lookup::detail {
 // counts are template parameters so the corner loop unrolls and the sums stay in registers.
 LinearKernel linear_kernel_for(int n_dims, int n_values) noexcept;
 
+// Whether the AVX2 kernels run (the CPU has AVX2 and RAILTAB_LOOKUP_NO_AVX2 is unset or 0).
+bool use_avx2() noexcept;
+
 // Tensor-product cubic Hermite, 4 nodes per axis (fewer at the table edge), slopes from the
 // parabola through 3 neighbouring nodes (exact for quadratics). Linear in the node values, so
 // each axis reduces to 2-4 weights on consecutive nodes and the query is one weighted sum over

@@ -365,22 +365,35 @@ struct CreepCell {
   std::size_t off[1 << kMaxJumpInner];
 };
 
-void creep_cell(const Block& b, int inner0, const AxisLoc* loc, CreepCell& c) noexcept {
-  const int n_inner = b.n_dims - inner0;
+template <int NI>
+void creep_cell_n(const Block& b, int inner0, const AxisLoc* loc, CreepCell& c) noexcept {
   c.base = 0;
-  for (int k = inner0; k < b.n_dims; ++k) c.base += static_cast<std::size_t>(loc[b.var[k]].i) * b.stride[k];
+#pragma GCC unroll 4
+  for (int k = 0; k < NI; ++k) c.base += static_cast<std::size_t>(loc[b.var[inner0 + k]].i) * b.stride[inner0 + k];
   // Corner bit q = upper node along creepage axis q; the weight is the product of the axes'
   // factors in axis order, 1.0 * f_0 * f_1 * .., built by doubling the corner list per axis.
   c.w[0] = 1.0;
   c.off[0] = 0;
-  for (int q = 0; q < n_inner; ++q) {
+#pragma GCC unroll 4
+  for (int q = 0; q < NI; ++q) {
     const AxisLoc& l = loc[b.var[inner0 + q]];
     const int half = 1 << q;
+#pragma GCC unroll 4
     for (int corner = 0; corner < half; ++corner) {
       c.w[corner + half] = c.w[corner] * l.t;
       c.w[corner] *= 1.0 - l.t;
       c.off[corner + half] = c.off[corner] + b.stride[inner0 + q];
     }
+  }
+}
+
+// The block's creepage dimensions (b.n_dims - inner0, at most kMaxJumpInner) fixed at compile time.
+void creep_cell(const Block& b, int inner0, const AxisLoc* loc, CreepCell& c) noexcept {
+  switch (b.n_dims - inner0) {
+    case 0: creep_cell_n<0>(b, inner0, loc, c); break;
+    case 1: creep_cell_n<1>(b, inner0, loc, c); break;
+    case 2: creep_cell_n<2>(b, inner0, loc, c); break;
+    default: creep_cell_n<3>(b, inner0, loc, c); break;
   }
 }
 
@@ -436,6 +449,8 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       pieces[list][k] = side_piece(j, ya, list, loc, yq, k, m);
     }
   const CreepMap& map = d.creep_map;
+  double cos_angle[kMaxSlots] = {}, sin_angle[kMaxSlots] = {};  // of each slot's contact angle
+  bool have_angle = false;
   for (int bi = 0; bi < d.n_blocks; ++bi) {
     const Block& b = d.block[w][bi];
     const JumpSamples& js = j.samples[bi];
@@ -444,7 +459,7 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
     // coordinates at the slot's one-sided scales.
     const bool normalised = map.active && bi == d.creep_block;
     CreepCell cell[kMaxSlots];
-    double xn[kMaxSlots][3] = {};  // normalised creepages xi', eta', psi' (normalised block)
+    double xn[kMaxSlots][3];  // normalised creepages xi', eta', psi' (set and read only when normalised)
     for (int s = 0; s < n; ++s) {
       if (!normalised) {
         if (s == 0) creep_cell(b, inner0, loc, cell[0]);
@@ -515,14 +530,24 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       else for (int v = 0; v < b.n_values; ++v) c.value[b.output_of[v]] = values[v];  // Block::output_of
       for (int p = 0; p < b.n_parts; ++p)
         c.part_status[b.part[p]] = (any[p] & ~status::kConverged) | (all[p] & status::kConverged);
+      if (map.vertical_share && b.n_parts > 0 && b.part[0] == kGeometry) {
+        // The contact angle is final: its sine and cosine now, off the creep block's critical path.
+        cos_angle[s] = std::cos(c.value[kContactAngle]);
+        sin_angle[s] = std::sin(c.value[kContactAngle]);
+        have_angle = true;
+      }
       if (!normalised || !d.has_part[kCreep]) continue;
       // F / (mu N) minus the law, plus the law at the query's normalised creepages, times mu N (the
       // creep point's own N, already in kNormalForce), as interpolate_normalised_creep (table.cpp).
       double law[2];
       creep_law(xn[s][0], xn[s][1], xn[s][2], law);
+      if (map.vertical_share && !have_angle) {  // no geometry part: its angle, 0
+        cos_angle[s] = std::cos(c.value[kContactAngle]);
+        sin_angle[s] = std::sin(c.value[kContactAngle]);
+      }
       if (map.vertical_share)
         c.value[kNormalForce] =
-            normal_from_share(c.value[kNormalForce], c.value[kContactAngle], map.friction * (c.value[kFy] + law[1]));
+            normal_from_share(c.value[kNormalForce], cos_angle[s], sin_angle[s], map.friction * (c.value[kFy] + law[1]));
       const double mun = map.friction * c.value[kNormalForce];
       c.value[kFx] = (c.value[kFx] + law[0]) * mun;
       c.value[kFy] = (c.value[kFy] + law[1]) * mun;

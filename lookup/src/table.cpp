@@ -164,6 +164,15 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
 
 void Table::query(Wheel wheel, const State& state, Result& result) const noexcept {
   const detail::TableData& d = *data_;
+  const int wf = static_cast<int>(wheel);
+  if (d.fast.query && (wf == 0 || wf == 1)) {  // fast_path.hpp; false: a variable is not finite
+    StatusBits q = 0;
+    if (d.fast.query(d, wf, state, 0, d.n_slots, result.contact, q)) {
+      result.n_slots = d.n_slots;
+      result.status = q;
+      return;
+    }
+  }
   detail::AxisLoc loc[detail::kNumVars];
   double creepage[3];
   StatusBits q = locate_state(d, state, loc, creepage);
@@ -181,6 +190,11 @@ void Table::query(Wheel wheel, const State& state, Result& result) const noexcep
 
 void Table::query_slot(Wheel wheel, const State& state, int slot, Contact& contact) const noexcept {
   const detail::TableData& d = *data_;
+  const int wf = static_cast<int>(wheel);
+  if (d.fast.query && (wf == 0 || wf == 1) && slot >= 0 && slot < d.n_slots) {
+    StatusBits q = 0;
+    if (d.fast.query(d, wf, state, slot, slot + 1, &contact, q)) return;
+  }
   detail::AxisLoc loc[detail::kNumVars];
   double creepage[3];
   StatusBits q = locate_state(d, state, loc, creepage);

@@ -19,9 +19,9 @@
 //   (docs/lookup.md). A query reads the statuses of one record (the cell's corner 0) instead of
 //   folding 2^D of them, with the same result. Nodes on the last node of an axis start no
 //   cell; they keep their own status.
-// The default creep + wear record is 5 values + 2 statuses = 6 doubles = 48 bytes (64 in the
-// node layout): 4 records per 3 cache lines, 0.86 MB per wheel and slot for the default scene,
-// so the tread grids of both wheels fit a 2 MB L2. Records start on 16-byte boundaries (SSE2
+// The default creep + wear record is 6 values (the creep part's with its per-creepage normal
+// force, wear) + 2 statuses = 7 doubles, padded to 8 = 64 bytes: 1.15 MB per wheel and slot for
+// the default scene. Records start on 16-byte boundaries (SSE2
 // pairs), the data on a 64-byte boundary.
 #pragma once
 
@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "creep_map.hpp"
+#include "fast_path.hpp"
 #include "grid.hpp"
 #include "jump_side.hpp"
 #include "railtab/lookup.hpp"
@@ -125,6 +126,7 @@ struct TableData {
   int creep_block = -1;               // block holding the creep part (-1: none)
   bool has_jumps = false;             // the file has /jumps (format 2.1): one-sided jump cells
   JumpWheel jumps[2];                 // per wheel (jump_side.hpp)
+  FastPath fast;                      // the fused query when the table has its shape (fast_path.hpp)
 };
 
 }  // namespace railtab::lookup::detail

@@ -542,6 +542,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
     if (d->creep_map.active && var >= kVarXi) d->clamped_var[d->n_clamped++] = var;
     else d->located_var[d->n_located++] = var;
   }
+  prepare_fast_path(*d);  // fast_path.hpp: the fused query for the usual shape
   return d;
 }
 

@@ -1,0 +1,280 @@
+// SPDX-License-Identifier: Apache-2.0
+// The fused query of fast_path.hpp. Every value is computed with the same operations in the same
+// order as the generic path: locate_state and interpolate_normalised_creep (table.cpp), the
+// linear kernels (interpolate.cpp, weighted_sum.hpp) and interpolate_scales (creep_map.cpp), so
+// both paths give the same bytes (scripts/lookup_result_dump.cpp compares them; the test
+// FastPath.SameBytesAsTheGenericPath runs both on the default table's shape).
+#include "fast_path.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <initializer_list>
+
+#include "interpolate.hpp"
+#include "part_spec.hpp"
+#include "table_data.hpp"
+#include "weighted_sum.hpp"
+
+namespace railtab::lookup::detail {
+namespace {
+
+double state_var(const State& s, int var) noexcept {
+  switch (var) {
+    case kVarY: return s.y;
+    case kVarRoll: return s.roll;
+    case kVarLoad: return s.load;
+    case kVarXi: return s.xi;
+    case kVarEta: return s.eta;
+    default: return s.phi;
+  }
+}
+
+template <int NV>
+inline void store_values(const Block& b, const SumsSse2<NV>& sums, Contact& c) noexcept {
+  if (b.first_output >= 0) {
+    sums.store(c.value + b.first_output);
+  } else {
+    double v[NV];
+    sums.store(v);
+    for (int k = 0; k < NV; ++k) c.value[b.output_of[k]] = v[k];
+  }
+}
+
+// The cell's part statuses of a block (query layout: after the values of the cell's first record)
+// whose NP parts are consecutive from `first` (checked at load): one copy.
+template <int NP>
+inline void store_status_run(int first, const Block& b, const double* cell_record, Contact& c) noexcept {
+  std::memcpy(&c.part_status[first], reinterpret_cast<const unsigned char*>(cell_record + b.status_offset),
+              NP * sizeof(StatusBits));
+}
+
+// Zeroes the parts the table does not hold (interpolate_slots does it first).
+inline void zero_absent(const TableData& d, Contact& c) noexcept {
+  for (int a = 0; a < d.n_absent; ++a) {
+    const PartSpec& spec = kPartSpecs[d.absent_part[a]];
+    for (int k = 0; k < spec.n_out; ++k) c.value[spec.first_output + k] = 0.0;
+    c.part_status[d.absent_part[a]] = 0;
+  }
+}
+
+// The slot's status from its part statuses and the query bits (as interpolate_slots).
+inline void fold_status(const TableData& d, StatusBits q, Contact& c) noexcept {
+  StatusBits any = 0, all = ~0u;
+  for (int p = 0; p < kNumParts; ++p) {
+    if (!d.has_part[p]) continue;
+    any |= c.part_status[p];
+    all &= c.part_status[p];
+  }
+  c.status = (any & ~status::kConverged) | (all & status::kConverged) | q;
+  c.reserved = 0;
+}
+
+// One slot of a cell no jump cuts. NG, NN, NC: values per record of the geometry, normal and creep
+// blocks; NP: parts of the creep block (creep, or creep and wear).
+template <int NG, int NN, int NC, int NP, bool kAvx2>
+void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, StatusBits q,
+                  int s, Contact& c) noexcept {
+  const FastPath& fp = d.fast;
+  const Block& gb = d.block[w][fp.geometry];
+  const Block& nb = d.block[w][fp.normal];
+  const Block& cb = d.block[w][fp.creep];
+  const CreepMap& map = d.creep_map;
+  const std::size_t slot = static_cast<std::size_t>(s);
+  zero_absent(d, c);
+  const AxisLoc ly = loc[kVarY], ll = loc[kVarLoad];
+  // t and 1 - t of y and load, in the generic kernels' order (first dimension first).
+  const double t2[2] = {ly.t, ll.t}, u2[2] = {1.0 - ly.t, 1.0 - ll.t};
+
+  // Geometry (y), first: its contact angle's sine and cosine (normal_from_share) are the longest
+  // computation of the query, and depend on nothing else, so they overlap with what follows.
+  const double* g = gb.data.data() + slot * gb.slot_size + static_cast<std::size_t>(ly.i) * gb.stride[0];
+  {
+    SumsSse2<NG> sums;
+    sums.zero();
+    walk_corners_sse2<1, 0>(g, 1.0, t2, u2, gb.stride, sums);
+    store_values(gb, sums, c);
+    store_status_run<1>(kGeometry, gb, g, c);
+  }
+  double cos_angle = 0.0, sin_angle = 0.0;
+  if (map.vertical_share) {
+    cos_angle = std::cos(c.value[kContactAngle]);
+    sin_angle = std::sin(c.value[kContactAngle]);
+  }
+
+  // The slot's reciprocal scales at (y, load) (interpolate_scales, bilinear), the normalised
+  // creepages and their cells (interpolate_normalised_creep): the creep records' address.
+  double inv[3];
+  {
+    const double* base = map.scale[w].data() + slot * map.nodes * 3;
+    const std::size_t origin = static_cast<std::size_t>(ly.i) * map.stride[0] + static_cast<std::size_t>(ll.i) * map.stride[1];
+    const double t0 = ly.t, t1 = ll.t;
+    const double w00 = (1.0 - t0) * (1.0 - t1), w01 = (1.0 - t0) * t1, w10 = t0 * (1.0 - t1), w11 = t0 * t1;
+    const double* p00 = base + origin * 3;
+    const double* p01 = p00 + map.stride[1] * 3;
+    const double* p10 = p00 + map.stride[0] * 3;
+    const double* p11 = p10 + map.stride[1] * 3;
+    for (int k = 0; k < 3; ++k) inv[k] = w00 * p00[k] + w01 * p01[k] + w10 * p10[k] + w11 * p11[k];
+  }
+  double x[3], t5[5] = {ly.t, ll.t, 0.0, 0.0, 0.0};
+  std::size_t cell = static_cast<std::size_t>(ly.i) * cb.stride[0] + static_cast<std::size_t>(ll.i) * cb.stride[1];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = creepage[k] * inv[k];
+    AxisLoc l;
+    d.axis[kVarXi + k].locate_fast(
+        creep_coordinate_normalised(x[k] * map.kinv[k], map.lo_k[k] * inv[k], map.hi_k[k] * inv[k]), l);
+    t5[2 + k] = l.t;
+    cell += static_cast<std::size_t>(l.i) * cb.stride[2 + k];
+  }
+  const double* cr = cb.data.data() + slot * cb.slot_size + cell;
+  const double u5[5] = {1.0 - t5[0], 1.0 - t5[1], 1.0 - t5[2], 1.0 - t5[3], 1.0 - t5[4]};
+
+  // Normal (y, load).
+  {
+    const double* n = nb.data.data() + slot * nb.slot_size + static_cast<std::size_t>(ly.i) * nb.stride[0] +
+                      static_cast<std::size_t>(ll.i) * nb.stride[1];
+    SumsSse2<NN> sums;
+    sums.zero();
+    walk_corners_sse2<2, 0>(n, 1.0, t2, u2, nb.stride, sums);
+    store_values(nb, sums, c);
+    store_status_run<1>(kNormal, nb, n, c);
+  }
+
+  // Creep and wear (y, load, v_xi, v_eta, v_phi): 32 corners.
+  {
+    double values[NC];
+    if constexpr (kAvx2) corner_sum_avx2<5, NC>(cr, t5, u5, cb.stride, values);
+    else corner_sum_sse2<5, NC>(cr, t5, u5, cb.stride, values);
+    if (cb.first_output >= 0) std::memcpy(c.value + cb.first_output, values, sizeof values);
+    else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
+    store_status_run<NP>(kCreep, cb, cr, c);
+  }
+
+  // F / (mu N) minus the law, plus the law, times mu N (interpolate_normalised_creep).
+  double law[2];
+  creep_law(x[0], x[1], x[2], law);
+  if (map.vertical_share)
+    c.value[kNormalForce] = normal_from_share(c.value[kNormalForce], cos_angle, sin_angle,
+                                              map.friction * (c.value[kFy] + law[1]));
+  const double mun = map.friction * c.value[kNormalForce];
+  c.value[kFx] = (c.value[kFx] + law[0]) * mun;
+  c.value[kFy] = (c.value[kFy] + law[1]) * mun;
+  c.value[kMz] *= mun;
+  fold_status(d, q, c);
+}
+
+template <int NG, int NN, int NC, int NP, bool kAvx2>
+bool fast_query(const TableData& d, int w, const State& state, int slot_begin, int slot_end, Contact* contact,
+                StatusBits& q) noexcept {
+  const double y = state.y, load = state.load;
+  const double physical[3] = {state.xi, state.eta, state.phi};
+  bool finite = std::isfinite(y) && std::isfinite(load) && std::isfinite(physical[0]) &&
+                std::isfinite(physical[1]) && std::isfinite(physical[2]);
+  for (int k = 0; k < d.n_fixed; ++k) finite = finite && std::isfinite(state_var(state, d.fixed_var[k]));
+  if (!finite) return false;
+  // locate_state: y and load on their axes, the creepages clamped to their physical ranges, the
+  // fixed variables compared with their values.
+  AxisLoc loc[kNumVars];
+  bool out = d.axis[kVarY].locate_fast(y, loc[kVarY]);
+  out |= d.axis[kVarLoad].locate_fast(load, loc[kVarLoad]);
+  const CreepMap& map = d.creep_map;
+  double creepage[3];
+  for (int c = 0; c < 3; ++c) {
+    const double x = physical[c];
+    out |= x < map.lo[c] || x > map.hi[c];
+    creepage[c] = std::min(std::max(x, map.lo[c]), map.hi[c]);
+  }
+  for (int k = 0; k < d.n_fixed; ++k) {
+    const int var = d.fixed_var[k];
+    out |= std::abs(state_var(state, var) - d.fixed_value[var]) > d.fixed_tolerance[var];
+  }
+  q = out ? status::kOutOfRange : 0u;
+  if (d.has_jumps && d.jumps[w].cut[static_cast<std::size_t>(loc[kVarY].i) * static_cast<std::size_t>(d.jumps[w].load_cells) +
+                                     static_cast<std::size_t>(loc[kVarLoad].i)]) {  // jump_cell, with a load axis  // one-sided (jump_side.hpp), as interpolate_slots
+    const int n = slot_end - slot_begin;
+    for (int s = 0; s < n; ++s) zero_absent(d, contact[s]);
+    interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
+    for (int s = 0; s < n; ++s) fold_status(d, q, contact[s]);
+    return true;
+  }
+  for (int s = slot_begin; s < slot_end; ++s)
+    regular_slot<NG, NN, NC, NP, kAvx2>(d, w, loc, creepage, q, s, contact[s - slot_begin]);
+  return true;
+}
+
+// The block holding `part` (-1: none).
+int block_of(const TableData& d, int part) noexcept {
+  for (int b = 0; b < d.n_blocks; ++b)
+    for (int p = 0; p < d.block[0][b].n_parts; ++p)
+      if (d.block[0][b].part[p] == part) return b;
+  return -1;
+}
+
+bool block_over(const Block& b, std::initializer_list<int> vars) noexcept {
+  if (b.n_dims != static_cast<int>(vars.size())) return false;
+  int d = 0;
+  for (int v : vars)
+    if (b.var[d++] != v) return false;
+  return true;
+}
+
+template <int NG, int NN, int NC>
+FastQuery pick(bool avx2, int np) noexcept {
+  if (np == 2) return avx2 ? &fast_query<NG, NN, NC, 2, true> : &fast_query<NG, NN, NC, 2, false>;
+  return avx2 ? &fast_query<NG, NN, NC, 1, true> : &fast_query<NG, NN, NC, 1, false>;
+}
+
+}  // namespace
+
+void prepare_fast_path(TableData& d) noexcept {
+  d.fast = FastPath{};
+  // RAILTAB_LOOKUP_NO_FAST_PATH=1: the generic path for every table (to compare the two).
+  if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_FAST_PATH"); env && *env && *env != '0') return;
+  const CreepMap& map = d.creep_map;
+  if (d.method != Method::kLinear || !map.active || d.n_blocks != 3) return;
+  if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll])) return;
+  if (d.n_located != 2 || d.n_clamped != 3 || !map.swept[0] || !map.swept[1] || !map.swept[2]) return;
+  if (map.n_dims != 2 || map.var[0] != kVarY || map.var[1] != kVarLoad) return;
+  if (!d.has_part[kGeometry] || !d.has_part[kNormal] || !d.has_part[kCreep]) return;
+  const int g = block_of(d, kGeometry), n = block_of(d, kNormal), c = block_of(d, kCreep);
+  if (g < 0 || n < 0 || c != d.creep_block || g == n || n == c || g == c) return;
+  for (int w = 0; w < 2; ++w) {
+    const Block& gb = d.block[w][g];
+    const Block& nb = d.block[w][n];
+    const Block& cb = d.block[w][c];
+    if (!block_over(gb, {kVarY}) || !block_over(nb, {kVarY, kVarLoad}) ||
+        !block_over(cb, {kVarY, kVarLoad, kVarXi, kVarEta, kVarPhi}))
+      return;
+    if (gb.first_output != 0 || gb.n_values != kPartSpecs[kGeometry].n_out) return;  // the angle at value 0
+  }
+  const Block& gb = d.block[0][g];
+  const Block& nb = d.block[0][n];
+  const Block& cb = d.block[0][c];
+  for (int w = 1; w < 2; ++w)
+    if (d.block[w][g].n_values != gb.n_values || d.block[w][n].n_values != nb.n_values ||
+        d.block[w][c].n_values != cb.n_values)
+      return;
+  // Part statuses copied in one run per block: geometry alone, normal alone, creep (and wear).
+  const int np = cb.n_parts;
+  if (gb.n_parts != 1 || nb.n_parts != 1 || gb.part[0] != kGeometry || nb.part[0] != kNormal) return;
+  if (!(cb.part[0] == kCreep && (np == 1 || (np == 2 && cb.part[1] == kWear)))) return;
+  for (int w = 1; w < 2; ++w)
+    if (d.block[w][c].n_parts != np) return;
+  const bool avx2 = use_avx2();
+  FastQuery q = nullptr;
+  // The shapes railtab generate writes: creep with its per-creepage normal force (load coupling)
+  // and wear, or without either.
+  if (gb.n_values == 7 && nb.n_values == 6) {
+    if (cb.n_values == 6) q = pick<7, 6, 6>(avx2, np);
+    else if (cb.n_values == 5) q = pick<7, 6, 5>(avx2, np);
+    else if (cb.n_values == 4) q = pick<7, 6, 4>(avx2, np);
+  }
+  if (!q) return;
+  d.fast.query = q;
+  d.fast.geometry = g;
+  d.fast.normal = n;
+  d.fast.creep = c;
+}
+
+}  // namespace railtab::lookup::detail

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: Apache-2.0
+// One fused query for the shape of table users get (tables/default.toml: linear method, y and
+// load located, normalised creep coordinates over xi, eta and phi, blocks geometry (y), normal
+// (y, load) and creep + wear (y, load, xi, eta, phi)): the cell search, the three blocks, the
+// creep map and the law in one function without the generic per-variable and per-block loops,
+// with the long-latency work (the sine and cosine of the contact angle, the creep records'
+// loads) started early. Same operations in the same order as the generic path (table.cpp,
+// interpolate.cpp), so the same bytes; any other table takes the generic path.
+#pragma once
+
+#include "railtab/lookup.hpp"
+
+namespace railtab::lookup::detail {
+
+struct TableData;
+
+// Interpolates slots [slot_begin, slot_end) of wheel w (0 or 1) into contact[0 ..] and sets q to
+// the query bits, as locate_state + interpolate_slots would. Returns false, writing nothing, when
+// a variable is not finite (the caller takes the generic path, which flags it).
+using FastQuery = bool (*)(const TableData& d, int w, const State& state, int slot_begin,
+                           int slot_end, Contact* contact, StatusBits& q) noexcept;
+
+struct FastPath {
+  FastQuery query = nullptr;  // null: the table does not have the shape (generic path)
+  int geometry = -1, normal = -1, creep = -1;  // its blocks
+};
+
+// Chooses d.fast for a loaded table (table_load.cpp, last step).
+void prepare_fast_path(TableData& d) noexcept;
+
+}  // namespace railtab::lookup::detail

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: Apache-2.0
+// The fused query of the default table's shape (lookup/src/fast_path.cpp, issue 15 item 4) gives
+// the same bytes as the generic path (RAILTAB_LOOKUP_NO_FAST_PATH=1 at load), for query and
+// query_slot of every slot, both wheels, at random states in and out of range, on grid nodes,
+// within 0.1 mm of every located jump (cut cells: the fast path hands them to the one-sided path
+// after its own cell search) and with non-finite variables; with the AVX2 and the SSE2 kernels.
+//
+// Run: build/<dir>/tests/test_table_accuracy --gtest_filter='FastPath*'
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <random>
+
+#include "accuracy_util.hpp"
+#include "sweep/jump_locator.hpp"
+
+namespace railtab::accuracy {
+namespace {
+
+struct Tables {
+  std::vector<double> jump_y;  // every located jump, both wheels and loads
+  std::optional<lk::Table> generic, fast, generic_sse2, fast_sse2;
+};
+
+const Tables& tables() {
+  static const Tables t = [] {
+    Tables x;
+    const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+    SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    const ContactJumps jumps = locate_jumps(scene);
+    add_jumps(r.table, scene, jumps);  // as railtab generate (format 2.1)
+    for (const auto& wheel : jumps.wheel)
+      for (const auto& list : wheel)
+        for (const ContactJump& j : list) x.jump_y.push_back(j.y);
+    const std::filesystem::path path = temp_table_path("fast_path");
+    write_for_lookup(r.table, path);
+    auto load = [&](bool generic, bool sse2) {
+      if (generic) ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);
+      if (sse2) ::setenv("RAILTAB_LOOKUP_NO_AVX2", "1", 1);
+      lk::Table table = lk::Table::load(path.string());
+      ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
+      ::unsetenv("RAILTAB_LOOKUP_NO_AVX2");
+      return table;
+    };
+    x.generic.emplace(load(true, false));
+    x.fast.emplace(load(false, false));
+    x.generic_sse2.emplace(load(true, true));
+    x.fast_sse2.emplace(load(false, true));
+    std::filesystem::remove(path);
+    return x;
+  }();
+  return t;
+}
+
+void set(lk::State& s, const std::string& name, double x) {
+  if (name == "y") s.y = x;
+  else if (name == "load") s.load = x;
+  else if (name == "xi") s.xi = x;
+  else if (name == "eta") s.eta = x;
+  else if (name == "phi") s.phi = x;
+}
+
+// States of kind k % 6: in range, 5 % beyond every axis, on grid nodes, within 0.1 mm of a jump,
+// on a jump, a non-finite variable.
+lk::State state(const lk::Table& t, const std::vector<double>& jump_y, int k, std::mt19937& rng) {
+  lk::State s = t.default_state();
+  const int kind = k % 6;
+  for (const lk::AxisInfo& a : t.axes()) {
+    const double lo = a.nodes.front(), hi = a.nodes.back(), w = hi - lo;
+    double x = std::uniform_real_distribution<double>(lo, hi)(rng);
+    if (kind == 1) x = std::uniform_real_distribution<double>(lo - 0.05 * w, hi + 0.05 * w)(rng);
+    if (kind == 2) x = a.nodes[std::uniform_int_distribution<std::size_t>(0, a.nodes.size() - 1)(rng)];
+    set(s, a.name, x);
+  }
+  if (kind == 3 || kind == 4) {
+    const double y = jump_y[std::uniform_int_distribution<std::size_t>(0, jump_y.size() - 1)(rng)];
+    s.y = y + (kind == 3 ? std::uniform_real_distribution<double>(-1e-4, 1e-4)(rng) : 0.0);
+  }
+  if (kind == 5) {
+    const double bad[3] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                           -std::numeric_limits<double>::infinity()};
+    const double v = bad[k % 3];
+    switch ((k / 6) % 6) {
+      case 0: s.y = v; break;
+      case 1: s.load = v; break;
+      case 2: s.xi = v; break;
+      case 3: s.eta = v; break;
+      case 4: s.phi = v; break;
+      default: s.roll = v; break;
+    }
+  }
+  return s;
+}
+
+void expect_same_bytes(const lk::Table& generic, const lk::Table& fast, const std::vector<double>& jump_y) {
+  std::mt19937 rng(4);
+  std::size_t compared = 0;
+  for (int k = 0; k < 12000; ++k) {
+    const lk::State s = state(fast, jump_y, k, rng);
+    for (int w = 0; w < 2; ++w) {
+      const lk::Wheel wheel = static_cast<lk::Wheel>(w);
+      lk::Result a{}, b{};  // no padding: every byte is a field
+      generic.query(wheel, s, a);
+      fast.query(wheel, s, b);
+      ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "query, wheel " << w << " state " << k;
+      for (int slot = 0; slot < fast.n_slots(); ++slot) {
+        lk::Contact c{}, d{};
+        generic.query_slot(wheel, s, slot, c);
+        fast.query_slot(wheel, s, slot, d);
+        ASSERT_EQ(std::memcmp(&c, &d, sizeof c), 0) << "query_slot " << slot << ", wheel " << w << " state " << k;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 40000u);
+}
+
+TEST(FastPath, SameBytesAsTheGenericPath) {
+  const Tables& t = tables();
+  expect_same_bytes(*t.generic, *t.fast, t.jump_y);
+}
+
+TEST(FastPath, SameBytesAsTheGenericPathWithSse2Kernels) {
+  const Tables& t = tables();
+  expect_same_bytes(*t.generic_sse2, *t.fast_sse2, t.jump_y);
+  expect_same_bytes(*t.generic, *t.fast_sse2, t.jump_y);
+}
+
+}  // namespace
+}  // namespace railtab::accuracy
