@@ -32,7 +32,7 @@ namespace railtab {
 namespace {
 
 // Compressed above 4 KiB: the default table's one-sided statuses at the jumps (55 KB each, 220 KB
-// in all) shrink to ~1 KB; the datasets below (normal part, axes) stay one plain chunk.
+// in all) shrink to 150-330 B; the datasets below (normal part, axes) stay one plain chunk.
 constexpr std::size_t kCompressAbove = 4 * 1024;  // datasets above this are compressed [B]
 constexpr std::size_t kChunkTarget = 256 * 1024;  // chunk size aimed at [B]
 // zlib's default. On the default table: level 4 1,656,771 B, 6 1,626,587 B, 9 1,620,259 B, and
