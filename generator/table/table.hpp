@@ -19,8 +19,10 @@ namespace railtab {
 // (Fletcher32 on every chunked dataset, checksummed metadata, fixed-length strings). The reader
 // also reads format 1.0 and 1.1.
 inline constexpr int kTableFormatMajor = 2;
-inline constexpr int kTableFormatMinor = 1;  // 2.1: normalised creep coordinates, located contact jumps (/jumps)
-inline constexpr const char* kTableFormatVersion = "2.1";
+// 2.1: normalised creep coordinates, located contact jumps (/jumps); 2.2: creep and wear outputs
+// stored as float32 rounded to 20 significant bits (table/storage_precision.hpp).
+inline constexpr int kTableFormatMinor = 2;
+inline constexpr const char* kTableFormatVersion = "2.2";
 
 struct TableAxis {
   std::string name;          // "y", "roll", "load", "xi", "eta", "phi", "slot"

@@ -102,6 +102,10 @@ void write_int64_attribute(hid_t object, const std::string& name, std::int64_t v
   write_scalar(object, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value, file);
 }
 
+void write_int32_attribute(hid_t object, const std::string& name, std::int32_t value, const std::string& file) {
+  write_scalar(object, name, H5T_STD_I32LE, H5T_NATIVE_INT32, &value, file);
+}
+
 void write_uint32_array_attribute(hid_t object, const std::string& name, const std::vector<std::uint32_t>& values,
                                   const std::string& file) {
   write_array(object, name, H5T_STD_U32LE, H5T_NATIVE_UINT32, values, file);

@@ -14,6 +14,7 @@
 namespace railtab::h5 {
 
 void write_int64_attribute(hid_t object, const std::string& name, std::int64_t value, const std::string& file);
+void write_int32_attribute(hid_t object, const std::string& name, std::int32_t value, const std::string& file);
 void write_uint32_array_attribute(hid_t object, const std::string& name, const std::vector<std::uint32_t>& values,
                                   const std::string& file);
 void write_int32_array_attribute(hid_t object, const std::string& name, const std::vector<std::int32_t>& values,

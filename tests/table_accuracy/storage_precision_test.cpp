@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: Apache-2.0
+// Storage precision of format 2.2 (docs/table-format.md, "Storage precision"): the default
+// scene's table as `railtab generate` writes it (creep and wear outputs as float32 rounded to 20
+// significant bits) against the same table written with float64 outputs (format 2.1), both
+// through the lookup at random states, jump cells included, linear and cubic.
+//
+// The bound: every stored value v is within kStoredRounding |v| = 2^-20 |v| of the float64 one.
+// Linear interpolation (and the one-sided interpolation of a jump cell) weights the corner values
+// with weights >= 0 summing to 1, so an interpolated value moves by at most 2^-20 of the largest
+// corner; a force is (F / (mu N) + law) mu N with |F / (mu N)| <= 2 and N rebuilt from the stored
+// vertical share and fy / (mu N) (together <= 2 x 2^-20 relative), so it moves by at most
+// 4 x 2^-20 of mu N. Stated bound, per output and slot: 4 x 2^-20 of the output's largest |value|
+// over the states (fx, fy: mu times the largest normal force). The cubic weights are not all
+// >= 0 (Hermite slopes: sum of |weights| <= 1.25 per axis, 3.05 over 5 axes): 12 x 2^-20 there.
+// Measured: <= 0.68 (linear), <= 0.72 (cubic) x 2^-20; writing 16 significant bits instead of 20
+// fails the linear test (checked).
+// The geometry part and the normal part's outputs other than the normal force are float64 in
+// both tables: there the answers must be the same bits.
+//
+// Run: build/<dir>/tests/test_table_accuracy --gtest_filter='StoragePrecision*' (prints the numbers).
+#include <cstdio>
+#include <cstring>
+#include <optional>
+
+#include "accuracy_util.hpp"
+#include "sweep/jump_locator.hpp"
+#include "table/storage_precision.hpp"
+
+namespace railtab::accuracy {
+namespace {
+
+constexpr std::uint64_t kSeed = 20261126;
+constexpr std::size_t kStates = 20000;  // per wheel
+
+struct Tables {
+  Scene scene;
+  std::optional<lk::Table> stored[2][2];  // [0 float32 (2.2), 1 float64 (2.1)][0 linear, 1 cubic]
+  std::uintmax_t bytes[2] = {};           // file sizes [B]
+};
+
+const Tables& tables() {
+  static const Tables t = [] {
+    Tables x;
+    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
+    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    add_jumps(r.table, x.scene, locate_jumps(x.scene));
+    if (!table_stores_float32(r.table)) throw std::runtime_error("the sweep's table is not format 2.2");
+    Table doubles = r.table;
+    doubles.set_attribute("format_version", "2.1");  // the layout before 2.2: float64 outputs
+    for (int k = 0; k < 2; ++k) {
+      const std::filesystem::path path = temp_table_path(k == 0 ? "float32" : "float64");
+      write_for_lookup(k == 0 ? r.table : doubles, path);
+      x.bytes[k] = std::filesystem::file_size(path);
+      for (int m = 0; m < 2; ++m) {
+        lk::LoadOptions options;
+        options.method = m == 0 ? lk::Method::kLinear : lk::Method::kCubic;
+        x.stored[k][m].emplace(lk::Table::load(path.string(), options));
+      }
+      std::filesystem::remove(path);
+    }
+    return x;
+  }();
+  return t;
+}
+
+bool float64_in_both(int o) {
+  const lk::Part p = lk::output_part(static_cast<lk::Output>(o));
+  return (p == lk::Part::kGeometry || p == lk::Part::kNormal) && o != lk::kNormalForce;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void compare(int method, double bound_in_roundings) {
+  const Tables& t = tables();
+  const lk::Table& single = *t.stored[0][method];
+  const lk::Table& full = *t.stored[1][method];
+  const Scene& s = t.scene;
+  Random rng(kSeed + static_cast<std::uint64_t>(method));
+  std::vector<lk::State> states(kStates);
+  for (lk::State& st : states) {
+    st = full.default_state();
+    st.y = rng.uniform(s.grids.y.front(), s.grids.y.back());
+    st.load = rng.uniform(s.grids.load.front(), s.grids.load.back());
+    st.xi = rng.uniform(s.grids.xi.front(), s.grids.xi.back());
+    st.eta = rng.uniform(s.grids.eta.front(), s.grids.eta.back());
+    st.phi = rng.uniform(s.grids.phi.front(), s.grids.phi.back());
+  }
+  double diff[lk::kNumOutputs][kSlots] = {}, scale[lk::kNumOutputs][kSlots] = {};
+  std::size_t differing_bits = 0;
+  for (int w = 0; w < 2; ++w) {
+    for (const lk::State& st : states) {
+      const lk::Result a = single.query(static_cast<lk::Wheel>(w), st);
+      const lk::Result b = full.query(static_cast<lk::Wheel>(w), st);
+      for (std::size_t slot = 0; slot < kSlots; ++slot) {
+        ASSERT_EQ(a.contact[slot].status, b.contact[slot].status) << "statuses are stored as before";
+        for (int o = 0; o < lk::kNumOutputs; ++o) {
+          const double va = a.contact[slot].value[o], vb = b.contact[slot].value[o];
+          if (float64_in_both(o)) {
+            if (!same_bits(va, vb)) ++differing_bits;
+            continue;
+          }
+          diff[o][slot] = std::max(diff[o][slot], std::abs(va - vb));
+          const bool force = o == lk::kFx || o == lk::kFy;
+          const double size = force ? s.tangential.friction * b.contact[slot].value[lk::kNormalForce] : std::abs(vb);
+          scale[o][slot] = std::max(scale[o][slot], size);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(differing_bits, 0u) << "geometry / normal outputs differ between the float32 and the float64 table";
+  std::printf("storage precision, %s lookup, %zu random states x 2 wheels: max |float32 table - float64 table| "
+              "/ (2^-20 x scale), scale = largest |value| (fx, fy: mu x largest N); limit %.0f\n",
+              method == 0 ? "linear" : "cubic", kStates, bound_in_roundings);
+  for (int o = 0; o < lk::kNumOutputs; ++o) {
+    if (float64_in_both(o)) continue;
+    std::printf("  %-14s", lk::output_name(static_cast<lk::Output>(o)));
+    for (std::size_t slot = 0; slot < kSlots; ++slot) {
+      const double ratio = scale[o][slot] > 0.0 ? diff[o][slot] / (kStoredRounding * scale[o][slot]) : 0.0;
+      std::printf("  slot %zu: %6.3f (max diff %.3g, scale %.3g)", slot, ratio, diff[o][slot], scale[o][slot]);
+    }
+    std::printf("\n");
+    for (std::size_t slot = 0; slot < kSlots; ++slot)
+      EXPECT_LE(diff[o][slot], bound_in_roundings * kStoredRounding * scale[o][slot])
+          << lk::output_name(static_cast<lk::Output>(o)) << " slot " << slot;
+  }
+}
+
+TEST(StoragePrecision, DefaultTableIsSmallerThanTheFloat64One) {
+  const Tables& t = tables();
+  std::printf("default table file: %ju B with float32 outputs (2.2), %ju B with float64 (2.1)\n", t.bytes[0],
+              t.bytes[1]);
+  EXPECT_LE(t.bytes[0], 1700000u) << "issue 15: no larger than 1.7 MB";
+  EXPECT_LT(t.bytes[0], t.bytes[1] / 2);
+}
+
+TEST(StoragePrecision, LinearLookupMovesByLessThanTheRoundingBound) { compare(0, 4.0); }
+
+TEST(StoragePrecision, CubicLookupMovesByLessThanTheRoundingBound) { compare(1, 12.0); }
+
+}  // namespace
+}  // namespace railtab::accuracy
