@@ -44,7 +44,7 @@ void add_simulate_command(CLI::App& app) {
       std::cout << fmt::format(
           "  {:<14} worn area {:.4f} mm2 after {:.0f} km; wear centroid u = {:.2f} mm; at u < 0: {:.1f} %, at u < "
           "-25 mm: {:.1f} %; peak {:.2f} um at u = {:.2f} mm\n",
-          m.model, total * 1e6, scene.running_distance / 1e3, m.centroid_u * 1e3, 100 * m.flange_side_share,
+          m.model, total * 1e6, m.running_distance / 1e3, m.centroid_u * 1e3, 100 * m.flange_side_share,
           100 * m.flange_root_share, m.peak_depth * 1e6, m.peak_u * 1e3);
     }
     std::cout << fmt::format("  simulated seconds per wall-clock second: {:.2f}\n", simulation_speed(summary));

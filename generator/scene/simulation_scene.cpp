@@ -192,7 +192,8 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
   }
   Section k(file, "simulation", sim,
          {"name", "description", "contact_scene", "dynamics_model", "wear_post_processors", "positions", "speed", "time_step", "initial_y",
-          "wear_steps", "running_distance", "lubrication_factor", "profile_smoothing", "halfspace_sample_every", "trajectory_interval"});
+          "wear_steps", "running_distance", "lubrication_factor", "profile_smoothing", "step_depth_limit",
+          "halfspace_sample_every", "trajectory_interval"});
   scene.name = k.node("name") ? k.string(*k.node("name"), "name")
                               : std::filesystem::path(source_name).stem().string();
   if (k.node("description")) scene.description = k.string(*k.node("description"), "description");
@@ -219,6 +220,7 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
   scene.running_distance = k.number("running_distance", 0.0, positive, "> 0 m", true);
   scene.lubrication_factor = k.number("lubrication_factor", 5.5, [](double v) { return v >= 1.0; }, ">= 1");
   scene.profile_smoothing = k.number("profile_smoothing", 0.0, non_negative, ">= 0 m");
+  scene.step_depth_limit = k.number("step_depth_limit", 0.0, non_negative, ">= 0 m");
   scene.halfspace_sample_every = k.integer("halfspace_sample_every", 1, 1, 1000);
   scene.trajectory_interval = k.number("trajectory_interval", scene.trajectory_interval, positive, "> 0 m");
 

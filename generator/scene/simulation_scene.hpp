@@ -32,6 +32,9 @@ struct SimulationScene {
   double running_distance = 0.0;           // total distance the wear stands for [m]
   double lubrication_factor = 5.5;         // k_dry divisor: 5.5 natural, 11 lubricated [-]
   double profile_smoothing = 0.0;          // moving-average length of the wear depth [m]
+  double step_depth_limit = 0.0;           // > 0: a wear step ends where the smoothed mean
+                                           // depth of its profile update reaches this, at most
+                                           // running_distance / wear_steps; 0 = fixed steps [m]
   int halfspace_sample_every = 1;          // the "halfspace" post-processor sees every k-th wear
                                            // sample, standing for k revolutions (its solves are
                                            // ~1000x slower than the others'); 1 = all [-]

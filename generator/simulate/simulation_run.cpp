@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -272,19 +273,42 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
         const std::string& processor = processors[group[j]];
         StepSummary step;
         step.step = k;
-        step.running_distance = step_distance;
         step.generate_seconds = generate_seconds;
         step.runs.push_back(run);
         // The route stands for the step's running distance: wear scales with distance. Equal
         // left and right curves and forward-backward symmetry: one wheel profile is the mean of
         // both wheels and all counted wheelsets.
-        std::vector<std::array<std::vector<double>, vehicle::kWheels>> depth;
         const std::vector<double>& u = wear.accumulator(j, 0).u();
-        std::vector<double> mean(u.size(), 0.0);
         const double weight = 1.0 / (static_cast<double>(sim.positions.size()) * vehicle::kWheels);
+        const auto mean_depth = [&](double distance) {  // the accumulators' mean at `distance`
+          std::vector<double> m(u.size(), 0.0);
+          for (std::size_t i = 0; i < sim.positions.size(); ++i) {
+            const WearAccumulator& acc = wear.accumulator(j, i);
+            if (acc.distance() <= 0.0) continue;
+            for (int w = 0; w < vehicle::kWheels; ++w) {
+              const std::vector<double>& d = acc.depth(w);
+              for (std::size_t b = 0; b < u.size(); ++b) m[b] += weight * d[b] * (distance / acc.distance());
+            }
+          }
+          return m;
+        };
+        // The profile update is the smoothed mean depth (write_worn_profile). With a depth limit
+        // the step ends where its largest value reaches the limit: the wear is linear in the
+        // distance at fixed states, so the distance scales by limit / peak.
+        const std::vector<double> nominal = smooth_depth(u, mean_depth(step_distance), sim.profile_smoothing);
+        const double nominal_peak = *std::max_element(nominal.begin(), nominal.end());
+        step.running_distance = step_distance;
+        step.profile_peak_depth = nominal_peak;
+        if (sim.step_depth_limit > 0.0 && nominal_peak > sim.step_depth_limit) {
+          step.running_distance = step_distance * (sim.step_depth_limit / nominal_peak);
+          step.profile_peak_depth = sim.step_depth_limit;
+          step.depth_limited = true;
+        }
+        std::vector<std::array<std::vector<double>, vehicle::kWheels>> depth;
+        std::vector<double> mean(u.size(), 0.0);
         for (std::size_t i = 0; i < sim.positions.size(); ++i) {
           WearAccumulator& acc = wear.accumulator(j, i);
-          if (acc.distance() > 0.0) acc.scale(step_distance / acc.distance());
+          if (acc.distance() > 0.0) acc.scale(step.running_distance / acc.distance());
           step.wear_failures += acc.failures();
           step.wear_not_converged += acc.not_converged();
           step.wear_status |= acc.status_seen();
@@ -317,7 +341,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
         write_file(wear_dir / "worn_area.csv",
                    fmt::format("step,running_distance_m,worn_area_m2,worn_area_mm2,cumulative_worn_area_mm2\n"
                                "{},{},{:.6e},{:.6f},{:.6f}\n",
-                               k, step_distance, step.worn_area, step.worn_area * 1e6,
+                               k, step.running_distance, step.worn_area, step.worn_area * 1e6,
                                step.cumulative_worn_area * 1e6));
 
         // The next step runs on this post-processor's worn wheel (smoothed).
@@ -325,9 +349,12 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
         fs::create_directories(next.parent_path());
         write_worn_profile(*wheel_profile(scene), u, mean, sim.profile_smoothing, next);
         branch.worn_wheel = next;
-        log_line(options, fmt::format("{} {} step {}: worn area {:.4f} mm2 (cumulative {:.4f} mm2 after {:.0f} km)",
-                                      sim.name, processor, k, step.worn_area * 1e6, step.cumulative_worn_area * 1e6,
-                                      step_distance * (k + 1) / 1e3));
+        branch.summary.running_distance += step.running_distance;
+        log_line(options, fmt::format("{} {} step {}: worn area {:.4f} mm2 over {:.0f} km{} (cumulative {:.4f} mm2 "
+                                      "after {:.0f} km); profile update peak {:.1f} um",
+                                      sim.name, processor, k, step.worn_area * 1e6, step.running_distance / 1e3,
+                                      step.depth_limited ? " (depth-limited)" : "", step.cumulative_worn_area * 1e6,
+                                      branch.summary.running_distance / 1e3, step.profile_peak_depth * 1e6));
         branch.summary.step_cumulative_depth.push_back(cumulative);
         branch.summary.steps.push_back(std::move(step));
         branch.summary.u = u;
@@ -357,6 +384,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   j["route_length_m"] = sim.route_length();
   j["running_distance_m"] = sim.running_distance;
   j["wear_steps"] = sim.wear_steps;
+  j["step_depth_limit_m"] = sim.step_depth_limit;
   j["halfspace_sample_every"] = sim.halfspace_sample_every;
   j["lubrication_factor"] = sim.lubrication_factor;
   j["wear_scaling"] = "depth x (running distance per step / route distance sampled)";
@@ -368,6 +396,8 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
     for (const StepSummary& s : m.steps) {
       nlohmann::json js = {{"step", s.step},
                            {"running_distance_m", s.running_distance},
+                           {"profile_peak_depth_m", s.profile_peak_depth},
+                           {"depth_limited", s.depth_limited},
                            {"worn_area_m2", s.worn_area},
                            {"worn_area_mm2", s.worn_area * 1e6},
                            {"cumulative_worn_area_mm2", s.cumulative_worn_area * 1e6},
@@ -380,6 +410,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
       jm["steps"].push_back(js);
     }
     const double total = m.steps.empty() ? 0.0 : m.steps.back().cumulative_worn_area;
+    jm["running_distance_m"] = m.running_distance;
     jm["total_worn_area_m2"] = total;
     jm["total_worn_area_mm2"] = total * 1e6;
     jm["wear_centroid_u_m"] = m.centroid_u;
@@ -392,8 +423,11 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   write_file(summary.directory / "summary.json", j.dump(2) + "\n");
   try {
     draw_wear_chart(final_series, summary.directory / "wear.png",
-                    fmt::format("{}: radial wear after {:.0f} km ({} dynamics)", sim.name, sim.running_distance / 1e3,
-                                sim.dynamics_model));
+                    sim.step_depth_limit > 0.0
+                        ? fmt::format("{}: radial wear after {} depth-limited steps ({} dynamics)", sim.name,
+                                      sim.wear_steps, sim.dynamics_model)
+                        : fmt::format("{}: radial wear after {:.0f} km ({} dynamics)", sim.name,
+                                      sim.running_distance / 1e3, sim.dynamics_model));
     // The evolution: every post-processor after each wear step.
     for (int k = 0; k + 1 < sim.wear_steps; ++k) {
       std::vector<WearSeries> series;
@@ -401,7 +435,9 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
         series.push_back({m.model, m.u, m.step_cumulative_depth[static_cast<std::size_t>(k)], is_stripes(m.model)});
       }
       draw_wear_chart(series, summary.directory / fmt::format("wear_step{}.png", k),
-                      fmt::format("{}: radial wear after {:.0f} km", sim.name, step_distance * (k + 1) / 1e3));
+                      sim.step_depth_limit > 0.0
+                          ? fmt::format("{}: radial wear after depth-limited step {}", sim.name, k)
+                          : fmt::format("{}: radial wear after {:.0f} km", sim.name, step_distance * (k + 1) / 1e3));
     }
   } catch (const Error& e) {
     log_line(options, fmt::format("warning: no chart: {}", e.what()));  // the CSVs are written

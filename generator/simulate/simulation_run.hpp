@@ -36,7 +36,11 @@ struct SimulationOptions {
 
 struct StepSummary {
   int step = 0;                            // 0-based wear step
-  double running_distance = 0.0;           // distance this step stands for [m]
+  double running_distance = 0.0;           // distance this step stands for [m] (less than
+                                           // running_distance / wear_steps when depth-limited)
+  double profile_peak_depth = 0.0;         // largest depth of this step's profile update: the
+                                           // mean depth smoothed as the worn profile [m]
+  bool depth_limited = false;              // the step was shortened by step_depth_limit
   double worn_area = 0.0;                  // mean of left/right and positions, this step [m2]
   double cumulative_worn_area = 0.0;       // after this step [m2]
   double generate_seconds = 0.0;           // table generation wall time [s] (0 with --direct)
@@ -51,6 +55,7 @@ struct StepSummary {
 struct ModelSummary {
   std::string model;                       // post-processor name (wheel_wear.hpp)
   std::vector<StepSummary> steps;
+  double running_distance = 0.0;           // distance covered by all steps [m]
   std::vector<double> u;                   // wear bin centres [m]
   std::vector<double> cumulative_depth;    // radial depth after the last step, mean [m]
   std::vector<std::vector<double>> step_cumulative_depth;  // after each step (steps x bins) [m]

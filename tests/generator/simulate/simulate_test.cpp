@@ -5,11 +5,16 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/check.hpp"
 #include "error_message.hpp"
@@ -20,6 +25,7 @@
 #include "simulate/lookup_contact_model.hpp"
 #include "simulate/simulation_run.hpp"
 #include "simulate/wear_accumulator.hpp"
+#include "simulate/worn_profile.hpp"
 #include "sweep/generate.hpp"
 #include "table/storage_precision.hpp"
 #include "vehicle/wheelset_model.hpp"
@@ -250,6 +256,63 @@ TEST_F(SimulateTest, RunWritesEveryStepAndTheWornProfileFeedsTheNextStep) {
   EXPECT_EQ(j["dynamics_model"], "hertz");
 }
 
+// step_depth_limit: a step whose profile update (the smoothed mean depth) would pass the limit
+// ends where it reaches it; the states are the same, so the wear per metre is the unlimited one's.
+TEST_F(SimulateTest, DepthLimitedStepEndsWhereTheProfileUpdateReachesTheLimit) {
+  const auto scene_text = [](const std::string& name, int steps, double limit) {
+    return fmt::format("[simulation]\nname = \"{}\"\ncontact_scene = \"scene.toml\"\n"
+                       "wear_post_processors = [\"hertz\"]\nspeed = 20.0\nwear_steps = {}\n"
+                       "running_distance = 2.0e6\nprofile_smoothing = 0.004\nstep_depth_limit = {:.17g}\n{}"
+                       "[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 20.0\n"
+                       "[[route.section]]\nkind = \"transition\"\nlength = 20.0\n"
+                       "[[route.section]]\nkind = \"circular\"\nlength = 20.0\nradius = 1000.0\n",
+                       name, steps, limit, kLightVehicle);
+  };
+  SimulationOptions options;
+  options.out = *dir_ / "out";
+  options.threads = 2;
+  std::ofstream(*dir_ / "fixed.toml") << scene_text("fixed", 1, 0.0);
+  const SimulationSummary fixed = run_simulation(load_simulation_scene(*dir_ / "fixed.toml"), options);
+  const StepSummary& f = fixed.models.at(0).steps.at(0);
+  EXPECT_FALSE(f.depth_limited);
+  EXPECT_DOUBLE_EQ(f.running_distance, 2.0e6);
+  ASSERT_GT(f.profile_peak_depth, 0.0);
+
+  const double limit = 0.25 * f.profile_peak_depth;
+  std::ofstream(*dir_ / "limited.toml") << scene_text("limited", 2, limit);
+  const SimulationSummary limited = run_simulation(load_simulation_scene(*dir_ / "limited.toml"), options);
+  const ModelSummary& m = limited.models.at(0);
+  ASSERT_EQ(m.steps.size(), 2u);
+  const StepSummary& s0 = m.steps[0];
+  EXPECT_TRUE(s0.depth_limited);
+  EXPECT_DOUBLE_EQ(s0.profile_peak_depth, limit);
+  // The same states as the fixed run's 2000 km step, a quarter of its peak: 500 km.
+  EXPECT_NEAR(s0.running_distance, 0.25 * f.running_distance, 1e-9 * f.running_distance);
+  EXPECT_NEAR(s0.worn_area / s0.running_distance, f.worn_area / f.running_distance,
+              1e-9 * f.worn_area / f.running_distance);
+  // The profile update actually written: wear.csv's mean depth, smoothed as the profile.
+  std::ifstream csv(*dir_ / "out" / "limited" / "hertz" / "step0" / "wear.csv");
+  std::string line;
+  std::getline(csv, line);
+  std::vector<double> u, mean;
+  while (std::getline(csv, line)) {
+    std::vector<double> v;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) v.push_back(std::stod(cell));
+    u.push_back(v.front());
+    mean.push_back(v[v.size() - 2]);  // depth_mean_m
+  }
+  const std::vector<double> update = smooth_depth(u, mean, 0.004);
+  EXPECT_NEAR(*std::max_element(update.begin(), update.end()), limit, 1e-5 * limit);
+  // Step 1 is never longer than the nominal step nor deeper than the limit.
+  EXPECT_LE(m.steps[1].running_distance, 1.0e6);
+  EXPECT_LE(m.steps[1].profile_peak_depth, limit * (1.0 + 1e-12));
+  EXPECT_DOUBLE_EQ(m.running_distance, s0.running_distance + m.steps[1].running_distance);
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(*dir_ / "out" / "limited" / "summary.json"));
+  EXPECT_EQ(j["post_processors"][0]["steps"][0]["depth_limited"], true);
+  EXPECT_DOUBLE_EQ(j["post_processors"][0]["running_distance_m"].get<double>(), m.running_distance);
+}
+
 // Every post-processor works from the same wheelset states: the states recorded during one
 // bogie run, fed again to fresh accumulators, give each post-processor's wear bit for bit.
 TEST_F(SimulateTest, WearPostProcessorsSeeTheSameWheelsetStates) {
@@ -344,6 +407,9 @@ TEST_F(SimulateTest, BadSimulationSceneGivesALocatedError) {
       << error_of(carried, *dir_);
   EXPECT_NE(error_of(simulation_text("positions = [\"middle\"]"), *dir_).find("sim.toml:6: simulation.positions"),
             std::string::npos);
+  EXPECT_NE(error_of(simulation_text("step_depth_limit = -1e-5"), *dir_).find("sim.toml:6: simulation.step_depth_limit"),
+            std::string::npos)
+      << error_of(simulation_text("step_depth_limit = -1e-5"), *dir_);
   // Missing required key, and a contact scene that does not exist.
   EXPECT_NE(error_of("[simulation]\ncontact_scene = \"scene.toml\"\nwear_post_processors = [\"hertz\"]\nspeed = 20.0\n", *dir_)
                 .find("simulation.running_distance: missing required key"),
