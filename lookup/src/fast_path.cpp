@@ -13,6 +13,7 @@
 #include <initializer_list>
 
 #include "interpolate.hpp"
+#include "jump_piece.hpp"
 #include "part_spec.hpp"
 #include "table_data.hpp"
 #include "weighted_sum.hpp"
@@ -164,6 +165,162 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   fold_status(d, q, c);
 }
 
+// ---- Cells a located jump cuts (jump_side.hpp): the one-sided interpolation of
+// interpolate_jump_cell fused for this shape, with the same ends, weights, products and sums in
+// the same order. The pieces (jump_piece.hpp) are found once per query, then per slot each block
+// reads only its own side's grid nodes and one-sided values at the jumps.
+
+// The statuses of a block's NP parts folded over the records its pieces read.
+template <int NP>
+struct CutStatus {
+  StatusBits any[NP] = {}, all[NP];
+  CutStatus() noexcept {
+    for (StatusBits& v : all) v = ~0u;
+  }
+  void fold(const Block& b, const double* record) noexcept {
+    StatusBits bits[NP];
+    std::memcpy(bits, reinterpret_cast<const unsigned char*>(record + b.status_offset), sizeof bits);
+    for (int p = 0; p < NP; ++p) {
+      any[p] |= bits[p];
+      all[p] &= bits[p];
+    }
+  }
+  void store(const Block& b, Contact& c) const noexcept {
+    for (int p = 0; p < NP; ++p) c.part_status[b.part[p]] = (any[p] & ~status::kConverged) | (all[p] & status::kConverged);
+  }
+};
+
+// The ends of block b's pieces (both load nodes of the cell lc) with their weights, in the order
+// load node, end a, end b, zero weights dropped, each moved to the creepage cell's first record
+// `base`; folds the statuses of the sample ends and of the grid cell each piece carries.
+template <int NP>
+int cut_ends(const Block& b, const JumpSamples& js, const Piece* piece, int lc, const double* weight,
+             std::size_t slot, std::size_t base, const double** end, double* end_w, CutStatus<NP>& st) noexcept {
+  const double* grid = b.data.data() + slot * b.slot_size + base;
+  const double* samples = js.data.data() + slot * js.slot_stride + base;
+  const std::size_t load_step = js.load_dim >= 0 ? b.stride[js.load_dim] : 0;
+  int n = 0;
+  for (int k = 0; k < 2; ++k) {
+    const Piece& p = piece[k];
+    const std::size_t lnode = static_cast<std::size_t>(lc + k);
+    auto slice = [&](const End& e) -> const double* {
+      if (e.sample)
+        return samples + lnode * js.load_stride + static_cast<std::size_t>(e.index) * js.jump_stride +
+               static_cast<std::size_t>(e.side) * js.side_stride;
+      return grid + static_cast<std::size_t>(e.index) * b.stride[0] + lnode * load_step;
+    };
+    const double* ends[2] = {slice(p.a), slice(p.b)};
+    const double ends_w[2] = {1.0 - p.t, p.t};
+    for (int e = 0; e < 2; ++e) {
+      const double we = weight[k] * ends_w[e];
+      if (we == 0.0) continue;
+      end[n] = ends[e];
+      end_w[n++] = we;
+    }
+    if (p.a.sample) st.fold(b, ends[0]);
+    if (p.b.sample) st.fold(b, ends[1]);
+    if (p.cell >= 0) st.fold(b, grid + static_cast<std::size_t>(p.cell) * b.stride[0] + static_cast<std::size_t>(lc) * load_step);
+  }
+  return n;
+}
+
+// A block without creepage axes (geometry, normal) on a cut cell: its single corner weighs 1.0,
+// so each record's weight is its end's (x 1.0 is exact).
+template <int NV>
+inline void cut_block_0(const TableData& d, const Block& b, const JumpSamples& js, const Piece* piece, int lc,
+                        const double* weight, std::size_t slot, Contact& c) noexcept {
+  (void)d;
+  const double* end[4];
+  double end_w[4];
+  CutStatus<1> st;
+  const int n = cut_ends<1>(b, js, piece, lc, weight, slot, 0, end, end_w, st);
+  SumsSse2<NV> sums;
+  sums.zero();
+  for (int e = 0; e < n; ++e) sums.add(end_w[e], end[e]);
+  store_values(b, sums, c);
+  st.store(b, c);
+}
+
+// One slot of a cut cell (interpolate_jump_cell for this shape).
+template <int NG, int NN, int NC, int NP, bool kAvx2>
+void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, const Piece (*pieces)[2],
+              int s, Contact& c) noexcept {
+  const FastPath& fp = d.fast;
+  const JumpWheel& j = d.jumps[w];
+  const CreepMap& map = d.creep_map;
+  const Block& cb = d.block[w][fp.creep];
+  const JumpSamples& cs = j.samples[fp.creep];
+  const std::size_t slot = static_cast<std::size_t>(s);
+  const int lc = loc[kVarLoad].i;
+  const double weight[2] = {1.0 - loc[kVarLoad].t, loc[kVarLoad].t};
+  cut_block_0<NG>(d, d.block[w][fp.geometry], j.samples[fp.geometry], pieces[1], lc, weight, slot, c);
+  double cos_angle = 0.0, sin_angle = 0.0;
+  if (map.vertical_share) {
+    cos_angle = std::cos(c.value[kContactAngle]);
+    sin_angle = std::sin(c.value[kContactAngle]);
+  }
+  cut_block_0<NN>(d, d.block[w][fp.normal], j.samples[fp.normal], pieces[0], lc, weight, slot, c);
+
+  // The slot's reciprocal scales on the query's side (one_sided_scales): list 0's pieces, ends at
+  // grid nodes from CreepMap::scale, at jumps from JumpWheel::inv_scale.
+  double inv[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < 2; ++k) {
+    const std::size_t lnode = static_cast<std::size_t>(lc + k);
+    auto end_scale = [&](const End& e) -> const double* {
+      if (e.sample)
+        return j.inv_scale.data() + ((((slot * j.n_load_nodes + lnode) * j.n_jumps + static_cast<std::size_t>(e.index)) * 2 +
+                                      static_cast<std::size_t>(e.side)) * 3);
+      const std::size_t node = static_cast<std::size_t>(e.index) * map.stride[0] + lnode * map.stride[1];
+      return map.scale[w].data() + (slot * map.nodes + node) * 3;
+    };
+    const Piece& p = pieces[0][k];
+    const double* a = end_scale(p.a);
+    const double* b = end_scale(p.b);
+    const double t = p.t;
+    for (int m = 0; m < 3; ++m) inv[m] += weight[k] * ((1.0 - t) * a[m] + t * b[m]);
+  }
+  // The creepage cell at the normalised coordinates (creep_cell_n<3>): corner bit q = upper node
+  // along creepage axis q, weights 1.0 * f_xi * f_eta * f_phi built by doubling the list per axis.
+  double xn[3], cw[8];
+  std::size_t off[8], base = 0;
+  cw[0] = 1.0;
+  off[0] = 0;
+  for (int q = 0; q < 3; ++q) {
+    xn[q] = creepage[q] * inv[q];
+    AxisLoc l;
+    d.axis[kVarXi + q].locate_fast(
+        creep_coordinate_normalised(xn[q] * map.kinv[q], map.lo_k[q] * inv[q], map.hi_k[q] * inv[q]), l);
+    base += static_cast<std::size_t>(l.i) * cb.stride[2 + q];
+    const int half = 1 << q;
+    for (int corner = 0; corner < half; ++corner) {
+      cw[corner + half] = cw[corner] * l.t;
+      cw[corner] *= 1.0 - l.t;
+      off[corner + half] = off[corner] + cb.stride[2 + q];
+    }
+  }
+  {
+    const double* end[4];
+    double end_w[4];
+    CutStatus<NP> st;
+    const int n = cut_ends<NP>(cb, cs, pieces[0], lc, weight, slot, base, end, end_w, st);
+    double values[NC];
+    if constexpr (kAvx2) jump_sum_avx2<3, NC>(end, end_w, n, cw, off, values);
+    else jump_sum_sse2<3, NC>(end, end_w, n, cw, off, values);
+    if (cb.first_output >= 0) std::memcpy(c.value + cb.first_output, values, sizeof values);
+    else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
+    st.store(cb, c);
+  }
+  double law[2];
+  creep_law(xn[0], xn[1], xn[2], law);
+  if (map.vertical_share)
+    c.value[kNormalForce] = normal_from_share(c.value[kNormalForce], cos_angle, sin_angle,
+                                              map.friction * (c.value[kFy] + law[1]));
+  const double mun = map.friction * c.value[kNormalForce];
+  c.value[kFx] = (c.value[kFx] + law[0]) * mun;
+  c.value[kFy] = (c.value[kFy] + law[1]) * mun;
+  c.value[kMz] *= mun;
+}
+
 template <int NG, int NN, int NC, int NP, bool kAvx2>
 bool fast_query(const TableData& d, int w, const State& state, int slot_begin, int slot_end, Contact* contact,
                 StatusBits& q) noexcept {
@@ -194,7 +351,14 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
                                      static_cast<std::size_t>(loc[kVarLoad].i)]) {  // jump_cell, with a load axis  // one-sided (jump_side.hpp), as interpolate_slots
     const int n = slot_end - slot_begin;
     for (int s = 0; s < n; ++s) zero_absent(d, contact[s]);
-    interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
+    if (d.fast.cut) {
+      Piece pieces[2][2];
+      query_pieces(d.jumps[w], d.axis[kVarY], loc, 2, pieces);
+      for (int s = 0; s < n; ++s)
+        cut_slot<NG, NN, NC, NP, kAvx2>(d, w, loc, creepage, pieces, slot_begin + s, contact[s]);
+    } else {
+      interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
+    }
     for (int s = 0; s < n; ++s) fold_status(d, q, contact[s]);
     return true;
   }
@@ -275,6 +439,18 @@ void prepare_fast_path(TableData& d) noexcept {
   d.fast.geometry = g;
   d.fast.normal = n;
   d.fast.creep = c;
+  // Cut cells fused too when the blocks and their one-sided values have the layout cut_slot reads
+  // (blocks written in the order geometry, normal, creep, as interpolate_jump_cell writes them).
+  if (!d.has_jumps || !(g < n && n < c)) return;
+  for (int w = 0; w < 2; ++w) {
+    const JumpWheel& j = d.jumps[w];
+    const JumpSamples &gs = j.samples[g], &ns = j.samples[n], &cs = j.samples[c];
+    if (!j.load_axis || gs.list != 1 || ns.list != 0 || cs.list != 0 || gs.load_dim >= 0 || ns.load_dim != 1 ||
+        cs.load_dim != 1 || gs.n_inner != 0 || ns.n_inner != 0 || cs.n_inner != 3 || cs.inner0 != 2 ||
+        j.inv_scale.empty())
+      return;
+  }
+  d.fast.cut = true;
 }
 
 }  // namespace railtab::lookup::detail

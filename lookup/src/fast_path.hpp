@@ -23,6 +23,7 @@ using FastQuery = bool (*)(const TableData& d, int w, const State& state, int sl
 struct FastPath {
   FastQuery query = nullptr;  // null: the table does not have the shape (generic path)
   int geometry = -1, normal = -1, creep = -1;  // its blocks
+  bool cut = false;  // cells a located jump cuts fused too (else interpolate_jump_cell)
 };
 
 // Chooses d.fast for a loaded table (table_load.cpp, last step).

@@ -2,8 +2,9 @@
 // The fused query of the default table's shape (lookup/src/fast_path.cpp, issue 15 item 4) gives
 // the same bytes as the generic path (RAILTAB_LOOKUP_NO_FAST_PATH=1 at load), for query and
 // query_slot of every slot, both wheels, at random states in and out of range, on grid nodes,
-// within 0.1 mm of every located jump (cut cells: the fast path hands them to the one-sided path
-// after its own cell search) and with non-finite variables; with the AVX2 and the SSE2 kernels.
+// within 0.1 and 0.6 mm of every located jump (cut cells: the fast path has its own fused
+// one-sided query for them, cut_slot) and with non-finite variables; with the AVX2 and the SSE2
+// kernels.
 //
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='FastPath*'
 #include <cmath>
@@ -63,8 +64,8 @@ void set(lk::State& s, const std::string& name, double x) {
   else if (name == "phi") s.phi = x;
 }
 
-// States of kind k % 6: in range, 5 % beyond every axis, on grid nodes, within 0.1 mm of a jump,
-// on a jump, a non-finite variable.
+// States of kind k % 6: in range, 5 % beyond every axis, on grid nodes, within 0.1 or 0.6 mm of
+// a jump, on a jump, a non-finite variable.
 lk::State state(const lk::Table& t, const std::vector<double>& jump_y, int k, std::mt19937& rng) {
   lk::State s = t.default_state();
   const int kind = k % 6;
@@ -77,7 +78,11 @@ lk::State state(const lk::Table& t, const std::vector<double>& jump_y, int k, st
   }
   if (kind == 3 || kind == 4) {
     const double y = jump_y[std::uniform_int_distribution<std::size_t>(0, jump_y.size() - 1)(rng)];
-    s.y = y + (kind == 3 ? std::uniform_real_distribution<double>(-1e-4, 1e-4)(rng) : 0.0);
+    // Within 0.1 mm of the jump, or (every other such state) within 0.6 mm, more than the y
+    // step of 0.25-0.5 mm: every kind of piece of a cut cell (jump_piece.hpp), not only those
+    // that reach the jump.
+    const double reach = (k / 6) % 2 ? 6e-4 : 1e-4;
+    s.y = y + (kind == 3 ? std::uniform_real_distribution<double>(-reach, reach)(rng) : 0.0);
   }
   if (kind == 5) {
     const double bad[3] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
