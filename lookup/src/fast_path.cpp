@@ -194,7 +194,7 @@ struct CutStatus {
 // load node, end a, end b, zero weights dropped, each moved to the creepage cell's first record
 // `base`; folds the statuses of the sample ends and of the grid cell each piece carries.
 template <int NP>
-int cut_ends(const Block& b, const JumpSamples& js, const Piece* piece, int lc, const double* weight,
+__attribute__((always_inline)) inline int cut_ends(const Block& b, const JumpSamples& js, const Piece* piece, int lc, const double* weight,
              std::size_t slot, std::size_t base, const double** end, double* end_w, CutStatus<NP>& st) noexcept {
   const double* grid = b.data.data() + slot * b.slot_size + base;
   const double* samples = js.data.data() + slot * js.slot_stride + base;
@@ -227,7 +227,7 @@ int cut_ends(const Block& b, const JumpSamples& js, const Piece* piece, int lc, 
 // A block without creepage axes (geometry, normal) on a cut cell: its single corner weighs 1.0,
 // so each record's weight is its end's (x 1.0 is exact).
 template <int NV>
-inline void cut_block_0(const TableData& d, const Block& b, const JumpSamples& js, const Piece* piece, int lc,
+__attribute__((always_inline)) inline void cut_block_0(const TableData& d, const Block& b, const JumpSamples& js, const Piece* piece, int lc,
                         const double* weight, std::size_t slot, Contact& c) noexcept {
   (void)d;
   const double* end[4];
