@@ -186,7 +186,8 @@ struct CutStatus {
     }
   }
   void store(const Block& b, Contact& c) const noexcept {
-    for (int p = 0; p < NP; ++p) c.part_status[b.part[p]] = (any[p] & ~status::kConverged) | (all[p] & status::kConverged);
+    for (int p = 0; p < NP; ++p)
+      c.part_status[b.part[p]] = (any[p] & ~status::kConverged) | (all[p] & status::kConverged);
   }
 };
 
@@ -194,8 +195,9 @@ struct CutStatus {
 // load node, end a, end b, zero weights dropped, each moved to the creepage cell's first record
 // `base`; folds the statuses of the sample ends and of the grid cell each piece carries.
 template <int NP>
-__attribute__((always_inline)) inline int cut_ends(const Block& b, const JumpSamples& js, const Piece* piece, int lc, const double* weight,
-             std::size_t slot, std::size_t base, const double** end, double* end_w, CutStatus<NP>& st) noexcept {
+__attribute__((always_inline)) inline int cut_ends(const Block& b, const JumpSamples& js, const Piece* piece, int lc,
+                                                   const double* weight, std::size_t slot, std::size_t base,
+                                                   const double** end, double* end_w, CutStatus<NP>& st) noexcept {
   const double* grid = b.data.data() + slot * b.slot_size + base;
   const double* samples = js.data.data() + slot * js.slot_stride + base;
   const std::size_t load_step = js.load_dim >= 0 ? b.stride[js.load_dim] : 0;
@@ -219,7 +221,8 @@ __attribute__((always_inline)) inline int cut_ends(const Block& b, const JumpSam
     }
     if (p.a.sample) st.fold(b, ends[0]);
     if (p.b.sample) st.fold(b, ends[1]);
-    if (p.cell >= 0) st.fold(b, grid + static_cast<std::size_t>(p.cell) * b.stride[0] + static_cast<std::size_t>(lc) * load_step);
+    if (p.cell >= 0)
+      st.fold(b, grid + static_cast<std::size_t>(p.cell) * b.stride[0] + static_cast<std::size_t>(lc) * load_step);
   }
   return n;
 }
@@ -227,9 +230,8 @@ __attribute__((always_inline)) inline int cut_ends(const Block& b, const JumpSam
 // A block without creepage axes (geometry, normal) on a cut cell: its single corner weighs 1.0,
 // so each record's weight is its end's (x 1.0 is exact).
 template <int NV>
-__attribute__((always_inline)) inline void cut_block_0(const TableData& d, const Block& b, const JumpSamples& js, const Piece* piece, int lc,
-                        const double* weight, std::size_t slot, Contact& c) noexcept {
-  (void)d;
+__attribute__((always_inline)) inline void cut_block_0(const Block& b, const JumpSamples& js, const Piece* piece, int lc,
+                                                       const double* weight, std::size_t slot, Contact& c) noexcept {
   const double* end[4];
   double end_w[4];
   CutStatus<1> st;
@@ -253,13 +255,13 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
   const std::size_t slot = static_cast<std::size_t>(s);
   const int lc = loc[kVarLoad].i;
   const double weight[2] = {1.0 - loc[kVarLoad].t, loc[kVarLoad].t};
-  cut_block_0<NG>(d, d.block[w][fp.geometry], j.samples[fp.geometry], pieces[1], lc, weight, slot, c);
+  cut_block_0<NG>(d.block[w][fp.geometry], j.samples[fp.geometry], pieces[1], lc, weight, slot, c);
   double cos_angle = 0.0, sin_angle = 0.0;
   if (map.vertical_share) {
     cos_angle = std::cos(c.value[kContactAngle]);
     sin_angle = std::sin(c.value[kContactAngle]);
   }
-  cut_block_0<NN>(d, d.block[w][fp.normal], j.samples[fp.normal], pieces[0], lc, weight, slot, c);
+  cut_block_0<NN>(d.block[w][fp.normal], j.samples[fp.normal], pieces[0], lc, weight, slot, c);
 
   // The slot's reciprocal scales on the query's side (one_sided_scales): list 0's pieces, ends at
   // grid nodes from CreepMap::scale, at jumps from JumpWheel::inv_scale.
