@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "grid.hpp"
+#include "railtab/lookup.hpp"
 
 namespace railtab::lookup::detail {
 
@@ -81,6 +82,22 @@ inline void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) no
   const double g = 1.0 - w * w * w;
   out[0] = -g * x / r;
   out[1] = -g * y / r;
+}
+
+// The slot's outputs back in newtons: the interpolated F / (mu N) minus the law, plus the law at the
+// query's normalised creepages xn, times mu N, N first recovered from the vertical share when the
+// table stores it (cos_angle, sin_angle of the slot's contact angle; unused otherwise). `value`
+// is indexed by lookup::Output. Every query path ends with this, in this order of operations.
+inline void denormalise_creep(const CreepMap& map, const double xn[3], double cos_angle, double sin_angle,
+                              double* value) noexcept {
+  double law[2];
+  creep_law(xn[0], xn[1], xn[2], law);
+  if (map.vertical_share)
+    value[kNormalForce] = normal_from_share(value[kNormalForce], cos_angle, sin_angle, map.friction * (value[kFy] + law[1]));
+  const double mun = map.friction * value[kNormalForce];
+  value[kFx] = (value[kFx] + law[0]) * mun;
+  value[kFy] = (value[kFy] + law[1]) * mun;
+  value[kMz] *= mun;
 }
 
 }  // namespace railtab::lookup::detail

@@ -152,16 +152,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     store_status_run<NP>(kCreep, cb, cr, c);
   }
 
-  // F / (mu N) minus the law, plus the law, times mu N (interpolate_normalised_creep).
-  double law[2];
-  creep_law(x[0], x[1], x[2], law);
-  if (map.vertical_share)
-    c.value[kNormalForce] = normal_from_share(c.value[kNormalForce], cos_angle, sin_angle,
-                                              map.friction * (c.value[kFy] + law[1]));
-  const double mun = map.friction * c.value[kNormalForce];
-  c.value[kFx] = (c.value[kFx] + law[0]) * mun;
-  c.value[kFy] = (c.value[kFy] + law[1]) * mun;
-  c.value[kMz] *= mun;
+  denormalise_creep(map, x, cos_angle, sin_angle, c.value);
   fold_status(d, q, c);
 }
 
@@ -312,15 +303,7 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
     else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
     st.store(cb, c);
   }
-  double law[2];
-  creep_law(xn[0], xn[1], xn[2], law);
-  if (map.vertical_share)
-    c.value[kNormalForce] = normal_from_share(c.value[kNormalForce], cos_angle, sin_angle,
-                                              map.friction * (c.value[kFy] + law[1]));
-  const double mun = map.friction * c.value[kNormalForce];
-  c.value[kFx] = (c.value[kFx] + law[0]) * mun;
-  c.value[kFy] = (c.value[kFy] + law[1]) * mun;
-  c.value[kMz] *= mun;
+  denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
 }
 
 template <int NG, int NN, int NC, int NP, bool kAvx2>

@@ -444,19 +444,11 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       if (!normalised || !d.has_part[kCreep]) continue;
       // F / (mu N) minus the law, plus the law at the query's normalised creepages, times mu N (the
       // creep point's own N, already in kNormalForce), as interpolate_normalised_creep (table.cpp).
-      double law[2];
-      creep_law(xn[s][0], xn[s][1], xn[s][2], law);
       if (map.vertical_share && !have_angle) {  // no geometry part: its angle, 0
         cos_angle[s] = std::cos(c.value[kContactAngle]);
         sin_angle[s] = std::sin(c.value[kContactAngle]);
       }
-      if (map.vertical_share)
-        c.value[kNormalForce] =
-            normal_from_share(c.value[kNormalForce], cos_angle[s], sin_angle[s], map.friction * (c.value[kFy] + law[1]));
-      const double mun = map.friction * c.value[kNormalForce];
-      c.value[kFx] = (c.value[kFx] + law[0]) * mun;
-      c.value[kFy] = (c.value[kFy] + law[1]) * mun;
-      c.value[kMz] *= mun;
+      denormalise_creep(map, xn[s], cos_angle[s], sin_angle[s], c.value);
     }
   }
 }

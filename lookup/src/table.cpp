@@ -111,15 +111,9 @@ void interpolate_normalised_creep(const detail::TableData& d, const detail::Bloc
   }
   interpolate_block(d, block, slot_loc, slot, slot + 1, &c);
   if (!d.has_part[kCreep]) return;
-  double law[2];
-  creep_law(x[0], x[1], x[2], law);
-  if (map.vertical_share)
-    c.value[kNormalForce] =
-        normal_from_share(c.value[kNormalForce], c.value[kContactAngle], map.friction * (c.value[kFy] + law[1]));
-  const double mun = map.friction * c.value[kNormalForce];
-  c.value[kFx] = (c.value[kFx] + law[0]) * mun;
-  c.value[kFy] = (c.value[kFy] + law[1]) * mun;
-  c.value[kMz] *= mun;
+  const double angle = c.value[kContactAngle];
+  if (map.vertical_share) denormalise_creep(map, x, std::cos(angle), std::sin(angle), c.value);
+  else denormalise_creep(map, x, 1.0, 0.0, c.value);
 }
 
 // Interpolates slots [slot_begin, slot_end) of wheel w into contact[0 .. slot_end-slot_begin-1]
