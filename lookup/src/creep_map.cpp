@@ -8,13 +8,7 @@ void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc*
   std::size_t origin = 0;
   for (int d = 0; d < map.n_dims; ++d) origin += static_cast<std::size_t>(loc[map.var[d]].i) * map.stride[d];
   if (map.n_dims == 2) {  // (y, load), the usual case: bilinear without the corner loop
-    const double t0 = loc[map.var[0]].t, t1 = loc[map.var[1]].t;
-    const double w00 = (1.0 - t0) * (1.0 - t1), w01 = (1.0 - t0) * t1, w10 = t0 * (1.0 - t1), w11 = t0 * t1;
-    const double* p00 = base + origin * 3;
-    const double* p01 = p00 + map.stride[1] * 3;
-    const double* p10 = p00 + map.stride[0] * 3;
-    const double* p11 = p10 + map.stride[1] * 3;
-    for (int k = 0; k < 3; ++k) out[k] = w00 * p00[k] + w01 * p01[k] + w10 * p10[k] + w11 * p11[k];
+    bilinear_scales(base + origin * 3, map.stride[0], map.stride[1], loc[map.var[0]].t, loc[map.var[1]].t, out);
     return;
   }
   out[0] = out[1] = out[2] = 0.0;

@@ -54,6 +54,18 @@ inline double creep_coordinate_normalised(double x, double a, double b) noexcept
   return -1.0 + 2.0 * ((x * aa - a * ax) * ab) / ((b * aa - a * ab) * ax);
 }
 
+// Bilinear interpolation of one slot's three reciprocal scales over (y, load): `p00` the record of
+// the cell's lowest corner, `stride0` / `stride1` the two axes' strides in nodes (3 values each), t0 / t1 the
+// cell fractions. The one formula of interpolate_scales' usual case and of the fused query.
+inline void bilinear_scales(const double* p00, std::size_t stride0, std::size_t stride1, double t0, double t1,
+                            double out[3]) noexcept {
+  const double w00 = (1.0 - t0) * (1.0 - t1), w01 = (1.0 - t0) * t1, w10 = t0 * (1.0 - t1), w11 = t0 * t1;
+  const double* p01 = p00 + stride1 * 3;
+  const double* p10 = p00 + stride0 * 3;
+  const double* p11 = p10 + stride1 * 3;
+  for (int k = 0; k < 3; ++k) out[k] = w00 * p00[k] + w01 * p01[k] + w10 * p10[k] + w11 * p11[k];
+}
+
 // N from the creep part's stored vertical load share (creep_map "normal_force": "vertical_share";
 // generator/sweep/creep_map.hpp): N = share / (cos(angle) + mu r_y sin(angle)), r_y = fy / (mu N)
 // the interpolated normalised force, angle the slot's contact angle (geometry part).

@@ -110,13 +110,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   {
     const double* base = map.scale[w].data() + slot * map.nodes * 3;
     const std::size_t origin = static_cast<std::size_t>(ly.i) * map.stride[0] + static_cast<std::size_t>(ll.i) * map.stride[1];
-    const double t0 = ly.t, t1 = ll.t;
-    const double w00 = (1.0 - t0) * (1.0 - t1), w01 = (1.0 - t0) * t1, w10 = t0 * (1.0 - t1), w11 = t0 * t1;
-    const double* p00 = base + origin * 3;
-    const double* p01 = p00 + map.stride[1] * 3;
-    const double* p10 = p00 + map.stride[0] * 3;
-    const double* p11 = p10 + map.stride[1] * 3;
-    for (int k = 0; k < 3; ++k) inv[k] = w00 * p00[k] + w01 * p01[k] + w10 * p10[k] + w11 * p11[k];
+    bilinear_scales(base + origin * 3, map.stride[0], map.stride[1], ly.t, ll.t, inv);
   }
   double x[3], t5[5] = {ly.t, ll.t, 0.0, 0.0, 0.0};
   std::size_t cell = static_cast<std::size_t>(ly.i) * cb.stride[0] + static_cast<std::size_t>(ll.i) * cb.stride[1];
