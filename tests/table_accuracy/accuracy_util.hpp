@@ -489,4 +489,39 @@ inline PointKinds classify_point(const TableView& view, std::size_t wheel, const
   return k;
 }
 
+// One (state, wheel, output, slot) of a lookup-against-direct comparison (for_each_slot_error).
+struct SlotError {
+  std::size_t state, wheel, slot;
+  int output;
+  CellKind kind;
+  const TableView::Cell* cell;  // the slot's cell of the output's part
+  double lookup, direct, error;  // error = |lookup - direct|
+  double normal_force;           // the direct evaluation's N of the slot
+};
+
+// Queries the lookup at every state for both wheels and calls f(const SlotError&) for every
+// output and loaded slot (empty cells skipped): the loop of the random off-grid accuracy tests.
+// A query that leaves the grid or is refused fails the test.
+template <class F>
+void for_each_slot_error(const TableView& view, const lk::Table& lookup, const std::vector<Point>& points,
+                         const std::vector<Direct>& direct, F&& f) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      const lk::Result r = lookup.query(static_cast<lk::Wheel>(w), to_state(lookup, points[i]));
+      ASSERT_EQ(r.status & (lk::status::kOutOfRange | lk::status::kInvalidInput), 0u);
+      const PointKinds kinds = classify_point(view, w, points[i], direct[i][w]);
+      for (int o = 0; o < lk::kNumOutputs; ++o) {
+        const int part = view.part_of(o);
+        for (std::size_t s = 0; s < kSlots; ++s) {
+          const CellKind kind = kinds.kind[part][s];
+          if (kind == CellKind::kEmpty) continue;
+          const double value = r.contact[s].value[o], reference = direct[i][w].value[o][s];
+          f(SlotError{i, w, s, o, kind, &kinds.cell[part][s], value, reference, std::abs(value - reference),
+                      direct[i][w].value[lk::kNormalForce][s]});
+        }
+      }
+    }
+  }
+}
+
 }  // namespace railtab::accuracy

@@ -148,54 +148,41 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
   const double mu = f.scene.tangential.friction;
 
   Stats stats[lk::kNumOutputs][kSlots];
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    for (std::size_t w = 0; w < 2; ++w) {
-      const lk::Result r = f.lookup->query(static_cast<lk::Wheel>(w), to_state(*f.lookup, points[i]));
-      ASSERT_EQ(r.status & (lk::status::kOutOfRange | lk::status::kInvalidInput), 0u);
-      const PointKinds kinds = classify_point(view, w, points[i], direct[i][w]);
-      for (int o = 0; o < lk::kNumOutputs; ++o) {
-        const int part = view.part_of(o);
-        // Normalised creep part (format 2.1): fx, fy, mz are stored as F / (mu N) minus a law, so
-        // the table's second differences do not bound their error in N: judged against mu N below.
-        const bool normalised_force = view.normalised() && (o == lk::kFx || o == lk::kFy || o == lk::kMz);
-        for (std::size_t s = 0; s < kSlots; ++s) {
-          const CellKind kind = kinds.kind[part][s];
-          if (kind == CellKind::kEmpty) continue;
-          const double err = std::abs(r.contact[s].value[o] - direct[i][w].value[o][s]);
-          Stats& st = stats[o][s];
-          if (kind == CellKind::kJump) {
-            ++st.jump;
-            st.jump_max = std::max(st.jump_max, err);
-            continue;
-          }
-          ++st.smooth;
-          st.sum_sq += err * err;
-          st.max_abs = std::max(st.max_abs, err);
-          if (o == lk::kFx || o == lk::kFy) {
-            const double rel = err / (mu * direct[i][w].value[lk::kNormalForce][s]);
-            if (rel > st.max_mu_n) {
-              st.worst = points[i];
-              st.worst_lookup = r.contact[s].value[o];
-              st.worst_direct = direct[i][w].value[o][s];
-            }
-            st.max_mu_n = std::max(st.max_mu_n, rel);
-            st.sum_mu_sq += rel * rel;
-          }
-          if (normalised_force) continue;
-          const double tolerance =
-              kSafety * view.error_estimate(w, o, kinds.cell[part][s], s) + kFloor * view.scale(o, s);
-          st.max_ratio = std::max(st.max_ratio, err / tolerance);
-          if (err > tolerance) {
-            ++st.over;
-            ADD_FAILURE() << output_label(o) << " slot " << s << " wheel " << w << " at y " << points[i].v[kY]
-                          << " load " << points[i].v[kLoad] << " creepage (" << points[i].v[kXi] << ", "
-                          << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): error " << err << " > tolerance "
-                          << tolerance;
-          }
-        }
-      }
+  for_each_slot_error(view, *f.lookup, points, direct, [&](const SlotError& e) {
+    const int o = e.output;
+    const std::size_t s = e.slot;
+    const Point& p = points[e.state];
+    Stats& st = stats[o][s];
+    if (e.kind == CellKind::kJump) {
+      ++st.jump;
+      st.jump_max = std::max(st.jump_max, e.error);
+      return;
     }
-  }
+    ++st.smooth;
+    st.sum_sq += e.error * e.error;
+    st.max_abs = std::max(st.max_abs, e.error);
+    if (o == lk::kFx || o == lk::kFy) {
+      const double rel = e.error / (mu * e.normal_force);
+      if (rel > st.max_mu_n) {
+        st.worst = p;
+        st.worst_lookup = e.lookup;
+        st.worst_direct = e.direct;
+      }
+      st.max_mu_n = std::max(st.max_mu_n, rel);
+      st.sum_mu_sq += rel * rel;
+    }
+    // Normalised creep part (format 2.1): fx, fy, mz are stored as F / (mu N) minus a law, so
+    // the table's second differences do not bound their error in N: judged against mu N above.
+    if (view.normalised() && (o == lk::kFx || o == lk::kFy || o == lk::kMz)) return;
+    const double tolerance = kSafety * view.error_estimate(e.wheel, o, *e.cell, s) + kFloor * view.scale(o, s);
+    st.max_ratio = std::max(st.max_ratio, e.error / tolerance);
+    if (e.error > tolerance) {
+      ++st.over;
+      ADD_FAILURE() << output_label(o) << " slot " << s << " wheel " << e.wheel << " at y " << p.v[kY] << " load "
+                    << p.v[kLoad] << " creepage (" << p.v[kXi] << ", " << p.v[kEta] << ", " << p.v[kPhi]
+                    << "): error " << e.error << " > tolerance " << tolerance;
+    }
+  });
   std::printf("default scene, multilinear: %zu random off-grid states x 2 wheels, seed %llu "
               "(table %.2f s, direct evaluation %.2f s)\n",
               points.size(), static_cast<unsigned long long>(kSeed), f.generate_seconds, direct_seconds);

@@ -109,45 +109,33 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
   const double direct_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double mu = f.scene.tangential.friction;
   Stats stats[lk::kNumOutputs][kSlots];
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    for (std::size_t w = 0; w < 2; ++w) {
-      const lk::Result r = f.lookup->query(static_cast<lk::Wheel>(w), to_state(*f.lookup, points[i]));
-      ASSERT_EQ(r.status & (lk::status::kOutOfRange | lk::status::kInvalidInput), 0u);
-      const PointKinds kinds = classify_point(view, w, points[i], direct[i][w]);
-      for (int o = 0; o < lk::kNumOutputs; ++o) {
-        const int part = view.part_of(o);
-        for (std::size_t s = 0; s < kSlots; ++s) {
-          const CellKind kind = kinds.kind[part][s];
-          if (kind == CellKind::kEmpty) continue;
-          const double err = std::abs(r.contact[s].value[o] - direct[i][w].value[o][s]);
-          Stats& st = stats[o][s];
-          if (kind == CellKind::kJump) {
-            ++st.jump;
-            st.jump_max = std::max(st.jump_max, err);
-            continue;
-          }
-          ++st.smooth;
-          st.max_abs = std::max(st.max_abs, err);
-          if (o == lk::kFx || o == lk::kFy) {
-            const double rel = err / (mu * direct[i][w].value[lk::kNormalForce][s]);
-            st.max_mu_n = std::max(st.max_mu_n, rel);
-            st.sum_mu_sq += rel * rel;
-          }
-          const double tolerance =
-              kSafety * view.error_estimate(w, o, kinds.cell[part][s], s) + kFloor * view.scale(o, s);
-          st.max_ratio = std::max(st.max_ratio, err / tolerance);
-          if (err > tolerance) {
-            ++st.over;
-            if (!staircase(o))
-              ADD_FAILURE() << lk::output_name(static_cast<lk::Output>(o)) << " slot " << s << " wheel " << w
-                            << " at y " << points[i].v[kY] << " creepage (" << points[i].v[kXi] << ", "
-                            << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): error " << err
-                            << " > tolerance " << tolerance;
-          }
-        }
-      }
+  for_each_slot_error(view, *f.lookup, points, direct, [&](const SlotError& e) {
+    const int o = e.output;
+    const std::size_t s = e.slot;
+    const Point& p = points[e.state];
+    Stats& st = stats[o][s];
+    if (e.kind == CellKind::kJump) {
+      ++st.jump;
+      st.jump_max = std::max(st.jump_max, e.error);
+      return;
     }
-  }
+    ++st.smooth;
+    st.max_abs = std::max(st.max_abs, e.error);
+    if (o == lk::kFx || o == lk::kFy) {
+      const double rel = e.error / (mu * e.normal_force);
+      st.max_mu_n = std::max(st.max_mu_n, rel);
+      st.sum_mu_sq += rel * rel;
+    }
+    const double tolerance = kSafety * view.error_estimate(e.wheel, o, *e.cell, s) + kFloor * view.scale(o, s);
+    st.max_ratio = std::max(st.max_ratio, e.error / tolerance);
+    if (e.error > tolerance) {
+      ++st.over;
+      if (!staircase(o))
+        ADD_FAILURE() << lk::output_name(static_cast<lk::Output>(o)) << " slot " << s << " wheel " << e.wheel
+                      << " at y " << p.v[kY] << " creepage (" << p.v[kXi] << ", " << p.v[kEta] << ", "
+                      << p.v[kPhi] << "): error " << e.error << " > tolerance " << tolerance;
+    }
+  });
   std::printf("exact half-space table (%s, element %.2g mm, %zu points, %s %.1f s incl. jumps): %zu random "
               "off-grid states x 2 wheels, seed %llu (direct evaluation %.1f s)\n",
               full_table() ? full_table() : "reduced", f.scene.halfspace.element_size * 1e3, f.points,
