@@ -524,4 +524,32 @@ void for_each_slot_error(const TableView& view, const lk::Table& lookup, const s
   }
 }
 
+// Error statistics of one output and slot over the states of an accuracy test.
+struct SlotStats {
+  std::size_t smooth = 0, jump = 0, over = 0;  // over: smooth cells beyond the tolerance
+  Point worst{};                                // the smooth state of the largest |F error| / (mu N)
+  double worst_lookup = 0.0, worst_direct = 0.0;
+  double sum_sq = 0.0, sum_mu_sq = 0.0, max_abs = 0.0, max_ratio = 0.0, max_mu_n = 0.0, jump_max = 0.0;
+
+  // Counts e at state p (mu: the scene's friction). Returns true for a smooth cell (whose
+  // tolerance check is the caller's), false for a jump cell.
+  bool add(const SlotError& e, const Point& p, double mu) {
+    if (e.kind == CellKind::kJump) {
+      ++jump;
+      jump_max = std::max(jump_max, e.error);
+      return false;
+    }
+    ++smooth;
+    sum_sq += e.error * e.error;
+    max_abs = std::max(max_abs, e.error);
+    if (e.output == lk::kFx || e.output == lk::kFy) {
+      const double rel = e.error / (mu * e.normal_force);
+      if (rel > max_mu_n) worst = p, worst_lookup = e.lookup, worst_direct = e.direct;
+      max_mu_n = std::max(max_mu_n, rel);
+      sum_mu_sq += rel * rel;
+    }
+    return true;
+  }
+};
+
 }  // namespace railtab::accuracy

@@ -131,13 +131,6 @@ TEST(TableAccuracy, DirectEvaluationReproducesTheNodes) {
   }
 }
 
-struct Stats {
-  std::size_t smooth = 0, jump = 0, over = 0;
-  Point worst{};
-  double worst_lookup = 0.0, worst_direct = 0.0;
-  double sum_mu_sq = 0.0, sum_sq = 0.0, max_abs = 0.0, max_ratio = 0.0, max_mu_n = 0.0, jump_max = 0.0;
-};
-
 TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);
@@ -147,32 +140,15 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
   const double direct_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double mu = f.scene.tangential.friction;
 
-  Stats stats[lk::kNumOutputs][kSlots];
+  SlotStats stats[lk::kNumOutputs][kSlots];
   for_each_slot_error(view, *f.lookup, points, direct, [&](const SlotError& e) {
     const int o = e.output;
     const std::size_t s = e.slot;
     const Point& p = points[e.state];
-    Stats& st = stats[o][s];
-    if (e.kind == CellKind::kJump) {
-      ++st.jump;
-      st.jump_max = std::max(st.jump_max, e.error);
-      return;
-    }
-    ++st.smooth;
-    st.sum_sq += e.error * e.error;
-    st.max_abs = std::max(st.max_abs, e.error);
-    if (o == lk::kFx || o == lk::kFy) {
-      const double rel = e.error / (mu * e.normal_force);
-      if (rel > st.max_mu_n) {
-        st.worst = p;
-        st.worst_lookup = e.lookup;
-        st.worst_direct = e.direct;
-      }
-      st.max_mu_n = std::max(st.max_mu_n, rel);
-      st.sum_mu_sq += rel * rel;
-    }
+    SlotStats& st = stats[o][s];
+    if (!st.add(e, p, mu)) return;
     // Normalised creep part (format 2.1): fx, fy, mz are stored as F / (mu N) minus a law, so
-    // the table's second differences do not bound their error in N: judged against mu N above.
+    // the table's second differences do not bound their error in N: judged against mu N (SlotStats).
     if (view.normalised() && (o == lk::kFx || o == lk::kFy || o == lk::kMz)) return;
     const double tolerance = kSafety * view.error_estimate(e.wheel, o, *e.cell, s) + kFloor * view.scale(o, s);
     st.max_ratio = std::max(st.max_ratio, e.error / tolerance);
@@ -190,7 +166,7 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
               "scale", "max/scl", "err/tol", "jump", "max_jump");
   for (int o = 0; o < lk::kNumOutputs; ++o) {
     for (std::size_t s = 0; s < kSlots; ++s) {
-      const Stats& st = stats[o][s];
+      const SlotStats& st = stats[o][s];
       const double scale = view.scale(o, s);
       std::printf("%-22s %4zu | %6zu %10.3e %10.3e %10.3e %8.2e %8.2f | %6zu %10.3e\n", output_label(o).c_str(), s,
                   st.smooth, st.smooth ? std::sqrt(st.sum_sq / static_cast<double>(st.smooth)) : 0.0, st.max_abs,
@@ -205,7 +181,7 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
                   stats[o][s].smooth);
   for (int o : {lk::kFx, lk::kFy})
     for (std::size_t s = 0; s < kSlots; ++s) {
-      const Stats& st = stats[o][s];
+      const SlotStats& st = stats[o][s];
       std::printf("  worst %s slot %zu at y %.5f load %.0f creepage (%.5f, %.5f, %.3f): lookup %.1f direct %.1f N\n",
                   lk::output_name(static_cast<lk::Output>(o)), s, st.worst.v[kY], st.worst.v[kLoad], st.worst.v[kXi],
                   st.worst.v[kEta], st.worst.v[kPhi], st.worst_lookup, st.worst_direct);
@@ -217,7 +193,7 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
   const double rms_limit[2][2] = {{0.009, 0.010}, {0.009, 0.030}};  // [slot][fx, fy]
   for (std::size_t s = 0; s < kSlots; ++s)
     for (int o : {lk::kFx, lk::kFy}) {
-      const Stats& st = stats[o][s];
+      const SlotStats& st = stats[o][s];
       const double rms = std::sqrt(st.sum_mu_sq / std::max<double>(1.0, static_cast<double>(st.smooth)));
       EXPECT_LT(rms, rms_limit[s][o - lk::kFx]) << lk::output_name(static_cast<lk::Output>(o)) << " slot " << s;
     }

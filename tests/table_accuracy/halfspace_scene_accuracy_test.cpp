@@ -94,11 +94,6 @@ const Fixture& fixture() {
 // Outputs of the discrete contact (element counts): reported only (file comment).
 bool staircase(int o) { return o == lk::kArea || o == lk::kMaxPressure || o == lk::kApproach; }
 
-struct Stats {
-  std::size_t smooth = 0, jump = 0, over = 0;
-  double max_abs = 0.0, max_ratio = 0.0, max_mu_n = 0.0, sum_mu_sq = 0.0, jump_max = 0.0;
-};
-
 TEST(HalfspaceTableAccuracy, RandomOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);
@@ -108,24 +103,13 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
   const std::vector<Direct> direct = evaluate_direct(f.scene, points);
   const double direct_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double mu = f.scene.tangential.friction;
-  Stats stats[lk::kNumOutputs][kSlots];
+  SlotStats stats[lk::kNumOutputs][kSlots];
   for_each_slot_error(view, *f.lookup, points, direct, [&](const SlotError& e) {
     const int o = e.output;
     const std::size_t s = e.slot;
     const Point& p = points[e.state];
-    Stats& st = stats[o][s];
-    if (e.kind == CellKind::kJump) {
-      ++st.jump;
-      st.jump_max = std::max(st.jump_max, e.error);
-      return;
-    }
-    ++st.smooth;
-    st.max_abs = std::max(st.max_abs, e.error);
-    if (o == lk::kFx || o == lk::kFy) {
-      const double rel = e.error / (mu * e.normal_force);
-      st.max_mu_n = std::max(st.max_mu_n, rel);
-      st.sum_mu_sq += rel * rel;
-    }
+    SlotStats& st = stats[o][s];
+    if (!st.add(e, p, mu)) return;
     const double tolerance = kSafety * view.error_estimate(e.wheel, o, *e.cell, s) + kFloor * view.scale(o, s);
     st.max_ratio = std::max(st.max_ratio, e.error / tolerance);
     if (e.error > tolerance) {
@@ -145,7 +129,7 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
               "max/scl", "err/tol", "over", "jump", "max_jump");
   for (int o = 0; o < lk::kNumOutputs; ++o)
     for (std::size_t s = 0; s < kSlots; ++s) {
-      const Stats& st = stats[o][s];
+      const SlotStats& st = stats[o][s];
       const double scale = view.scale(o, s);
       std::printf("%-16s %4zu | %6zu %10.3e %10.3e %8.2e %8.2f %5zu | %6zu %10.3e%s\n",
                   lk::output_name(static_cast<lk::Output>(o)), s, st.smooth, st.max_abs, scale,
