@@ -16,6 +16,9 @@ const char* var_name(int var);  // "y", "roll", ...
 // Where a query value falls: between nodes i and i+1, at fraction t of the cell.
 struct AxisLoc {
   int i = 0;       // cell index, 0 .. n-2
+  // Cubic stencils only: bit 1 keeps node i-1 out, bit 2 node i+2 (a located contact jump lies
+  // between it and the cell: jump_side.hpp, cubic_stencil_limits). 0 everywhere else.
+  unsigned char cut_stencil = 0;
   double t = 0.0;  // position in the cell, 0 .. 1 (after clamping)
 };
 

@@ -64,7 +64,8 @@ void parabola_slope(const double p[3], double e, double w[3]) noexcept {
   w[2] = ((e - p[0]) + (e - p[1])) / ((p[2] - p[0]) * (p[2] - p[1]));
 }
 
-// One axis of the cubic stencil: nodes j = 0..3 are i-1, i, i+1, i+2; 0 and 3 may be absent.
+// One axis of the cubic stencil: nodes j = 0..3 are i-1, i, i+1, i+2; 0 and 3 may be absent (a
+// table edge, or a located contact jump between them and the cell: AxisLoc::cut_stencil).
 struct CubicAxis {
   std::size_t stride = 0;     // doubles between neighbouring nodes
   std::size_t idx[4] = {};    // node indices (absent ones unused)
@@ -83,8 +84,8 @@ CubicAxis make_cubic_axis(const Axis& axis, const AxisLoc& l, std::size_t stride
   const double* xs = axis.nodes();
   const int i = l.i;
   a.stride = stride;
-  a.has_left = i >= 1;
-  a.has_right = i + 2 <= n - 1;
+  a.has_left = i >= 1 && !(l.cut_stencil & 1);
+  a.has_right = i + 2 <= n - 1 && !(l.cut_stencil & 2);
   for (int j = 0; j < 4; ++j) {
     const int node = std::clamp(i - 1 + j, 0, n - 1);
     a.idx[j] = static_cast<std::size_t>(node);

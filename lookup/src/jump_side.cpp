@@ -269,6 +269,31 @@ bool jump_cell(const TableData& d, int w, const AxisLoc* loc) noexcept {
   return j.cut[static_cast<std::size_t>(loc[kVarY].i) * static_cast<std::size_t>(j.load_cells) + l] != 0;
 }
 
+void cubic_stencil_limits(const TableData& d, int w, AxisLoc* loc) noexcept {
+  const JumpWheel& j = d.jumps[w];
+  const int y_cells = static_cast<int>(j.cut.size()) / j.load_cells;
+  const int iy = loc[kVarY].i, il = j.load_axis ? loc[kVarLoad].i : 0;
+  // Cut flag of (y cell, load cell); cells outside the table are not cut (the edge limits them).
+  auto cut = [&](int y, int l) {
+    return y >= 0 && y < y_cells && l >= 0 && l < j.load_cells &&
+           j.cut[static_cast<std::size_t>(y) * static_cast<std::size_t>(j.load_cells) + static_cast<std::size_t>(l)] != 0;
+  };
+  // A stencil node beyond cell c along one axis is dropped when c is cut at any cell of the
+  // other axis's stencil (conservative: the corners of the tensor stencil stay on one side).
+  unsigned char y_bits = 0, load_bits = 0;
+  for (int l = il - 1; l <= il + 1; ++l) {
+    if (cut(iy - 1, l)) y_bits |= 1;
+    if (cut(iy + 1, l)) y_bits |= 2;
+  }
+  if (j.load_axis)
+    for (int y = iy - 1; y <= iy + 1; ++y) {
+      if (cut(y, il - 1)) load_bits |= 1;
+      if (cut(y, il + 1)) load_bits |= 2;
+    }
+  loc[kVarY].cut_stencil = y_bits;
+  if (j.load_axis) loc[kVarLoad].cut_stencil = load_bits;
+}
+
 namespace {
 
 // The corners of the query's cell over the creepage axes of block b (weights and record offsets

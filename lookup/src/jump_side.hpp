@@ -71,6 +71,11 @@ void read_jumps(const Hdf5File& f, TableData& d);
 // Whether the query's (y, load) cell may be cut by a jump of wheel w (d.has_jumps must be true).
 bool jump_cell(const TableData& d, int w, const AxisLoc* loc) noexcept;
 
+// Cubic methods in a cell no jump cuts: marks the y and load stencil nodes that lie beyond a jump
+// (a neighbouring cell of the stencil is cut) in loc[kVarY / kVarLoad].cut_stencil, so the cubic
+// slopes come from the cell's side only (one-sided, as at a table edge) and never blend across.
+void cubic_stencil_limits(const TableData& d, int w, AxisLoc* loc) noexcept;
+
 // The one-sided interpolation of every block of wheel w, slots [slot_begin, slot_end), into
 // contact[0 ..]: values and part statuses, as the block kernels write them (linear in every
 // method: a cubic stencil would reach across the jump).

@@ -7,11 +7,12 @@
 // jump; for the worst states, the error at the state's exact (y, load) (one-point tables: the
 // creepage axes alone) and with one creepage axis refined at a time.
 //   creep_diag [cache.bin] [nx ne np] [worst]
-// env: DIAG_KNEE="kx ke kp" (scene creep_knee), DIAG_NO_JUMPS, DIAG_NO_DECOMPOSE, DIAG_SLOT=0|1,
+// env: DIAG_KNEE="kx ke kp" (scene creep_knee), DIAG_METHOD=1|2 (cubic lookups), DIAG_NO_JUMPS, DIAG_NO_DECOMPOSE, DIAG_SLOT=0|1,
 //   DIAG_LINE="y load xi eta phi axis" (direct forces along creepage axis 2 xi, 3 eta, 4 phi),
 //   DIAG_PROFILE="y load nx ne np" (the stored normalised values of one (y, load) node).
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 
@@ -49,7 +50,9 @@ lk::Table make_lookup(const Scene& scene, bool jumps, std::uintmax_t* bytes, Tab
   const std::filesystem::path path = temp_table_path("diag");
   write_for_lookup(t, path);
   if (bytes) *bytes = std::filesystem::file_size(path);
-  lk::Table l = lk::Table::load(path.string());
+  lk::LoadOptions options;  // DIAG_METHOD=1|2: the cubic or monotone cubic lookup (lk::Method)
+  if (const char* m = std::getenv("DIAG_METHOD")) options.method = static_cast<lk::Method>(std::atoi(m));
+  lk::Table l = lk::Table::load(path.string(), options);
   std::filesystem::remove(path);
   if (keep) *keep = std::move(t);
   return l;

@@ -11,6 +11,7 @@
 // (RAILTAB_JUMP_MISSES_CSV=<file> writes all of them).
 //
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='JumpCells*' (prints the numbers).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -460,6 +461,86 @@ TEST(JumpCells, Avx2AndSse2GiveTheSameBytesInCutCells) {
           ++compared;
         }
   EXPECT_GT(compared, 100u);
+}
+
+// Cubic methods next to a jump (docs/lookup.md "Contact jumps"): a cell no located jump cuts, with
+// a cut cell beside it, interpolates from its own side only: the cubic y stencil drops the node
+// across the cut cell (as at a table edge). Checked by changing that node's values (every part,
+// every load, one wheel) and asserting that the cubic and monotone cubic results in the cell keep
+// their bytes. Cells chosen so that no jump of the wheel lies in them at any load node, nor sweeps
+// across them between two load nodes (so the lookup does not treat them as cut).
+TEST(JumpCells, CubicStencilsStayOnTheCellsSideOfAJump) {
+  const JumpFixture& f = fixture();
+  const std::vector<double>& ys = f.scene.grids.y;
+  const char* names[2] = {"left", "right"};
+  std::mt19937 rng(1515);
+  std::size_t cases = 0, compared = 0;
+  const std::filesystem::path original_path = temp_table_path("jumps_stencil_original");
+  write_for_lookup(f.with_table, original_path);
+  const lk::Table original[2] = {lk::Table::load(original_path.string(), {lk::Method::kCubic}),
+                                 lk::Table::load(original_path.string(), {lk::Method::kMonotoneCubic})};
+  std::filesystem::remove(original_path);
+  for (std::size_t w = 0; w < 2; ++w) {
+    const auto& loads = f.jumps.wheel[w];
+    // No jump of the wheel in [ys[q], ys[q + 1]] at any load node, none crossing it between two.
+    auto clear = [&](std::size_t q) {
+      for (std::size_t l = 0; l < loads.size(); ++l)
+        for (std::size_t j = 0; j < loads[l].size(); ++j) {
+          const double y = loads[l][j].y;
+          if (y >= ys[q] && y <= ys[q + 1]) return false;
+          if (l + 1 < loads.size() && loads[l + 1].size() == loads[l].size() &&
+              (y < ys[q]) != (loads[l + 1][j].y < ys[q]))
+            return false;
+        }
+      return true;
+    };
+    // (query cell q, node p across the cut cell beside it), one per jump side, every third jump.
+    std::vector<std::pair<std::size_t, std::size_t>> picks;
+    const auto& middle = loads[loads.size() / 2];
+    for (std::size_t j = 0; j < middle.size(); j += 3) {
+      const std::size_t c = static_cast<std::size_t>(std::upper_bound(ys.begin(), ys.end(), middle[j].y) - ys.begin()) - 1;
+      if (c >= 1 && c + 2 < ys.size() && clear(c - 1)) picks.push_back({c - 1, c + 1});
+      if (c + 3 < ys.size() && clear(c + 1)) picks.push_back({c + 1, c});
+    }
+    for (const auto& [q, p] : picks) {
+      Table changed = f.with_table;
+      for (TableGroup& g : changed.groups) {
+        if (g.path.rfind(std::string(names[w]) + "/", 0) != 0) continue;
+        for (TableDataset& d : g.datasets) {
+          if (d.is_status || d.axes.empty() || d.axes[0] != "y") continue;
+          const std::size_t slice = d.values.size() / d.shape[0];
+          for (std::size_t k = p * slice; k < (p + 1) * slice; ++k) d.values[k] = 1.5 * d.values[k] + 1e-3;
+        }
+      }
+      const std::filesystem::path path = temp_table_path("jumps_stencil");
+      write_for_lookup(changed, path);
+      for (const lk::Table& before : original) {
+        const lk::Table after = lk::Table::load(path.string(), {before.method()});
+        for (int k = 0; k < 16; ++k) {
+          lk::State s = before.default_state();
+          s.y = std::uniform_real_distribution<double>(ys[q], ys[q + 1])(rng);
+          for (const lk::AxisInfo& a : before.axes()) {
+            const double x = std::uniform_real_distribution<double>(a.nodes.front(), a.nodes.back())(rng);
+            if (a.name == "load") s.load = x;
+            else if (a.name == "xi") s.xi = x;
+            else if (a.name == "eta") s.eta = x;
+            else if (a.name == "phi") s.phi = x;
+          }
+          const lk::Result a = before.query(static_cast<lk::Wheel>(w), s);
+          const lk::Result b = after.query(static_cast<lk::Wheel>(w), s);
+          ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0)
+              << names[w] << " wheel, method " << static_cast<int>(before.method()) << ", y " << s.y << " m in cell ["
+              << ys[q] << ", " << ys[q + 1] << "], node " << ys[p] << " m changed";
+          ++compared;
+        }
+      }
+      std::filesystem::remove(path);
+      ++cases;
+    }
+  }
+  std::printf("cubic stencils next to jumps: %zu cells, %zu queries unchanged by the node across the jump\n", cases,
+              compared);
+  EXPECT_GE(cases, 4u);
 }
 
 TEST(JumpCells, CreepForcesOnJumpCellsAtCreepageNodes) { creep_forces_on_jump_cells(true); }
