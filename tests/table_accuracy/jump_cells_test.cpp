@@ -428,6 +428,20 @@ TEST(JumpCells, NormalisedCreepTakesTheQuerysSideScales) {
   EXPECT_GT(checked, 0u);
 }
 
+// A state at y with load and creepages uniform over the table's axes.
+lk::State state_at(const lk::Table& table, double y, std::mt19937& rng) {
+  lk::State s = table.default_state();
+  s.y = y;
+  for (const lk::AxisInfo& a : table.axes()) {
+    const double x = std::uniform_real_distribution<double>(a.nodes.front(), a.nodes.back())(rng);
+    if (a.name == "load") s.load = x;
+    else if (a.name == "xi") s.xi = x;
+    else if (a.name == "eta") s.eta = x;
+    else if (a.name == "phi") s.phi = x;
+  }
+  return s;
+}
+
 // The one-sided path's sum kernels (weighted_sum.hpp, jump_sum) exist for SSE2 and AVX2 with the
 // same arithmetic: both give the same bytes at states within 0.1 mm of every located jump (cut
 // cells, both sides) and at the jumps themselves. On a CPU without AVX2 both loads run SSE2.
@@ -446,15 +460,8 @@ TEST(JumpCells, Avx2AndSse2GiveTheSameBytesInCutCells) {
     for (const auto& list : f.jumps.wheel[w])
       for (const ContactJump& j : list)
         for (int k = 0; k < 8; ++k) {
-          lk::State s = best.default_state();
-          s.y = j.y + (k == 0 ? 0.0 : std::uniform_real_distribution<double>(-1e-4, 1e-4)(rng));
-          for (const lk::AxisInfo& a : best.axes()) {
-            const double x = std::uniform_real_distribution<double>(a.nodes.front(), a.nodes.back())(rng);
-            if (a.name == "load") s.load = x;
-            else if (a.name == "xi") s.xi = x;
-            else if (a.name == "eta") s.eta = x;
-            else if (a.name == "phi") s.phi = x;
-          }
+          const lk::State s =
+              state_at(best, j.y + (k == 0 ? 0.0 : std::uniform_real_distribution<double>(-1e-4, 1e-4)(rng)), rng);
           const lk::Result a = sse2.query(static_cast<lk::Wheel>(w), s);
           const lk::Result b = best.query(static_cast<lk::Wheel>(w), s);
           ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "wheel " << w << " y " << s.y;
@@ -517,15 +524,7 @@ TEST(JumpCells, CubicStencilsStayOnTheCellsSideOfAJump) {
       for (const lk::Table& before : original) {
         const lk::Table after = lk::Table::load(path.string(), {before.method()});
         for (int k = 0; k < 16; ++k) {
-          lk::State s = before.default_state();
-          s.y = std::uniform_real_distribution<double>(ys[q], ys[q + 1])(rng);
-          for (const lk::AxisInfo& a : before.axes()) {
-            const double x = std::uniform_real_distribution<double>(a.nodes.front(), a.nodes.back())(rng);
-            if (a.name == "load") s.load = x;
-            else if (a.name == "xi") s.xi = x;
-            else if (a.name == "eta") s.eta = x;
-            else if (a.name == "phi") s.phi = x;
-          }
+          const lk::State s = state_at(before, std::uniform_real_distribution<double>(ys[q], ys[q + 1])(rng), rng);
           const lk::Result a = before.query(static_cast<lk::Wheel>(w), s);
           const lk::Result b = after.query(static_cast<lk::Wheel>(w), s);
           ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0)
