@@ -33,7 +33,7 @@ double state_var(const State& s, int var) noexcept {
 }
 
 template <int NV>
-inline void store_values(const Block& b, const SumsSse2<NV>& sums, Contact& c) noexcept {
+inline void store_values(const Block& b, const SumsSse2<NV, double>& sums, Contact& c) noexcept {
   if (b.first_output >= 0) {
     sums.store(c.value + b.first_output);
   } else {
@@ -46,9 +46,8 @@ inline void store_values(const Block& b, const SumsSse2<NV>& sums, Contact& c) n
 // The cell's part statuses of a block (query layout: after the values of the cell's first record)
 // whose NP parts are consecutive from `first` (checked at load): one copy.
 template <int NP>
-inline void store_status_run(int first, const Block& b, const double* cell_record, Contact& c) noexcept {
-  std::memcpy(&c.part_status[first], reinterpret_cast<const unsigned char*>(cell_record + b.status_offset),
-              NP * sizeof(StatusBits));
+inline void store_status_run(int first, const Block& b, RecordPtr cell_record, Contact& c) noexcept {
+  std::memcpy(&c.part_status[first], cell_record + b.status_offset, NP * sizeof(StatusBits));
 }
 
 // Zeroes the parts the table does not hold (interpolate_slots does it first).
@@ -73,8 +72,9 @@ inline void fold_status(const TableData& d, StatusBits q, Contact& c) noexcept {
 }
 
 // One slot of a cell no jump cuts. NG, NN, NC: values per record of the geometry, normal and creep
-// blocks; NP: parts of the creep block (creep, or creep and wear).
-template <int NG, int NN, int NC, int NP, bool kAvx2>
+// blocks; NP: parts of the creep block (creep, or creep and wear); TC: the creep block's value
+// type (float for format 2.2, Block::value_bytes; the geometry and normal blocks hold doubles).
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
 void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, StatusBits q,
                   int s, Contact& c) noexcept {
   const FastPath& fp = d.fast;
@@ -90,9 +90,9 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
 
   // Geometry (y), first: its contact angle's sine and cosine (normal_from_share) are the longest
   // computation of the query, and depend on nothing else, so they overlap with what follows.
-  const double* g = gb.data.data() + slot * gb.slot_size + static_cast<std::size_t>(ly.i) * gb.stride[0];
+  RecordPtr g = gb.data.data() + slot * gb.slot_size + static_cast<std::size_t>(ly.i) * gb.stride[0];
   {
-    SumsSse2<NG> sums;
+    SumsSse2<NG, double> sums;
     sums.zero();
     walk_corners_sse2<1, 0>(g, 1.0, t2, u2, gb.stride, sums);
     store_values(gb, sums, c);
@@ -122,14 +122,14 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     t5[2 + k] = l.t;
     cell += static_cast<std::size_t>(l.i) * cb.stride[2 + k];
   }
-  const double* cr = cb.data.data() + slot * cb.slot_size + cell;
+  RecordPtr cr = cb.data.data() + slot * cb.slot_size + cell;
   const double u5[5] = {1.0 - t5[0], 1.0 - t5[1], 1.0 - t5[2], 1.0 - t5[3], 1.0 - t5[4]};
 
   // Normal (y, load).
   {
-    const double* n = nb.data.data() + slot * nb.slot_size + static_cast<std::size_t>(ly.i) * nb.stride[0] +
-                      static_cast<std::size_t>(ll.i) * nb.stride[1];
-    SumsSse2<NN> sums;
+    RecordPtr n = nb.data.data() + slot * nb.slot_size + static_cast<std::size_t>(ly.i) * nb.stride[0] +
+                  static_cast<std::size_t>(ll.i) * nb.stride[1];
+    SumsSse2<NN, double> sums;
     sums.zero();
     walk_corners_sse2<2, 0>(n, 1.0, t2, u2, nb.stride, sums);
     store_values(nb, sums, c);
@@ -139,8 +139,8 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   // Creep and wear (y, load, v_xi, v_eta, v_phi): 32 corners.
   {
     double values[NC];
-    if constexpr (kAvx2) corner_sum_avx2<5, NC>(cr, t5, u5, cb.stride, values);
-    else corner_sum_sse2<5, NC>(cr, t5, u5, cb.stride, values);
+    if constexpr (kAvx2) corner_sum_avx2<5, NC, TC>(cr, t5, u5, cb.stride, values);
+    else corner_sum_sse2<5, NC, TC>(cr, t5, u5, cb.stride, values);
     if (cb.first_output >= 0) std::memcpy(c.value + cb.first_output, values, sizeof values);
     else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
     store_status_run<NP>(kCreep, cb, cr, c);
@@ -162,9 +162,9 @@ struct CutStatus {
   CutStatus() noexcept {
     for (StatusBits& v : all) v = ~0u;
   }
-  void fold(const Block& b, const double* record) noexcept {
+  void fold(const Block& b, RecordPtr record) noexcept {
     StatusBits bits[NP];
-    std::memcpy(bits, reinterpret_cast<const unsigned char*>(record + b.status_offset), sizeof bits);
+    std::memcpy(bits, record + b.status_offset, sizeof bits);
     for (int p = 0; p < NP; ++p) {
       any[p] |= bits[p];
       all[p] &= bits[p];
@@ -182,21 +182,21 @@ struct CutStatus {
 template <int NP>
 __attribute__((always_inline)) inline int cut_ends(const Block& b, const JumpSamples& js, const Piece* piece, int lc,
                                                    const double* weight, std::size_t slot, std::size_t base,
-                                                   const double** end, double* end_w, CutStatus<NP>& st) noexcept {
-  const double* grid = b.data.data() + slot * b.slot_size + base;
-  const double* samples = js.data.data() + slot * js.slot_stride + base;
+                                                   RecordPtr* end, double* end_w, CutStatus<NP>& st) noexcept {
+  RecordPtr grid = b.data.data() + slot * b.slot_size + base;
+  RecordPtr samples = js.data.data() + slot * js.slot_stride + base;
   const std::size_t load_step = js.load_dim >= 0 ? b.stride[js.load_dim] : 0;
   int n = 0;
   for (int k = 0; k < 2; ++k) {
     const Piece& p = piece[k];
     const std::size_t lnode = static_cast<std::size_t>(lc + k);
-    auto slice = [&](const End& e) -> const double* {
+    auto slice = [&](const End& e) -> RecordPtr {
       if (e.sample)
         return samples + lnode * js.load_stride + static_cast<std::size_t>(e.index) * js.jump_stride +
                static_cast<std::size_t>(e.side) * js.side_stride;
       return grid + static_cast<std::size_t>(e.index) * b.stride[0] + lnode * load_step;
     };
-    const double* ends[2] = {slice(p.a), slice(p.b)};
+    const RecordPtr ends[2] = {slice(p.a), slice(p.b)};
     const double ends_w[2] = {1.0 - p.t, p.t};
     for (int e = 0; e < 2; ++e) {
       const double we = weight[k] * ends_w[e];
@@ -213,15 +213,15 @@ __attribute__((always_inline)) inline int cut_ends(const Block& b, const JumpSam
 }
 
 // A block without creepage axes (geometry, normal) on a cut cell: its single corner weighs 1.0,
-// so each record's weight is its end's (x 1.0 is exact).
+// so each record's weight is its end's (x 1.0 is exact). Its records hold doubles.
 template <int NV>
 __attribute__((always_inline)) inline void cut_block_0(const Block& b, const JumpSamples& js, const Piece* piece, int lc,
                                                        const double* weight, std::size_t slot, Contact& c) noexcept {
-  const double* end[4];
+  RecordPtr end[4];
   double end_w[4];
   CutStatus<1> st;
   const int n = cut_ends<1>(b, js, piece, lc, weight, slot, 0, end, end_w, st);
-  SumsSse2<NV> sums;
+  SumsSse2<NV, double> sums;
   sums.zero();
   for (int e = 0; e < n; ++e) sums.add(end_w[e], end[e]);
   store_values(b, sums, c);
@@ -229,7 +229,7 @@ __attribute__((always_inline)) inline void cut_block_0(const Block& b, const Jum
 }
 
 // One slot of a cut cell (interpolate_jump_cell for this shape).
-template <int NG, int NN, int NC, int NP, bool kAvx2>
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
 void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, const Piece (*pieces)[2],
               int s, Contact& c) noexcept {
   const FastPath& fp = d.fast;
@@ -286,13 +286,13 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
     }
   }
   {
-    const double* end[4];
+    RecordPtr end[4];
     double end_w[4];
     CutStatus<NP> st;
     const int n = cut_ends<NP>(cb, cs, pieces[0], lc, weight, slot, base, end, end_w, st);
     double values[NC];
-    if constexpr (kAvx2) jump_sum_avx2<3, NC>(end, end_w, n, cw, off, values);
-    else jump_sum_sse2<3, NC>(end, end_w, n, cw, off, values);
+    if constexpr (kAvx2) jump_sum_avx2<3, NC, TC>(end, end_w, n, cw, off, values);
+    else jump_sum_sse2<3, NC, TC>(end, end_w, n, cw, off, values);
     if (cb.first_output >= 0) std::memcpy(c.value + cb.first_output, values, sizeof values);
     else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
     st.store(cb, c);
@@ -300,7 +300,7 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
   denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
 }
 
-template <int NG, int NN, int NC, int NP, bool kAvx2>
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
 bool fast_query(const TableData& d, int w, const State& state, int slot_begin, int slot_end, Contact* contact,
                 StatusBits& q) noexcept {
   const double y = state.y, load = state.load;
@@ -334,7 +334,7 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
       Piece pieces[2][2];
       query_pieces(d.jumps[w], d.axis[kVarY], loc, 2, pieces);
       for (int s = 0; s < n; ++s)
-        cut_slot<NG, NN, NC, NP, kAvx2>(d, w, loc, creepage, pieces, slot_begin + s, contact[s]);
+        cut_slot<NG, NN, NC, NP, kAvx2, TC>(d, w, loc, creepage, pieces, slot_begin + s, contact[s]);
     } else {
       interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
     }
@@ -342,7 +342,7 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
     return true;
   }
   for (int s = slot_begin; s < slot_end; ++s)
-    regular_slot<NG, NN, NC, NP, kAvx2>(d, w, loc, creepage, q, s, contact[s - slot_begin]);
+    regular_slot<NG, NN, NC, NP, kAvx2, TC>(d, w, loc, creepage, q, s, contact[s - slot_begin]);
   return true;
 }
 
@@ -362,10 +362,15 @@ bool block_over(const Block& b, std::initializer_list<int> vars) noexcept {
   return true;
 }
 
-template <int NG, int NN, int NC>
+template <int NG, int NN, int NC, class TC>
 FastQuery pick(bool avx2, int np) noexcept {
-  if (np == 2) return avx2 ? &fast_query<NG, NN, NC, 2, true> : &fast_query<NG, NN, NC, 2, false>;
-  return avx2 ? &fast_query<NG, NN, NC, 1, true> : &fast_query<NG, NN, NC, 1, false>;
+  if (np == 2) return avx2 ? &fast_query<NG, NN, NC, 2, true, TC> : &fast_query<NG, NN, NC, 2, false, TC>;
+  return avx2 ? &fast_query<NG, NN, NC, 1, true, TC> : &fast_query<NG, NN, NC, 1, false, TC>;
+}
+
+template <int NG, int NN, int NC>
+FastQuery pick(bool avx2, int np, bool single) noexcept {
+  return single ? pick<NG, NN, NC, float>(avx2, np) : pick<NG, NN, NC, double>(avx2, np);
 }
 
 }  // namespace
@@ -390,6 +395,11 @@ void prepare_fast_path(TableData& d) noexcept {
         !block_over(cb, {kVarY, kVarLoad, kVarXi, kVarEta, kVarPhi}))
       return;
     if (gb.first_output != 0 || gb.n_values != kPartSpecs[kGeometry].n_out) return;  // the angle at value 0
+    // Geometry and normal as doubles (format 2.2 stores them so); the creep block of both wheels
+    // of one type (narrow_exact_blocks decides per block for both).
+    if (gb.value_bytes != sizeof(double) || nb.value_bytes != sizeof(double) ||
+        cb.value_bytes != d.block[0][c].value_bytes)
+      return;
   }
   const Block& gb = d.block[0][g];
   const Block& nb = d.block[0][n];
@@ -404,14 +414,14 @@ void prepare_fast_path(TableData& d) noexcept {
   if (!(cb.part[0] == kCreep && (np == 1 || (np == 2 && cb.part[1] == kWear)))) return;
   for (int w = 1; w < 2; ++w)
     if (d.block[w][c].n_parts != np) return;
-  const bool avx2 = use_avx2();
+  const bool avx2 = use_avx2(), single = cb.value_bytes == sizeof(float);
   FastQuery q = nullptr;
   // The shapes railtab generate writes: creep with its per-creepage normal force (load coupling)
   // and wear, or without either.
   if (gb.n_values == 7 && nb.n_values == 6) {
-    if (cb.n_values == 6) q = pick<7, 6, 6>(avx2, np);
-    else if (cb.n_values == 5) q = pick<7, 6, 5>(avx2, np);
-    else if (cb.n_values == 4) q = pick<7, 6, 4>(avx2, np);
+    if (cb.n_values == 6) q = pick<7, 6, 6>(avx2, np, single);
+    else if (cb.n_values == 5) q = pick<7, 6, 5>(avx2, np, single);
+    else if (cb.n_values == 4) q = pick<7, 6, 4>(avx2, np, single);
   }
   if (!q) return;
   d.fast.query = q;

@@ -17,8 +17,8 @@ namespace {
 
 // Copies the cell's part statuses (query layout: n_parts uint32 after the values of the cell's
 // corner-0 record) into `c`.
-inline void store_status(const Block& b, const double* cell_record, Contact& c) noexcept {
-  const auto* st = reinterpret_cast<const unsigned char*>(cell_record + b.status_offset);
+inline void store_status(const Block& b, RecordPtr cell_record, Contact& c) noexcept {
+  const unsigned char* st = cell_record + b.status_offset;
   for (int p = 0; p < b.n_parts; ++p)
     std::memcpy(&c.part_status[b.part[p]], st + p * sizeof(StatusBits), sizeof(StatusBits));
 }
@@ -29,8 +29,9 @@ inline void store_values(const Block& b, const double* values, Contact& c) noexc
 }
 
 // Multilinear over the cell's 2^D corners, the fractions once for all slots; the status is the
-// cell's, one read (query layout). kAvx2: the AVX2 corner sum (same results, chosen at load).
-template <int D, int NV, bool kAvx2>
+// cell's, one read (query layout). kAvx2: the AVX2 corner sum (same results, chosen at load); T:
+// the records' value type.
+template <int D, int NV, bool kAvx2, class T>
 void linear_kernel(const Block& b, const AxisLoc* loc, int slot_begin, int slot_end,
                    Contact* contact) noexcept {
   double t[D > 0 ? D : 1], u[D > 0 ? D : 1];
@@ -42,9 +43,9 @@ void linear_kernel(const Block& b, const AxisLoc* loc, int slot_begin, int slot_
     t[d] = l.t;
     u[d] = 1.0 - l.t;
   }
-  const auto sum = kAvx2 ? &corner_sum_avx2<D, NV> : &corner_sum_sse2<D, NV>;
+  const auto sum = kAvx2 ? &corner_sum_avx2<D, NV, T> : &corner_sum_sse2<D, NV, T>;
   for (int s = slot_begin; s < slot_end; ++s) {
-    const double* data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size + base;
+    RecordPtr data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size + base;
     Contact& c = contact[s - slot_begin];
     if (b.first_output >= 0) {
       sum(data, t, u, b.stride, c.value + b.first_output);
@@ -67,7 +68,7 @@ void parabola_slope(const double p[3], double e, double w[3]) noexcept {
 // One axis of the cubic stencil: nodes j = 0..3 are i-1, i, i+1, i+2; 0 and 3 may be absent (a
 // table edge, or a located contact jump between them and the cell: AxisLoc::cut_stencil).
 struct CubicAxis {
-  std::size_t stride = 0;     // doubles between neighbouring nodes
+  std::size_t stride = 0;     // bytes between neighbouring nodes
   std::size_t idx[4] = {};    // node indices (absent ones unused)
   bool has_left = false;      // node i-1 exists
   bool has_right = false;     // node i+2 exists
@@ -168,8 +169,8 @@ AxisWeights cubic_weights(const CubicAxis& a) noexcept {
 
 // Tensor cubic Hermite as one weighted sum: the weights of the axes but the last multiplied out
 // into a list (at most 4^(kMaxDims-1) entries), the last (fastest, unit-stride records) axis in
-// the inner loop. NV values per record, fixed at compile time as in the linear kernel.
-template <int NV, bool kAvx2>
+// the inner loop. NV values of T per record, fixed at compile time as in the linear kernel.
+template <int NV, bool kAvx2, class T>
 void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot_begin,
                   int slot_end, Contact* contact) noexcept {
   constexpr int kMaxOuter = 1 << (2 * (kMaxDims - 1));
@@ -204,9 +205,9 @@ void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot
     inner = aw[n_dims - 1];
     inner_stride = b.stride[n_dims - 1];
   }
-  const auto sum = kAvx2 ? &stencil_sum_avx2<NV> : &stencil_sum_sse2<NV>;
+  const auto sum = kAvx2 ? &stencil_sum_avx2<NV, T> : &stencil_sum_sse2<NV, T>;
   for (int s = slot_begin; s < slot_end; ++s) {
-    const double* data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size;
+    RecordPtr data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size;
     double values[NV];
     sum(data + base, outer_w, outer_off, n_outer, inner.w, inner.count, inner_stride, values);
     store_values(b, values, contact[s - slot_begin]);
@@ -215,11 +216,12 @@ void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot
 }
 
 struct MonotoneContext {
-  const double* data;       // record of node 0 of the first slot's grid
-  int n_slots;              // slots interpolated together, grids slot_size doubles apart
-  std::size_t slot_size;    // doubles per slot grid
+  RecordPtr data;           // record of node 0 of the first slot's grid
+  int n_slots;              // slots interpolated together, grids slot_size bytes apart
+  std::size_t slot_size;    // bytes per slot grid
   int n_dims;               // D
-  int n_values;             // interpolated doubles per record
+  int n_values;             // interpolated values per record
+  bool single;              // values are floats (Block::value_bytes 4), else doubles
   const CubicAxis* axes;    // per dimension
 };
 
@@ -231,8 +233,9 @@ void monotone_recurse(const MonotoneContext& c, int d, std::size_t offset, doubl
   const int nv = c.n_values * c.n_slots;
   if (d == c.n_dims) {
     for (int s = 0; s < c.n_slots; ++s) {
-      const double* rec = c.data + static_cast<std::size_t>(s) * c.slot_size + offset;
-      for (int k = 0; k < c.n_values; ++k) out[s * c.n_values + k] = rec[k];
+      RecordPtr rec = c.data + static_cast<std::size_t>(s) * c.slot_size + offset;
+      for (int k = 0; k < c.n_values; ++k)
+        out[s * c.n_values + k] = c.single ? record_value<float>(rec, k) : record_value<double>(rec, k);
     }
     return;
   }
@@ -250,41 +253,45 @@ void monotone_recurse(const MonotoneContext& c, int d, std::size_t offset, doubl
 
 }  // namespace
 
-// Kernels for every (D, value count) pair and instruction set, looked up once at load.
-template <int D, bool kAvx2, int... V>
+// Kernels for every (D, value count) pair, instruction set and value type (T), looked up once
+// at load.
+template <int D, bool kAvx2, class T, int... V>
 constexpr std::array<LinearKernel, sizeof...(V)> kernels_for_d(
     std::integer_sequence<int, V...>) noexcept {
-  return {&linear_kernel<D, V + 1, kAvx2>...};
+  return {&linear_kernel<D, V + 1, kAvx2, T>...};
 }
-template <bool kAvx2, int... D>
-constexpr std::array<std::array<LinearKernel, kMaxSlotValues>, sizeof...(D)> kernel_table(
+// Value counts 1..kMaxSlotValues for doubles, 1..kMaxFloatValues for floats.
+template <class T>
+constexpr int kMaxValues = sizeof(T) == sizeof(float) ? kMaxFloatValues : kMaxSlotValues;
+template <bool kAvx2, class T, int... D>
+constexpr std::array<std::array<LinearKernel, kMaxValues<T>>, sizeof...(D)> kernel_table(
     std::integer_sequence<int, D...>) noexcept {
-  return {kernels_for_d<D, kAvx2>(std::make_integer_sequence<int, kMaxSlotValues>())...};
+  return {kernels_for_d<D, kAvx2, T>(std::make_integer_sequence<int, kMaxValues<T>>())...};
 }
-constexpr auto kLinearSse2 = kernel_table<false>(std::make_integer_sequence<int, kMaxDims + 1>());
-constexpr auto kLinearAvx2 = kernel_table<true>(std::make_integer_sequence<int, kMaxDims + 1>());
+template <bool kAvx2, class T>
+constexpr auto kLinear = kernel_table<kAvx2, T>(std::make_integer_sequence<int, kMaxDims + 1>());
 
-template <bool kAvx2, int... V>
+template <bool kAvx2, class T, int... V>
 constexpr std::array<CubicKernel, sizeof...(V)> cubic_table(
     std::integer_sequence<int, V...>) noexcept {
-  return {&cubic_kernel<V + 1, kAvx2>...};
+  return {&cubic_kernel<V + 1, kAvx2, T>...};
 }
-constexpr auto kCubicSse2 = cubic_table<false>(std::make_integer_sequence<int, kMaxSlotValues>());
-constexpr auto kCubicAvx2 = cubic_table<true>(std::make_integer_sequence<int, kMaxSlotValues>());
+template <bool kAvx2, class T>
+constexpr auto kCubic = cubic_table<kAvx2, T>(std::make_integer_sequence<int, kMaxValues<T>>());
 
-template <int NI, bool kAvx2, int... V>
+template <int NI, bool kAvx2, class T, int... V>
 constexpr std::array<JumpKernel, sizeof...(V)> jump_kernels_for(
     std::integer_sequence<int, V...>) noexcept {
-  if constexpr (kAvx2) return {&jump_sum_avx2<NI, V + 1>...};
-  else return {&jump_sum_sse2<NI, V + 1>...};
+  if constexpr (kAvx2) return {&jump_sum_avx2<NI, V + 1, T>...};
+  else return {&jump_sum_sse2<NI, V + 1, T>...};
 }
-template <bool kAvx2, int... NI>
-constexpr std::array<std::array<JumpKernel, kMaxSlotValues>, sizeof...(NI)> jump_table(
+template <bool kAvx2, class T, int... NI>
+constexpr std::array<std::array<JumpKernel, kMaxValues<T>>, sizeof...(NI)> jump_table(
     std::integer_sequence<int, NI...>) noexcept {
-  return {jump_kernels_for<NI, kAvx2>(std::make_integer_sequence<int, kMaxSlotValues>())...};
+  return {jump_kernels_for<NI, kAvx2, T>(std::make_integer_sequence<int, kMaxValues<T>>())...};
 }
-constexpr auto kJumpSse2 = jump_table<false>(std::make_integer_sequence<int, kMaxJumpInner + 1>());
-constexpr auto kJumpAvx2 = jump_table<true>(std::make_integer_sequence<int, kMaxJumpInner + 1>());
+template <bool kAvx2, class T>
+constexpr auto kJump = jump_table<kAvx2, T>(std::make_integer_sequence<int, kMaxJumpInner + 1>());
 
 bool use_avx2() noexcept {
   if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_AVX2"); env && *env && *env != '0')
@@ -293,16 +300,25 @@ bool use_avx2() noexcept {
   return has;
 }
 
-LinearKernel linear_kernel_for(int n_dims, int n_values) noexcept {
-  return (use_avx2() ? kLinearAvx2 : kLinearSse2)[n_dims][n_values - 1];
+// The kernel of the table for this CPU (AVX2 or SSE2) and value type (value_bytes 4: float).
+LinearKernel linear_kernel_for(int n_dims, int n_values, int value_bytes) noexcept {
+  const bool avx2 = use_avx2();
+  if (value_bytes == sizeof(float))
+    return (avx2 ? kLinear<true, float> : kLinear<false, float>)[n_dims][n_values - 1];
+  return (avx2 ? kLinear<true, double> : kLinear<false, double>)[n_dims][n_values - 1];
 }
 
-JumpKernel jump_kernel_for(int n_inner, int n_values) noexcept {
-  return (use_avx2() ? kJumpAvx2 : kJumpSse2)[n_inner][n_values - 1];
+JumpKernel jump_kernel_for(int n_inner, int n_values, int value_bytes) noexcept {
+  const bool avx2 = use_avx2();
+  if (value_bytes == sizeof(float))
+    return (avx2 ? kJump<true, float> : kJump<false, float>)[n_inner][n_values - 1];
+  return (avx2 ? kJump<true, double> : kJump<false, double>)[n_inner][n_values - 1];
 }
 
-CubicKernel cubic_kernel_for(int n_values) noexcept {
-  return (use_avx2() ? kCubicAvx2 : kCubicSse2)[n_values - 1];
+CubicKernel cubic_kernel_for(int n_values, int value_bytes) noexcept {
+  const bool avx2 = use_avx2();
+  if (value_bytes == sizeof(float)) return (avx2 ? kCubic<true, float> : kCubic<false, float>)[n_values - 1];
+  return (avx2 ? kCubic<true, double> : kCubic<false, double>)[n_values - 1];
 }
 
 void interpolate_monotone_cubic(const Block& block, const Axis* axes, const AxisLoc* loc,
@@ -314,8 +330,9 @@ void interpolate_monotone_cubic(const Block& block, const Axis* axes, const Axis
     cell += static_cast<std::size_t>(loc[block.var[d]].i) * block.stride[d];
   }
   const int n = slot_end - slot_begin;
-  const double* first = block.data.data() + static_cast<std::size_t>(slot_begin) * block.slot_size;
-  const MonotoneContext c{first, n, block.slot_size, block.n_dims, block.n_values, ax};
+  RecordPtr first = block.data.data() + static_cast<std::size_t>(slot_begin) * block.slot_size;
+  const MonotoneContext c{first, n, block.slot_size, block.n_dims, block.n_values,
+                          block.value_bytes == sizeof(float), ax};
   double values[kMaxSlots * kMaxSlotValues];
   monotone_recurse(c, 0, 0, values);
   for (int s = 0; s < n; ++s) {

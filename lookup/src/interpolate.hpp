@@ -15,7 +15,12 @@ namespace railtab::lookup::detail {
 // table_data.hpp: every bit but kConverged ORed over the 2^D corners, kConverged ANDed) into
 // .part_status[part]. The corner weights and offsets are computed once for all slots; both
 // counts are template parameters so the corner loop unrolls and the sums stay in registers.
-LinearKernel linear_kernel_for(int n_dims, int n_values) noexcept;
+// value_bytes: the records' value type (Block::value_bytes, 8 double or 4 float; float records of
+// at most kMaxFloatValues values).
+LinearKernel linear_kernel_for(int n_dims, int n_values, int value_bytes) noexcept;
+// Float records hold at most this many values: the creep and wear block holds at most 6 (format
+// 2.2's float32 outputs); kernels for more would only cost compile time (and code size).
+inline constexpr int kMaxFloatValues = 8;
 
 // Whether the AVX2 kernels run (the CPU has AVX2 and RAILTAB_LOOKUP_NO_AVX2 is unset or 0).
 bool use_avx2() noexcept;
@@ -25,12 +30,12 @@ bool use_avx2() noexcept;
 // each axis reduces to 2-4 weights on consecutive nodes and the query is one weighted sum over
 // the stencil's records (576 for the default scene's 5-D creep block, whose load and phi axes
 // have 3 nodes). Status as in the linear kernel (the cell's). Chosen at load by `n_values`.
-CubicKernel cubic_kernel_for(int n_values) noexcept;
+CubicKernel cubic_kernel_for(int n_values, int value_bytes) noexcept;
 
 // The one-sided sum of a jump cell (jump_side.hpp) for blocks with n_inner creepage dimensions
-// (0..kMaxJumpInner) and records of n_values values, chosen once at load.
+// (0..kMaxJumpInner) and records of n_values values of value_bytes each, chosen once at load.
 inline constexpr int kMaxJumpInner = 3;  // xi, eta, phi
-JumpKernel jump_kernel_for(int n_inner, int n_values) noexcept;
+JumpKernel jump_kernel_for(int n_inner, int n_values, int value_bytes) noexcept;
 
 // As the cubic with slopes limited per node so that 0 <= slope / secant <= 3 on both sides
 // (Fritsch-Carlson sufficient condition; zero slope at a data extremum), which keeps the result

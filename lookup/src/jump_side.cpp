@@ -49,7 +49,8 @@ int load_dim(const Block& b) {
   return -1;
 }
 
-// The one-sided values of block b of wheel w, into the block's query record layout.
+// The one-sided values of block b of wheel w, into the block's query record layout (double values:
+// the blocks are narrowed after, narrow_exact_blocks).
 void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_load, std::size_t count) {
   const Block& b = d.block[w][bi];
   JumpSamples& js = d.jumps[w].samples[bi];
@@ -71,12 +72,12 @@ void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_
   js.load_dim = load_dim(b);
   js.n_inner = b.n_dims - inner0;
   if (js.n_inner > kMaxJumpInner) f.fail("a block with jumps has more than 3 creepage axes");
-  js.sum = jump_kernel_for(js.n_inner, b.n_values);
+  js.sum = jump_kernel_for(js.n_inner, b.n_values, b.value_bytes);
   js.side_stride = inner * rec;
   js.jump_stride = 2 * js.side_stride;
   js.load_stride = count * js.jump_stride;
   js.slot_stride = n_load * js.load_stride;
-  js.data.assign(ns * js.slot_stride, 0.0);
+  js.data.assign(ns * js.slot_stride, 0);
   const std::size_t slices = n_load * count * 2;
   std::vector<StatusBits> node_status(ns * slices * inner * static_cast<std::size_t>(b.n_parts), 0u);
   const std::string group = std::string("/jumps/") + (w == 0 ? "left" : "right") + "/";
@@ -100,8 +101,9 @@ void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_
       for (std::size_t k = 0; k < v.values.size(); ++k) {
         if (!std::isfinite(v.values[k])) f.fail("dataset " + name + " holds a non-finite value");
         const std::size_t s = k % ns, node = (k / ns) % inner, slice = k / (ns * inner);
-        js.data[s * js.slot_stride + slice * js.side_stride + node * rec + static_cast<std::size_t>(offset + o)] =
-            v.values[k];
+        std::memcpy(js.data.data() + s * js.slot_stride + slice * js.side_stride + node * rec +
+                        static_cast<std::size_t>(offset + o) * sizeof(double),
+                    &v.values[k], sizeof(double));
       }
     }
     offset += n_values;
@@ -141,9 +143,8 @@ void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_
             all &= bits;
           }
           const StatusBits cell = (any & ~status::kConverged) | (all & status::kConverged);
-          double* record = js.data.data() + s * js.slot_stride + slice * js.side_stride + node * rec;
-          std::memcpy(reinterpret_cast<unsigned char*>(record + b.status_offset) + static_cast<std::size_t>(p) * sizeof(StatusBits),
-                      &cell, sizeof cell);
+          unsigned char* record = js.data.data() + s * js.slot_stride + slice * js.side_stride + node * rec;
+          std::memcpy(record + b.status_offset + static_cast<std::size_t>(p) * sizeof(StatusBits), &cell, sizeof cell);
         }
       }
 }
@@ -414,17 +415,16 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
     for (int s = 0; s < n; ++s) {
       const std::size_t slot = static_cast<std::size_t>(slot_begin + s);
       const CreepCell& cc = cell[s];
-      const double* end[4];
+      RecordPtr end[4];
       double end_w[4];
       int n_ends = 0;
       StatusBits any[kNumParts] = {}, all[kNumParts];
       for (StatusBits& v : all) v = ~0u;
       // Status: the samples' creepage cells and the grid cell of the side the piece uses.
-      auto fold = [&](const double* record) {
+      auto fold = [&](RecordPtr record) {
         for (int p = 0; p < b.n_parts; ++p) {
           StatusBits bits;
-          std::memcpy(&bits, reinterpret_cast<const unsigned char*>(record + b.status_offset) + p * sizeof(StatusBits),
-                      sizeof bits);
+          std::memcpy(&bits, record + b.status_offset + p * sizeof(StatusBits), sizeof bits);
           any[p] |= bits;
           all[p] &= bits;
         }
@@ -432,14 +432,14 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       for (int k = 0; k < nodes; ++k) {
         const Piece& piece = pieces[list][k];
         const std::size_t lnode = static_cast<std::size_t>(lc + k);
-        auto slice = [&](const End& e) -> const double* {
+        auto slice = [&](const End& e) -> RecordPtr {
           if (e.sample)
             return js.data.data() + slot * js.slot_stride + lnode * js.load_stride +
                    static_cast<std::size_t>(e.index) * js.jump_stride + static_cast<std::size_t>(e.side) * js.side_stride;
           return b.data.data() + slot * b.slot_size + static_cast<std::size_t>(e.index) * b.stride[0] +
                  (ld >= 0 ? lnode * b.stride[ld] : 0);
         };
-        const double* ends[2] = {slice(piece.a), slice(piece.b)};
+        const RecordPtr ends[2] = {slice(piece.a), slice(piece.b)};
         const double ends_w[2] = {1.0 - piece.t, piece.t};
         for (int e = 0; e < 2; ++e) {
           const double we = weight[k] * ends_w[e];

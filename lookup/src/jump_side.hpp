@@ -12,6 +12,7 @@
 
 #include "grid.hpp"
 #include "railtab/lookup.hpp"
+#include "records.hpp"
 
 namespace railtab::lookup::detail {
 
@@ -25,16 +26,17 @@ inline constexpr std::uint32_t kGeometricJumps = 0x3Fu;
 // One block's one-sided values at the jumps (format 2.1, /jumps/<wheel>/<part>): per slot, load
 // node, jump and side (0 left, 1 right of the jump) a slice over the block's creepage axes, in the
 // block's query record layout (values, then the statuses of the creepage CELL the record starts,
-// folded as the block's: every bit but converged ORed, converged ANDed).
+// folded as the block's: every bit but converged ORed, converged ANDed), with the block's value
+// type (doubles as read, floats after narrow_exact_blocks when the block's are).
 // One jump cell's sum over one block (weighted_sum.hpp, jump_sum): the records at end[e] +
-// corner_off[c] weighted by end_w[e] x corner_w[c], into out[0 .. n_values-1].
-using JumpKernel = void (*)(const double* const* end, const double* end_w, int n_ends,
+// corner_off[c] (bytes) weighted by end_w[e] x corner_w[c], into out[0 .. n_values-1].
+using JumpKernel = void (*)(const RecordPtr* end, const double* end_w, int n_ends,
                             const double* corner_w, const std::size_t* corner_off,
                             double* out) noexcept;
 
 struct JumpSamples {
-  std::vector<double> data;
-  std::size_t slot_stride = 0, load_stride = 0, jump_stride = 0, side_stride = 0;  // doubles
+  RecordBytes data;
+  std::size_t slot_stride = 0, load_stride = 0, jump_stride = 0, side_stride = 0;  // bytes
   // The block's shape as the one-sided query walks it, fixed at load: jump list (0 every jump,
   // 1 geometric only), first creepage dimension, load dimension (-1: none), creepage dimensions,
   // and the sum kernel for (creepage dimensions, values per record).

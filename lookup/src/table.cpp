@@ -250,7 +250,7 @@ State Table::default_state() const {
 std::size_t Table::memory_bytes() const {
   std::size_t bytes = 0;
   for (const auto& wheel : data_->block)
-    for (const auto& block : wheel) bytes += block.data.size() * sizeof(double);
+    for (const auto& block : wheel) bytes += block.data.size();  // bytes (records.hpp)
   return bytes;
 }
 

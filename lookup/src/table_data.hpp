@@ -7,26 +7,23 @@
 // slot (Table::query_slot) touches only that slot's outputs. Each slot grid stores its nodes in
 // C order (first axis slowest, the file's order without the slot axis), one RECORD per node.
 //
-// Two record layouts, one after the other:
-// - NODE layout, as make_block (table_load.cpp) fills it from the file:
-//     [ values of part a, part b, .. | zero padding to an even count |
-//       the node's statuses as uint32: part a, part b, .., padded with 0 to 4 uint32 ]
-// - QUERY layout, what prepare_query_layout (block_layout.cpp) turns it into at load:
+// The QUERY layout of a record (made at load from the file's arrays, block_layout.cpp):
 //     [ values of part a, part b, .. | CELL statuses as uint32: part a, part b, .. |
-//       zero padding to an even count of doubles ]
-//   where the cell status of a node is the status of the interpolation cell whose lowest corner
-//   it is: every bit but kConverged ORed over the cell's 2^D corner nodes, kConverged ANDed
-//   (docs/lookup.md). A query reads the statuses of one record (the cell's corner 0) instead of
-//   folding 2^D of them, with the same result. Nodes on the last node of an axis start no
-//   cell; they keep their own status.
-// The default creep + wear record is 6 values (the creep part's with its per-creepage normal
-// force, wear) + 2 statuses = 7 doubles, padded to 8 = 64 bytes: 1.15 MB per wheel and slot for
-// the default scene. Records start on 16-byte boundaries (SSE2
-// pairs), the data on a 64-byte boundary.
+//       zero padding to a multiple of 16 bytes ]
+// where the cell status of a node is the status of the interpolation cell whose lowest corner
+// it is: every bit but kConverged ORed over the cell's 2^D corner nodes, kConverged ANDed
+// (docs/lookup.md). A query reads the statuses of one record (the cell's corner 0) instead of
+// folding 2^D of them, with the same result. Nodes on the last node of an axis start no
+// cell; they keep their own status.
+// Values are doubles, or floats when every value of the block (both wheels, its one-sided values
+// at the jumps too) is exactly a float: format 2.2 stores the creep and wear outputs as float32
+// (records.hpp; narrow_exact_blocks). The default creep + wear record is 6 values (the creep
+// part's with its per-creepage normal force, wear) + 2 statuses: 56 bytes padded to 64 as
+// doubles (1.15 MB per wheel and slot for the default scene), 32 as floats (0.58 MB). Strides
+// and offsets are in bytes; the data start on a 64-byte boundary.
 #pragma once
 
 #include <cstddef>
-#include <new>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,29 +33,12 @@
 #include "grid.hpp"
 #include "jump_side.hpp"
 #include "railtab/lookup.hpp"
+#include "records.hpp"
 
 namespace railtab::lookup::detail {
 
 inline constexpr int kMaxDims = kNumVars;  // a block tabulates at most y, roll, load, xi, eta, phi
 inline constexpr int kMaxSlotValues = kNumOutputs;  // values in one slot record, at most
-inline constexpr int kStatusDoubles = 2;  // node layout: 4 uint32 statuses (one per part, at most)
-static_assert(kNumParts * sizeof(StatusBits) <= kStatusDoubles * sizeof(double),
-              "every part's status fits in a record");
-
-// std::allocator with 64-byte (cache line) alignment, so records never straddle more lines than
-// their size requires.
-template <class T>
-struct CacheAligned {
-  using value_type = T;
-  static constexpr std::align_val_t kAlign{64};
-  CacheAligned() = default;
-  template <class U>
-  CacheAligned(const CacheAligned<U>&) noexcept {}
-  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
-  void deallocate(T* p, std::size_t n) noexcept { ::operator delete(p, n * sizeof(T), kAlign); }
-  template <class U>
-  bool operator==(const CacheAligned<U>&) const noexcept { return true; }
-};
 
 struct Block;
 // Multilinear kernel for one block, chosen at load by the block's dimension and value counts:
@@ -73,27 +53,38 @@ using CubicKernel = void (*)(const Block& block, const Axis* axes, const AxisLoc
 struct Block {
   int n_dims = 0;                     // tabulated axes (slot excluded), 0..kMaxDims
   int var[kMaxDims] = {};             // state variable (Var) of each dimension, in file order
-  int size[kMaxDims] = {};            // nodes along each dimension (set by prepare_query_layout)
-  std::size_t stride[kMaxDims] = {};  // doubles between neighbouring nodes along each dimension
+  int size[kMaxDims] = {};            // nodes along each dimension
+  std::size_t stride[kMaxDims] = {};  // bytes between neighbouring nodes along each dimension
   int n_parts = 0;                    // parts stored in this block
   int part[kNumParts] = {};           // which (Part), in file order
   int n_values = 0;                   // values per slot record: sum over its parts of outputs
-  int values_padded = 0;              // node layout: n_values rounded up to an even count
-  int record = 0;                     // doubles per node (node layout, then query layout)
-  int status_offset = 0;              // query layout: doubles before the cell statuses (n_values)
+  int value_bytes = 8;                // bytes per value: 8 (double) or 4 (float)
+  int record = 0;                     // bytes per record (record_bytes)
+  int status_offset = 0;              // bytes before the cell statuses (n_values x value_bytes)
   int first_output = -1;              // Output of value 0 when the parts' outputs are one
                                       // contiguous run of Contact::value (always in format 1.0)
   int output_of[kMaxSlotValues] = {}; // Output of each value (the creep part's per-creepage
                                       // normal force goes to kNormalForce)
-  std::size_t slot_size = 0;          // doubles per slot grid (nodes x record)
-  LinearKernel linear = nullptr;      // multilinear kernel (query layout)
-  CubicKernel cubic = nullptr;        // tensor cubic Hermite kernel (query layout)
-  std::vector<double, CacheAligned<double>> data;  // n_slots grids, see the layouts above
+  std::size_t slot_size = 0;          // bytes per slot grid (nodes x record)
+  LinearKernel linear = nullptr;      // multilinear kernel
+  CubicKernel cubic = nullptr;        // tensor cubic Hermite kernel
+  RecordBytes data;                   // n_slots grids, see the layout above
 };
 
-// Rewrites a block filled in the node layout (make_block) into the query layout: cell statuses,
-// records without the status padding, strides, sizes and kernels (block_layout.cpp).
-void prepare_query_layout(Block& block, int n_slots);
+// Fills a block whose shape (dims, sizes, parts, values) is set with the query layout, double
+// values: the node values values[(slot * nodes + node) * n_values + k] and node statuses
+// status[(slot * nodes + node) * n_parts + p] (nodes in C order); folds the cell statuses, sets
+// record, strides and kernels (block_layout.cpp).
+void prepare_query_layout(Block& block, const std::vector<double>& values, const std::vector<StatusBits>& status,
+                          int n_slots);
+
+struct TableData;
+// After the blocks and their one-sided values at the jumps are read (as doubles): every block
+// whose values, both wheels and jump samples, are all exactly floats is rewritten with float
+// values (Block::value_bytes 4, the same statuses, strides scaled, kernels chosen again). Results
+// stay bit-identical (records.hpp). RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1 keeps every block double
+// (to compare the two). block_layout.cpp.
+void narrow_exact_blocks(TableData& d);
 
 struct TableData {
   std::string path;                   // file loaded

@@ -418,31 +418,22 @@ Block make_block(const std::vector<int>& parts, const std::vector<PartArrays>& a
       b.output_of[b.n_values++] = o;
     }
   }
-  b.values_padded = (b.n_values + 1) / 2 * 2;
-  b.record = b.values_padded + kStatusDoubles;
-  std::size_t stride = static_cast<std::size_t>(b.record);
-  for (int k = b.n_dims - 1; k >= 0; --k) {
-    b.stride[k] = stride;
-    stride *= static_cast<std::size_t>(first.dims[k]);
-  }
-  b.slot_size = stride;  // nodes x record
+  for (int k = 0; k < b.n_dims; ++k) b.size[k] = static_cast<int>(first.dims[k]);
   const std::size_t ns = static_cast<std::size_t>(n_slots);
-  b.data.assign(ns * b.slot_size, 0.0);
+  const std::size_t nv = static_cast<std::size_t>(b.n_values), np = static_cast<std::size_t>(b.n_parts);
+  std::vector<double> values(ns * first.nodes * nv);
+  std::vector<StatusBits> status(ns * first.nodes * np);
   for (std::size_t s = 0; s < ns; ++s) {
     for (std::size_t node = 0; node < first.nodes; ++node) {
-      double* rec = b.data.data() + s * b.slot_size + node * static_cast<std::size_t>(b.record);
-      auto* status = reinterpret_cast<unsigned char*>(rec + b.values_padded);
-      int k = 0, j = 0;
-      for (int part : parts)
-        for (const auto& out : arrays[part].outputs) rec[k++] = out[node * ns + s];
+      double* v = values.data() + (s * first.nodes + node) * nv;
+      StatusBits* st = status.data() + (s * first.nodes + node) * np;
       for (int part : parts) {
-        std::memcpy(status + j * sizeof(StatusBits), &arrays[part].status[node * ns + s],
-                    sizeof(StatusBits));
-        ++j;
+        for (const auto& out : arrays[part].outputs) *v++ = out[node * ns + s];
+        *st++ = arrays[part].status[node * ns + s];
       }
     }
   }
-  prepare_query_layout(b, n_slots);  // block_layout.cpp: the layout the query path reads
+  prepare_query_layout(b, values, status, n_slots);  // block_layout.cpp: the layout the query path reads
   return b;
 }
 
@@ -536,6 +527,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   }
   read_creep_map(f, *d);
   read_jumps(f, *d);  // format 2.1; absent: no one-sided cells (as before)
+  narrow_exact_blocks(*d);  // float records where every value is a float (format 2.2's creep, wear)
   // What the query does with each tabulated variable, fixed here so its loop has no branch on it.
   for (int k = 0; k < d->n_tabulated; ++k) {
     const int var = d->tabulated_var[k];

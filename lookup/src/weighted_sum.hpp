@@ -1,28 +1,40 @@
 // SPDX-License-Identifier: Apache-2.0
-// Weighted sums of records (a record = NV consecutive doubles of a node, query layout in
+// Weighted sums of records (a record = NV consecutive values of a node, query layout in
 // table_data.hpp), the inner loop of every interpolator. Two instruction sets with the same
 // arithmetic: SSE2 (the x86-64 baseline, pairs of doubles) and AVX2 (quads, chosen at load when
 // the CPU has it, no FMA). Every lane does the same multiplies and adds in the same order in both,
-// so the results are bit-identical whichever runs.
+// so the results are bit-identical whichever runs. The records hold T = double or float
+// (records.hpp); floats are converted to double as they are loaded (exact), so the arithmetic and
+// its bits are the same for both.
 #pragma once
 
 #include <cstddef>
 #include <cstring>
+
+#include <immintrin.h>
+
+#include "records.hpp"
 
 namespace railtab::lookup::detail {
 
 typedef double V2 __attribute__((vector_size(16)));
 typedef double V4 __attribute__((vector_size(32)));
 
-inline V2 load2(const double* p) noexcept {
-  V2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
+// Two values of T at p as doubles.
+template <class T>
+__attribute__((always_inline)) inline V2 load2(RecordPtr p) noexcept {
+  if constexpr (sizeof(T) == sizeof(double)) {
+    V2 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  } else {
+    return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))));
+  }
 }
 
-// Running sums of NV values in SSE2 registers: NV/2 pairs, then for an odd NV a half-filled one
-// (the double after a record's last value holds statuses, which must not enter the arithmetic).
-template <int NV>
+// Running sums of NV values of T in SSE2 registers: NV/2 pairs, then for an odd NV a half-filled
+// one (the bytes after a record's last value hold statuses, which must not enter the arithmetic).
+template <int NV, class T>
 struct SumsSse2 {
   static constexpr int kPairs = (NV + 1) / 2;
   V2 acc[kPairs];
@@ -31,11 +43,11 @@ struct SumsSse2 {
 #pragma GCC unroll 16
     for (int k = 0; k < kPairs; ++k) acc[k] = V2{0.0, 0.0};
   }
-  __attribute__((always_inline)) void add(double weight, const double* r) noexcept {
+  __attribute__((always_inline)) void add(double weight, RecordPtr r) noexcept {
     const V2 w = V2{weight, weight};
 #pragma GCC unroll 16
-    for (int k = 0; k < NV / 2; ++k) acc[k] += w * load2(r + 2 * k);
-    if constexpr (NV % 2 != 0) acc[kPairs - 1] += w * V2{r[NV - 1], 0.0};
+    for (int k = 0; k < NV / 2; ++k) acc[k] += w * load2<T>(r + 2 * k * sizeof(T));
+    if constexpr (NV % 2 != 0) acc[kPairs - 1] += w * V2{record_value<T>(r, NV - 1), 0.0};
   }
   __attribute__((always_inline)) void store(double* out) const noexcept {
     double all[2 * kPairs];
@@ -46,8 +58,20 @@ struct SumsSse2 {
 
 #define RAILTAB_AVX2 __attribute__((target("avx2"), always_inline))
 
+// Four values of T at p as doubles.
+template <class T>
+RAILTAB_AVX2 inline V4 load4(RecordPtr p) noexcept {
+  if constexpr (sizeof(T) == sizeof(double)) {
+    V4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  } else {
+    return _mm256_cvtps_pd(_mm_loadu_ps(reinterpret_cast<const float*>(p)));
+  }
+}
+
 // The same in AVX2 registers: NV/4 quads, then a pair and a half-filled pair as needed.
-template <int NV>
+template <int NV, class T>
 struct SumsAvx2 {
   static constexpr int kQuads = NV / 4;
   static constexpr bool kPair = NV % 4 >= 2;
@@ -60,17 +84,13 @@ struct SumsAvx2 {
     for (int k = 0; k < kQuads; ++k) quad[k] = V4{0.0, 0.0, 0.0, 0.0};
     pair = single = V2{0.0, 0.0};
   }
-  RAILTAB_AVX2 void add(double weight, const double* r) noexcept {
+  RAILTAB_AVX2 void add(double weight, RecordPtr r) noexcept {
     const V4 w4 = V4{weight, weight, weight, weight};
     const V2 w2 = V2{weight, weight};
 #pragma GCC unroll 8
-    for (int k = 0; k < kQuads; ++k) {
-      V4 v;
-      std::memcpy(&v, r + 4 * k, sizeof v);
-      quad[k] += w4 * v;
-    }
-    if constexpr (kPair) pair += w2 * load2(r + 4 * kQuads);
-    if constexpr (kSingle) single += w2 * V2{r[NV - 1], 0.0};
+    for (int k = 0; k < kQuads; ++k) quad[k] += w4 * load4<T>(r + 4 * k * sizeof(T));
+    if constexpr (kPair) pair += w2 * load2<T>(r + 4 * kQuads * sizeof(T));
+    if constexpr (kSingle) single += w2 * V2{record_value<T>(r, NV - 1), 0.0};
   }
   RAILTAB_AVX2 void store(double* out) const noexcept {
     double all[4 * (kQuads > 0 ? kQuads : 1) + 4];
@@ -82,12 +102,12 @@ struct SumsAvx2 {
 };
 
 // The 2^D corners of a cell depth first: dimension d splits the weight w of the corners below
-// it into w (1 - t_d) at the lower node and w t_d at the upper one (stride[d] further), so only D
+// it into w (1 - t_d) at the lower node and w t_d at the upper one (stride[d] bytes further), so only D
 // partial weights and addresses are live at a time and nothing goes through memory. Defined
 // twice, for each instruction set (GCC inlines AVX2 code only into AVX2 functions).
 #define RAILTAB_WALK_CORNERS(NAME, ATTRIBUTES)                                                   \
   template <int D, int d, class Sums>                                                           \
-  ATTRIBUTES inline void NAME(const double* p, double w, const double* t, const double* u,      \
+  ATTRIBUTES inline void NAME(RecordPtr p, double w, const double* t, const double* u,          \
                               const std::size_t* stride, Sums& sums) noexcept {                 \
     if constexpr (d == D) {                                                                     \
       sums.add(w, p);                                                                           \
@@ -104,12 +124,12 @@ RAILTAB_WALK_CORNERS(walk_corners_avx2, RAILTAB_AVX2)
 // axis, inner_stride apart, each record weighted by outer weight x inner weight.
 #define RAILTAB_WALK_STENCIL(NAME, ATTRIBUTES)                                                   \
   template <class Sums>                                                                         \
-  ATTRIBUTES inline void NAME(const double* p, const double* outer_w,                           \
+  ATTRIBUTES inline void NAME(RecordPtr p, const double* outer_w,                               \
                               const std::size_t* outer_off, int n_outer,                        \
                               const double* inner_w, int count, std::size_t inner_stride,       \
                               Sums& sums) noexcept {                                            \
     for (int o = 0; o < n_outer; ++o) {                                                         \
-      const double* r = p + outer_off[o];                                                       \
+      RecordPtr r = p + outer_off[o];                                                           \
       for (int j = 0; j < count; ++j, r += inner_stride) sums.add(outer_w[o] * inner_w[j], r);  \
     }                                                                                           \
   }
@@ -121,43 +141,43 @@ RAILTAB_WALK_STENCIL(walk_stencil_avx2, RAILTAB_AVX2)
 // out[0..NV-1]: the corner walk unrolls completely and the sums stay in registers. Not inlined
 // into the caller's slot loop on purpose: inlined, GCC hoists all 2^D corner addresses out of
 // it and spills them.
-template <int D, int NV>
-__attribute__((noinline)) void corner_sum_sse2(const double* p, const double* t, const double* u,
+template <int D, int NV, class T>
+__attribute__((noinline)) void corner_sum_sse2(RecordPtr p, const double* t, const double* u,
                                                const std::size_t* stride, double* out) noexcept {
-  SumsSse2<NV> sums;
+  SumsSse2<NV, T> sums;
   sums.zero();
   walk_corners_sse2<D, 0>(p, 1.0, t, u, stride, sums);
   sums.store(out);
 }
 
-template <int D, int NV>
-__attribute__((noinline, target("avx2"))) void corner_sum_avx2(const double* p, const double* t,
+template <int D, int NV, class T>
+__attribute__((noinline, target("avx2"))) void corner_sum_avx2(RecordPtr p, const double* t,
                                                                const double* u,
                                                                const std::size_t* stride,
                                                                double* out) noexcept {
-  SumsAvx2<NV> sums;
+  SumsAvx2<NV, T> sums;
   sums.zero();
   walk_corners_avx2<D, 0>(p, 1.0, t, u, stride, sums);
   sums.store(out);
 }
 
 // Cubic stencil sums (see walk_stencil) into out[0..NV-1].
-template <int NV>
-__attribute__((noinline)) void stencil_sum_sse2(const double* p, const double* outer_w,
+template <int NV, class T>
+__attribute__((noinline)) void stencil_sum_sse2(RecordPtr p, const double* outer_w,
                                                 const std::size_t* outer_off, int n_outer,
                                                 const double* inner_w, int count,
                                                 std::size_t inner_stride, double* out) noexcept {
-  SumsSse2<NV> sums;
+  SumsSse2<NV, T> sums;
   sums.zero();
   walk_stencil_sse2(p, outer_w, outer_off, n_outer, inner_w, count, inner_stride, sums);
   sums.store(out);
 }
 
-template <int NV>
+template <int NV, class T>
 __attribute__((noinline, target("avx2"))) void stencil_sum_avx2(
-    const double* p, const double* outer_w, const std::size_t* outer_off, int n_outer,
+    RecordPtr p, const double* outer_w, const std::size_t* outer_off, int n_outer,
     const double* inner_w, int count, std::size_t inner_stride, double* out) noexcept {
-  SumsAvx2<NV> sums;
+  SumsAvx2<NV, T> sums;
   sums.zero();
   walk_stencil_avx2(p, outer_w, outer_off, n_outer, inner_w, count, inner_stride, sums);
   sums.store(out);
@@ -168,11 +188,11 @@ __attribute__((noinline, target("avx2"))) void stencil_sum_avx2(
 // (weights corner_w, offsets corner_off): every record weighted by end_w[e] x corner_w[c]. The
 // same products and sums, in the same order, as the scalar loop it replaces, lane by lane.
 #define RAILTAB_JUMP_SUM(NAME, SUMS, ATTRIBUTES)                                                  \
-  template <int NI, int NV>                                                                     \
-  ATTRIBUTES void NAME(const double* const* end, const double* end_w, int n_ends,              \
+  template <int NI, int NV, class T>                                                            \
+  ATTRIBUTES void NAME(const RecordPtr* end, const double* end_w, int n_ends,                  \
                        const double* corner_w, const std::size_t* corner_off,                  \
                        double* out) noexcept {                                                 \
-    SUMS<NV> sums;                                                                              \
+    SUMS<NV, T> sums;                                                                           \
     sums.zero();                                                                                \
     for (int e = 0; e < n_ends; ++e) {                                                          \
       _Pragma("GCC unroll 8") for (int c = 0; c < (1 << NI); ++c)                               \

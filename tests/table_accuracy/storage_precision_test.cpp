@@ -16,9 +16,12 @@
 // fails the linear test (checked).
 // The geometry part and the normal part's outputs other than the normal force are float64 in
 // both tables: there the answers must be the same bits.
+// The lookup holds the 2.2 table's creep and wear records as floats (lookup/src/records.hpp):
+// half their memory, and every answer the same bits as with double records.
 //
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='StoragePrecision*' (prints the numbers).
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 
@@ -32,10 +35,15 @@ namespace {
 constexpr std::uint64_t kSeed = 20261126;
 constexpr std::size_t kStates = 20000;  // per wheel
 
+constexpr lk::Method kMethods[3] = {lk::Method::kLinear, lk::Method::kCubic, lk::Method::kMonotoneCubic};
+
 struct Tables {
   Scene scene;
   std::optional<lk::Table> stored[2][2];  // [0 float32 (2.2), 1 float64 (2.1)][0 linear, 1 cubic]
   std::uintmax_t bytes[2] = {};           // file sizes [B]
+  // The 2.2 table per method (kMethods): [0] as loaded (float records), [1] with double records
+  // (RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1).
+  std::optional<lk::Table> records[2][3];
 };
 
 const Tables& tables() {
@@ -56,6 +64,14 @@ const Tables& tables() {
         lk::LoadOptions options;
         options.method = m == 0 ? lk::Method::kLinear : lk::Method::kCubic;
         x.stored[k][m].emplace(lk::Table::load(path.string(), options));
+      }
+      for (int m = 0; m < 3 && k == 0; ++m) {
+        lk::LoadOptions options;
+        options.method = kMethods[m];
+        x.records[0][m].emplace(lk::Table::load(path.string(), options));
+        ::setenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS", "1", 1);
+        x.records[1][m].emplace(lk::Table::load(path.string(), options));
+        ::unsetenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS");
       }
       std::filesystem::remove(path);
     }
@@ -137,6 +153,54 @@ TEST(StoragePrecision, DefaultTableIsSmallerThanTheFloat64One) {
 TEST(StoragePrecision, LinearLookupMovesByLessThanTheRoundingBound) { compare(0, 4.0); }
 
 TEST(StoragePrecision, CubicLookupMovesByLessThanTheRoundingBound) { compare(1, 12.0); }
+
+// The creep + wear block (5-D, 98 % of the records against the 1-D geometry and 2-D normal
+// blocks) goes from 64-byte double to 32-byte float records: the data at most 0.55 of the double
+// ones. The 2.1 table's float64 outputs are no floats: it stays double.
+TEST(StoragePrecision, LookupHoldsTheFloat32OutputsAsFloats) {
+  const Tables& t = tables();
+  const std::size_t floats = t.records[0][0]->memory_bytes(), doubles = t.records[1][0]->memory_bytes();
+  std::printf("default table in memory: %zu B with float records, %zu B with double records\n", floats, doubles);
+  EXPECT_LE(static_cast<double>(floats), 0.55 * static_cast<double>(doubles));
+  EXPECT_EQ(t.stored[1][0]->memory_bytes(), doubles) << "the float64 (2.1) table is held as doubles";
+}
+
+// Float records give the bytes of double records (float -> double is exact, the sums are the same),
+// every method, query and query_slot, both wheels, at random states in range and 5 % beyond
+// (jump cells included) and on grid nodes.
+TEST(StoragePrecision, FloatRecordsGiveTheBytesOfDoubleRecords) {
+  const Tables& t = tables();
+  const Scene& s = t.scene;
+  Random rng(kSeed + 7);
+  const std::vector<double>* grids[5] = {&s.grids.y, &s.grids.load, &s.grids.xi, &s.grids.eta, &s.grids.phi};
+  std::size_t compared = 0, differing = 0;
+  for (int m = 0; m < 3; ++m) {
+    const lk::Table& single = *t.records[0][m];
+    const lk::Table& full = *t.records[1][m];
+    const std::size_t n = m == 2 ? 1000 : 5000;  // the monotone cubic is ~25x slower
+    for (std::size_t k = 0; k < n; ++k) {
+      double v[5];
+      for (int a = 0; a < 5; ++a) {
+        const double lo = grids[a]->front(), hi = grids[a]->back(), w = hi - lo;
+        v[a] = k % 3 == 1 ? rng.uniform(lo - 0.05 * w, hi + 0.05 * w) : rng.uniform(lo, hi);
+        if (k % 3 == 2) v[a] = (*grids[a])[static_cast<std::size_t>(rng.uniform(0.0, 1.0) * (grids[a]->size() - 1) + 0.5)];
+      }
+      lk::State st = full.default_state();
+      st.y = v[0], st.load = v[1], st.xi = v[2], st.eta = v[3], st.phi = v[4];
+      for (int w = 0; w < 2; ++w) {
+        const lk::Wheel wheel = static_cast<lk::Wheel>(w);
+        const lk::Result a = single.query(wheel, st), b = full.query(wheel, st);
+        differing += std::memcmp(&a, &b, sizeof a) != 0;
+        for (int slot = 0; slot < static_cast<int>(kSlots); ++slot) {
+          const lk::Contact ca = single.query_slot(wheel, st, slot), cb = full.query_slot(wheel, st, slot);
+          differing += std::memcmp(&ca, &cb, sizeof ca) != 0;
+        }
+        compared += 1 + kSlots;
+      }
+    }
+  }
+  EXPECT_EQ(differing, 0u) << "of " << compared << " results";
+}
 
 }  // namespace
 }  // namespace railtab::accuracy
