@@ -550,6 +550,20 @@ struct SlotStats {
     }
     return true;
   }
+
+  // The smooth-cell check of the random off-grid tests: |lookup - direct| <= kSafety e + kFloor
+  // scale, e the second-order error estimate of the cell read from the table
+  // (TableView::error_estimate; default_scene_accuracy_test.cpp's header says why 5), the scale
+  // the output's largest |value|. Records the ratio and counts an excess; returns the tolerance.
+  static constexpr double kSafety = 5.0;
+  static constexpr double kFloor = 1e-4;
+  double check_tolerance(const TableView& view, const SlotError& e) {
+    const double tolerance =
+        kSafety * view.error_estimate(e.wheel, e.output, *e.cell, e.slot) + kFloor * view.scale(e.output, e.slot);
+    max_ratio = std::max(max_ratio, e.error / tolerance);
+    if (e.error > tolerance) ++over;
+    return tolerance;
+  }
 };
 
 }  // namespace railtab::accuracy

@@ -5,7 +5,7 @@
 // error table is printed on stdout.
 //
 // Tolerance (smooth cells, every state, wheel, slot and output):
-//   |lookup - direct| <= kSafety * e + 1e-4 * scale
+//   |lookup - direct| <= kSafety * e + 1e-4 * scale   (SlotStats::check_tolerance)
 // e is the multilinear interpolation error bound of the cell, sum over the part's axes of
 // h^2/8 |f''| (the second-order error of linear interpolation; bilinear cross terms are
 // interpolated exactly, so mixed derivatives do not enter at this order), with
@@ -34,8 +34,6 @@ namespace {
 
 constexpr std::uint64_t kSeed = 20240611;
 constexpr std::size_t kPoints = 4000;  // random states, both wheels each
-constexpr double kSafety = 5.0;
-constexpr double kFloor = 1e-4;        // of the output's scale
 
 struct Fixture {
   Scene scene;
@@ -150,10 +148,8 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
     // Normalised creep part (format 2.1): fx, fy, mz are stored as F / (mu N) minus a law, so
     // the table's second differences do not bound their error in N: judged against mu N (SlotStats).
     if (view.normalised() && (o == lk::kFx || o == lk::kFy || o == lk::kMz)) return;
-    const double tolerance = kSafety * view.error_estimate(e.wheel, o, *e.cell, s) + kFloor * view.scale(o, s);
-    st.max_ratio = std::max(st.max_ratio, e.error / tolerance);
+    const double tolerance = st.check_tolerance(view, e);
     if (e.error > tolerance) {
-      ++st.over;
       ADD_FAILURE() << output_label(o) << " slot " << s << " wheel " << e.wheel << " at y " << p.v[kY] << " load "
                     << p.v[kLoad] << " creepage (" << p.v[kXi] << ", " << p.v[kEta] << ", " << p.v[kPhi]
                     << "): error " << e.error << " > tolerance " << tolerance;

@@ -2,8 +2,9 @@
 // The multilinear lookup against the exact half-space model (issue 13: "its lookup-vs-direct
 // accuracy test as for the other models") at random off-grid states, with the metric of
 // default_scene_accuracy_test.cpp: per output and slot, smooth cells (every corner node and the
-// direct state share one status word) against |lookup - direct| <= kSafety e + kFloor scale (e the
-// cell's interpolation error estimate from the table's own second differences), jump cells
+// direct state share one status word) against |lookup - direct| <= kSafety e + kFloor scale
+// (SlotStats::check_tolerance; e the cell's interpolation error estimate from the table's own
+// second differences), jump cells
 // counted and reported; and the creep forces' error over mu N.
 //
 // Table: tables/default_halfspace.toml reduced so that it generates in about a minute of CPU:
@@ -36,8 +37,6 @@ namespace railtab::accuracy {
 namespace {
 
 constexpr std::uint64_t kSeed = 20261126;
-constexpr double kSafety = 5.0;      // as default_scene_accuracy_test.cpp
-constexpr double kFloor = 1e-4;      // of the output's scale, as there
 
 struct Fixture {
   Scene scene;
@@ -110,10 +109,8 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
     const Point& p = points[e.state];
     SlotStats& st = stats[o][s];
     if (!st.add(e, p, mu)) return;
-    const double tolerance = kSafety * view.error_estimate(e.wheel, o, *e.cell, s) + kFloor * view.scale(o, s);
-    st.max_ratio = std::max(st.max_ratio, e.error / tolerance);
+    const double tolerance = st.check_tolerance(view, e);
     if (e.error > tolerance) {
-      ++st.over;
       if (!staircase(o))
         ADD_FAILURE() << lk::output_name(static_cast<lk::Output>(o)) << " slot " << s << " wheel " << e.wheel
                       << " at y " << p.v[kY] << " creepage (" << p.v[kXi] << ", " << p.v[kEta] << ", "
