@@ -132,13 +132,14 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
     }
   }
   // A cell a located contact jump may cut: one-sided (jump_side.hpp); all others: one flag test.
+  const bool cut = d.has_jumps && jump_cell(d, w, loc);
   AxisLoc stencil_loc[kNumVars];  // cubic methods next to a jump: the stencil kept on the cell's side
-  if (d.has_jumps && d.method != Method::kLinear && !jump_cell(d, w, loc)) {
+  if (d.has_jumps && !cut && d.method != Method::kLinear) {
     std::copy(loc, loc + kNumVars, stencil_loc);
     cubic_stencil_limits(d, w, stencil_loc);
     loc = stencil_loc;
   }
-  if (d.has_jumps && jump_cell(d, w, loc)) interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
+  if (cut) interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
   else for (int b = 0; b < d.n_blocks; ++b) {
     const Block& block = d.block[w][b];
     if (d.creep_map.active && b == d.creep_block) {
