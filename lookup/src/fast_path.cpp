@@ -311,7 +311,10 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
   if (!finite) return false;
   // locate_state: y and load on their axes, the creepages clamped to their physical ranges, the
   // fixed variables compared with their values.
-  AxisLoc loc[kNumVars];
+  // Only y and load are located (kVarRoll between them stays zero): not the whole kNumVars array,
+  // whose zeroing GCC emits as a `rep stos` on every query.
+  static_assert(kVarY < kVarLoad && kVarRoll < kVarLoad);
+  AxisLoc loc[kVarLoad + 1];
   bool out = d.axis[kVarY].locate_fast(y, loc[kVarY]);
   out |= d.axis[kVarLoad].locate_fast(load, loc[kVarLoad]);
   const CreepMap& map = d.creep_map;
@@ -335,8 +338,11 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
       query_pieces(d.jumps[w], d.axis[kVarY], loc, 2, pieces);
       for (int s = 0; s < n; ++s)
         cut_slot<NG, NN, NC, NP, kAvx2, TC>(d, w, loc, creepage, pieces, slot_begin + s, contact[s]);
-    } else {
-      interpolate_jump_cell(d, w, loc, creepage, slot_begin, slot_end, contact);
+    } else {  // the generic one-sided path reads every variable's AxisLoc
+      AxisLoc all[kNumVars];
+      all[kVarY] = loc[kVarY];
+      all[kVarLoad] = loc[kVarLoad];
+      interpolate_jump_cell(d, w, all, creepage, slot_begin, slot_end, contact);
     }
     for (int s = 0; s < n; ++s) fold_status(d, q, contact[s]);
     return true;

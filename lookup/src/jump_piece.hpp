@@ -38,20 +38,32 @@ struct Piece {
 // Jumps of `list` left of the query at load node `node` of its cell (0 or 1), counted without a
 // branch per jump. The positions are sorted (the blend of two increasing lists with weights >= 0
 // rounds to a non-decreasing one), so this is the first position above yq, as a search finds it.
+// Only the jumps of the y cell's window (JumpWheel::window) are compared: those before it lie left
+// of every query of the cell at both load nodes (so their blend too), those after it right.
 // Blended positions do not depend on the node: callers count once for both.
 inline std::size_t jumps_left(const JumpWheel& j, int list, const AxisLoc* loc, double yq, int node) noexcept {
   const int l = j.load_axis ? loc[kVarLoad].i : 0;
   const bool blend = j.load_axis && j.matched[list][static_cast<std::size_t>(l)];
-  std::size_t m = 0;
+  auto window = [&](int ln) -> const int* {
+    return j.window[list].data() +
+           (static_cast<std::size_t>(ln) * static_cast<std::size_t>(j.y_cells) + static_cast<std::size_t>(loc[kVarY].i)) * 2;
+  };
   if (blend) {
     const double s = loc[kVarLoad].t;
     const std::vector<double>& lo_list = j.y[list][static_cast<std::size_t>(l)];
     const std::vector<double>& hi_list = j.y[list][static_cast<std::size_t>(l + 1)];
-    for (std::size_t k = 0; k < lo_list.size(); ++k) m += ((1.0 - s) * lo_list[k] + s * hi_list[k]) <= yq;
-  } else {
-    const std::vector<double>& own = j.y[list][static_cast<std::size_t>(l + node)];
-    for (std::size_t k = 0; k < own.size(); ++k) m += own[k] <= yq;
+    const int* wa = window(l);
+    const int* wb = window(l + 1);
+    const std::size_t first = static_cast<std::size_t>(std::min(wa[0], wb[0]));
+    const std::size_t last = static_cast<std::size_t>(std::max(wa[1], wb[1]));
+    std::size_t m = first;
+    for (std::size_t k = first; k < last; ++k) m += ((1.0 - s) * lo_list[k] + s * hi_list[k]) <= yq;
+    return m;
   }
+  const std::vector<double>& own = j.y[list][static_cast<std::size_t>(l + node)];
+  const int* wn = window(l + node);
+  std::size_t m = static_cast<std::size_t>(wn[0]);
+  for (std::size_t k = m; k < static_cast<std::size_t>(wn[1]); ++k) m += own[k] <= yq;
   return m;
 }
 

@@ -248,6 +248,23 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
       }
     }
   }
+  // Rounding margin of the windows: the blended jump positions and the query's y (x[c] + t (x[c+1]
+  // - x[c]), t in [0, 1]) are within a few ulps of the nodes' range; 1e-9 of the axis is far more.
+  const double margin = 1e-9 * (x[ya.size() - 1] - x[0]);
+  j.y_cells = y_cells;
+  for (int list = 0; list < 2; ++list) {
+    j.window[list].assign(n_load * static_cast<std::size_t>(y_cells) * 2, 0);
+    for (std::size_t l = 0; l < n_load; ++l) {
+      const std::vector<double>& own = j.y[list][l];
+      for (int c = 0; c < y_cells; ++c) {
+        const std::size_t at = (l * static_cast<std::size_t>(y_cells) + static_cast<std::size_t>(c)) * 2;
+        j.window[list][at] =
+            static_cast<int>(std::lower_bound(own.begin(), own.end(), x[c] - margin) - own.begin());
+        j.window[list][at + 1] =
+            static_cast<int>(std::upper_bound(own.begin(), own.end(), x[c + 1] + margin) - own.begin());
+      }
+    }
+  }
   for (int b = 0; b < d.n_blocks; ++b) read_samples(f, d, w, b, static_cast<std::size_t>(n_load), count);
   j.n_load_nodes = static_cast<std::size_t>(n_load);
   j.n_jumps = count;

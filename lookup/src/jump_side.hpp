@@ -58,6 +58,13 @@ struct JumpWheel {
   // query, done at load).
   std::vector<std::vector<int>> seg_first[2], seg_last[2];
   std::vector<std::vector<int>> index[2];  // [list][load node][k]: the jump's index in list 0
+  // The jumps a query in y cell c can find either side of it (jumps_left, jump_piece.hpp), per list:
+  // window[list][(load node * y_cells + c) * 2] jumps of the node lie left of the cell's first
+  // node by more than a rounding margin (so left of every query in it, blended in load or not),
+  // and those from window[..+ 1] on right of its last node by as much; only the ones between are
+  // compared with the query (usually 0-2 of them instead of the whole list).
+  std::vector<int> window[2];
+  int y_cells = 0;
   JumpSamples samples[kNumParts];          // per block of the wheel
   // Normalised creep coordinates (creep_map.hpp): the one-sided reciprocal creepage scales at the
   // jumps (the normal part's creep_scale_* at both ends of each jump, as the grid's in
