@@ -161,6 +161,17 @@ TEST(NonFinite, CreepagesBeyondPhysicalAreRefused) {
             std::string::npos);
 }
 
+// eval --load 78.5 (kN typed for N) is refused with the SI spelling; 0 (unloaded) and real loads pass.
+TEST(NonFinite, EvalLoadInKiloNewtonsIsRefused) {
+  const Scene scene = parse_scene(kTreadScene, "t.toml");
+  StateEvalRequest request;
+  request.y = 0.001;
+  request.load = 78.5;
+  EXPECT_NE(message_of([&] { evaluate_state(scene, request); }).find("78.5e3"), std::string::npos);
+  request.load = 78.5e3;
+  EXPECT_EQ(message_of([&] { evaluate_state(scene, request); }), "(no exception)");
+}
+
 // A creepage past the scene check (a caller building the grid itself) overflows FASTSIM to NaN:
 // the table stores zeros with `failed`, never NaN with `converged`.
 TEST(NonFinite, NaNInTheKernelIsFailedNotConverged) {
