@@ -196,6 +196,29 @@ TEST(NonFinite, NaNInTheKernelIsFailedNotConverged) {
   EXPECT_GT(failed, 0u);
 }
 
+// A column that fails (here a wheel off its rail at y = 0.1 m) keeps positive creep scales in a
+// normalised table: with zeros the lookup refused the whole table ("holds a scale that is not
+// finite and > 0"), so one failed point made every other unusable.
+TEST(NonFinite, FailedColumnKeepsPositiveCreepScales) {
+  const std::string text = std::string(kTreadScene).replace(std::string(kTreadScene).find("y = [0.001]"), 11,
+                                                            "y = [0.001, 0.1]") +
+                           "eta = [0.0]\nphi = [0.0]\ncreep_coordinates = \"normalised\"\n";
+  const Scene scene = parse_scene(text, "t.toml");
+  ASSERT_TRUE(scene.creep_normalised);
+  const SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+  ASSERT_GT(r.summary.failures, 0u);
+  std::size_t scales = 0;
+  for (const TableGroup& g : r.table.groups) {
+    for (const char* name : {"creep_scale_xi", "creep_scale_eta", "creep_scale_phi"}) {
+      const TableDataset* d = g.find(name);
+      if (!d) continue;
+      for (double v : d->values) EXPECT_TRUE(std::isfinite(v) && v > 0.0) << g.path << "/" << name << " " << v;
+      scales += d->values.size();
+    }
+  }
+  EXPECT_GT(scales, 0u);
+}
+
 TEST(NonFinite, StatusHelperDropsConverged) {
   const StatusBits s = non_finite_status(status::kConverged | status::kTwoPoint);
   EXPECT_EQ(s, status::kFailed | status::kTwoPoint);
