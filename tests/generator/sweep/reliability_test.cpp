@@ -219,6 +219,24 @@ TEST(NonFinite, FailedColumnKeepsPositiveCreepScales) {
   EXPECT_GT(scales, 0u);
 }
 
+// A y grid reaching off the rail with the equilibrium roll fails in the jump locator: the message
+// names the scene file and the stage (it was the bare "wheel 'S1002' does not overlap its rail").
+TEST(NonFinite, JumpLocatorFailureNamesSceneAndStage) {
+  testing::TempDir dir("jump_locator_failure");
+  const std::string text = std::string(kTreadScene).replace(std::string(kTreadScene).find("y = [0.001]"), 11,
+                                                            "y = {start = -0.08, stop = 0.08, step = 0.01}") +
+                           "equilibrium_roll = true\n";
+  std::ofstream(dir / "off.toml") << text;
+  GenerateOptions o;
+  o.scene = dir / "off.toml";
+  o.output = dir / "off.h5";
+  o.threads = 1;
+  const std::string message = message_of([&] { generate_table(o); });
+  EXPECT_NE(message.find("off.toml: locating the contact jumps along y"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not overlap its rail"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(dir / "off.h5"));
+}
+
 TEST(NonFinite, StatusHelperDropsConverged) {
   const StatusBits s = non_finite_status(status::kConverged | status::kTwoPoint);
   EXPECT_EQ(s, status::kFailed | status::kTwoPoint);
