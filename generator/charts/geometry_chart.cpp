@@ -41,6 +41,7 @@ std::pair<std::filesystem::path, std::filesystem::path> draw_geometry_chart(cons
 set datafile separator ','
 set multiplot layout 2,1 title "{title}: rigid contact geometry, roll {roll}"
 set grid
+set key top left
 set xlabel 'wheelset lateral displacement y [mm] (+ left)'
 set ylabel 'r_left - r_right [mm]'
 plot {csv} every ::1 using ($1*1e3):($3*1e3) with lines lw 2 title 'rolling radius difference'
@@ -50,7 +51,7 @@ plot {csv} every ::1 using ($1*1e3):($4*180/pi) with lines lw 2 title 'left whee
 unset multiplot
 )",
                                          fmt::arg("csv", gnuplot_quote(csv)),
-                                         fmt::arg("title", gnuplot_text(scene.name)),
+                                         fmt::arg("title", gnuplot_text(scene_title(scene.name, scene.description))),
                                          fmt::arg("roll", scene.equilibrium_roll ? "at kinematic equilibrium" : "0"));
   run_gnuplot(dir / "geometry.gp", script, png);
   return {csv, png};

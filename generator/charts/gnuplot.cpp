@@ -78,6 +78,10 @@ std::string gnuplot_quote(const std::filesystem::path& path) {
   return quoted + "'";
 }
 
+std::string scene_title(const std::string& name, const std::string& description) {
+  return description.empty() ? name : name + " (" + description + ")";
+}
+
 std::string gnuplot_text(const std::string& text) {
   std::string out;
   for (char c : text) {

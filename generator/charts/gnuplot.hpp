@@ -19,6 +19,10 @@ std::string gnuplot_quote(const std::filesystem::path& path);
 // names and other free text in titles: a '"' in a scene name cannot end the string.
 std::string gnuplot_text(const std::string& text);
 
+// The scene as a chart title names it: "name (description)", or "name" without a description, so
+// a chart says which profiles and track it shows ("default" alone does not).
+std::string scene_title(const std::string& name, const std::string& description);
+
 // Draws `png` with `script`, which starts with its `set terminal` line and has no `set output`
 // (run_gnuplot adds it). The script is saved as `script_path` (to redraw the chart by hand) and
 // piped to gnuplot, which writes a temporary beside `png`; the temporary replaces `png` only when

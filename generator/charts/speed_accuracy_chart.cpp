@@ -79,7 +79,7 @@ SpeedAccuracyResult draw_speed_accuracy_charts(const Scene& scene, const std::fi
       s += fmt::format(
           "{csv} using (strcol(3) eq '{n}' ? ${t} : 1/0):{e} with points pt {pt} ps 1.3 lc rgb '{c}' title '{ti}', \\\n"
           "     {csv} using (strcol(3) eq '{n}' && ${p} == 1 ? ${t} : 1/0):{e}:1 with labels noenhanced "
-          "font ',7' offset 0,0.8 tc rgb '{c}' notitle, \\\n     ",
+          "font ',7' left offset 0.8,0.6 tc rgb '{c}' notitle, \\\n     ",
           fmt::arg("csv", gnuplot_quote(csv)), fmt::arg("n", f.name), fmt::arg("t", tcol), fmt::arg("e", ecol),
           fmt::arg("p", pcol),
           fmt::arg("pt", f.pt), fmt::arg("c", f.color), fmt::arg("ti", f.title));
@@ -98,6 +98,9 @@ set format y '%g'
 set xlabel 'time per evaluation [us] (models: geometry + normal + FASTSIM + wear; tables: one lookup)'
 set ylabel 'median |F - F_{{ref}}| / |F_{{ref}}| (creep force)'
 set key bottom left font ',8' box opaque
+# Labels start right of their point (left-aligned): centred ones ran past the y axis, over its tics,
+# for the lookups at ~0.1 us; the x range starts below them for the same reason.
+set xrange [0.03:*]
 set multiplot layout 1,2 title "{scene}: speed against accuracy, {ref}\n{setup}" font ',11'
 )GP",
                                    fmt::arg("scene", gnuplot_text(scene.name)),
@@ -127,7 +130,7 @@ plot {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):10 with points ps 1.4 pt 7 l
      {csv} using (strcol(2) eq 'cubic' ? $6 : 1/0):10 with points ps 1.4 pt 6 lc rgb '#1b9e77' title 'cubic, tread', \
      {csv} using (strcol(2) eq 'cubic' ? $6 : 1/0):11 with points ps 1.4 pt 4 lc rgb '#d95f02' title 'cubic, flange', \
      {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):14 with points ps 1.4 pt 9 lc rgb '#7570b3' title 'linear, interpolation only (vs direct model)', \
-     {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):10:(sprintf('%gmm%s', $3, strcol(4) eq 'fine' ? ' fine' : '')) with labels font ',8' offset 0,0.8 notitle
+     {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):10:(strcol(1)[8:*]) with labels font ',8' offset 0,0.8 notitle
 )GP",
                                           fmt::arg("csv", gnuplot_quote(mem_csv)),
                                           fmt::arg("scene", gnuplot_text(scene.name)), fmt::arg("ref", ref_title));

@@ -88,13 +88,18 @@ void draw_stability_chart(const Scene& scene, const std::filesystem::path& out_d
     // Each flag sits at its own vertical offset inside the row, so overlapping flags stay visible.
     const double offset = -0.4 + 0.8 * static_cast<double>(k) / (kFlags.size() - 1);
     plots += fmt::format(
-        "{}{} every ::1 using 1:($3=={} ? $2+({:.3f}) : NaN) with points pt 5 ps 0.35 lc rgb '{}' title '{}'",
-        k ? ", \\\n     " : "", gnuplot_quote(flags_csv), k, offset, kFlags[k].colour, kFlags[k].name);
+        "{}{} every ::1 using 1:($3=={} ? $2+({:.3f}) : NaN) with points pt 5 ps 0.35 lc rgb '{}' notitle",
+        k ? ", \\\n     " : "", gnuplot_quote(flags_csv), k, offset, kFlags[k].colour);
+  }
+  // The legend gets its own, larger squares (keyentry): the data's 0.35 squares were too small to
+  // tell the colours apart in the key.
+  for (const auto& flag : kFlags) {
+    plots += fmt::format(", \\\n     keyentry with points pt 5 ps 1.5 lc rgb '{}' title '{}'", flag.colour, flag.name);
   }
   const std::filesystem::path png = out_dir / "stability_map.png";
   const std::string script = fmt::format(R"gp(set terminal pngcairo noenhanced size 1400,{height} font ",10"
 set datafile separator ','
-set title "{title}: status flags of each normal model across y (load {load:.1f} kN, roll {roll})"
+set title "{title}\nstatus flags of each normal model across y (load {load:.1f} kN, roll {roll})"
 set xlabel 'wheelset lateral displacement y [mm] (+ left)'
 set ytics ({ytics})
 set yrange [-0.7:{top}]
@@ -103,7 +108,9 @@ set grid xtics
 set key outside right top
 plot {plots}
 )gp",
-      fmt::arg("height", 300 + 40 * row_labels.size()), fmt::arg("title", gnuplot_text(scene.name)), fmt::arg("load", scene.grids.load[scene.grids.load.size() / 2] * 1e-3),
+      fmt::arg("height", 300 + 40 * row_labels.size()),
+      fmt::arg("title", gnuplot_text(scene_title(scene.name, scene.description))),
+      fmt::arg("load", scene.grids.load[scene.grids.load.size() / 2] * 1e-3),
       fmt::arg("roll", scene.equilibrium_roll ? "kinematic equilibrium" : "0"), fmt::arg("ytics", ytics),
       fmt::arg("top", row_labels.size() - 0.3), fmt::arg("xmin", options.y_min * 1e3),
       fmt::arg("xmax", options.y_max * 1e3), fmt::arg("plots", plots));

@@ -32,8 +32,9 @@ struct GeometryCommandOptions {
 };
 
 void run_geometry_chart(const GeometryCommandOptions& opt) {
+  const Scene scene = load_scene(opt.scene_path);  // a bad scene leaves no output directory behind
   require_writable_directory(opt.out_dir);
-  const auto [csv, png] = draw_geometry_chart(load_scene(opt.scene_path), opt.out_dir, opt.chart);
+  const auto [csv, png] = draw_geometry_chart(scene, opt.out_dir, opt.chart);
   diagnostics(opt.quiet) << fmt::format("chart-geometry: wrote {} and {}\n", csv.string(), png.string());
 }
 
@@ -113,8 +114,9 @@ void add_chart_commands(CLI::App& app) {
   add_scene_and_out(stab, st->scene_path, st->out_dir, st->quiet);
   add_y_range(stab, st->map.y_min, st->map.y_max, st->map.y_step);
   stab->callback([st] {
+    const Scene scene = load_scene(st->scene_path);
     require_writable_directory(st->out_dir);
-    draw_stability_chart(load_scene(st->scene_path), st->out_dir, st->map);
+    draw_stability_chart(scene, st->out_dir, st->map);
     diagnostics(st->quiet) << fmt::format("chart-stability: wrote {}/stability_map.csv and stability_map.png\n", st->out_dir);
   });
 
@@ -136,8 +138,9 @@ void add_chart_commands(CLI::App& app) {
                    "Half-space maximum pressure to draw as a line [Pa] (e.g. CONTACT block A: 888e6)");
   pres->callback([pr] {
     pr->chart.side = pr->side == "left" ? Side::left : Side::right;
+    const Scene scene = load_scene(pr->scene_path);
     require_writable_directory(pr->out_dir);
-    draw_pressure_chart(load_scene(pr->scene_path), pr->out_dir, pr->chart);
+    draw_pressure_chart(scene, pr->out_dir, pr->chart);
     diagnostics(pr->quiet) << fmt::format("chart-pressure: wrote {}/pressure.csv and pressure.png\n", pr->out_dir);
   });
 

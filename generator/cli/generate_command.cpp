@@ -22,7 +22,9 @@ void add_generate_command(CLI::App& app) {
   auto opt = std::make_shared<GenerateOptions>();
   auto shard = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("generate", "Compute a contact table (HDF5, docs/table-format.md) from a scene");
-  cmd->add_option("scene", opt->scene, "Scene file (TOML, docs/scenes.md)")->required()->check(CLI::ExistingFile);
+  // No CLI::ExistingFile: a missing scene is an input error (exit 1, named by the scene reader), not
+  // a usage error (exit 2), as in eval, inspect and query.
+  cmd->add_option("scene", opt->scene, "Scene file (TOML, docs/scenes.md)")->required();
   cmd->add_option("-o,--output", opt->output, "Table file to write (HDF5)")->required();
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber)

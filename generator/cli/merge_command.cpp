@@ -18,7 +18,8 @@ void add_merge_command(CLI::App& app) {
   auto inputs = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("merge", "Join the shards of generate --shard I/N into one table");
   cmd->add_option("output", *output, "Table file to write (HDF5)")->required();
-  cmd->add_option("shards", *inputs, "All N shard files, in any order")->required()->check(CLI::ExistingFile);
+  // A missing shard is an input error (exit 1, named by the table reader), not a usage error.
+  cmd->add_option("shards", *inputs, "All N shard files, in any order")->required();
   auto quiet = add_quiet_flag(cmd);
   cmd->callback([output, inputs, quiet] {
     // The output is checked (check_output_path) by merge_table_files before any shard is read.

@@ -189,8 +189,13 @@ void add_query_command(CLI::App& app) {
   cmd->add_option("--creepage", opt->creepage, "Creepages XI,ETA,PHI [1, 1, rad/m] (default 0,0,0)")
       ->delimiter(',')
       ->expected(3);
-  cmd->add_option("--wheel", opt->wheel, "left, right or both")->capture_default_str();
-  cmd->add_option("--method", opt->method, "Interpolation: linear, cubic or monotone-cubic")->capture_default_str();
+  // A value outside the list is a usage error (exit 2, README), like an unknown option.
+  cmd->add_option("--wheel", opt->wheel, "left, right or both")
+      ->check(CLI::IsMember({"left", "right", "both"}))
+      ->capture_default_str();
+  cmd->add_option("--method", opt->method, "Interpolation: linear, cubic or monotone-cubic")
+      ->check(CLI::IsMember({"linear", "cubic", "monotone-cubic"}))
+      ->capture_default_str();
   cmd->add_flag("--json", opt->json, "Print JSON (stable keys, SI units) instead of text");
   add_quiet_flag(cmd);  // query prints results only; accepted for uniformity
   cmd->callback([opt] { run_query(*opt); });

@@ -18,9 +18,8 @@ void add_simulate_command(CLI::App& app) {
   auto scene_file = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Run a bogie over a route with a contact table in the dynamics and accumulate wheel wear with each wear post-processor (docs/simulation.md)");
-  cmd->add_option("scene", *scene_file, "Simulation scene (TOML, docs/simulation.md)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  // A missing scene is an input error (exit 1, named by the scene reader), not a usage error.
+  cmd->add_option("scene", *scene_file, "Simulation scene (TOML, docs/simulation.md)")->required();
   cmd->add_option("--out", opt->out, "Output directory (results in OUT/<scene name>/)")->required();
   cmd->add_option("--threads", opt->threads, "Table generation threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber)
@@ -33,9 +32,11 @@ void add_simulate_command(CLI::App& app) {
                   "Wear post-processors instead of the scene's (e.g. hertz stripes-a)");
   auto quiet = add_quiet_flag(cmd);
   cmd->callback([opt, scene_file, quiet] {
-    require_writable_directory(opt->out);  // now, not after the first table
-    opt->log = *quiet ? nullptr : &std::cerr;
+    // The scene first (a bad one leaves no output directory behind), then the output directory:
+    // now, not after the first table.
     const SimulationScene scene = load_simulation_scene(*scene_file);
+    require_writable_directory(opt->out);
+    opt->log = *quiet ? nullptr : &std::cerr;
     const SimulationSummary summary = run_simulation(scene, *opt);
     std::cout << fmt::format("{}: {} ({} dynamics, {})\n", summary.name, (summary.directory / "summary.json").string(),
                              summary.dynamics_model, opt->direct ? "direct contact evaluation" : "table lookup");

@@ -33,6 +33,15 @@ using scene_toml::type_name;
 
 bool fraction(double v) { return v >= 0.0 && v < 0.5; }
 
+// Plausibility bounds that catch a value typed in the wrong unit (scene values are SI): a gauge of
+// 1435 (mm for m) puts every wheel off its rail and a table of failed points, a wheel load of 78.5
+// (kN for N) or a Young's modulus of 210 (GPa for Pa) a table of meaningless patches, each without
+// another error. The bounds lie far outside any real wheelset and far inside the unit mistake.
+bool wheelset_size(double v) { return v > 0.0 && v <= 10.0; }          // gauge, back to back, radius [m]
+bool measuring_depth(double v) { return v >= 0.0 && v <= 0.1; }        // [m]
+bool within_a_metre(double v) { return std::abs(v) <= 1.0; }           // profile positions [m]
+bool stiffness(double v) { return v >= 1e6; }                          // moduli, hardness [Pa]
+
 // "1:40" -> 0.025; a number is the tangent itself.
 double parse_inclination(const Section& s, const toml::node& n) {
   if (!n.is_string()) {
@@ -294,17 +303,21 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   }
 
   Section tr = section(ctx, root, "track", {"gauge", "gauge_measuring_depth", "rail_inclination"});
-  scene.track.gauge = tr.number("gauge", scene.track.gauge, positive, "> 0 [m]");
+  scene.track.gauge = tr.number("gauge", scene.track.gauge, wheelset_size, "in (0, 10] m (SI: standard gauge is 1.435)");
   scene.track.gauge_measuring_depth =
-      tr.number("gauge_measuring_depth", scene.track.gauge_measuring_depth, non_negative, ">= 0 [m]");
+      tr.number("gauge_measuring_depth", scene.track.gauge_measuring_depth, measuring_depth,
+                "in [0, 0.1] m (SI: 14 mm is 0.014)");
   if (const toml::node* n = tr.node("rail_inclination")) scene.track.rail_inclination = parse_inclination(tr, *n);
 
   Section ws = section(ctx, root, "wheelset", {"back_to_back", "flange_back_position", "nominal_radius"});
-  scene.wheelset.back_to_back = ws.number("back_to_back", scene.wheelset.back_to_back, positive, "> 0 [m]");
+  scene.wheelset.back_to_back = ws.number("back_to_back", scene.wheelset.back_to_back, wheelset_size,
+                                           "in (0, 10] m (SI: 1360 mm is 1.360)");
   scene.wheelset.flange_back_position =
-      ws.number("flange_back_position", scene.wheelset.flange_back_position);
+      ws.number("flange_back_position", scene.wheelset.flange_back_position, within_a_metre,
+                "in [-1, 1] m (SI: -70 mm is -0.070)");
   scene.wheelset.nominal_radius =
-      ws.number("nominal_radius", scene.wheelset.nominal_radius, positive, "> 0 [m]");
+      ws.number("nominal_radius", scene.wheelset.nominal_radius, wheelset_size,
+                "in (0, 10] m (SI: 460 mm is 0.460)");
 
   Section ge = section(ctx, root, "geometry", {"search_step", "max_separation", "band_step",
                                                "band_half_width", "band_max_gap", "flange_angle",
@@ -320,7 +333,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   g.near_equal_distance = ge.number("near_equal_distance", g.near_equal_distance, non_negative, ">= 0 [m]");
 
   Section ma = section(ctx, root, "material", {"youngs_modulus", "poisson_ratio"});
-  scene.material.youngs_modulus = ma.number("youngs_modulus", scene.material.youngs_modulus, positive, "> 0 [Pa]");
+  scene.material.youngs_modulus = ma.number("youngs_modulus", scene.material.youngs_modulus, stiffness,
+                                                 ">= 1e6 Pa (SI: 210 GPa is 210e9)");
   scene.material.poisson_ratio = ma.number("poisson_ratio", scene.material.poisson_ratio, fraction, "in [0, 0.5)");
 
   Section co = section(ctx, root, "contact",
@@ -346,7 +360,7 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
                 [](double v) { return v >= 0.05e-3 && v <= 5e-3; }, "in [0.05e-3, 5e-3] [m]");
 
   Section we = section(ctx, root, "wear", {"hardness", "lubrication_factor"});
-  scene.wear.hardness = we.number("hardness", scene.wear.hardness, positive, "> 0 [Pa]");
+  scene.wear.hardness = we.number("hardness", scene.wear.hardness, stiffness, ">= 1e6 Pa (SI: 2.75 GPa is 2.75e9)");
   scene.wear.lubrication_factor = we.number("lubrication_factor", scene.wear.lubrication_factor, positive, "> 0");
 
   Section ac = section(ctx, root, "accuracy",
@@ -383,6 +397,18 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   grids.load = grid_axis("load", gr.required("load"));
   for (double load : grids.load) {
     if (!(load > 0.0)) fail(ctx, gr.node("load")->source(), "grid.load", "loads must be > 0 [N]");
+    if (load < kMinWheelLoad) {
+      fail(ctx, gr.node("load")->source(), "grid.load",
+           fmt::format("a wheel load of {} N is below {} N: loads are in N (SI: 78.5 kN is 78.5e3)", load,
+                       kMinWheelLoad));
+    }
+  }
+  for (double y : grids.y) {
+    if (!(std::abs(y) <= kMaxLateralShift)) {
+      fail(ctx, gr.node("y")->source(), "grid.y",
+           fmt::format("|y| = {} m is beyond {} m, off any rail head: y is in m (SI: 10 mm is 0.010)", std::abs(y),
+                       kMaxLateralShift));
+    }
   }
   scene.equilibrium_roll = gr.boolean("equilibrium_roll", false);
   if (const auto coordinates = gr.string("creep_coordinates")) {

@@ -128,6 +128,12 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
 inline constexpr double kMaxCreepage = 10.0;        // |xi|, |eta| [-]
 inline constexpr double kMaxSpinCreepage = 1000.0;  // |phi| [1/m]
 
+// A vertical wheel load below this is a load typed in kN (scene grids, eval --load): railtab's
+// profiles are full-size railway profiles, whose wheel loads are tens of kN [N].
+inline constexpr double kMinWheelLoad = 1e3;
+// A wheelset lateral displacement beyond this is off any rail head: a y typed in mm [m].
+inline constexpr double kMaxLateralShift = 0.1;
+
 // Throws railtab::Error naming `what` when |xi| or |eta| exceeds kMaxCreepage or |phi| exceeds
 // kMaxSpinCreepage.
 void check_creepage_magnitude(const std::string& what, double xi, double eta, double phi);

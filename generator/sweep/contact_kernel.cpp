@@ -32,6 +32,18 @@ void fail_cells(ColumnOutput& out, std::size_t wheel, std::size_t part, std::siz
   for (std::size_t c = begin; c < end; ++c) out.status(wheel, part)[c] = bits;
 }
 
+// Format 2.1: failed normal cells [begin, end) keep the nominal saturation scales, as an empty
+// slot does. The lookup refuses a scale that is not > 0 (it divides by it), so with the zeros a
+// single failed column made the whole table unloadable.
+void fail_scales(const KernelData& k, ColumnOutput& out, std::size_t wheel, std::size_t begin, std::size_t end) {
+  if (!k.normalised) return;
+  const double values[3] = {creep_map::kNominal.xi, creep_map::kNominal.eta, creep_map::kNominal.phi};
+  for (std::size_t j = 0; j < 3; ++j) {
+    double* scale = out.values(wheel, kNormalPart, std::size(kNormalOutputs) + j);
+    for (std::size_t c = begin; c < end; ++c) scale[c] = values[j];
+  }
+}
+
 // Format 2.1: the saturation scales of a slot's creepage-free contact. Kalker's (creep_map::scales:
 // c^2 = area / pi, C_ij at the patch's a/b) set the size of the probe creepages; the scales are
 // then those of the model's own linear creep coefficients, -dF/d(creepage) of FASTSIM on the slot's
@@ -76,6 +88,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
                             state.roll, e.what()));
     fail_cells(out, wheel, kGeometryPart, 0, kSlots, failure_status(state));
     fail_cells(out, wheel, kNormalPart, 0, nload * kSlots, failure_status(state));
+    fail_scales(k, out, wheel, 0, nload * kSlots);
     fail_cells(out, wheel, kCreepPart, 0, ncreep, failure_status(state));
     fail_cells(out, wheel, kWearPart, 0, ncreep, failure_status(state));
     return;
@@ -106,6 +119,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
       out.failure(fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N: {}", to_string(side),
                               state.y, state.roll, k.grids.load[il], e.what()));
       fail_cells(out, wheel, kNormalPart, il * kSlots, (il + 1) * kSlots, failure_status(state));
+      fail_scales(k, out, wheel, il * kSlots, (il + 1) * kSlots);
       const std::size_t per_load = k.creepages() * kSlots;
       fail_cells(out, wheel, kCreepPart, il * per_load, (il + 1) * per_load, failure_status(state));
       fail_cells(out, wheel, kWearPart, il * per_load, (il + 1) * per_load, failure_status(state));

@@ -123,10 +123,22 @@ SweepSummary generate_table(const GenerateOptions& options) {
     if (log) locate_progress = [&locating](const SweepProgress& p) { locating(p); };
     if (log) sample_progress = [&sampling](const SweepProgress& p) { sampling(p); };
     const auto t0 = std::chrono::steady_clock::now();
-    const ContactJumps jumps = locate_jumps(scene, {}, options.threads, locate_progress);
-    locating.finish();
-    const auto t1 = std::chrono::steady_clock::now();
-    add_jumps(result.table, scene, jumps, {}, options.threads, sample_progress);
+    ContactJumps jumps;
+    auto t1 = t0;
+    try {
+      jumps = locate_jumps(scene, {}, options.threads, locate_progress);
+      locating.finish();
+      t1 = std::chrono::steady_clock::now();
+      add_jumps(result.table, scene, jumps, {}, options.threads, sample_progress);
+    } catch (const Interrupted&) {
+      throw;
+    } catch (const Error& e) {
+      // The locator and the one-sided values solve states between the grid nodes and stop at the
+      // first failure, where the sweep flags a failed point and goes on: say which stage and file.
+      throw Error(fmt::format("{}: locating the contact jumps along y: {} (keep the grid's y where the "
+                              "wheels stay on their rails)",
+                              options.scene.string(), e.what()));
+    }
     sampling.finish();
     const auto t2 = std::chrono::steady_clock::now();
     if (log) {

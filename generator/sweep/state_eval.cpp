@@ -149,6 +149,9 @@ nlohmann::json evaluate_state(const Scene& base, const StateEvalRequest& request
     load = scene.grids.load.front();
   }
   RAILTAB_CHECK(std::isfinite(load) && load >= 0.0, "--load must be finite and >= 0 N, got {}", load);
+  // 0 is a rigid, unloaded wheelset; between 0 and 1 kN it is a load typed in kN (scene.hpp).
+  RAILTAB_CHECK(load == 0.0 || load >= kMinWheelLoad,
+                "--load {} N is below {} N: the load is in N (SI: 78.5 kN is 78.5e3)", load, kMinWheelLoad);
 
   const WheelsetContactGeometry geometry = solver.solve({request.y, roll});
   const FastsimOptions fastsim = fastsim_options(scene);

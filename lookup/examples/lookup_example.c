@@ -2,6 +2,7 @@
 /* Loads a railtab table and queries the left wheel along a lateral sweep, from C.
  * Usage: railtab_lookup_example TABLE.h5          (exit status 0 on success) */
 #include <stdio.h>
+#include <string.h>
 
 #include "railtab_lookup.h"
 
@@ -29,9 +30,23 @@ int main(int argc, char** argv) {
     railtab_lookup_axis(table, a, &name, &units, &n, &nodes);
     printf("  axis %-4s [%s] %zu nodes, %g .. %g\n", name, units, n, nodes[0], nodes[n - 1]);
   }
-  /* Untabulated variables (e.g. roll, load) must sit at the table's fixed values. */
+  /* Untabulated variables (e.g. roll) must sit at the table's fixed values: default_state puts
+   * them there. It leaves the tabulated ones at 0, so a simulation sets each one it drives: here
+   * y and xi, and the wheel load when the table tabulates it (the default table: 60 .. 100 kN; a
+   * load left at 0 would be clamped to 60 kN and flagged out_of_range). */
   railtab_lookup_state state;
   railtab_lookup_default_state(table, &state);
+  for (int a = 0; a < info.n_axes; ++a) {
+    const char* name;
+    const char* units;
+    size_t n;
+    const double* nodes;
+    railtab_lookup_axis(table, a, &name, &units, &n, &nodes);
+    if (strcmp(name, "load") == 0) {
+      state.load = 0.5 * (nodes[0] + nodes[n - 1]); /* N, mid-range: a simulation's own load */
+      printf("load = %g N\n", state.load);
+    }
+  }
   railtab_lookup_result result;
   for (int k = 0; k <= 4; ++k) {
     state.y = -0.004 + 0.002 * k; /* m */

@@ -61,3 +61,35 @@ def test_unwritable_output_refused_before_work(railtab_program, args):
     r = run(railtab_program, *args, timeout=20)   # refused at once: no sweep, no table generation
     assert r.returncode == 1 and r.stdout == ""
     assert "refused before starting" in r.stderr and "progress" not in r.stderr
+
+
+@pytest.mark.parametrize("args", [
+    ["eval", "--scene", "MISSING"],
+    ["generate", "MISSING", "-o", "OUT.h5"],
+    ["inspect", "MISSING"],
+    ["query", "MISSING", "--y", "0", "--load", "78500"],
+    ["merge", "OUT.h5", "MISSING"],
+    ["simulate", "MISSING", "--out", "OUT"],
+    ["chart-geometry", "--scene", "MISSING", "--out", "OUT"],
+    ["chart-stability", "--scene", "MISSING", "--out", "OUT"],
+    ["chart-pressure", "--scene", "MISSING", "--out", "OUT"],
+])
+def test_missing_input_is_error_1_naming_it_with_nothing_written(railtab_program, tmp_path, args):
+    # README: an unreadable file is an error (1), not a usage error (2): generate, merge and simulate
+    # gave 2 with CLI11's "File does not exist"; the chart commands and simulate created OUT first.
+    missing, out = str(tmp_path / "no-such-input"), tmp_path / "out"
+    r = run(railtab_program, *[a.replace("MISSING", missing).replace("OUT", str(out)) for a in args], timeout=20)
+    assert r.returncode == 1 and r.stdout == "", (args, r.returncode, r.stderr)
+    assert missing in r.stderr and r.stderr.startswith("railtab: error: "), r.stderr
+    assert list(tmp_path.iterdir()) == [], list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("args", [
+    ["query", "TABLE", "--y", "0", "--load", "78500", "--method", "quadratic"],
+    ["query", "TABLE", "--y", "0", "--load", "78500", "--wheel", "middle"],
+    ["eval", "--scene", SCENE, "--model", "hertzz"],
+])
+def test_value_outside_a_list_is_usage_error_2(railtab_program, default_table, args):
+    r = run(railtab_program, *[str(default_table) if a == "TABLE" else a for a in args])
+    assert r.returncode == 2 and r.stdout == "", (args, r.returncode, r.stderr)
+    assert args[-1] in r.stderr, r.stderr

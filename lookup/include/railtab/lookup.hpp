@@ -6,8 +6,8 @@
 // neither Eigen, oneTBB nor HDF5, and nothing from railtab's core library.
 //
 //   auto table = railtab::lookup::Table::load("default.h5");          // throws LoadError
-//   railtab::lookup::State s = table.default_state();                  // fixed axes filled in
-//   s.y = 0.003; s.xi = 1e-3;
+//   railtab::lookup::State s = table.default_state();                  // fixed axes filled in,
+//   s.y = 0.003; s.load = 78500; s.xi = 1e-3;                           // tabulated ones at 0
 //   railtab::lookup::Result r;
 //   table.query(railtab::lookup::Wheel::kLeft, s, r);                  // never throws, no locks
 //   double fx = r.contact[0].value[railtab::lookup::kFx];

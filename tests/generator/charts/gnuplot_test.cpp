@@ -27,6 +27,12 @@ TEST(Gnuplot, QuotesPathsForGnuplot) {
   EXPECT_EQ(gnuplot_text("a\"b\\c"), "a\\\"b\\\\c");
 }
 
+// Chart titles name the scene's profiles and track (its description), not only its name.
+TEST(Gnuplot, SceneTitleCarriesTheDescription) {
+  EXPECT_EQ(scene_title("default", "S1002 on UIC60 1:40"), "default (S1002 on UIC60 1:40)");
+  EXPECT_EQ(scene_title("t", ""), "t");
+}
+
 TEST(Gnuplot, HostilePathDrawsTheChartAndRunsNothing) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
   testing::TempDir base("gnuplot_hostile");

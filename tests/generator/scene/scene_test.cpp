@@ -165,6 +165,37 @@ TEST(Scene, ErrorsNameFileKeyAndLine) {
   }
 }
 
+// Scene values are SI; a value typed in mm, kN or GPa is refused with the SI spelling of a typical
+// value, instead of a table of off-rail or meaningless points (a gauge of 1435 m gave a table whose
+// every point failed and which the lookup then refused to load).
+TEST(Scene, ValuesInTheWrongUnitAreRefused) {
+  const std::string m = kMinimal;  // grid is the last section
+  const std::string head = m.substr(0, m.find("y = "));
+  std::vector<BadCase> cases{
+      {"gauge in mm", m + "[track]\ngauge = 1435\n", "track.gauge", "1.435"},
+      {"measuring depth in mm", m + "[track]\ngauge_measuring_depth = 14\n", "track.gauge_measuring_depth", "0.014"},
+      {"back to back in mm", m + "[wheelset]\nback_to_back = 1360\n", "wheelset.back_to_back", "1.360"},
+      {"flange back in mm", m + "[wheelset]\nflange_back_position = -70\n", "wheelset.flange_back_position",
+       "-0.070"},
+      {"radius in mm", m + "[wheelset]\nnominal_radius = 460\n", "wheelset.nominal_radius", "0.460"},
+      {"modulus in GPa", m + "[material]\nyoungs_modulus = 210\n", "material.youngs_modulus", "210e9"},
+      {"hardness in GPa", m + "[wear]\nhardness = 2.75\n", "wear.hardness", "2.75e9"},
+      {"load in kN", head + "y = [0.0]\nload = [60, 78.5, 100]\n", "grid.load", "78.5e3"},
+      {"y in mm", head + "y = {start = -10, stop = 10, step = 0.5}\nload = 78500\n", "grid.y", "0.010"},
+  };
+  for (const BadCase& c : cases) {
+    std::string message = error_of(c.text);
+    EXPECT_NE(message.find(c.needle1), std::string::npos) << c.what << ": " << message;
+    EXPECT_NE(message.find(c.needle2), std::string::npos) << c.what << ": " << message;
+    EXPECT_EQ(message.rfind("bad.toml:", 0), 0u) << c.what << ": " << message;
+  }
+  // The bounds leave every real wheelset alone: metre gauge, a 1.676 m broad gauge, a 0.3 m radius.
+  EXPECT_EQ(error_of(m + "[track]\ngauge = 1.0\n"), "");
+  EXPECT_EQ(error_of(m + "[track]\ngauge = 1.676\n"), "");
+  EXPECT_EQ(error_of(m + "[wheelset]\nnominal_radius = 0.3\n"), "");
+  EXPECT_EQ(error_of(head + "y = [-0.05, 0.05]\nload = [5e3, 250e3]\n"), "");
+}
+
 TEST(Scene, ErrorGivesTheLineOfTheKey) {
   std::string text = std::string(kMinimal) + "[track]\n\ngague = 1.435\n";
   int line = 0;
@@ -178,7 +209,7 @@ TEST(Scene, ProfileFileResolvedRelativeToScene) {
   std::filesystem::create_directories(dir / "profiles");
   std::ofstream(dir / "profiles" / "w.prw") << "0 0\n";
   std::ofstream(dir / "s.toml") << "[scene]\nname='t'\n[profiles]\nwheel='profiles/w.prw'\nrail='uic60'\n"
-                                   "smoothing = 0.002\n[grid]\ny=[0.0]\nload=1.0\n";
+                                   "smoothing = 0.002\n[grid]\ny=[0.0]\nload=78500.0\n";
   Scene s = load_scene(dir / "s.toml");
   EXPECT_EQ(s.wheel.file, dir / "profiles" / "w.prw");
   EXPECT_DOUBLE_EQ(s.wheel.smoothing_length, 0.002);

@@ -123,7 +123,7 @@ xi = {start = -0.004, stop = 0.004, max_step = 0.002, min_step = 1e-5}
   EXPECT_EQ(s.grids.y.size(), 8u);  // starting grid: 7 intervals of 2.86 mm <= 3 mm
   EXPECT_EQ(s.grids.y.back(), 0.01);
   EXPECT_EQ(s.grids.xi.size(), 5u);
-  EXPECT_FALSE(parse_scene(std::string(kHead) + "[grid]\ny = 0\nload = 1\n", "s.toml").accuracy.enabled);
+  EXPECT_FALSE(parse_scene(std::string(kHead) + "[grid]\ny = 0\nload = 1e5\n", "s.toml").accuracy.enabled);
 }
 
 TEST(AdaptiveScene, InvalidInputNamesTheKey) {

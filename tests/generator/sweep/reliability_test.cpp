@@ -161,6 +161,17 @@ TEST(NonFinite, CreepagesBeyondPhysicalAreRefused) {
             std::string::npos);
 }
 
+// eval --load 78.5 (kN typed for N) is refused with the SI spelling; 0 (unloaded) and real loads pass.
+TEST(NonFinite, EvalLoadInKiloNewtonsIsRefused) {
+  const Scene scene = parse_scene(kTreadScene, "t.toml");
+  StateEvalRequest request;
+  request.y = 0.001;
+  request.load = 78.5;
+  EXPECT_NE(message_of([&] { evaluate_state(scene, request); }).find("78.5e3"), std::string::npos);
+  request.load = 78.5e3;
+  EXPECT_EQ(message_of([&] { evaluate_state(scene, request); }), "(no exception)");
+}
+
 // A creepage past the scene check (a caller building the grid itself) overflows FASTSIM to NaN:
 // the table stores zeros with `failed`, never NaN with `converged`.
 TEST(NonFinite, NaNInTheKernelIsFailedNotConverged) {
@@ -183,6 +194,47 @@ TEST(NonFinite, NaNInTheKernelIsFailedNotConverged) {
     }
   }
   EXPECT_GT(failed, 0u);
+}
+
+// A column that fails (here a wheel off its rail at y = 0.1 m) keeps positive creep scales in a
+// normalised table: with zeros the lookup refused the whole table ("holds a scale that is not
+// finite and > 0"), so one failed point made every other unusable.
+TEST(NonFinite, FailedColumnKeepsPositiveCreepScales) {
+  const std::string text = std::string(kTreadScene).replace(std::string(kTreadScene).find("y = [0.001]"), 11,
+                                                            "y = [0.001, 0.1]") +
+                           "eta = [0.0]\nphi = [0.0]\ncreep_coordinates = \"normalised\"\n";
+  const Scene scene = parse_scene(text, "t.toml");
+  ASSERT_TRUE(scene.creep_normalised);
+  const SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+  ASSERT_GT(r.summary.failures, 0u);
+  std::size_t scales = 0;
+  for (const TableGroup& g : r.table.groups) {
+    for (const char* name : {"creep_scale_xi", "creep_scale_eta", "creep_scale_phi"}) {
+      const TableDataset* d = g.find(name);
+      if (!d) continue;
+      for (double v : d->values) EXPECT_TRUE(std::isfinite(v) && v > 0.0) << g.path << "/" << name << " " << v;
+      scales += d->values.size();
+    }
+  }
+  EXPECT_GT(scales, 0u);
+}
+
+// A y grid reaching off the rail with the equilibrium roll fails in the jump locator: the message
+// names the scene file and the stage (it was the bare "wheel 'S1002' does not overlap its rail").
+TEST(NonFinite, JumpLocatorFailureNamesSceneAndStage) {
+  testing::TempDir dir("jump_locator_failure");
+  const std::string text = std::string(kTreadScene).replace(std::string(kTreadScene).find("y = [0.001]"), 11,
+                                                            "y = {start = -0.08, stop = 0.08, step = 0.01}") +
+                           "equilibrium_roll = true\n";
+  std::ofstream(dir / "off.toml") << text;
+  GenerateOptions o;
+  o.scene = dir / "off.toml";
+  o.output = dir / "off.h5";
+  o.threads = 1;
+  const std::string message = message_of([&] { generate_table(o); });
+  EXPECT_NE(message.find("off.toml: locating the contact jumps along y"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not overlap its rail"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(dir / "off.h5"));
 }
 
 TEST(NonFinite, StatusHelperDropsConverged) {
