@@ -61,3 +61,20 @@ def test_unwritable_output_refused_before_work(railtab_program, args):
     r = run(railtab_program, *args, timeout=20)   # refused at once: no sweep, no table generation
     assert r.returncode == 1 and r.stdout == ""
     assert "refused before starting" in r.stderr and "progress" not in r.stderr
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--duration", "-1"], "--duration: must be a duration > 0 s"),
+    (["--duration", "0"], "--duration: must be a duration > 0 s"),   # 0 would silently run the whole route
+    (["--duration", "abc"], "got 'abc'"),
+    (["--threads", "-1"], "--threads: must be a whole number of threads >= 0"),
+    (["--threads", "1.5"], "got '1.5'"),
+    (["--post-processors", "hertz", "stripes"], "--post-processors: unknown wear post-processor 'stripes'"),
+])
+def test_simulate_bad_option_names_it(railtab_program, tmp_path, args, message):
+    # refused while parsing the command line: no table, no output directory
+    r = run(railtab_program, "simulate", str(SOURCE_DIR / "tables" / "sim" / "r600.toml"), "--out",
+            str(tmp_path / "out"), *args, timeout=20)
+    assert r.returncode == 2 and r.stdout == ""
+    assert message in r.stderr and "179769" not in r.stderr   # no 300-digit range bound
+    assert not (tmp_path / "out").exists()
