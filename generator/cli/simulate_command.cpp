@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "scene/simulation_scene.hpp"
 #include "simulate/simulation_run.hpp"
+#include "table/interrupt.hpp"
 
 namespace railtab {
 namespace {
@@ -84,7 +85,18 @@ void add_simulate_command(CLI::App& app) {
     require_writable_directory(opt->out);  // now, not after the first table
     opt->log = *quiet ? nullptr : &std::cerr;
     const SimulationScene scene = load_simulation_scene(*scene_file);
-    const SimulationSummary summary = run_simulation(scene, *opt);
+    // Ctrl-C / SIGTERM only set a flag that the table generation and the RK4 loop poll, so no
+    // file is cut mid-write and the run ends with a message and exit code 130 / 143 (as generate).
+    interrupt_flag().store(false);
+    opt->interrupt = &interrupt_flag();
+    SigintGuard guard;
+    SimulationSummary summary;
+    try {
+      summary = run_simulation(scene, *opt);
+    } catch (const Interrupted& e) {
+      std::cerr << "\nrailtab: " << e.what() << "\n";
+      throw CLI::RuntimeError(128 + (interrupt_signal() ? interrupt_signal() : 2));  // the shell's code: 130, 143
+    }
     std::cout << fmt::format("{}: {} ({} dynamics, {})\n", summary.name, (summary.directory / "summary.json").string(),
                              summary.dynamics_model, opt->direct ? "direct contact evaluation" : "table lookup");
     for (const ModelSummary& m : summary.models) {
