@@ -90,8 +90,12 @@ def test_bad_arguments_are_refused_with_names(fixture_table):
         t.query(2, y=0.0)
     with pytest.raises(ValueError, match="slot 5"):
         t.query("left", y=0.0, slot=5)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"y \(3,\), xi \(4,\)"):   # named, not numpy's "arg 1", "arg 3"
         t.query("left", y=np.zeros(3), xi=np.zeros(4))   # shapes that do not broadcast
+    with pytest.raises(ValueError, match=r"wheel \(2,\), y \(3,\)"):
+        t.query(["left", "right"], y=np.zeros(3))
+    with pytest.raises(TypeError, match="xi must be real"):
+        t.query("left", y=0.0, xi=np.array([1e-3 + 1e-3j]))
 
 
 def test_xarray_result_carries_units_and_cf_flags(fixture_table):
