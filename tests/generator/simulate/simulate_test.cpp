@@ -383,6 +383,13 @@ TEST_F(SimulateTest, SimulationSceneParsesAndResolvesTransitions) {
 TEST_F(SimulateTest, BadSimulationSceneGivesALocatedError) {
   EXPECT_EQ(error_of(simulation_text("sped = 3.0"), *dir_).rfind("sim.toml:6: simulation.sped: unknown key", 0), 0u)
       << error_of(simulation_text("sped = 3.0"), *dir_);
+  // The name is a directory under --out: "../x" would write beside it.
+  for (const char* name : {"../escape", "a/b", "..", ""}) {
+    const std::string text = simulation_text(fmt::format("name = \"{}\"", name));
+    EXPECT_NE(error_of(text, *dir_).find("sim.toml:6: simulation.name: must be a plain directory name"),
+              std::string::npos)
+        << name << ": " << error_of(text, *dir_);
+  }
   EXPECT_NE(error_of(simulation_text("time_step = \"fast\""), *dir_).find("sim.toml:6: simulation.time_step: expected a number"),
             std::string::npos);
   std::string bad_model = simulation_text("");
