@@ -195,6 +195,12 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   summary.directory = options.out / sim.name;
   summary.dynamics_model = sim.dynamics_model;
   fs::create_directories(summary.directory);
+  // summary.json is written last: a previous run's must not sit beside this run's new step files
+  // if this one is interrupted or fails.
+  if (fs::remove(summary.directory / "summary.json")) {
+    log_line(options, fmt::format("{}: removed the previous run's summary.json (rewritten at the end)",
+                                  summary.directory.string()));
+  }
   const double step_distance = sim.running_distance / sim.wear_steps;
   std::vector<Branch> branches(processors.size());
   for (std::size_t p = 0; p < processors.size(); ++p) branches[p].summary.model = processors[p];

@@ -454,6 +454,8 @@ TEST_F(SimulateTest, InterruptStopsTheRunWithoutWritingHalfFiles) {
   options.out = *dir_ / "out_stopped";
   options.threads = 1;
   options.interrupt = &stop;
+  fs::create_directories(options.out / "stopped");
+  std::ofstream(options.out / "stopped" / "summary.json") << "{}\n";  // a previous run's: removed first
   try {
     run_simulation(sim, options);
     ADD_FAILURE() << "run_simulation ignored the interrupt flag";
