@@ -32,7 +32,10 @@ def main():
         sys.exit(__doc__)
     out, s0, s1 = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
     step = int(sys.argv[4]) if len(sys.argv) == 5 else 0
-    summary = json.load(open(f"{out}/summary.json"))
+    try:
+        summary = json.load(open(f"{out}/summary.json"))
+    except FileNotFoundError:  # a wrong OUT/NAME, or a run that was interrupted (summary.json comes last)
+        sys.exit(f"{out}/summary.json: no such file: give OUT/NAME of a finished `railtab simulate` run")
     processors = [m["post_processor"] for m in summary["post_processors"]]
     positions = summary["positions"]
     dynamics = f"{out}/shared/step0" if step == 0 else f"{out}/{processors[0]}/step{step}"

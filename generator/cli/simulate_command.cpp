@@ -3,15 +3,63 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cmath>
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include "cli/cli_common.hpp"
+#include "core/check.hpp"
 #include "cli/commands.hpp"
 #include "scene/simulation_scene.hpp"
 #include "simulate/simulation_run.hpp"
+#include "table/interrupt.hpp"
 
 namespace railtab {
+namespace {
+
+// CLI11's NonNegativeNumber says "Value abc not in range 0.000000 to 1797...(300 digits)" for both a
+// word and a negative number; these say what the option wants. A failed check is a usage error (2).
+bool parse_whole(const std::string& text, double& value) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+const CLI::Validator kPositiveSeconds(
+    [](std::string& text) -> std::string {
+      double v = 0.0;
+      if (!parse_whole(text, v) || !std::isfinite(v) || v <= 0.0) {
+        return "must be a duration > 0 s (leave it out to run the whole route), got '" + text + "'";
+      }
+      return {};
+    },
+    "POSITIVE");
+
+const CLI::Validator kThreadCount(
+    [](std::string& text) -> std::string {
+      double v = 0.0;
+      if (!parse_whole(text, v) || v < 0.0 || v != std::floor(v) || v > 1e6) {
+        return "must be a whole number of threads >= 0 (0 = all cores), got '" + text + "'";
+      }
+      return {};
+    },
+    "NONNEGATIVE");
+
+// A misspelt name is refused at once, naming the option (the scene's list is checked with its line).
+const CLI::Validator kPostProcessor(
+    [](std::string& text) -> std::string {
+      try {
+        check_wear_post_processor(text);
+      } catch (const Error& e) {
+        return e.what();
+      }
+      return {};
+    },
+    "");
+
+}  // namespace
 
 void add_simulate_command(CLI::App& app) {
   auto opt = std::make_shared<SimulationOptions>();
@@ -22,14 +70,15 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("scene", *scene_file, "Simulation scene (TOML, docs/simulation.md)")->required();
   cmd->add_option("--out", opt->out, "Output directory (results in OUT/<scene name>/)")->required();
   cmd->add_option("--threads", opt->threads, "Table generation threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kThreadCount)
       ->capture_default_str();
   cmd->add_flag("--direct", opt->direct,
                 "Evaluate geometry, normal model and FASTSIM at every call instead of the table (reference, slow)");
   cmd->add_option("--duration", opt->duration, "Simulate at most this long per run [s] (speed measurements)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kPositiveSeconds);
   cmd->add_option("--post-processors", opt->post_processors,
-                  "Wear post-processors instead of the scene's (e.g. hertz stripes-a)");
+                  "Wear post-processors instead of the scene's (e.g. hertz stripes-a)")
+      ->check(kPostProcessor);
   auto quiet = add_quiet_flag(cmd);
   cmd->callback([opt, scene_file, quiet] {
     // The scene first (a bad one leaves no output directory behind), then the output directory:
@@ -37,7 +86,18 @@ void add_simulate_command(CLI::App& app) {
     const SimulationScene scene = load_simulation_scene(*scene_file);
     require_writable_directory(opt->out);
     opt->log = *quiet ? nullptr : &std::cerr;
-    const SimulationSummary summary = run_simulation(scene, *opt);
+    // Ctrl-C / SIGTERM only set a flag that the table generation and the RK4 loop poll, so no
+    // file is cut mid-write and the run ends with a message and exit code 130 / 143 (as generate).
+    interrupt_flag().store(false);
+    opt->interrupt = &interrupt_flag();
+    SigintGuard guard;
+    SimulationSummary summary;
+    try {
+      summary = run_simulation(scene, *opt);
+    } catch (const Interrupted& e) {
+      std::cerr << "\nrailtab: " << e.what() << "\n";
+      throw CLI::RuntimeError(128 + (interrupt_signal() ? interrupt_signal() : 2));  // the shell's code: 130, 143
+    }
     std::cout << fmt::format("{}: {} ({} dynamics, {})\n", summary.name, (summary.directory / "summary.json").string(),
                              summary.dynamics_model, opt->direct ? "direct contact evaluation" : "table lookup");
     for (const ModelSummary& m : summary.models) {

@@ -196,6 +196,14 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
           "halfspace_sample_every", "trajectory_interval"});
   scene.name = k.node("name") ? k.string(*k.node("name"), "name")
                               : std::filesystem::path(source_name).stem().string();
+  // The name is the results' directory under --out: a separator or a dot name would write elsewhere.
+  if (scene.name.empty() || scene.name == "." || scene.name == ".." ||
+      scene.name.find_first_of("/\\") != std::string::npos) {
+    fail(file, k.node("name") ? k.node("name")->source() : toml::source_region{}, "simulation.name",
+         fmt::format("must be a plain directory name (results go to OUT/<name>/): no / or \\, not empty, . or .., "
+                     "got \"{}\"",
+                     scene.name));
+  }
   if (k.node("description")) scene.description = k.string(*k.node("description"), "description");
 
   const toml::node& contact = k.required("contact_scene");

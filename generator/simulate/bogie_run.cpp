@@ -13,6 +13,7 @@
 #include "core/check.hpp"
 #include "simulate/direct_contact_model.hpp"
 #include "simulate/lookup_contact_model.hpp"
+#include "table/interrupt.hpp"
 #include "table/output_file.hpp"
 
 namespace railtab {
@@ -130,7 +131,8 @@ WearAccumulator& WearPostProcessing::accumulator(std::size_t post_processor, std
 
 RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact, const LookupContactModel* lookup,
                      const DirectContactModel* direct, double friction, double max_duration,
-                     const fs::path& trajectory_csv, WearPostProcessing& wear) {
+                     const fs::path& trajectory_csv, WearPostProcessing& wear,
+                     const std::atomic<bool>* interrupt) {
   const vehicle::TrackLayout track(sim.route, sim.irregularity, sim.rail_centre_distance);
   vehicle::BogieParameters parameters = sim.vehicle;
   const double a = parameters.wheelset.semi_wheelbase;
@@ -155,6 +157,10 @@ RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact,
   std::ostringstream csv;
   csv << trajectory_header();
   for (std::uint64_t k = 0; k < steps; ++k) {
+    if (interrupt && interrupt->load(std::memory_order_relaxed)) {
+      throw Interrupted(fmt::format("interrupted at t = {:.3f} s of {:.3f} s: {} not written", bogie.time(), duration,
+                                    trajectory_csv.string()));
+    }
     const vehicle::BogieState before = bogie.state();
     const auto t0 = Clock::now();
     bogie.step();

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -96,9 +97,11 @@ struct RunSummary {
 // (or `max_duration` > 0 s), RK4 at sim.time_step. Samples every counted wheelset once per wheel
 // revolution into `wear`; writes the trajectory (every sim.trajectory_interval) to
 // `trajectory_csv`. `lookup` / `direct` (either may be null) are `contact` seen as what it is,
-// for the counters.
+// for the counters. `interrupt` (may be null) is polled every RK4 step: set, the run throws
+// Interrupted before writing the trajectory (a direct run takes hours; Ctrl-C must not wait).
 RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact, const LookupContactModel* lookup,
                      const DirectContactModel* direct, double friction, double max_duration,
-                     const std::filesystem::path& trajectory_csv, WearPostProcessing& wear);
+                     const std::filesystem::path& trajectory_csv, WearPostProcessing& wear,
+                     const std::atomic<bool>* interrupt = nullptr);
 
 }  // namespace railtab

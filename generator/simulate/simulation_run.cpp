@@ -28,6 +28,7 @@
 #include "simulate/lookup_contact_model.hpp"
 #include "simulate/worn_profile.hpp"
 #include "sweep/generate.hpp"
+#include "table/interrupt.hpp"
 #include "table/output_file.hpp"
 
 namespace railtab {
@@ -194,6 +195,12 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   summary.directory = options.out / sim.name;
   summary.dynamics_model = sim.dynamics_model;
   fs::create_directories(summary.directory);
+  // summary.json is written last: a previous run's must not sit beside this run's new step files
+  // if this one is interrupted or fails.
+  if (fs::remove(summary.directory / "summary.json")) {
+    log_line(options, fmt::format("{}: removed the previous run's summary.json (rewritten at the end)",
+                                  summary.directory.string()));
+  }
   const double step_distance = sim.running_distance / sim.wear_steps;
   std::vector<Branch> branches(processors.size());
   for (std::size_t p = 0; p < processors.size(); ++p) branches[p].summary.model = processors[p];
@@ -211,6 +218,12 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
     }
     for (const std::vector<std::size_t>& group : groups) {
       const std::string label = k == 0 ? "shared" : processors[group.front()];
+      const auto stop = [&](const std::string& where) {
+        throw Interrupted(fmt::format("{} {} step {}: interrupted {}; the finished steps' files in {} are whole, "
+                                      "summary.json is not written",
+                                      sim.name, label, k, where, summary.directory.string()));
+      };
+      if (options.interrupt && options.interrupt->load()) stop("before the step");
       const fs::path dir = summary.directory / label / fmt::format("step{}", k);
       fs::create_directories(dir);
       const std::string name = fmt::format("{}-{}-step{}", sim.name, label, k);
@@ -232,8 +245,14 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
         g.scene = scene_file;
         g.output = dir / "table.h5";
         g.threads = options.threads;
+        g.interrupt = options.interrupt;
         const auto tg = Clock::now();
-        const SweepSummary s = generate_table(g);
+        SweepSummary s;
+        try {
+          s = generate_table(g);
+        } catch (const Interrupted&) {  // its message offers --resume, which simulate has not
+          stop(fmt::format("in the table generation ({} not written)", g.output.string()));
+        }
         generate_seconds = seconds_since(tg);
         log_line(options, fmt::format("{} {} step {}: {} table {} ({} points, {} failures) in {:.1f} s", sim.name, label,
                                       k, sim.dynamics_model, g.output.string(), s.points_total, s.failures,
@@ -246,8 +265,13 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
       std::vector<std::string> names;
       for (std::size_t p : group) names.push_back(processors[p]);
       WearPostProcessing wear(scene, names, sim.positions, WearGrid{}, sim.halfspace_sample_every);
-      RunSummary run = run_bogie(sim, *contact_model, lookup, direct, scene.tangential.friction, options.duration,
-                                 dir / "trajectory.csv", wear);
+      RunSummary run;
+      try {
+        run = run_bogie(sim, *contact_model, lookup, direct, scene.tangential.friction, options.duration,
+                        dir / "trajectory.csv", wear, options.interrupt);
+      } catch (const Interrupted& e) {
+        stop(fmt::format("in the dynamics ({})", e.what()));
+      }
       run.label = label;
       log_line(options,
                fmt::format("{} {} step {}: {:.1f} s simulated ({:.0f} m) in {:.2f} s wall: {:.1f} simulated s per wall "

@@ -10,6 +10,7 @@
 // run each post-processor on its own worn wheel. Outputs: docs/simulation.md.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <ostream>
@@ -32,6 +33,9 @@ struct SimulationOptions {
   double duration = 0.0;            // > 0: simulate at most this long per run [s] (speed checks)
   std::vector<std::string> post_processors;  // replaces the scene's wear post-processors when not empty
   std::ostream* log = nullptr;      // progress lines; nullptr = silent
+  // Set = stop (Ctrl-C, SIGTERM): run_simulation throws Interrupted; every file already written is
+  // whole (written through a temporary), the one in progress is not left behind.
+  const std::atomic<bool>* interrupt = nullptr;
 };
 
 struct StepSummary {

@@ -2,6 +2,7 @@
 """railtab.evaluate: the direct contact models at one wheelset state (the code of `railtab eval`)."""
 import json
 import os
+import re
 
 import numpy as np
 
@@ -27,7 +28,21 @@ class Scene:
         return f"<railtab.Scene {self.name!r} from {str(self.path)!r}>"
 
 
-def _one(scene, y, roll, equilibrium_roll, load, model, creepage, mu):
+def _python_names(message):
+    """The shared evaluation code (railtab eval) names its command-line options; say the keywords."""
+    message = message.replace("--equilibrium-roll", "equilibrium_roll")
+    return re.sub(r"--(y|roll|load|creepage|mu|model)\b", r"\1", message)
+
+
+def _one(scene, y, roll, equilibrium_roll, load, model, creepage, mu, state=None):
+    try:
+        return _evaluate(scene, y, roll, equilibrium_roll, load, model, creepage, mu)
+    except _railtab.Error as e:
+        where = "" if state is None else f"state {state} (C order): "
+        raise _railtab.Error(where + _python_names(str(e))) from None
+
+
+def _evaluate(scene, y, roll, equilibrium_roll, load, model, creepage, mu):
     text = _railtab._evaluate_json(scene._s, float(y), None if roll is None else float(roll), bool(equilibrium_roll),
                                    None if load is None else float(load), model or "",
                                    [] if creepage is None else [float(c) for c in creepage],
@@ -60,9 +75,15 @@ def evaluate(scene, y, *, roll=None, load=None, creepage=None, model=None, mu=No
         return _one(scene, y_arr, roll, equilibrium_roll, load_arr, model, c_arr, mu)
     shapes = [y_arr.shape] + ([load_arr.shape] if load_arr is not None else []) + \
              ([c_arr.shape[:-1]] if c_arr is not None else [])
-    shape = np.broadcast_shapes(*shapes)
+    try:
+        shape = np.broadcast_shapes(*shapes)
+    except ValueError:  # numpy's message counts arguments of this call, not the user's names
+        named = [f"y {y_arr.shape}"] + ([f"load {load_arr.shape}"] if load_arr is not None else []) + \
+                ([f"creepage {c_arr.shape}"] if c_arr is not None else [])
+        raise ValueError("y, load and creepage (without its last axis of 3) do not broadcast against each "
+                         "other: " + ", ".join(named)) from None
     ys = np.broadcast_to(y_arr, shape).ravel()
     loads = None if load_arr is None else np.broadcast_to(load_arr, shape).ravel()
     cs = None if c_arr is None else np.broadcast_to(c_arr, shape + (3,)).reshape(-1, 3)
     return [_one(scene, ys[k], roll, equilibrium_roll, None if loads is None else loads[k], model,
-                 None if cs is None else cs[k], mu) for k in range(ys.size)]
+                 None if cs is None else cs[k], mu, state=k) for k in range(ys.size)]

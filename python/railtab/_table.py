@@ -99,7 +99,11 @@ class Table:
         has dims (*state dims, 'slot') and SI units; 'status' holds the status bits with the CF
         attributes flag_masks / flag_meanings (railtab.decode_status turns them into text);
         'part_status' holds them per part. Never extrapolates: outside the table the values are
-        clamped to the edge and flagged out_of_range.
+        clamped to the edge and flagged out_of_range. A NaN or infinite state does not raise (one
+        bad state must not lose a batch): its outputs are 0 and flagged invalid_input.
+
+        Raises TypeError for a missing tabulated variable or a complex value, ValueError for
+        shapes that do not broadcast (naming each argument's shape), an unknown wheel or slot.
         """
         given = {"y": y, "roll": roll, "load": load, "xi": xi, "eta": eta, "phi": phi}
         fixed = self.fixed_axes
@@ -115,9 +119,17 @@ class Table:
                                     f"(range {axes[name][0]:g} .. {axes[name][-1]:g} {AXIS_UNITS[name]})")
                 else:
                     v = 0.0
-            values[name] = np.asarray(v, dtype=np.float64)
+            arr = np.asarray(v)
+            if arr.dtype.kind == "c":  # numpy would only warn and drop the imaginary part
+                raise TypeError(f"{name} must be real, got a complex array")
+            values[name] = np.asarray(arr, dtype=np.float64)
         codes = _wheel_codes(wheel)
-        shape = np.broadcast_shapes(codes.shape, *(a.shape for a in values.values()))
+        try:
+            shape = np.broadcast_shapes(codes.shape, *(a.shape for a in values.values()))
+        except ValueError:  # numpy's message counts arguments of this call, not the user's names
+            shapes = {"wheel": codes.shape, **{k: values[k].shape for k in _STATE if given[k] is not None}}
+            raise ValueError("the state arrays do not broadcast against each other (numpy rules): "
+                             + ", ".join(f"{k} {s}" for k, s in shapes.items())) from None
         n = int(np.prod(shape, dtype=np.int64))
         slot_arg = -1 if slot is None else int(slot)
         raw, part_status, status = self._t._query_arrays(

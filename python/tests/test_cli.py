@@ -93,3 +93,20 @@ def test_value_outside_a_list_is_usage_error_2(railtab_program, default_table, a
     r = run(railtab_program, *[str(default_table) if a == "TABLE" else a for a in args])
     assert r.returncode == 2 and r.stdout == "", (args, r.returncode, r.stderr)
     assert args[-1] in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--duration", "-1"], "--duration: must be a duration > 0 s"),
+    (["--duration", "0"], "--duration: must be a duration > 0 s"),   # 0 would silently run the whole route
+    (["--duration", "abc"], "got 'abc'"),
+    (["--threads", "-1"], "--threads: must be a whole number of threads >= 0"),
+    (["--threads", "1.5"], "got '1.5'"),
+    (["--post-processors", "hertz", "stripes"], "--post-processors: unknown wear post-processor 'stripes'"),
+])
+def test_simulate_bad_option_names_it(railtab_program, tmp_path, args, message):
+    # refused while parsing the command line: no table, no output directory
+    r = run(railtab_program, "simulate", str(SOURCE_DIR / "tables" / "sim" / "r600.toml"), "--out",
+            str(tmp_path / "out"), *args, timeout=20)
+    assert r.returncode == 2 and r.stdout == ""
+    assert message in r.stderr and "179769" not in r.stderr   # no 300-digit range bound
+    assert not (tmp_path / "out").exists()

@@ -52,3 +52,11 @@ def test_bad_input_is_refused_with_a_message(tmp_path):
         railtab.evaluate(scene, y=0.0, model="magic")
     with pytest.raises(ValueError, match="creepage"):
         railtab.evaluate(scene, y=0.0, creepage=(0.0, 0.0))
+    with pytest.raises(ValueError, match=r"y \(3,\), load \(2,\)"):   # named, not numpy's "arg 0", "arg 1"
+        railtab.evaluate(scene, y=np.zeros(3), load=[7e4, 8e4])
+    with pytest.raises(ValueError, match=r"y \(2,\), creepage \(3, 3\)"):
+        railtab.evaluate(scene, y=[0.0, 0.001], creepage=np.zeros((3, 3)))
+    with pytest.raises(railtab.Error, match="^y must be finite, got nan"):   # the keyword, not railtab eval's --y
+        railtab.evaluate(scene, y=np.nan)
+    with pytest.raises(railtab.Error, match=r"^state 1 \(C order\): load must be finite and >= 0 N"):
+        railtab.evaluate(scene, y=0.0, load=[7e4, -1.0])

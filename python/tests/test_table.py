@@ -20,13 +20,19 @@ def test_load_describes_the_table(fixture_table):
     assert "fx" in t.outputs() and "wear_rate" in t.outputs()
 
 
-def test_load_errors_name_the_file(tmp_path):
+def test_load_errors_name_the_file(tmp_path, fixture_table):
     with pytest.raises(OSError, match="nothing.h5"):
         railtab.Table.load(tmp_path / "nothing.h5")
     bad = tmp_path / "bad.h5"
     bad.write_text("not hdf5")
     with pytest.raises(OSError, match="bad.h5"):
         railtab.Table.load(bad)
+    truncated = tmp_path / "truncated.h5"   # a real table cut short: corrupt, not "not HDF5"
+    truncated.write_bytes(fixture_table.read_bytes()[:4000])
+    with pytest.raises(OSError, match=r"truncated.h5.*(truncated|corrupt)"):
+        railtab.Table.load(truncated)
+    with pytest.raises(OSError, match="not a regular file"):
+        railtab.Table.load(tmp_path)           # a directory
     with pytest.raises(ValueError, match="method"):
         railtab.Table.load(bad, method="spline")
 
@@ -90,8 +96,12 @@ def test_bad_arguments_are_refused_with_names(fixture_table):
         t.query(2, y=0.0)
     with pytest.raises(ValueError, match="slot 5"):
         t.query("left", y=0.0, slot=5)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"y \(3,\), xi \(4,\)"):   # named, not numpy's "arg 1", "arg 3"
         t.query("left", y=np.zeros(3), xi=np.zeros(4))   # shapes that do not broadcast
+    with pytest.raises(ValueError, match=r"wheel \(2,\), y \(3,\)"):
+        t.query(["left", "right"], y=np.zeros(3))
+    with pytest.raises(TypeError, match="xi must be real"):
+        t.query("left", y=0.0, xi=np.array([1e-3 + 1e-3j]))
 
 
 def test_xarray_result_carries_units_and_cf_flags(fixture_table):

@@ -27,6 +27,7 @@
 #include "simulate/wear_accumulator.hpp"
 #include "simulate/worn_profile.hpp"
 #include "sweep/generate.hpp"
+#include "table/interrupt.hpp"
 #include "table/storage_precision.hpp"
 #include "vehicle/wheelset_model.hpp"
 
@@ -382,6 +383,13 @@ TEST_F(SimulateTest, SimulationSceneParsesAndResolvesTransitions) {
 TEST_F(SimulateTest, BadSimulationSceneGivesALocatedError) {
   EXPECT_EQ(error_of(simulation_text("sped = 3.0"), *dir_).rfind("sim.toml:6: simulation.sped: unknown key", 0), 0u)
       << error_of(simulation_text("sped = 3.0"), *dir_);
+  // The name is a directory under --out: "../x" would write beside it.
+  for (const char* name : {"../escape", "a/b", "..", ""}) {
+    const std::string text = simulation_text(fmt::format("name = \"{}\"", name));
+    EXPECT_NE(error_of(text, *dir_).find("sim.toml:6: simulation.name: must be a plain directory name"),
+              std::string::npos)
+        << name << ": " << error_of(text, *dir_);
+  }
   EXPECT_NE(error_of(simulation_text("time_step = \"fast\""), *dir_).find("sim.toml:6: simulation.time_step: expected a number"),
             std::string::npos);
   std::string bad_model = simulation_text("");
@@ -420,6 +428,43 @@ TEST_F(SimulateTest, BadSimulationSceneGivesALocatedError) {
   std::string text = simulation_text("");
   text.replace(text.find("length = 50.0"), 13, "length = 50.0\nradius = 300.0");
   EXPECT_NE(error_of(text, *dir_).find("route.section[2].radius"), std::string::npos) << error_of(text, *dir_);
+}
+
+// Ctrl-C (the flag `railtab simulate` hands in): the RK4 loop stops with Interrupted before it
+// writes the trajectory, and run_simulation stops without a table, a summary or a temporary.
+TEST_F(SimulateTest, InterruptStopsTheRunWithoutWritingHalfFiles) {
+  const SimulationScene sim = parse_simulation_scene(
+      std::string("[simulation]\nname = \"stopped\"\ncontact_scene = \"scene.toml\"\n"
+                  "wear_post_processors = [\"hertz\"]\nspeed = 20.0\nrunning_distance = 1e6\n"
+                  "[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 20.0\n") +
+          kLightVehicle,
+      "sim.toml", *dir_);
+  std::atomic<bool> stop{true};
+  LookupContactModel contact(table());
+  WearPostProcessing wear(scene(), sim.wear_post_processors, sim.positions);
+  const fs::path trajectory = *dir_ / "trajectory_stopped.csv";
+  EXPECT_THROW(run_bogie(sim, contact, &contact, nullptr, 0.3, 0.0, trajectory, wear, &stop), Interrupted);
+  EXPECT_FALSE(fs::exists(trajectory));
+  stop = false;  // the same run without the flag finishes and writes it
+  run_bogie(sim, contact, &contact, nullptr, 0.3, 0.0, trajectory, wear, &stop);
+  EXPECT_TRUE(fs::exists(trajectory));
+
+  stop = true;
+  SimulationOptions options;
+  options.out = *dir_ / "out_stopped";
+  options.threads = 1;
+  options.interrupt = &stop;
+  fs::create_directories(options.out / "stopped");
+  std::ofstream(options.out / "stopped" / "summary.json") << "{}\n";  // a previous run's: removed first
+  try {
+    run_simulation(sim, options);
+    ADD_FAILURE() << "run_simulation ignored the interrupt flag";
+  } catch (const Interrupted& e) {
+    EXPECT_NE(std::string(e.what()).find("stopped shared step 0: interrupted"), std::string::npos) << e.what();
+  }
+  for (const auto& entry : fs::recursive_directory_iterator(options.out)) {
+    EXPECT_FALSE(entry.is_regular_file() && entry.path().filename() != "scene.toml") << entry.path();
+  }
 }
 
 }  // namespace
