@@ -28,6 +28,7 @@ function(railtab_test dir)
   endif()
   string(REPLACE "/" "_" dir ${dir})
   add_executable(test_${dir} ${sources})
+  railtab_unity(test_${dir})
   target_include_directories(test_${dir} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_options(test_${dir} PRIVATE ${RAILTAB_WARNINGS})
   target_link_libraries(test_${dir} PRIVATE ${ARG_LIBS} GTest::gtest_main)
@@ -36,4 +37,19 @@ function(railtab_test dir)
     RAILTAB_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared")
   gtest_discover_tests(test_${dir} PROPERTIES LABELS "${dir};${ARG_LABELS}"
                        DISCOVERY_TIMEOUT 60)
+endfunction()
+
+# railtab_unity(TARGET): compiles the target's files in unity batches (RAILTAB_UNITY_BUILD, ON by
+# default): used for the test executables, the railtab program (generator/cli) and the Python
+# module, whose files each include the same heavy headers (GoogleTest, Eigen, CLI11, nlohmann
+# json, pybind11), so a batch parses and instantiates them once instead of once per file (the
+# test executables, the program and the module take about a third of the CPU time to build;
+# docs/reliability.md). The libraries (src/, lookup/, generator/ libraries) are built file by file
+# as before, with the same flags. Two files of one batch must not define the same name: a test
+# file's helpers live in an anonymous namespace, and files whose helpers share a name each have
+# their own named namespace (railtab::<file stem>).
+function(railtab_unity target)
+  if(RAILTAB_UNITY_BUILD)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+  endif()
 endfunction()

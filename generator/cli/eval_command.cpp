@@ -29,7 +29,7 @@ struct EvalOptions {
 
 double to_deg(double rad) { return rad * 180.0 / M_PI; }
 
-void print_text(const nlohmann::json& out) {
+void print_eval_text(const nlohmann::json& out) {
   const auto& st = out["state"];
   std::cout << fmt::format("scene {}: y = {:.3f} mm, roll = {:.4f} mrad, vertical load {:.1f} kN per wheel, model {}\n",
                            out["scene"].get<std::string>(), st["y"].get<double>() * 1e3,
@@ -93,7 +93,7 @@ void run_eval(const EvalOptions& opt) {
   if (opt.json) {
     std::cout << out.dump(2) << "\n";
   } else {
-    print_text(out);
+    print_eval_text(out);
   }
 }
 

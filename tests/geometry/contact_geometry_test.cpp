@@ -12,7 +12,7 @@
 #include "core/status.hpp"
 #include "synthetic_profiles.hpp"
 
-namespace railtab {
+namespace railtab::contact_geometry_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 using testing::CircleRail;
@@ -172,4 +172,4 @@ TEST(ContactGeometry, SideNames) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::contact_geometry_test

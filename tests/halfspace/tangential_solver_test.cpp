@@ -16,7 +16,7 @@
 #include "tangential/kalker_coefficients.hpp"
 #include "tangential/patch_test_helper.hpp"
 
-namespace railtab {
+namespace railtab::tangential_solver_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 using halfspace::Grid;
@@ -185,4 +185,4 @@ TEST(TangentialSolver, BadInputIsFlagged) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::tangential_solver_test

@@ -12,7 +12,7 @@
 #include "profile/s1002.hpp"
 #include "profile/uic60.hpp"
 
-namespace railtab {
+namespace railtab::wheel_rail_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 const ContactGeometrySolver& solver() {
@@ -103,4 +103,4 @@ TEST(HalfspaceWheelRail, BadLoadThrowsNamingIt) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::wheel_rail_test

@@ -13,7 +13,7 @@
 #include "lookup/table_fixture.hpp"
 #include "railtab/lookup.hpp"
 
-namespace railtab::lookup {
+namespace railtab::lookup::table_hostile_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 using testing::FixtureSpec;
@@ -270,4 +270,4 @@ TEST(TableIntegrity, LegacyVariableLengthStringsReadExactly) {
 }
 
 }  // namespace
-}  // namespace railtab::lookup
+}  // namespace railtab::lookup::table_hostile_test

@@ -11,7 +11,7 @@
 #include "normal/hertz.hpp"
 #include "synthetic_geometry.hpp"
 
-namespace railtab {
+namespace railtab::normal_model_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 constexpr double kA = 0.5 / 0.46;
@@ -354,4 +354,4 @@ TEST(NormalModel, ExtremeEllipticity) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::normal_model_test

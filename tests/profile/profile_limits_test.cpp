@@ -17,7 +17,7 @@
 #include "profile/profile_limits.hpp"
 #include "test_profile_files.hpp"
 
-namespace railtab {
+namespace railtab::profile_limits_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 namespace fs = std::filesystem;
@@ -155,4 +155,4 @@ TEST(ProfilePlausibility, RealProfilesPass) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::profile_limits_test

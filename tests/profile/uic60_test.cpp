@@ -15,7 +15,7 @@
 #include "profile/profile_io.hpp"
 #include "profile/spline_profile.hpp"
 
-namespace railtab {
+namespace railtab::uic60_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 constexpr double kMm = 1e-3;
@@ -234,4 +234,4 @@ TEST(Uic60, AgreesWithManchesterBenchmarkFile) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::uic60_test

@@ -33,7 +33,7 @@
 #include "accuracy_util.hpp"
 #include "sweep/jump_locator.hpp"
 
-namespace railtab::accuracy {
+namespace railtab::accuracy::halfspace_scene_accuracy_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 constexpr std::uint64_t kSeed = 20261126;
@@ -145,4 +145,4 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
 }
 
 }  // namespace
-}  // namespace railtab::accuracy
+}  // namespace railtab::accuracy::halfspace_scene_accuracy_test

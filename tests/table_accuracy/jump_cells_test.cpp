@@ -23,7 +23,7 @@
 #include "sweep/contact_probe.hpp"
 #include "sweep/jump_locator.hpp"
 
-namespace railtab::accuracy {
+namespace railtab::accuracy::jump_cells_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 constexpr std::uint64_t kSeed = 20240611;  // the states of DefaultSceneRandomOffGrid
@@ -546,4 +546,4 @@ TEST(JumpCells, CreepForcesOnJumpCellsAtCreepageNodes) { creep_forces_on_jump_ce
 TEST(JumpCells, CreepForcesOnJumpCells) { creep_forces_on_jump_cells(false); }
 
 }  // namespace
-}  // namespace railtab::accuracy
+}  // namespace railtab::accuracy::jump_cells_test

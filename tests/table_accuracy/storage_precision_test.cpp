@@ -29,7 +29,7 @@
 #include "sweep/jump_locator.hpp"
 #include "table/storage_precision.hpp"
 
-namespace railtab::accuracy {
+namespace railtab::accuracy::storage_precision_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 constexpr std::uint64_t kSeed = 20261126;
@@ -203,4 +203,4 @@ TEST(StoragePrecision, FloatRecordsGiveTheBytesOfDoubleRecords) {
 }
 
 }  // namespace
-}  // namespace railtab::accuracy
+}  // namespace railtab::accuracy::storage_precision_test

@@ -13,7 +13,7 @@
 #include "tangential/kalker_coefficients.hpp"
 #include "tangential/patch_test_helper.hpp"
 
-namespace railtab {
+namespace railtab::fastsim_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 using test::elliptic_patch;
@@ -230,4 +230,4 @@ TEST(Fastsim, UnloadedAndInvalid) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::fastsim_test

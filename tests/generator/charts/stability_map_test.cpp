@@ -18,7 +18,7 @@
 #include "core/check.hpp"
 #include "core/status.hpp"
 
-namespace railtab {
+namespace railtab::stability_map_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 constexpr const char* kScene = R"(
@@ -126,4 +126,4 @@ TEST(StabilityMap, RejectsAnInvalidRange) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::stability_map_test

@@ -21,7 +21,7 @@
 #include "profile/s1002.hpp"
 #include "simulate/worn_profile.hpp"
 
-namespace railtab {
+namespace railtab::wear_accumulator_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 const Scene& default_scene() {
@@ -415,4 +415,4 @@ TEST(WearAccumulator, DISABLED_SampleCost) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::wear_accumulator_test

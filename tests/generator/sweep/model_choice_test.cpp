@@ -20,7 +20,7 @@
 #include "table/merge.hpp"
 #include "table/table_io.hpp"
 
-namespace railtab {
+namespace railtab::model_choice_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 constexpr const char* kHead = R"([scene]
@@ -284,4 +284,4 @@ TEST(ModelChoiceReport, DISABLED_DefaultMixed) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::model_choice_test

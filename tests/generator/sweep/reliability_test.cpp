@@ -20,7 +20,7 @@
 #include "table/merge.hpp"
 #include "table/table_io.hpp"
 
-namespace railtab {
+namespace railtab::reliability_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
 namespace fs = std::filesystem;
@@ -243,4 +243,4 @@ TEST(NonFinite, StatusHelperDropsConverged) {
 }
 
 }  // namespace
-}  // namespace railtab
+}  // namespace railtab::reliability_test
