@@ -2,6 +2,7 @@
 // railtab chart's measurement (generator/charts/speed_accuracy*.*) on a tiny state set: CSV columns,
 // finite numbers, and a non-dominated Pareto front. Seconds, not minutes.
 #include "charts/speed_accuracy.hpp"
+#include "generator/test_tables.hpp"
 
 #include <gtest/gtest.h>
 
@@ -138,9 +139,8 @@ TEST(SpeedAccuracy, ContactReferenceOnlyForItsOwnPair) {
 TEST(SpeedAccuracy, TinyRunAgainstContact) {
   const fs::path ref = fs::path(RAILTAB_SHARED_DIR) / "reference" / "blockC_sweep_integer_dy.csv";
   if (!fs::exists(ref)) GTEST_SKIP() << ref.string() << " absent";
-  const fs::path dir = fs::temp_directory_path() / "railtab_speed_accuracy_contact";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::TempDir tmp("speed_accuracy_contact");  // per process: parallel suites do not share it
+  const fs::path& dir = tmp.path();
   const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   SpeedAccuracyOptions o = tiny(dir / "tables");
   o.reference_csv = ref;
@@ -154,13 +154,11 @@ TEST(SpeedAccuracy, TinyRunAgainstContact) {
   }
   check_result(r, dir);
   EXPECT_FALSE(fs::exists(dir / "tables" / "speed_accuracy_y2mm.h5"));  // temporary table removed
-  fs::remove_all(dir);
 }
 
 TEST(SpeedAccuracy, TinyRunWithoutContactUsesFineStripes) {
-  const fs::path dir = fs::temp_directory_path() / "railtab_speed_accuracy_fallback";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::TempDir tmp("speed_accuracy_fallback");  // per process: parallel suites do not share it
+  const fs::path& dir = tmp.path();
   const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   SpeedAccuracyOptions o = tiny(dir / "tables");
   o.reference_csv = dir / "no-such-reference.csv";
@@ -168,14 +166,12 @@ TEST(SpeedAccuracy, TinyRunWithoutContactUsesFineStripes) {
   EXPECT_FALSE(r.contact_reference);
   EXPECT_NE(r.reference.find("STRIPES"), std::string::npos);
   check_result(r, dir);
-  fs::remove_all(dir);
 }
 
 // Without CONTACT data the default reference is the exact half-space model, and the result says so.
 TEST(SpeedAccuracy, TinyRunWithoutContactUsesTheExactModel) {
-  const fs::path dir = fs::temp_directory_path() / "railtab_speed_accuracy_exact";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::TempDir tmp("speed_accuracy_exact");  // per process: parallel suites do not share it
+  const fs::path& dir = tmp.path();
   const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   SpeedAccuracyOptions o = tiny(dir / "tables");
   o.fallback_reference = SpeedAccuracyOptions{}.fallback_reference;
@@ -193,7 +189,6 @@ TEST(SpeedAccuracy, TinyRunWithoutContactUsesTheExactModel) {
     }
   }
   check_result(r, dir);
-  fs::remove_all(dir);
 }
 
 }  // namespace
