@@ -22,14 +22,6 @@ int main(int argc, char** argv) {
   printf("%s: format %s, %d slots, checksums %s (railtab lookup %s)\n", info.path,
          info.format_version, info.n_slots, info.checksums_verified ? "verified" : "absent",
          railtab_lookup_version());
-  for (int a = 0; a < info.n_axes; ++a) {
-    const char* name;
-    const char* units;
-    size_t n;
-    const double* nodes;
-    railtab_lookup_axis(table, a, &name, &units, &n, &nodes);
-    printf("  axis %-4s [%s] %zu nodes, %g .. %g\n", name, units, n, nodes[0], nodes[n - 1]);
-  }
   /* Untabulated variables (e.g. roll) must sit at the table's fixed values: default_state puts
    * them there. It leaves the tabulated ones at 0, so a simulation sets each one it drives: here
    * y and xi, and the wheel load when the table tabulates it (the default table: 60 .. 100 kN; a
@@ -42,11 +34,10 @@ int main(int argc, char** argv) {
     size_t n;
     const double* nodes;
     railtab_lookup_axis(table, a, &name, &units, &n, &nodes);
-    if (strcmp(name, "load") == 0) {
-      state.load = 0.5 * (nodes[0] + nodes[n - 1]); /* N, mid-range: a simulation's own load */
-      printf("load = %g N\n", state.load);
-    }
+    printf("  axis %-4s [%s] %zu nodes, %g .. %g\n", name, units, n, nodes[0], nodes[n - 1]);
+    if (strcmp(name, "load") == 0) state.load = 0.5 * (nodes[0] + nodes[n - 1]); /* N, mid-range: a simulation's own load */
   }
+  printf("load = %g N\n", state.load);
   railtab_lookup_result result;
   for (int k = 0; k <= 4; ++k) {
     state.y = -0.004 + 0.002 * k; /* m */

@@ -122,6 +122,16 @@ struct BadCase {
   const char* needle2;
 };
 
+// Each case's scene is refused with a message that starts with the file and holds both needles.
+void expect_errors(const std::vector<BadCase>& cases) {
+  for (const BadCase& c : cases) {
+    std::string message = error_of(c.text);
+    EXPECT_NE(message.find(c.needle1), std::string::npos) << c.what << ": " << message;
+    EXPECT_NE(message.find(c.needle2), std::string::npos) << c.what << ": " << message;
+    EXPECT_EQ(message.rfind("bad.toml:", 0), 0u) << c.what << ": " << message;
+  }
+}
+
 TEST(Scene, ErrorsNameFileKeyAndLine) {
   const std::string m = kMinimal;  // grid is the last section: appended keys land in [grid]
   std::vector<BadCase> cases{
@@ -157,12 +167,7 @@ TEST(Scene, ErrorsNameFileKeyAndLine) {
       {"normalised with the exact model", m + "creep_coordinates = \"normalised\"\n[contact]\nnormal_model = \"halfspace\"\n",
        "grid.creep_coordinates", "halfspace"},
   };
-  for (const BadCase& c : cases) {
-    std::string message = error_of(c.text);
-    EXPECT_NE(message.find(c.needle1), std::string::npos) << c.what << ": " << message;
-    EXPECT_NE(message.find(c.needle2), std::string::npos) << c.what << ": " << message;
-    EXPECT_EQ(message.rfind("bad.toml:", 0), 0u) << c.what << ": " << message;
-  }
+  expect_errors(cases);
 }
 
 // Scene values are SI; a value typed in mm, kN or GPa is refused with the SI spelling of a typical
@@ -183,12 +188,7 @@ TEST(Scene, ValuesInTheWrongUnitAreRefused) {
       {"load in kN", head + "y = [0.0]\nload = [60, 78.5, 100]\n", "grid.load", "78.5e3"},
       {"y in mm", head + "y = {start = -10, stop = 10, step = 0.5}\nload = 78500\n", "grid.y", "0.010"},
   };
-  for (const BadCase& c : cases) {
-    std::string message = error_of(c.text);
-    EXPECT_NE(message.find(c.needle1), std::string::npos) << c.what << ": " << message;
-    EXPECT_NE(message.find(c.needle2), std::string::npos) << c.what << ": " << message;
-    EXPECT_EQ(message.rfind("bad.toml:", 0), 0u) << c.what << ": " << message;
-  }
+  expect_errors(cases);
   // The bounds leave every real wheelset alone: metre gauge, a 1.676 m broad gauge, a 0.3 m radius.
   EXPECT_EQ(error_of(m + "[track]\ngauge = 1.0\n"), "");
   EXPECT_EQ(error_of(m + "[track]\ngauge = 1.676\n"), "");
