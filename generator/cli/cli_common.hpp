@@ -6,12 +6,22 @@
 #include <filesystem>
 #include <memory>
 #include <ostream>
+#include <string>
 
 namespace CLI {
 class App;
+class Validator;
 }
 
 namespace railtab {
+
+// True when the whole of `text` is one number (std::from_chars), stored in `value`.
+bool parse_number(const std::string& text, double& value);
+
+// --threads N: a whole number >= 0 (0 = all cores). CLI11's NonNegativeNumber answers a word or a
+// negative number with a 300-digit range; this names what the option wants. A failed check is a
+// usage error (exit 2).
+const CLI::Validator& thread_count_validator();
 
 // Adds -q/--quiet ("no progress or diagnostics on stderr; results and errors still printed").
 std::shared_ptr<bool> add_quiet_flag(CLI::App* cmd);

@@ -27,7 +27,7 @@ void add_generate_command(CLI::App& app) {
   cmd->add_option("scene", opt->scene, "Scene file (TOML, docs/scenes.md)")->required();
   cmd->add_option("-o,--output", opt->output, "Table file to write (HDF5)")->required();
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(thread_count_validator())
       ->capture_default_str();
   auto quiet = add_quiet_flag(cmd);
   cmd->add_flag("--resume", opt->resume,

@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include <charconv>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -19,33 +18,17 @@
 namespace railtab {
 namespace {
 
-// CLI11's NonNegativeNumber says "Value abc not in range 0.000000 to 1797...(300 digits)" for both a
-// word and a negative number; these say what the option wants. A failed check is a usage error (2).
-bool parse_whole(const std::string& text, double& value) {
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  return ec == std::errc() && ptr == end;
-}
-
+// CLI11's NonNegativeNumber says "Value abc not in range 0.000000 to 1797...(300 digits)" for a word
+// or a negative number; this says what the option wants. A failed check is a usage error (2).
 const CLI::Validator kPositiveSeconds(
     [](std::string& text) -> std::string {
       double v = 0.0;
-      if (!parse_whole(text, v) || !std::isfinite(v) || v <= 0.0) {
+      if (!parse_number(text, v) || !std::isfinite(v) || v <= 0.0) {
         return "must be a duration > 0 s (leave it out to run the whole route), got '" + text + "'";
       }
       return {};
     },
     "POSITIVE");
-
-const CLI::Validator kThreadCount(
-    [](std::string& text) -> std::string {
-      double v = 0.0;
-      if (!parse_whole(text, v) || v < 0.0 || v != std::floor(v) || v > 1e6) {
-        return "must be a whole number of threads >= 0 (0 = all cores), got '" + text + "'";
-      }
-      return {};
-    },
-    "NONNEGATIVE");
 
 // A misspelt name is refused at once, naming the option (the scene's list is checked with its line).
 const CLI::Validator kPostProcessor(
@@ -70,7 +53,7 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("scene", *scene_file, "Simulation scene (TOML, docs/simulation.md)")->required();
   cmd->add_option("--out", opt->out, "Output directory (results in OUT/<scene name>/)")->required();
   cmd->add_option("--threads", opt->threads, "Table generation threads (0 = all cores)")
-      ->check(kThreadCount)
+      ->check(thread_count_validator())
       ->capture_default_str();
   cmd->add_flag("--direct", opt->direct,
                 "Evaluate geometry, normal model and FASTSIM at every call instead of the table (reference, slow)");

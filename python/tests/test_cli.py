@@ -110,3 +110,13 @@ def test_simulate_bad_option_names_it(railtab_program, tmp_path, args, message):
     assert r.returncode == 2 and r.stdout == ""
     assert message in r.stderr and "179769" not in r.stderr   # no 300-digit range bound
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("threads", ["-1", "1.5", "many"])
+def test_generate_bad_thread_count_names_it(railtab_program, tmp_path, threads):
+    # the same check as simulate's (cli_common): a usage error naming the option, no table
+    out = tmp_path / "t.h5"
+    r = run(railtab_program, "generate", SCENE, "-o", str(out), "--threads", threads, timeout=20)
+    assert r.returncode == 2 and r.stdout == "", (r.returncode, r.stderr)
+    assert "--threads: must be a whole number of threads >= 0" in r.stderr and "179769" not in r.stderr, r.stderr
+    assert not out.exists()
