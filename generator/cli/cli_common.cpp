@@ -15,6 +15,7 @@
 #include <system_error>
 
 #include "core/check.hpp"
+#include "table/interrupt.hpp"
 
 namespace railtab {
 namespace {
@@ -76,6 +77,30 @@ const CLI::Validator& thread_count_validator() {
       },
       "NONNEGATIVE");
   return validator;
+}
+
+CLI::Validator error_check_validator(std::function<void(const std::string&)> check) {
+  return CLI::Validator(
+      [check = std::move(check)](std::string& text) -> std::string {
+        try {
+          check(text);
+        } catch (const Error& e) {
+          return e.what();
+        }
+        return {};
+      },
+      "");
+}
+
+void run_interruptible(const std::function<void(const std::atomic<bool>* interrupt)>& work) {
+  interrupt_flag().store(false);
+  SigintGuard guard;
+  try {
+    work(&interrupt_flag());
+  } catch (const Interrupted& e) {
+    std::cerr << "\nrailtab: " << e.what() << "\n";
+    throw CLI::RuntimeError(128 + (interrupt_signal() ? interrupt_signal() : 2));  // the shell's code: 130, 143
+  }
 }
 
 }  // namespace railtab

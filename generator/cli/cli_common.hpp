@@ -3,7 +3,9 @@
 // quiet), and refusing an output that cannot be written before any long work starts.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -22,6 +24,14 @@ bool parse_number(const std::string& text, double& value);
 // negative number with a 300-digit range; this names what the option wants. A failed check is a
 // usage error (exit 2).
 const CLI::Validator& thread_count_validator();
+
+// A validator from a core check that throws railtab::Error on a bad value (e.g. a model name): the
+// value is refused while parsing, a usage error (exit 2) with the check's own message.
+CLI::Validator error_check_validator(std::function<void(const std::string&)> check);
+
+// Runs `work` with Ctrl-C and SIGTERM turned into the flag it is given to poll; a run that stops
+// with Interrupted ends with its message and the shell's exit code (130 SIGINT, 143 SIGTERM).
+void run_interruptible(const std::function<void(const std::atomic<bool>* interrupt)>& work);
 
 // Adds -q/--quiet ("no progress or diagnostics on stderr; results and errors still printed").
 std::shared_ptr<bool> add_quiet_flag(CLI::App* cmd);

@@ -13,7 +13,6 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
-#include "core/check.hpp"
 #include "normal/normal_model.hpp"
 #include "scene/scene.hpp"
 #include "sweep/state_eval.hpp"
@@ -111,20 +110,9 @@ void add_eval_command(CLI::App& app) {
   cmd->add_flag("--equilibrium-roll", opt->request.equilibrium_roll,
                 "Use the kinematic equilibrium roll of the rigid wheelset");
   cmd->add_option("--load", opt->request.load, "Vertical wheel load in track axes [N] (default: scene's first load)");
-  // An unknown model is a usage error (exit 2, README); the list is the core's (parse_normal_model).
-  const CLI::Validator normal_model(
-      [](std::string& name) {
-        try {
-          parse_normal_model(name);
-          return std::string();
-        } catch (const Error& e) {
-          return std::string(e.what());
-        }
-      },
-      "");
   cmd->add_option("--model", opt->request.model,
                   "Normal model: hertz|linder|kik-piotrowski|stripes-a|stripes-ab|halfspace (default: scene's)")
-      ->check(normal_model);
+      ->check(error_check_validator([](const std::string& name) { parse_normal_model(name); }));  // exit 2
   cmd->add_option("--creepage", opt->request.creepage,
                   "Creepages XI,ETA,PHI of the wheel relative to the rail: longitudinal, lateral [-], spin "
                   "[rad/m] (docs/conventions.md); adds fx, fy, mz, slip_fraction, wear_rate")

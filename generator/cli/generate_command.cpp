@@ -14,7 +14,6 @@
 #ifdef RAILTAB_HAVE_MPI
 #include "distributed/mpi_sweep.hpp"
 #endif
-#include "table/interrupt.hpp"
 
 namespace railtab {
 
@@ -45,10 +44,8 @@ void add_generate_command(CLI::App& app) {
     if (!shard->empty()) std::tie(opt->shard_index, opt->shard_count) = parse_shard_spec(*shard);
     opt->log = *quiet ? nullptr : &std::cerr;
     opt->terminal = ::isatty(STDERR_FILENO) != 0;
-    interrupt_flag().store(false);
-    opt->interrupt = &interrupt_flag();
-    SigintGuard guard;
-    try {
+    run_interruptible([&opt](const std::atomic<bool>* interrupt) {
+      opt->interrupt = interrupt;
       if (launched_by_mpi()) {
 #ifdef RAILTAB_HAVE_MPI
         generate_table_mpi(*opt);
@@ -59,10 +56,7 @@ void add_generate_command(CLI::App& app) {
       } else {
         generate_table(*opt);
       }
-    } catch (const Interrupted& e) {
-      std::cerr << "\nrailtab: " << e.what() << "\n";
-      throw CLI::RuntimeError(128 + (interrupt_signal() ? interrupt_signal() : 2));  // the shell's code: 130, 143
-    }
+    });
   });
 }
 

@@ -9,11 +9,9 @@
 #include <string>
 
 #include "cli/cli_common.hpp"
-#include "core/check.hpp"
 #include "cli/commands.hpp"
 #include "scene/simulation_scene.hpp"
 #include "simulate/simulation_run.hpp"
-#include "table/interrupt.hpp"
 
 namespace railtab {
 namespace {
@@ -29,18 +27,6 @@ const CLI::Validator kPositiveSeconds(
       return {};
     },
     "POSITIVE");
-
-// A misspelt name is refused at once, naming the option (the scene's list is checked with its line).
-const CLI::Validator kPostProcessor(
-    [](std::string& text) -> std::string {
-      try {
-        check_wear_post_processor(text);
-      } catch (const Error& e) {
-        return e.what();
-      }
-      return {};
-    },
-    "");
 
 }  // namespace
 
@@ -61,7 +47,7 @@ void add_simulate_command(CLI::App& app) {
       ->check(kPositiveSeconds);
   cmd->add_option("--post-processors", opt->post_processors,
                   "Wear post-processors instead of the scene's (e.g. hertz stripes-a)")
-      ->check(kPostProcessor);
+      ->check(error_check_validator(check_wear_post_processor));  // a misspelt name, at once
   auto quiet = add_quiet_flag(cmd);
   cmd->callback([opt, scene_file, quiet] {
     // The scene first (a bad one leaves no output directory behind), then the output directory:
@@ -70,17 +56,12 @@ void add_simulate_command(CLI::App& app) {
     require_writable_directory(opt->out);
     opt->log = *quiet ? nullptr : &std::cerr;
     // Ctrl-C / SIGTERM only set a flag that the table generation and the RK4 loop poll, so no
-    // file is cut mid-write and the run ends with a message and exit code 130 / 143 (as generate).
-    interrupt_flag().store(false);
-    opt->interrupt = &interrupt_flag();
-    SigintGuard guard;
+    // file is cut mid-write.
     SimulationSummary summary;
-    try {
+    run_interruptible([&](const std::atomic<bool>* interrupt) {
+      opt->interrupt = interrupt;
       summary = run_simulation(scene, *opt);
-    } catch (const Interrupted& e) {
-      std::cerr << "\nrailtab: " << e.what() << "\n";
-      throw CLI::RuntimeError(128 + (interrupt_signal() ? interrupt_signal() : 2));  // the shell's code: 130, 143
-    }
+    });
     std::cout << fmt::format("{}: {} ({} dynamics, {})\n", summary.name, (summary.directory / "summary.json").string(),
                              summary.dynamics_model, opt->direct ? "direct contact evaluation" : "table lookup");
     for (const ModelSummary& m : summary.models) {
