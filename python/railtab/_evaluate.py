@@ -7,6 +7,7 @@ import re
 import numpy as np
 
 from . import _railtab
+from ._shapes import broadcast_named
 
 
 class Scene:
@@ -73,15 +74,10 @@ def evaluate(scene, y, *, roll=None, load=None, creepage=None, model=None, mu=No
     vectorised = y_arr.ndim > 0 or (load_arr is not None and load_arr.ndim > 0) or (c_arr is not None and c_arr.ndim > 1)
     if not vectorised:
         return _one(scene, y_arr, roll, equilibrium_roll, load_arr, model, c_arr, mu)
-    shapes = [y_arr.shape] + ([load_arr.shape] if load_arr is not None else []) + \
-             ([c_arr.shape[:-1]] if c_arr is not None else [])
-    try:
-        shape = np.broadcast_shapes(*shapes)
-    except ValueError:  # numpy's message counts arguments of this call, not the user's names
-        named = [f"y {y_arr.shape}"] + ([f"load {load_arr.shape}"] if load_arr is not None else []) + \
-                ([f"creepage {c_arr.shape}"] if c_arr is not None else [])
-        raise ValueError("y, load and creepage (without its last axis of 3) do not broadcast against each "
-                         "other: " + ", ".join(named)) from None
+    shapes = {"y": y_arr.shape, **({"load": load_arr.shape} if load_arr is not None else {}),
+              **({"creepage": c_arr.shape[:-1]} if c_arr is not None else {})}
+    shape = broadcast_named("y, load and creepage (without its last axis of 3)", shapes,
+                            {**shapes, **({"creepage": c_arr.shape} if c_arr is not None else {})})
     ys = np.broadcast_to(y_arr, shape).ravel()
     loads = None if load_arr is None else np.broadcast_to(load_arr, shape).ravel()
     cs = None if c_arr is None else np.broadcast_to(c_arr, shape + (3,)).reshape(-1, 3)

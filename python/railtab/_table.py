@@ -5,6 +5,7 @@ import os
 import numpy as np
 
 from . import _railtab
+from ._shapes import broadcast_named
 from ._status import cf_flag_attributes
 from ._units import AXIS_UNITS, OUTPUT_UNITS
 
@@ -124,12 +125,8 @@ class Table:
                 raise TypeError(f"{name} must be real, got a complex array")
             values[name] = np.asarray(arr, dtype=np.float64)
         codes = _wheel_codes(wheel)
-        try:
-            shape = np.broadcast_shapes(codes.shape, *(a.shape for a in values.values()))
-        except ValueError:  # numpy's message counts arguments of this call, not the user's names
-            shapes = {"wheel": codes.shape, **{k: values[k].shape for k in _STATE if given[k] is not None}}
-            raise ValueError("the state arrays do not broadcast against each other (numpy rules): "
-                             + ", ".join(f"{k} {s}" for k, s in shapes.items())) from None
+        shape = broadcast_named("the state arrays",
+                                {"wheel": codes.shape, **{k: values[k].shape for k in _STATE if given[k] is not None}})
         n = int(np.prod(shape, dtype=np.int64))
         slot_arg = -1 if slot is None else int(slot)
         raw, part_status, status = self._t._query_arrays(
