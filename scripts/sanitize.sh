@@ -14,7 +14,7 @@
 #         RAILTAB_PLAIN_THREADS: its parallel loops (sweep/parallel_for.cpp, the generator's only
 #         way to run in parallel) use std::threads there, because Debian's libtbb is not built
 #         with TSan and TSan reports races even in a correct 10-line tbb::parallel_for, some in
-#         the loop body itself (scripts/tsan.supp, docs/reliability.md "ThreadSanitizer and
+#         the loop body itself (scripts/tsan.supp, docs/ci.md "ThreadSanitizer and
 #         oneTBB"). So the stage checks railtab's own loop bodies and shared state, not oneTBB.
 # Usage: bash scripts/sanitize.sh asan|tsan
 set -euo pipefail

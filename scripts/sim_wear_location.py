@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
 """Where the wheelsets ran and where each post-processor's wear sits, for a `railtab simulate` run
-(docs/seed001-wear.md, "R1500: where the wheelset runs decides the sign").
+(docs/validation/wear-cases.md, "R1500: where the wheelset runs decides the sign").
 
 Usage: sim_wear_location.py OUT/NAME S0 S1 [STEP]
 S0, S1: bogie-centre distance range [m] of the trajectory to summarise (e.g. the circular curve).

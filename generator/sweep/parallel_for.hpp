@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The generator's one way to run independent work items in parallel: body(i) for every i in
 // [0, n) on at most `threads` threads. oneTBB normally; plain std::threads in the ThreadSanitizer
-// build (RAILTAB_PLAIN_THREADS), whose synchronisation TSan sees (docs/reliability.md).
+// build (RAILTAB_PLAIN_THREADS), whose synchronisation TSan sees (docs/ci.md).
 #pragma once
 
 #include <cstddef>

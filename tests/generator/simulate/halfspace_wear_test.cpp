@@ -2,7 +2,7 @@
 // The exact half-space wear post-processor (simulate/halfspace_wheel_wear.hpp): plausibility on
 // tangent track against the elliptic one, zero wear without creepage, worn area kept when the
 // element wear is mapped onto the wheel profile. The disabled Table3PatchWear test prints the
-// single-patch comparison of docs/seed001-wear.md (seed 001 Table 3 states):
+// single-patch comparison of docs/validation/wear-cases.md (seed 001 Table 3 states):
 //   test_generator_simulate --gtest_also_run_disabled_tests --gtest_filter='Table3PatchWear*'
 #include <gtest/gtest.h>
 
@@ -181,7 +181,7 @@ TEST(HalfspaceWear, SampledHalfspaceSeesEveryKthSampleWithKTimesItsDistance) {
 // Seed 001 Table 3: the leading outer wheel in quasi-static curving, S1002 on UIC60 1:30.
 // Displacement towards the flange of the outer (right) wheel in a left curve = y < 0. The paper
 // gives no creepages: here yaw 0 (our bogie's leading wheelset runs nearly radial in flange
-// contact: -0.05 mrad in R600, docs/seed001-wear.md), spin V / r0 (r0 = 0.46 m, nominal radius),
+// contact: -0.05 mrad in R600, docs/validation/wear-cases.md), spin V / r0 (r0 = 0.46 m, nominal radius),
 // the curvature's own spin and the rolling-radius difference from vehicle::creepage; mu 0.3, the
 // contact scene's wear map (dry / 5.5).
 struct Table3Case {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Where one wear sample puts the wear on the outer wheel, elliptic (Hertz) against STRIPES, as the
-// wheelset moves outwards in a curve: the diagnostic behind docs/seed001-wear.md's direction check
+// wheelset moves outwards in a curve: the diagnostic behind docs/validation/wear-cases.md's direction check
 // (seed 001: STRIPES relocates wear towards the flange). Disabled: it prints a table, it asserts
 // nothing about the numbers. Run with
 //   test_generator_simulate --gtest_also_run_disabled_tests --gtest_filter='*WearCentroidAcrossY*'
@@ -78,7 +78,7 @@ double half_max_width(const WearAccumulator& acc, int wheel) {
   return hi >= lo ? hi - lo + (acc.u()[1] - acc.u()[0]) : 0.0;
 }
 
-// The R600 runaway (docs/seed001-wear.md): one wear sample of the leading outer wheel at the
+// The R600 runaway (docs/validation/wear-cases.md): one wear sample of the leading outer wheel at the
 // step-0 state of the R600 run (circular part means from shared/step0/trajectory.csv: y -5.27 mm,
 // yaw -0.045 mrad, right tread N 86.1 kN at 0.138 rad, left load 71.9 kN), with the KTH map as it
 // is and with the seizure region moved out of reach (hardness x 10: seizure from 22 GPa; areas
