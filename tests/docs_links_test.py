@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Checks the documentation's links: every relative link and image in README.md and docs/**/*.md
 must name a file or folder of the repository, and a #fragment must name a heading (GitHub's
-anchor of it) or an <a id="..."> of the target page. Also refuses absolute links, and text that
+anchor of it) or an <a id="..."> of the target page; every page of docs/ must be reachable from
+the index docs/README.md. Also refuses absolute links, and text that
 names an issue or session number or a scratch folder (/work/..., /tmp/...): the docs speak to
 users about the project as it is (docs/README.md is the index).
 
@@ -83,7 +84,29 @@ def check(root):
                     continue
                 if fragment and dest.is_file() and dest.suffix == ".md" and fragment not in anchors(dest):
                     problems.append(f"{where}:{number}: link '{target}': no heading or anchor '#{fragment}' in {dest.name}")
+    problems += unreachable(root, pages)
     return pages, problems
+
+
+def unreachable(root, pages):
+    """Every page of docs/ must be reachable from the index docs/README.md by links."""
+    index = root / "docs" / "README.md"
+    if not index.exists():
+        return ["docs/README.md: the index is missing"]
+    seen, todo = {index.resolve()}, [index]
+    while todo:
+        page = todo.pop()
+        for line in strip_code(page.read_text(encoding="utf-8").splitlines()):
+            for target in LINK.findall(line):
+                path_part = target.partition("#")[0]
+                if not path_part or re.match(r"^[a-z][a-z0-9+.-]*:", target) or target.startswith("/"):
+                    continue
+                dest = (page.parent / path_part).resolve()
+                if dest.suffix == ".md" and dest.is_file() and dest not in seen and (root / "docs").resolve() in dest.parents:
+                    seen.add(dest)
+                    todo.append(dest)
+    return [f"{p.relative_to(root)}: not reachable from docs/README.md (add it to the index)"
+            for p in pages if (root / "docs").resolve() in p.resolve().parents and p.resolve() not in seen]
 
 
 def main():
