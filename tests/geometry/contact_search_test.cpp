@@ -3,7 +3,6 @@
 // the jump into flange contact.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -150,21 +149,6 @@ TEST_F(S1002Search, WideSweepFiniteOrError) {
     }
   }
   std::printf("wide sweep: %d of %d states rejected with railtab::Error\n", errors, 61 * 9 * 2);
-}
-
-// Rough timing of solve_wheel (printed, loosely bounded: catches order-of-magnitude regressions).
-TEST_F(S1002Search, SolveWheelIsFast) {
-  const int n = 400;
-  const auto t0 = std::chrono::steady_clock::now();
-  double sink = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const double y = -8e-3 + 16e-3 * i / (n - 1);
-    sink += solver.solve_wheel(Side::right, {y, 1e-3 * std::sin(i)}).wheel_drop;
-  }
-  const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / n;
-  std::printf("solve_wheel: %.1f us per call (S1002/UIC60, with band)\n", us);
-  EXPECT_TRUE(std::isfinite(sink));
-  EXPECT_LT(us, 5000.0);
 }
 
 }  // namespace
