@@ -189,12 +189,16 @@ std::vector<double> default_conicity_amplitudes() {
   return a;
 }
 
-ConicityCurve compute_conicity(LateralFunctions functions, const std::vector<double>& amplitudes) {
+void check_conicity_amplitudes(const std::vector<double>& amplitudes) {
   RAILTAB_CHECK(!amplitudes.empty(), "conicity: no amplitudes given");
   for (double a : amplitudes) {
     RAILTAB_CHECK(std::isfinite(a) && a > 0.0 && a <= kMaxLateralShift,
                   "conicity: amplitude {} m is not a positive lateral motion of at most {} m", a, kMaxLateralShift);
   }
+}
+
+ConicityCurve compute_conicity(LateralFunctions functions, const std::vector<double>& amplitudes) {
+  check_conicity_amplitudes(amplitudes);
   ConicityCurve curve;
   curve.functions = std::move(functions);
   const LateralFunctions& f = curve.functions;

@@ -76,8 +76,12 @@ struct ConicityCurve {
 // The amplitudes of the report when none are given: 1 to 10 mm in 1 mm steps [m].
 std::vector<double> default_conicity_amplitudes();
 
-// Throws railtab::Error naming the amplitude when one is not positive or not finite, and when
-// Delta r does not rise through zero (no kinematic oscillation).
+// Throws railtab::Error naming the first amplitude that is not a positive finite lateral motion of
+// at most kMaxLateralShift, or when there is none.
+void check_conicity_amplitudes(const std::vector<double>& amplitudes);
+
+// Throws railtab::Error for bad amplitudes (above) and when Delta r does not rise through zero (no
+// kinematic oscillation).
 ConicityCurve compute_conicity(LateralFunctions functions, const std::vector<double>& amplitudes);
 
 }  // namespace railtab

@@ -46,23 +46,36 @@ bool is_hdf5(const std::string& path) {
   return in.read(head.data(), head.size()) && head == kSignature;
 }
 
-// The lateral functions of a scene (solved) or a table (read after the lookup's own checks).
-LateralFunctions lateral_functions(const std::string& path, bool table, const ConicityOptions& opt,
-                                   const std::vector<double>& amplitudes) {
-  if (table) {
-    try {
-      lookup::Table::load(path);  // a corrupt or crafted file is refused before the reader sees it
-    } catch (const lookup::LoadError& e) {
-      throw Error(e.what());
-    }
-    return lateral_functions_from_table(read_table(path), path);
+// One pair as given: a scene or a table, loaded (and a table checked by the lookup) before any
+// output is created or any geometry solved.
+struct PairInput {
+  std::string path;
+  std::optional<Scene> scene;
+  std::optional<Table> table;
+};
+
+PairInput load_pair(const std::string& path, bool table) {
+  PairInput in{path, std::nullopt, std::nullopt};
+  if (!table) {
+    in.scene = load_scene(path);
+    return in;
   }
-  const Scene scene = load_scene(path);
+  try {
+    lookup::Table::load(path);  // a corrupt or crafted file is refused before the reader sees it
+  } catch (const lookup::LoadError& e) {
+    throw Error(e.what());
+  }
+  in.table = read_table(path);
+  return in;
+}
+
+LateralFunctions lateral_functions(const PairInput& in, const ConicityOptions& opt, const std::vector<double>& amplitudes) {
+  if (in.table) return lateral_functions_from_table(*in.table, in.path);
   ConicitySweep sweep;
   sweep.y_step = opt.y_step;
   sweep.equilibrium_roll = !opt.zero_roll;
   sweep.y_max = opt.y_max > 0.0 ? opt.y_max : *std::max_element(amplitudes.begin(), amplitudes.end()) + 1e-3;
-  return lateral_functions_from_scene(scene, sweep);
+  return lateral_functions_from_scene(*in.scene, sweep);
 }
 
 void print_text(const ConicityCurve& c) {
@@ -80,15 +93,16 @@ void print_text(const ConicityCurve& c) {
 
 void run_conicity(const ConicityOptions& opt) {
   RAILTAB_CHECK(opt.scene_path.empty() != opt.table_path.empty(), "conicity: give exactly one of --scene and --table");
-  if (!opt.out_dir.empty()) require_writable_directory(opt.out_dir);
   const std::vector<double> amplitudes = opt.amplitudes.empty() ? default_conicity_amplitudes() : opt.amplitudes;
+  check_conicity_amplitudes(amplitudes);
   const bool from_table = !opt.table_path.empty();
-  const ConicityCurve curve = compute_conicity(
-      lateral_functions(from_table ? opt.table_path : opt.scene_path, from_table, opt, amplitudes), amplitudes);
+  const PairInput first = load_pair(from_table ? opt.table_path : opt.scene_path, from_table);
+  std::optional<PairInput> second;
+  if (!opt.compare_path.empty()) second = load_pair(opt.compare_path, is_hdf5(opt.compare_path));
+  if (!opt.out_dir.empty()) require_writable_directory(opt.out_dir);
+  const ConicityCurve curve = compute_conicity(lateral_functions(first, opt, amplitudes), amplitudes);
   std::optional<ConicityCurve> compare;
-  if (!opt.compare_path.empty()) {
-    compare = compute_conicity(lateral_functions(opt.compare_path, is_hdf5(opt.compare_path), opt, amplitudes), amplitudes);
-  }
+  if (second) compare = compute_conicity(lateral_functions(*second, opt, amplitudes), amplitudes);
   if (opt.json) {
     nlohmann::json j = conicity_json(curve);
     if (compare) j["compare"] = conicity_json(*compare);
