@@ -53,10 +53,11 @@ void locate(const TableData& d, int w, const State& state, Location& at) noexcep
   if (at.cut) query_pieces(d.jumps[w], d.axis[kVarY], at.loc, d.jumps[w].load_axis ? 2 : 1, at.pieces);
 }
 
-// One slot's outputs and d output / d variable, built block by block as the query writes them.
+// One slot's outputs and d output / d variable (`d` the caller's, zeroed), built block by block
+// as the query writes them.
 struct SlotGradient {
-  double value[kNumOutputs] = {};
-  double d[kNumOutputs][kNumVars] = {};
+  double value[kNumOutputs] = {};  // 0 for parts the table does not hold, as the query's
+  double (*d)[kNumVars] = nullptr;
 };
 
 void block_gradient(const TableData& d, int w, int bi, const Location& at, const AxisLoc* loc, int slot,
@@ -202,7 +203,7 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
     for (int var = 0; var < kNumVars; ++var)
       dlaw[c][var] = jac[c][0] * dxn[0][var] + jac[c][1] * dxn[1][var] + jac[c][2] * dxn[2][var];
   double* v = out.value;
-  auto& dd = out.d;
+  double (*dd)[kNumVars] = out.d;
   const double mu = map.friction;
   if (map.vertical_share) {  // N = share / (cos a + mu r_y sin a), normal_from_share
     const double share = v[kNormalForce], angle = v[kContactAngle];
@@ -262,7 +263,7 @@ bool Table::query_derivatives(Wheel wheel, const State& state, Result& result, D
   const int ns = std::max(0, std::min(result.n_slots, kMaxSlots));
   for (int s = 0; s < ns; ++s)
     for (auto& row : derivatives.d[s])
-      for (double& x : row) x = 0.0;
+      for (double& x : row) x = 0.0;  // parts the table does not hold, untabulated variables
   if (!derivatives_supported()) return false;
   if (result.status & status::kInvalidInput) return true;
   const int w = static_cast<int>(wheel);
@@ -270,10 +271,11 @@ bool Table::query_derivatives(Wheel wheel, const State& state, Result& result, D
   locate(d, w, state, at);
   for (int s = 0; s < ns; ++s) {
     SlotGradient g;
+    g.d = derivatives.d[s];
     slot_gradient(d, w, at, s, g);
-    for (int o = 0; o < kNumOutputs; ++o)
-      for (int var = 0; var < kNumVars; ++var)
-        derivatives.d[s][o][var] = at.frozen[var] ? 0.0 : g.d[o][var];
+    for (int var = 0; var < kNumVars; ++var)
+      if (at.frozen[var])
+        for (int o = 0; o < kNumOutputs; ++o) derivatives.d[s][o][var] = 0.0;
   }
   return true;
 }

@@ -56,6 +56,7 @@ def test_one_slot_and_xarray(default_table):
     one = table.query("left", y=0.004, load=78.5e3, xi=0.001, slot=1, derivatives=True, as_xarray=False)
     assert one["d_fy_d_y"].shape == (1,)
     assert one["d_fy_d_y"][0] == both["d_fy_d_y"][1]
+    assert both["d_fx_d_xi"][0] < 0  # fx = -G c^2 C11 xi at small creepage (docs/conventions.md)
     pytest.importorskip("xarray")
     ds = table.query("left", y=[0.001, 0.002], load=78.5e3, derivatives=True)
     assert ds["d_fx_d_xi"].attrs["units"] == "N"
