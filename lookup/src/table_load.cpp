@@ -10,6 +10,7 @@
 #include "flat_json.hpp"
 #include "hdf5_file.hpp"
 #include "interpolate.hpp"
+#include "low_confidence.hpp"
 #include "part_spec.hpp"
 
 namespace railtab::lookup::detail {
@@ -532,6 +533,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   }
   read_creep_map(f, *d);
   read_jumps(f, *d);  // format 2.1; absent: no one-sided cells (as before)
+  mark_unbalanced_load(*d);  // low_confidence.hpp: the load-balance rule
   narrow_exact_blocks(*d);  // float records where every value is a float (format 2.2's creep, wear)
   // What the query does with each tabulated variable, fixed here so its loop has no branch on it.
   for (int k = 0; k < d->n_tabulated; ++k) {
