@@ -15,7 +15,6 @@
 #include "error_message.hpp"
 #include "generator/test_tables.hpp"
 #include "kernel/contact_kernel.hpp"
-#include "generate/generate.hpp"
 #include "table/table_io.hpp"
 
 namespace railtab {
