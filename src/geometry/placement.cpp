@@ -239,7 +239,47 @@ WheelPose make_pose(Side side, const WheelsetState& state, const WheelsetGeometr
   pose.sin_t = std::sin(pose.theta);
   pose.q0 = 0.5 * wheelset.back_to_back - wheelset.flange_back_position;
   pose.r0 = wheelset.nominal_radius;
+  if (state.yaw != 0.0) {
+    pose.yawed = true;
+    pose.psi = sigma * state.yaw;
+    pose.cos_p = std::cos(pose.psi);
+    pose.sin_p = std::sin(pose.psi);
+  }
   return pose;
+}
+
+// Wheel axes in the side frame (x forward, q outward, z up) for the orientation R_z(psi) R_x(theta):
+// forward e_f = (cp, sp, 0), up e_v = (sp st, -cp st, ct), axle (outward) e_a = (-sp ct, cp ct, st).
+// Profile point u lies on the circle of radius r = r0 - z_w(u) about C + a e_a, a = q0 + y_w(u);
+// at the angle tau from its lowest point it is P = C + a e_a + r rho, rho = -cos(tau) e_v +
+// sin(tau) e_f, with the outward surface normal n = N_a e_a + N_r rho, (N_a, N_r) = (z', y')/|.|
+// the profile normal in the (axial, radial) half-plane (N_a/N_r = tan of the wheel's own
+// contact angle). The rail is extruded along x, so contact needs n_x = 0:
+//   N_r cos(psi) sin(tau) - N_r sin(psi) sin(theta) cos(tau) = N_a sin(psi) cos(theta),
+// solved as R sin(tau + beta) = C. Without roll sin(tau) = tan(gamma_w) tan(psi) and the lead
+// r sin(tau) cos(psi) = r tan(gamma_w) sin(psi) (the flange lead of a yawed wheel).
+TracePoint WheelPose::trace(const CurveSample& e) const {
+  const double a = q0 + e.y;
+  const double r = r0 - e.z;
+  const double speed = std::hypot(e.dy, e.dz);
+  const double na = e.dz / speed, nr = e.dy / speed;
+  const double A = nr * cos_p, B = -nr * sin_p * sin_t, C = na * sin_p * cos_t;
+  const double R = std::hypot(A, B);
+  const double tau = R > 1e-12 ? std::asin(std::clamp(C / R, -1.0, 1.0)) - std::atan2(B, A) : 0.0;
+  const double ct = std::cos(tau), st = std::sin(tau);
+  // rho = -ct e_v + st e_f
+  const double rho_x = -ct * sin_p * sin_t + st * cos_p;
+  const double rho_q = ct * cos_p * sin_t + st * sin_p;
+  const double rho_z = -ct * cos_t;
+  const double ea_q = cos_p * cos_t, ea_z = sin_t;
+  TracePoint tp;
+  tp.x = -a * sin_p * cos_t + r * rho_x;
+  tp.p = {qc + a * ea_q + r * rho_q, zc + a * ea_z + r * rho_z};
+  tp.x_wheel = r * st;
+  const double n_q = na * ea_q + nr * rho_q, n_z = na * ea_z + nr * rho_z;  // points into the rail
+  tp.angle = std::atan2(n_q, -n_z);
+  tp.cos_chi = st * sin_p * sin_t + ct * cos_p;
+  return tp;
 }
 
 }  // namespace railtab::detail

@@ -38,7 +38,9 @@ std::vector<std::string> outputs(const WheelContactGeometry& g, const std::strin
   put("n_points", static_cast<double>(g.points.size()));
   for (size_t k = 0; k < g.points.size(); ++k) {
     const ContactPoint& p = g.points[k];
-    const std::string pk = "p" + std::to_string(k) + ".";
+    char prefix[32];
+    std::snprintf(prefix, sizeof prefix, "p%zu.", k);
+    const std::string pk = prefix;
     put(pk + "wheel_u", p.wheel_u);
     put(pk + "rail_u", p.rail_u);
     put(pk + "y_track", p.y_track);
