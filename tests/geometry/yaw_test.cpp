@@ -35,8 +35,8 @@ ContactGeometrySolver s1002_uic60() {
 // through profile point u, at the angle tau from its lowest point with
 //   sin(tau) = tan(delta) tan(psi_s)                       (psi_s = sigma * yaw),
 // so the contact leads the wheel's axle plane by x_wheel = r sin(tau) = r tan(delta) tan(psi_s)
-// (along the wheel's rolling direction; the classic flange lead, e.g. Wickens, Fundamentals of
-// Rail Vehicle Dynamics (2003), sec. 2) and lies at track x = -a sin(psi_s) + r sin(tau) cos(psi_s)
+// (along the wheel's rolling direction: the flange lead; derivation in docs/conventions.md "Yaw")
+// and lies at track x = -a sin(psi_s) + r sin(tau) cos(psi_s)
 // (a = Q0 + u, the circle's distance along the axle). The normal there leans by
 //   tan(g) = tan(delta) / (cos(psi_s) cos(tau)),
 // so the contact on the crown (centre Qc, radius R) is at q = Qc - R sin(g), and u follows from
