@@ -115,9 +115,11 @@ bool build_band(const PlacedRail& rail, const Profile& wheel, const WheelPose& p
         const double k_circ = e.dy / (std::sqrt(slope_term) * b.rolling_radius);
         const double c2 = tp.cos_chi * tp.cos_chi;
         b.x_track = tp.x;
+        b.x_wheel = tp.x_wheel;
         b.curvature_rolling = k_circ * c2 + b.curvature_wheel * (1.0 - c2);
       } else {
         b.x_track = 0.0;
+        b.x_wheel = 0.0;
         b.curvature_rolling = std::cos(rp.angle - pose.theta) / b.rolling_radius;
       }
       kept = k;

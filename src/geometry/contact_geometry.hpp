@@ -81,6 +81,7 @@ struct BandSample {
   double curvature_rail;   // lateral curvature of the rail surface, + convex (crown) [1/m]
   double x_track;          // longitudinal position of the facing wheel point (the wheel's
                            // silhouette seen along the track), track x from the axle centre [m]
+  double x_wheel;          // lead of that wheel point along the wheel's rolling direction, r sin(tau) [m]
   double curvature_rolling;  // normal curvature of the wheel along track x there, + convex:
                              // cos(angle - roll)/r without yaw, Euler's formula with yaw [1/m]
 };
