@@ -62,7 +62,8 @@ struct WheelsetState {
   double roll = 0.0;  // roll angle relative to the track, right-hand about +x (left wheel up) [rad]
   double yaw = 0.0;   // yaw angle (angle of attack) relative to the track, right-hand about +z: +
                       // turns the wheelset's forward axis towards +y (left); orientation
-                      // R_z(yaw) R_x(roll); 0 is exactly the yaw-free geometry [rad]
+                      // R_x(roll) R_z(yaw), roll about the track's x axis (as CONTACT); 0 is
+                      // exactly the yaw-free geometry [rad]
 };
 
 // One sample of the gap band: a point on the rail surface and the wheel point facing it along

@@ -18,20 +18,20 @@ Creepage rigid_creepage(const WheelContactGeometry& g, const HalfspacePatch& pat
                 m.spin, m.lateral_velocity);
   const double sigma = outward_sign(g.side);
   // Side-frame angles (the wheel's own), then the radial direction rho to the contact point on
-  // its circle: rho = -cos(tau) e_v + sin(tau) e_f with e_f = (cp, sp, 0), e_v = (sp st, -cp st, ct)
-  // (geometry/placement.cpp); a side-frame position maps to the track by q = sigma y.
+  // its circle: rho = -cos(tau) e_v + sin(tau) e_f with e_f = (cp, sp ct, sp st), e_v = (0, -st, ct)
+  // for R_x(roll) R_z(yaw) (geometry/placement.cpp); a side-frame position maps to the track by
+  // q = sigma y.
   const double th = g.wheel_roll, ps = g.wheel_yaw;
   const double ct = std::cos(th), st = std::sin(th), cp = std::cos(ps), sp = std::sin(ps);
   const double r = patch.rolling_radius;
   const double s_tau = std::clamp(patch.x_wheel / r, -1.0, 1.0);
   const double c_tau = std::sqrt(1.0 - s_tau * s_tau);
-  const double rho_x = -c_tau * sp * st + s_tau * cp;
-  const double rho_y = sigma * (c_tau * cp * st + s_tau * sp);
-  const double rho_z = -c_tau * ct;
-  // Axle direction (towards the left wheel) in the track frame for R_z(yaw) R_x(roll).
+  const double rho_x = s_tau * cp;
+  const double rho_y = sigma * (c_tau * st + s_tau * sp * ct);
+  const double rho_z = -c_tau * ct + s_tau * sp * st;
+  // Axle direction (towards the left wheel) in the track frame for R_x(roll) R_z(yaw).
   const double yaw = sigma * ps, roll = sigma * th;
-  const double ax = -std::sin(yaw) * std::cos(roll), ay = std::cos(yaw) * std::cos(roll),
-               az = std::sin(roll);
+  const double ax = -std::sin(yaw), ay = std::cos(yaw) * std::cos(roll), az = std::cos(yaw) * std::sin(roll);
   // v = V x + y_dot y + Omega a x (r rho)
   const double w = m.spin * r;
   const double vx = m.speed + w * (ay * rho_z - az * rho_y);

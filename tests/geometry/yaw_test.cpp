@@ -87,32 +87,38 @@ TEST(YawGeometry, ClosedFormLeadOfAYawedCone) {
   EXPECT_NEAR(p.x_wheel, 0.0264, 5e-4);
 }
 
-// For any profile the lead at a point follows from the wheel's own slope there (no roll):
-// x_wheel = r z'(u) tan(psi_s), and the track-frame normal leans by tan(g) = z' / (cos psi cos tau).
+// For any profile and roll the lead at a point follows from the wheel's own slope there:
+// x_wheel = r z'(u) tan(psi_s) (roll is about the track's x axis: it does not enter); without
+// roll the track-frame normal leans by tan(g) = z' / (cos psi cos tau).
 TEST(YawGeometry, LeadOfEveryPointFollowsItsWheelSlope) {
   const ContactGeometrySolver solver = s1002_uic60();
   const ProfilePtr wheel = make_s1002_profile();
   int flange = 0, points = 0;
   for (const double y : {-0.004, 0.0, 0.005, 0.0065, 0.009})
     for (const double yaw : {0.012, -0.024})
-      for (const Side side : {Side::left, Side::right}) {
-        WheelsetState s;
-        s.y = y;
-        s.yaw = yaw;
-        const WheelContactGeometry g = solver.solve_wheel(side, s);
-        for (const ContactPoint& p : g.points) {
-          const double slope = wheel->curve(p.wheel_t).dz / wheel->curve(p.wheel_t).dy;
-          const double psi = outward_sign(side) * yaw;
-          const double st = slope * std::tan(psi);
-          EXPECT_NEAR(p.x_wheel, p.rolling_radius * st, 1e-9) << "y " << y << " yaw " << yaw;
-          EXPECT_NEAR(std::tan(p.contact_angle_side), slope / (std::cos(psi) * std::sqrt(1 - st * st)),
-                      1e-6 * (1 + slope * slope));
-          flange += (p.status & status::kFlangeContact) != 0;
-          ++points;
+      for (const double roll : {0.0, -0.011}) {
+        for (const Side side : {Side::left, Side::right}) {
+          WheelsetState s;
+          s.y = y;
+          s.yaw = yaw;
+          s.roll = roll;
+          const WheelContactGeometry g = solver.solve_wheel(side, s);
+          for (const ContactPoint& p : g.points) {
+            const double slope = wheel->curve(p.wheel_t).dz / wheel->curve(p.wheel_t).dy;
+            const double psi = outward_sign(side) * yaw;
+            const double st = slope * std::tan(psi);
+            EXPECT_NEAR(p.x_wheel, p.rolling_radius * st, 1e-9) << "y " << y << " yaw " << yaw;
+            if (roll == 0.0) {
+              EXPECT_NEAR(std::tan(p.contact_angle_side), slope / (std::cos(psi) * std::sqrt(1 - st * st)),
+                          1e-6 * (1 + slope * slope));
+            }
+            flange += (p.status & status::kFlangeContact) != 0;
+            ++points;
+          }
         }
       }
-  EXPECT_GE(flange, 4);  // flange points are among them
-  EXPECT_GT(points, 20);
+  EXPECT_GE(flange, 8);  // flange points are among them
+  EXPECT_GT(points, 40);
 }
 
 void expect_mirror(const WheelContactGeometry& a, const WheelContactGeometry& b) {
