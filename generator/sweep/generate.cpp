@@ -10,6 +10,7 @@
 #include <iostream>
 #include <thread>
 
+#include "core/number_input.hpp"
 #include "sweep/adaptive_grid.hpp"
 #include "sweep/contact_kernel.hpp"
 #include "sweep/jump_locator.hpp"
@@ -31,12 +32,15 @@ bool launched_by_mpi() {
 }
 
 std::pair<int, int> parse_shard(const std::string& text) {
-  int index = 0, count = 0;
-  char slash = 0, extra = 0;
-  bool ok = std::sscanf(text.c_str(), "%d %c %d %c", &index, &slash, &count, &extra) == 3 && slash == '/' &&
-            count >= 1 && index >= 1 && index <= count;
-  RAILTAB_CHECK(ok, "--shard \"{}\": expected I/N with 1 <= I <= N, e.g. 2/8", text);
-  return {index, count};
+  // I and N by the number reader (core/number_input.hpp): whole numbers, no sign games or spaces.
+  constexpr NumberRule kPart{1, 1'000'000, true, ""};
+  const std::size_t slash = text.find('/');
+  double index = 0.0, count = 0.0;
+  const bool ok = slash != std::string::npos &&
+                  number_problem(std::string_view(text).substr(0, slash), kPart, index).empty() &&
+                  number_problem(std::string_view(text).substr(slash + 1), kPart, count).empty() && index <= count;
+  RAILTAB_CHECK(ok, "--shard \"{}\": expected I/N with 1 <= I <= N <= 1000000, e.g. 2/8", text);
+  return {static_cast<int>(index), static_cast<int>(count)};
 }
 
 SweepSummary generate_table(const GenerateOptions& options) {
