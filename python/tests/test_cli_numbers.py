@@ -58,11 +58,13 @@ BAD = [
     (["chart-pressure", "--scene", SCENE, "--out", "OUT", "--reference-pmax", "-1"], "--reference-pmax"),
     (["chart", "--scene", SCENE, "--out", "OUT", "--repeats", "1.5"], "--repeats"),
     (["chart", "--scene", SCENE, "--out", "OUT", "--repeats", ""], "--repeats"),
+    (["conicity", "--scene", SCENE, "--out", "OUT", "--amplitudes", "0.001,,0.002"], "--amplitudes"),
+    (["conicity", "--scene", SCENE, "--out", "OUT", "--y-step", ""], "--y-step"),
+    (["conicity", "--scene", SCENE, "--out", "OUT", "--y-max", "nan"], "--y-max"),
 ]
 
 
-@pytest.mark.parametrize("args,option", BAD, ids=[" ".join(a[:1] + a[2:] if a[0] != "query" else a[:1] + a[2:])
-                                                   for a, _ in BAD])
+@pytest.mark.parametrize("args,option", BAD, ids=[f"{a[0]}{option}-{k}" for k, (a, option) in enumerate(BAD)])
 def test_bad_number_is_a_usage_error_naming_the_option(railtab_program, default_table, tmp_path, args, option):
     out = tmp_path / "out"
     args = [str(default_table) if a == "TABLE" else str(out) if a == "OUT" else a for a in args]
