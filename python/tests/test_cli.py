@@ -144,7 +144,7 @@ def test_conicity_json_from_scene_and_table(railtab_program, default_table):
 
 @pytest.mark.parametrize("args, code, message", [
     (["--amplitudes", "abc"], 2, "abc"),
-    (["--amplitudes", "-0.001"], 1, "amplitude -0.001 m"),
+    (["--amplitudes", "-0.001"], 2, "--amplitudes: value 1 of '-0.001': must be a number in [1e-06, 0.1] m"),
     (["--table", "T.h5"], 2, "--table"),     # --scene and --table exclude each other
 ])
 def test_conicity_bad_input_names_it(railtab_program, args, code, message):
