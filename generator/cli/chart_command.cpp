@@ -19,7 +19,9 @@
 #include "charts/stability_chart.hpp"
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
+#include "cli/number_options.hpp"
 #include "scene/scene.hpp"
+#include "scene/state_rules.hpp"
 
 namespace railtab {
 namespace {
@@ -85,11 +87,18 @@ void add_scene_and_out(CLI::App* cmd, std::string& scene_path, std::string& out_
   cmd->add_flag("-q,--quiet", quiet, "No progress or diagnostics on stderr (results and errors are still printed)");
 }
 
-// A y sweep: first, last and step [m].
+// A y sweep: first, last and step [m]; the step from 1 um (at most 2e5 points over the widest
+// sweep) to the whole width.
+constexpr NumberRule kYStepRule{1e-6, 2 * kMaxLateralShift, false, "m"};
+// chart --repeats: timed runs per state and model.
+constexpr NumberRule kRepeatsRule{1, 1000, true, ""};
+// chart-pressure --reference-pmax: a contact pressure (up to 100 GPa).
+constexpr NumberRule kPressureRule{0.0, 1e11, false, "Pa"};
+
 void add_y_range(CLI::App* cmd, double& y_min, double& y_max, double& y_step) {
-  cmd->add_option("--y-min", y_min, "First lateral displacement [m]")->capture_default_str();
-  cmd->add_option("--y-max", y_max, "Last lateral displacement [m]")->capture_default_str();
-  cmd->add_option("--y-step", y_step, "Step [m]")->capture_default_str();
+  add_number_option(cmd, "--y-min", y_min, kLateralShiftRule, "First lateral displacement [m]");
+  add_number_option(cmd, "--y-max", y_max, kLateralShiftRule, "Last lateral displacement [m]");
+  add_number_option(cmd, "--y-step", y_step, kYStepRule, "Step [m]");
 }
 
 }  // namespace
@@ -131,11 +140,11 @@ void add_chart_commands(CLI::App& app) {
   CLI::App* pres = app.add_subcommand(
       "chart-pressure", "Chart the pressure along the strip centre lines of every normal model (CSV + PNG)");
   add_scene_and_out(pres, pr->scene_path, pr->out_dir, pr->quiet);
-  pres->add_option("--y", pr->chart.y, "Wheelset lateral displacement [m]")->capture_default_str();
-  pres->add_option("--load", pr->chart.load, "Vertical wheel load [N]")->capture_default_str();
+  add_number_option(pres, "--y", pr->chart.y, kLateralShiftRule, "Wheelset lateral displacement [m]");
+  add_number_option(pres, "--load", pr->chart.load, kWheelLoadRule, "Vertical wheel load [N]");
   pres->add_option("--wheel", pr->side, "left|right")->check(CLI::IsMember({"left", "right"}))->capture_default_str();
-  pres->add_option("--reference-pmax", pr->chart.reference_max_pressure,
-                   "Half-space maximum pressure to draw as a line [Pa] (e.g. CONTACT block A: 888e6)");
+  add_number_option(pres, "--reference-pmax", pr->chart.reference_max_pressure, kPressureRule,
+                    "Half-space maximum pressure to draw as a line [Pa] (e.g. CONTACT block A: 888e6)");
   pres->callback([pr] {
     pr->chart.side = pr->side == "left" ? Side::left : Side::right;
     const Scene scene = load_scene(pr->scene_path);
@@ -151,7 +160,7 @@ void add_chart_commands(CLI::App& app) {
   chart->add_option("--reference", sa->reference,
                     "CONTACT block C CSV (default: <source>/../shared/reference/blockC_sweep_integer_dy.csv; "
                     "absent: the exact half-space model as reference)");
-  chart->add_option("--repeats", sa->repeats, "Timed runs per state and model setting")->capture_default_str();
+  add_count_option(chart, "--repeats", sa->repeats, kRepeatsRule, "Timed runs per state and model setting");
   chart->add_flag("--quick", sa->quick, "Few settings only (smoke run)");
   chart->add_flag("--keep-tables", sa->keep_tables, "Keep the generated tables in OUT/tables");
   chart->callback([sa] { run_speed_chart(*sa); });

@@ -6,8 +6,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
-#include <charconv>
-#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -58,25 +56,6 @@ void require_writable_directory(const std::filesystem::path& dir) {
   RAILTAB_CHECK(!ec && std::filesystem::is_directory(dir), "{}: cannot create the output directory ({}); refused "
                 "before starting", dir.string(), ec ? ec.message() : "not a directory");
   probe(dir, dir);
-}
-
-bool parse_number(const std::string& text, double& value) {
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  return ec == std::errc() && ptr == end;
-}
-
-const CLI::Validator& thread_count_validator() {
-  static const CLI::Validator validator(
-      [](std::string& text) -> std::string {
-        double v = 0.0;
-        if (!parse_number(text, v) || v < 0.0 || v != std::floor(v) || v > 1e6) {
-          return "must be a whole number of threads >= 0 (0 = all cores), got '" + text + "'";
-        }
-        return {};
-      },
-      "NONNEGATIVE");
-  return validator;
 }
 
 CLI::Validator error_check_validator(std::function<void(const std::string&)> check) {

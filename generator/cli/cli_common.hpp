@@ -17,13 +17,7 @@ class Validator;
 
 namespace railtab {
 
-// True when the whole of `text` is one number (std::from_chars), stored in `value`.
-bool parse_number(const std::string& text, double& value);
-
-// --threads N: a whole number >= 0 (0 = all cores). CLI11's NonNegativeNumber answers a word or a
-// negative number with a 300-digit range; this names what the option wants. A failed check is a
-// usage error (exit 2).
-const CLI::Validator& thread_count_validator();
+// Numeric options: number_options.hpp (one reader for every number a user types).
 
 // A validator from a core check that throws railtab::Error on a bad value (e.g. a model name): the
 // value is refused while parsing, a usage error (exit 2) with the check's own message.

@@ -18,8 +18,10 @@
 #include "charts/conicity_chart.hpp"
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
+#include "cli/number_options.hpp"
 #include "core/check.hpp"
 #include "railtab/lookup.hpp"
+#include "scene/state_rules.hpp"
 #include "table/table_io.hpp"
 
 namespace railtab {
@@ -126,11 +128,15 @@ void add_conicity_command(CLI::App& app) {
   auto* scene = cmd->add_option("--scene", opt->scene_path, "Scene file (TOML): rigid geometry solved along y");
   auto* table = cmd->add_option("--table", opt->table_path, "Generated table (HDF5): its geometry part");
   scene->excludes(table);
-  cmd->add_option("--amplitudes", opt->amplitudes, "Amplitudes of the lateral motion [m] (default 0.001,...,0.010)")
-      ->delimiter(',');
+  // Amplitudes and the sweep: numbers by the one reader (number_options.hpp), exit 2 when refused.
+  add_number_list_option(cmd, "--amplitudes", opt->amplitudes, NumberRule{1e-6, kMaxLateralShift, false, "m"},
+                         "Amplitudes of the lateral motion [m] (default 0.001,...,0.010)");
   cmd->add_option("--compare", opt->compare_path, "A second pair (scene or table) to report and chart beside");
-  cmd->add_option("--y-max", opt->y_max, "Scene sweep from -y-max to +y-max [m] (default: largest amplitude + 0.001)");
-  cmd->add_option("--y-step", opt->y_step, "Scene sweep step [m]")->capture_default_str();
+  add_number_option(cmd, "--y-max", opt->y_max, NumberRule{1e-6, kMaxLateralShift, false, "m"},
+                    "Scene sweep from -y-max to +y-max [m] (default: largest amplitude + 0.001)")
+      ->default_str("");
+  add_number_option(cmd, "--y-step", opt->y_step, NumberRule{1e-6, kMaxLateralShift, false, "m"},
+                    "Scene sweep step [m]");
   cmd->add_flag("--zero-roll", opt->zero_roll,
                 "Scene: keep the wheelset unrolled (default: its kinematic equilibrium roll, both wheels touching)");
   cmd->add_flag("--json", opt->json, "Print JSON (amplitude_m, equivalent_conicity, ...) instead of text");

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -13,10 +14,12 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
+#include "cli/number_options.hpp"
 #include "normal/normal_model.hpp"
 #include "scene/scene.hpp"
 #include "eval/state_eval.hpp"
 #include "eval/state_json.hpp"
+#include "scene/state_rules.hpp"
 
 namespace railtab {
 namespace {
@@ -103,23 +106,24 @@ void add_eval_command(CLI::App& app) {
   auto opt = std::make_shared<EvalOptions>();
   CLI::App* cmd = app.add_subcommand("eval", "Evaluate one wheelset state of a scene (SI units)");
   cmd->add_option("--scene", opt->scene_path, "Scene file (TOML)")->capture_default_str();
-  cmd->add_option("--y", opt->request.y, "Wheelset lateral displacement [m], + to the left (ISO 8855)")
-      ->capture_default_str();
-  cmd->add_option("--roll", opt->request.roll,
-                  "Wheelset roll relative to the track [rad], + lifts the left wheel (default: the scene's: the "
-                  "kinematic equilibrium roll with [grid] equilibrium_roll = true, else its first roll)");
+  add_number_option(cmd, "--y", opt->request.y, kLateralShiftRule,
+                    "Wheelset lateral displacement [m], + to the left (ISO 8855)");
+  add_number_option(cmd, "--roll", opt->request.roll, kRollRule,
+                    "Wheelset roll relative to the track [rad], + lifts the left wheel (default: the scene's: the "
+                    "kinematic equilibrium roll with [grid] equilibrium_roll = true, else its first roll)");
   cmd->add_flag("--equilibrium-roll", opt->request.equilibrium_roll,
                 "Use the kinematic equilibrium roll of the rigid wheelset");
-  cmd->add_option("--load", opt->request.load, "Vertical wheel load in track axes [N] (default: scene's first load)");
+  add_number_option(cmd, "--load", opt->request.load, kWheelLoadRule,
+                    "Vertical wheel load in track axes [N] (default: scene's first load)");
   cmd->add_option("--model", opt->request.model,
                   "Normal model: hertz|linder|kik-piotrowski|stripes-a|stripes-ab|halfspace (default: scene's)")
       ->check(error_check_validator([](const std::string& name) { parse_normal_model(name); }));  // exit 2
-  cmd->add_option("--creepage", opt->request.creepage,
-                  "Creepages XI,ETA,PHI of the wheel relative to the rail: longitudinal, lateral [-], spin "
-                  "[rad/m] (docs/conventions.md); adds fx, fy, mz, slip_fraction, wear_rate")
-      ->delimiter(',')
-      ->expected(3);
-  cmd->add_option("--mu", opt->request.mu, "Coulomb friction coefficient (default: scene's)");
+  static constexpr std::array<NumberField, 3> kCreepage{
+      {{"xi", kCreepageRule}, {"eta", kCreepageRule}, {"phi", kSpinCreepageRule}}};
+  add_number_fields_option(cmd, "--creepage", opt->request.creepage, kCreepage,
+                           "Creepages XI,ETA,PHI of the wheel relative to the rail: longitudinal, lateral [-], spin "
+                           "[rad/m] (docs/conventions.md); adds fx, fy, mz, slip_fraction, wear_rate");
+  add_number_option(cmd, "--mu", opt->request.mu, kFrictionRule, "Coulomb friction coefficient (default: scene's)");
   cmd->add_flag("--json", opt->json, "Print JSON (stable keys, SI units) instead of text");
   add_quiet_flag(cmd);  // eval prints results only; accepted for uniformity
   cmd->callback([opt] { run_eval(*opt); });

@@ -9,6 +9,7 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
+#include "cli/number_options.hpp"
 #include "generate/generate.hpp"
 #include "engine/shard_split.hpp"
 #ifdef RAILTAB_HAVE_MPI
@@ -25,21 +26,16 @@ void add_generate_command(CLI::App& app) {
   // a usage error (exit 2), as in eval, inspect and query.
   cmd->add_option("scene", opt->scene, "Scene file (TOML, docs/scenes.md)")->required();
   cmd->add_option("-o,--output", opt->output, "Table file to write (HDF5)")->required();
-  cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
-      ->check(thread_count_validator())
-      ->capture_default_str();
+  add_count_option(cmd, "--threads", opt->threads, kThreadsRule, "Worker threads (0 = all cores)");
   auto quiet = add_quiet_flag(cmd);
   cmd->add_flag("--resume", opt->resume,
                 "Keep finished y blocks in OUTPUT.partial and skip those already there (result = fresh run)");
   cmd->add_option("--shard", *shard, "Compute only part I of N (1-based, contiguous y ranges of about equal estimated cost; "
-                "\"auto\": from SLURM_ARRAY_TASK_ID/COUNT); join with railtab merge");
-  cmd->add_option("--max-points", opt->max_points,
-                  "Refuse a table with more grid points (docs/reliability.md); raise it for a bigger run")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  cmd->add_option("--max-bytes", opt->max_bytes, "Refuse a table needing more memory [B]")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+                "\"auto\": from SLURM_ARRAY_TASK_ID/COUNT); join with railtab merge")
+      ->check(error_check_validator([](const std::string& text) { parse_shard_spec(text); }));  // exit 2
+  add_count_option(cmd, "--max-points", opt->max_points, kSizeLimitRule,
+                   "Refuse a table with more grid points (docs/reliability.md); raise it for a bigger run");
+  add_count_option(cmd, "--max-bytes", opt->max_bytes, kSizeLimitRule, "Refuse a table needing more memory [B]");
   cmd->callback([opt, shard, quiet] {
     if (!shard->empty()) std::tie(opt->shard_index, opt->shard_count) = parse_shard_spec(*shard);
     opt->log = *quiet ? nullptr : &std::cerr;

@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// railtab query TABLE.h5 --y Y[,Y...] [--roll R] [--load N] [--creepage XI,ETA,PHI] [--wheel W]
-//               [--method M] [--derivatives] [--json]
+// railtab query TABLE.h5 (--y Y[,Y...] | --states FILE) [--roll R] [--load N] [--creepage XI,ETA,PHI]
+//               [--wheel W] [--method M] [--derivatives] [--json]
 // Interpolates a table with the runtime library (railtab::lookup, exactly what a simulation
 // gets): every output of every slot at each state, with units and status text. Checks a table
-// one ships against `railtab eval` (the direct models) at the same state. --derivatives adds each
-// output's exact partial derivatives of the interpolant with respect to every tabulated axis.
+// one ships against `railtab eval` (the direct models) at the same state. States are printed as
+// they are read (from --y or a states file, stdin included): memory does not grow with their number.
+// --derivatives adds each output's exact partial derivatives of the interpolant with respect to
+// every tabulated axis.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <array>
+#include <cmath>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -17,9 +22,12 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
+#include "cli/number_options.hpp"
+#include "cli/query_states.hpp"
 #include "core/check.hpp"
 #include "core/status.hpp"
 #include "railtab/lookup.hpp"
+#include "scene/state_rules.hpp"
 
 namespace railtab {
 namespace {
@@ -29,12 +37,13 @@ namespace lk = railtab::lookup;
 struct QueryOptions {
   std::string table;
   std::vector<double> y;          // one state per value [m]
+  std::string states;             // states file ('-': stdin), instead of --y
   std::optional<double> roll;     // [rad]
+  bool derivatives = false;       // also the partial derivatives per tabulated axis
   std::optional<double> load;     // [N]
   std::vector<double> creepage;   // xi, eta [1], phi [rad/m]; empty: 0, 0, 0
   std::string wheel = "both";     // left, right or both
   std::string method = "linear";  // interpolation method
-  bool derivatives = false;       // also the partial derivatives per tabulated axis
   bool json = false;
 };
 
@@ -68,11 +77,23 @@ bool is_fixed(const lk::Table& table, const std::string& name) {
 // error when the table tabulates it (a query at an arbitrary value would mislead).
 void set_variable(const lk::Table& table, const std::optional<double>& given, const char* name, double& value) {
   if (given) {
-    RAILTAB_CHECK(std::isfinite(*given), "--{} must be finite, got {}", name, *given);
-    value = *given;
+    value = *given;  // checked by its option's rule (number_options.hpp)
   } else {
     RAILTAB_CHECK(!is_axis(table, name), "{}: {} is an axis of this table: give --{}", table.path(), name, name);
   }
+}
+
+nlohmann::ordered_json contact_json(const lk::Table& table, const lk::Contact& c, int slot) {
+  nlohmann::ordered_json j;
+  j["slot"] = slot;
+  j["slot_name"] = kSlotNames[slot];
+  for (int o = 0; o < lk::kNumOutputs; ++o) {
+    const auto out = static_cast<lk::Output>(o);
+    if (table.has_part(lk::output_part(out))) j[lk::output_name(out)] = c.value[o];
+  }
+  j["status"] = status::describe(c.status);
+  j["status_bits"] = c.status;
+  return j;
 }
 
 // {output: {axis: d output / d axis}} for the outputs the table holds and its tabulated axes.
@@ -90,67 +111,74 @@ nlohmann::ordered_json derivatives_json(const lk::Table& table, const double (*d
   return j;
 }
 
-nlohmann::ordered_json contact_json(const lk::Table& table, const lk::Contact& c, int slot) {
-  nlohmann::ordered_json j;
-  j["slot"] = slot;
-  j["slot_name"] = kSlotNames[slot];
-  for (int o = 0; o < lk::kNumOutputs; ++o) {
-    const auto out = static_cast<lk::Output>(o);
-    if (table.has_part(lk::output_part(out))) j[lk::output_name(out)] = c.value[o];
-  }
-  j["status"] = status::describe(c.status);
-  j["status_bits"] = c.status;
-  return j;
+// Text: the header once, then one block per query.
+void print_text_header(const nlohmann::ordered_json& head) {
+  std::cout << fmt::format("table {} (scene {}, format {}), {} interpolation\n", head["table"].get<std::string>(),
+                           head["scene_name"].get<std::string>(), head["format_version"].get<std::string>(),
+                           head["method"].get<std::string>());
 }
 
-void print_text(const nlohmann::ordered_json& out) {
-  std::cout << fmt::format("table {} (scene {}, format {}), {} interpolation\n", out["table"].get<std::string>(),
-                           out["scene_name"].get<std::string>(), out["format_version"].get<std::string>(),
-                           out["method"].get<std::string>());
-  const auto& units = out["units"];
-  for (const auto& q : out["queries"]) {
-    const auto& s = q["state"];
-    const std::string roll = s["roll"].is_null() ? "the table's equilibrium roll"
-                                                 : fmt::format("{:g} rad", s["roll"].get<double>());
-    std::cout << fmt::format("\n{} wheel: y = {:g} m, roll = {}, load = {:g} N, xi = {:g}, eta = {:g}, "
-                             "phi = {:g} rad/m; query status {}\n",
-                             q["wheel"].get<std::string>(), s["y"].get<double>(), roll,
-                             s["load"].get<double>(), s["xi"].get<double>(), s["eta"].get<double>(),
-                             s["phi"].get<double>(), q["query_status"].get<std::string>());
-    const auto& contacts = q["contacts"];
-    std::cout << fmt::format("  {:<16} {:>8}", "output", "units");
-    for (const auto& c : contacts) std::cout << fmt::format(" {:>14}", c["slot_name"].get<std::string>());
+void print_text_query(const nlohmann::ordered_json& units, const nlohmann::ordered_json& q) {
+  const auto& s = q["state"];
+  const std::string roll = s["roll"].is_null() ? "the table's equilibrium roll"
+                                               : fmt::format("{:g} rad", s["roll"].get<double>());
+  std::cout << fmt::format("\n{} wheel: y = {:g} m, roll = {}, load = {:g} N, xi = {:g}, eta = {:g}, "
+                           "phi = {:g} rad/m; query status {}\n",
+                           q["wheel"].get<std::string>(), s["y"].get<double>(), roll, s["load"].get<double>(),
+                           s["xi"].get<double>(), s["eta"].get<double>(), s["phi"].get<double>(),
+                           q["query_status"].get<std::string>());
+  const auto& contacts = q["contacts"];
+  std::cout << fmt::format("  {:<16} {:>8}", "output", "units");
+  for (const auto& c : contacts) std::cout << fmt::format(" {:>14}", c["slot_name"].get<std::string>());
+  std::cout << "\n";
+  for (const auto& [name, unit] : units.items()) {
+    std::cout << fmt::format("  {:<16} {:>8}", name, unit.get<std::string>());
+    for (const auto& c : contacts) std::cout << fmt::format(" {:>14.6g}", c[name].get<double>());
     std::cout << "\n";
-    for (const auto& [name, unit] : units.items()) {
-      std::cout << fmt::format("  {:<16} {:>8}", name, unit.get<std::string>());
-      for (const auto& c : contacts) std::cout << fmt::format(" {:>14.6g}", c[name].get<double>());
-      std::cout << "\n";
-    }
-    std::cout << fmt::format("  {:<16} {:>8}", "status", "");
-    for (const auto& c : contacts) std::cout << fmt::format(" {:>14}", c["status"].get<std::string>());
-    std::cout << "\n";
-    if (!contacts.empty() && contacts[0].contains("derivatives")) {
-      std::cout << "  partial derivatives (output units per axis unit):\n";
-      for (const auto& [name, unit] : units.items())
-        for (const auto& [axis, value] : contacts[0]["derivatives"][name].items()) {
-          std::cout << fmt::format("  d {:<12} / d {:<4}", name, axis);
-          for (const auto& c : contacts) std::cout << fmt::format(" {:>14.6g}", c["derivatives"][name][axis].get<double>());
-          std::cout << "\n";
-        }
-    }
+  }
+  std::cout << fmt::format("  {:<16} {:>8}", "status", "");
+  for (const auto& c : contacts) std::cout << fmt::format(" {:>14}", c["status"].get<std::string>());
+  std::cout << "\n";
+  if (!contacts.empty() && contacts[0].contains("derivatives")) {
+    std::cout << "  partial derivatives (output units per axis unit):\n";
+    for (const auto& [name, unit] : units.items())
+      for (const auto& [axis, value] : contacts[0]["derivatives"][name].items()) {
+        std::cout << fmt::format("  d {:<12} / d {:<4}", name, axis);
+        for (const auto& c : contacts) std::cout << fmt::format(" {:>14.6g}", c["derivatives"][name][axis].get<double>());
+        std::cout << "\n";
+      }
   }
 }
+
+// JSON: the text nlohmann's dump(2) gives for {header..., "queries": [q, q, ...]}, written one
+// query at a time.
+class JsonQueryWriter {
+ public:
+  explicit JsonQueryWriter(const nlohmann::ordered_json& head) {
+    std::string text = head.dump(2);  // "{\n  ...\n}"
+    text.resize(text.size() - 2);     // without "\n}"
+    std::cout << text << ",\n  \"queries\": [";
+  }
+  void add(const nlohmann::ordered_json& q) {
+    std::string text = first_ ? "\n    " : ",\n    ";
+    for (const char c : q.dump(2)) {  // one level deeper: 4 more spaces after every line end
+      text += c;
+      if (c == '\n') text += "    ";
+    }
+    std::cout << text;
+    first_ = false;
+  }
+  void finish() { std::cout << (first_ ? "]\n}\n" : "\n  ]\n}\n"); }
+
+ private:
+  bool first_ = true;
+};
 
 void run_query(const QueryOptions& opt) {
-  RAILTAB_CHECK(!opt.y.empty(), "--y: give at least one lateral displacement [m]");
-  RAILTAB_CHECK(opt.creepage.empty() || opt.creepage.size() == 3,
-                "--creepage takes XI,ETA,PHI (three numbers), got {} value(s)", opt.creepage.size());
+  RAILTAB_CHECK(!opt.y.empty() || !opt.states.empty(), "give the states: --y Y[,Y...] or --states FILE");
   RAILTAB_CHECK(opt.wheel == "left" || opt.wheel == "right" || opt.wheel == "both",
                 "--wheel must be left, right or both, got '{}'", opt.wheel);
   const lk::Method method = parse_method(opt.method);
-  RAILTAB_CHECK(!opt.derivatives || method != lk::Method::kMonotoneCubic,
-                "--derivatives needs --method linear or cubic: the monotone cubic's limited slopes are not "
-                "differentiated");
   lk::Table table = [&] {
     try {
       return lk::Table::load(opt.table, {method});
@@ -158,6 +186,12 @@ void run_query(const QueryOptions& opt) {
       throw Error(e.what());
     }
   }();
+  RAILTAB_CHECK(!opt.derivatives || method != lk::Method::kMonotoneCubic,
+                "--derivatives needs --method linear or cubic: the monotone cubic's limited slopes are not "
+                "differentiated");
+  // The states file is opened before anything is printed: a missing one prints nothing.
+  std::unique_ptr<StateReader> reader;
+  if (!opt.states.empty()) reader = std::make_unique<StateReader>(opt.states);
   lk::State base = table.default_state();
   // A table whose roll follows the equilibrium holds no other roll: --roll would be answered at
   // the equilibrium anyway (the lookup flags it out_of_range), so it is refused outright.
@@ -166,30 +200,35 @@ void run_query(const QueryOptions& opt) {
                 "equilibrium), so roll is not an input; leave --roll out",
                 table.path());
   set_variable(table, opt.roll, "roll", base.roll);
-  set_variable(table, opt.load, "load", base.load);
+  if (!reader || !reader->has("load")) set_variable(table, opt.load, "load", base.load);
+  else if (opt.load) base.load = *opt.load;
   if (!opt.creepage.empty()) {
-    for (double c : opt.creepage) RAILTAB_CHECK(std::isfinite(c), "--creepage values must be finite, got {}", c);
     base.xi = opt.creepage[0];
     base.eta = opt.creepage[1];
     base.phi = opt.creepage[2];
   }
-  nlohmann::ordered_json out;
-  out["table"] = table.path();
-  out["scene_name"] = table.scene_name();
-  out["format_version"] = table.format_version();
-  out["method"] = opt.method;
-  out["units"] = nlohmann::ordered_json::object();
+  nlohmann::ordered_json head;
+  head["table"] = table.path();
+  head["scene_name"] = table.scene_name();
+  head["format_version"] = table.format_version();
+  head["method"] = opt.method;
+  head["units"] = nlohmann::ordered_json::object();
   for (int o = 0; o < lk::kNumOutputs; ++o) {
     const auto output = static_cast<lk::Output>(o);
-    if (table.has_part(lk::output_part(output))) out["units"][lk::output_name(output)] = kOutputUnits[o];
+    if (table.has_part(lk::output_part(output))) head["units"][lk::output_name(output)] = kOutputUnits[o];
   }
-  out["queries"] = nlohmann::ordered_json::array();
-  for (double y : opt.y) {
-    RAILTAB_CHECK(std::isfinite(y), "--y values must be finite, got {}", y);
+  // Roll that is neither tabulated nor fixed follows the table's equilibrium roll: not an input.
+  const bool roll_is_input = is_axis(table, "roll") || is_fixed(table, "roll");
+  if (reader && reader->has("roll")) {
+    RAILTAB_CHECK(roll_is_input, "{}: column roll: this table follows its equilibrium roll; a roll would be ignored",
+                  opt.states);
+  }
+  std::optional<JsonQueryWriter> json;
+  if (opt.json) json.emplace(head);
+  else print_text_header(head);
+  const auto answer = [&](const lk::State& s) {
     for (int w = 0; w < 2; ++w) {
       if ((opt.wheel == "left" && w == 1) || (opt.wheel == "right" && w == 0)) continue;
-      lk::State s = base;
-      s.y = y;
       lk::Result r;
       auto d = std::make_unique<lk::Derivatives>();
       if (opt.derivatives) table.query_derivatives(static_cast<lk::Wheel>(w), s, r, *d);
@@ -197,22 +236,35 @@ void run_query(const QueryOptions& opt) {
       nlohmann::ordered_json q;
       q["wheel"] = w == 0 ? "left" : "right";
       q["state"] = {{"y", s.y}, {"roll", s.roll}, {"load", s.load}, {"xi", s.xi}, {"eta", s.eta}, {"phi", s.phi}};
-      // Roll that is neither tabulated nor fixed follows the table's equilibrium roll: not an input.
-      if (!is_axis(table, "roll") && !is_fixed(table, "roll")) q["state"]["roll"] = nullptr;
+      if (!roll_is_input) q["state"]["roll"] = nullptr;
       q["query_status"] = status::describe(r.status);
       q["contacts"] = nlohmann::ordered_json::array();
       for (int slot = 0; slot < r.n_slots; ++slot) {
         q["contacts"].push_back(contact_json(table, r.contact[slot], slot));
         if (opt.derivatives) q["contacts"].back()["derivatives"] = derivatives_json(table, d->d[slot]);
       }
-      out["queries"].push_back(q);
+      if (json) json->add(q);
+      else print_text_query(head["units"], q);
+    }
+  };
+  if (reader) {
+    lk::State s = base;
+    bool any = false;
+    while (reader->next(s)) {
+      answer(s);
+      s = base;
+      any = true;
+    }
+    RAILTAB_CHECK(any, "{}: no states (a header line, then one state per line)", opt.states);
+  } else {
+    for (double y : opt.y) {
+      lk::State s = base;
+      s.y = y;
+      answer(s);
     }
   }
-  if (opt.json) {
-    std::cout << out.dump(2) << "\n";
-  } else {
-    print_text(out);
-  }
+  if (json) json->finish();
+  std::cout.flush();
 }
 
 }  // namespace
@@ -222,14 +274,25 @@ void add_query_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "query", "Interpolate a table with the runtime lookup at given states (what a simulation gets)");
   cmd->add_option("table", opt->table, "Table file (HDF5)")->required();
-  cmd->add_option("--y", opt->y, "Wheelset lateral displacement(s) [m], + to the left; comma-separated for several")
-      ->delimiter(',')
-      ->required();
-  cmd->add_option("--roll", opt->roll, "Wheelset roll [rad] (default: the table's fixed value)");
-  cmd->add_option("--load", opt->load, "Vertical wheel load [N] (default: the table's fixed value)");
-  cmd->add_option("--creepage", opt->creepage, "Creepages XI,ETA,PHI [1, 1, rad/m] (default 0,0,0)")
-      ->delimiter(',')
-      ->expected(3);
+  CLI::Option* y = add_number_list_option(
+      cmd, "--y", opt->y, kLateralShiftRule,
+      "Wheelset lateral displacement(s) [m], + to the left; comma-separated for several");
+  CLI::Option* states =
+      cmd->add_option("--states", opt->states,
+                      "States file ('-': stdin), read and answered one line at a time: a header naming the "
+                      "columns (y and any of roll, load, xi, eta, phi), then one state per line; columns not "
+                      "given come from --roll, --load, --creepage");
+  y->excludes(states);
+  cmd->add_flag("--derivatives", opt->derivatives,
+               "Also each output's partial derivatives with respect to every tabulated axis (exact for the "
+               "interpolant, SI: output units per axis unit; linear and cubic methods)");
+  add_number_option(cmd, "--roll", opt->roll, kRollRule, "Wheelset roll [rad] (default: the table's fixed value)");
+  add_number_option(cmd, "--load", opt->load, kWheelLoadRule,
+                    "Vertical wheel load [N] (default: the table's fixed value)");
+  static constexpr std::array<NumberField, 3> kCreepage{
+      {{"xi", kCreepageRule}, {"eta", kCreepageRule}, {"phi", kSpinCreepageRule}}};
+  add_number_fields_option(cmd, "--creepage", opt->creepage, kCreepage,
+                           "Creepages XI,ETA,PHI [1, 1, rad/m] (default 0,0,0)");
   // A value outside the list is a usage error (exit 2, README), like an unknown option.
   cmd->add_option("--wheel", opt->wheel, "left, right or both")
       ->check(CLI::IsMember({"left", "right", "both"}))
@@ -237,12 +300,12 @@ void add_query_command(CLI::App& app) {
   cmd->add_option("--method", opt->method, "Interpolation: linear, cubic or monotone-cubic")
       ->check(CLI::IsMember({"linear", "cubic", "monotone-cubic"}))
       ->capture_default_str();
-  cmd->add_flag("--derivatives", opt->derivatives,
-               "Also each output's partial derivatives with respect to every tabulated axis (exact for the "
-               "interpolant, SI: output units per axis unit; linear and cubic methods)");
   cmd->add_flag("--json", opt->json, "Print JSON (stable keys, SI units) instead of text");
   add_quiet_flag(cmd);  // query prints results only; accepted for uniformity
-  cmd->callback([opt] { run_query(*opt); });
+  cmd->callback([opt] {
+    if (opt->y.empty() && opt->states.empty()) throw CLI::RequiredError("--y or --states");  // exit 2
+    run_query(*opt);
+  });
 }
 
 }  // namespace railtab

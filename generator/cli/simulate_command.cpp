@@ -10,23 +10,16 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
+#include "cli/number_options.hpp"
 #include "scene/simulation_scene.hpp"
 #include "simulate/simulation_run.hpp"
 
 namespace railtab {
 namespace {
 
-// CLI11's NonNegativeNumber says "Value abc not in range 0.000000 to 1797...(300 digits)" for a word
-// or a negative number; this says what the option wants. A failed check is a usage error (2).
-const CLI::Validator kPositiveSeconds(
-    [](std::string& text) -> std::string {
-      double v = 0.0;
-      if (!parse_number(text, v) || !std::isfinite(v) || v <= 0.0) {
-        return "must be a duration > 0 s (leave it out to run the whole route), got '" + text + "'";
-      }
-      return {};
-    },
-    "POSITIVE");
+// --duration: from a microsecond (one RK4 step at the smallest time_step) to a day, in seconds;
+// leave it out to run the whole route.
+constexpr NumberRule kDurationRule{1e-6, 86400.0, false, "s"};
 
 }  // namespace
 
@@ -38,13 +31,12 @@ void add_simulate_command(CLI::App& app) {
   // A missing scene is an input error (exit 1, named by the scene reader), not a usage error.
   cmd->add_option("scene", *scene_file, "Simulation scene (TOML, docs/simulation.md)")->required();
   cmd->add_option("--out", opt->out, "Output directory (results in OUT/<scene name>/)")->required();
-  cmd->add_option("--threads", opt->threads, "Table generation threads (0 = all cores)")
-      ->check(thread_count_validator())
-      ->capture_default_str();
+  add_count_option(cmd, "--threads", opt->threads, kThreadsRule, "Table generation threads (0 = all cores)");
   cmd->add_flag("--direct", opt->direct,
                 "Evaluate geometry, normal model and FASTSIM at every call instead of the table (reference, slow)");
-  cmd->add_option("--duration", opt->duration, "Simulate at most this long per run [s] (speed measurements)")
-      ->check(kPositiveSeconds);
+  add_number_option(cmd, "--duration", opt->duration, kDurationRule,
+                    "Simulate at most this long per run [s] (speed measurements; default: the whole route)")
+      ->default_str("");
   cmd->add_option("--post-processors", opt->post_processors,
                   "Wear post-processors instead of the scene's (e.g. hertz stripes-a)")
       ->check(error_check_validator(check_wear_post_processor));  // a misspelt name, at once

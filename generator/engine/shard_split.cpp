@@ -9,8 +9,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
+#include <string_view>
 
 #include "core/check.hpp"
+#include "core/number_input.hpp"
 
 namespace railtab {
 
@@ -38,12 +40,15 @@ std::pair<std::size_t, std::size_t> weighted_shard_range(const std::vector<doubl
 }
 
 std::pair<int, int> parse_shard(const std::string& text) {
-  int index = 0, count = 0;
-  char slash = 0, extra = 0;
-  bool ok = std::sscanf(text.c_str(), "%d %c %d %c", &index, &slash, &count, &extra) == 3 && slash == '/' &&
-            count >= 1 && index >= 1 && index <= count;
-  RAILTAB_CHECK(ok, "--shard \"{}\": expected I/N with 1 <= I <= N, e.g. 2/8", text);
-  return {index, count};
+  // I and N by the number reader (core/number_input.hpp): whole numbers, no sign games or spaces.
+  constexpr NumberRule kPart{1, 1'000'000, true, ""};
+  const std::size_t slash = text.find('/');
+  double index = 0.0, count = 0.0;
+  const bool ok = slash != std::string::npos &&
+                  number_problem(std::string_view(text).substr(0, slash), kPart, index).empty() &&
+                  number_problem(std::string_view(text).substr(slash + 1), kPart, count).empty() && index <= count;
+  RAILTAB_CHECK(ok, "--shard \"{}\": expected I/N with 1 <= I <= N <= 1000000, e.g. 2/8", text);
+  return {static_cast<int>(index), static_cast<int>(count)};
 }
 
 std::pair<int, int> parse_shard_spec(const std::string& text) {

@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "core/check.hpp"
+#include "core/number_input.hpp"
+#include "scene/state_rules.hpp"
 #include "kernel/finite_status.hpp"
 #include "kernel/halfspace_contact.hpp"
 
@@ -90,11 +92,12 @@ void evaluate_halfspace(const Scene& scene, double load, const std::vector<doubl
 }  // namespace
 
 StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& request) {
-  RAILTAB_CHECK(std::isfinite(request.y), "--y must be finite, got {}", request.y);
+  // The ranges of the command line's options (scene/state_rules.hpp): Python's evaluate too.
+  check_number_input(request.y, "--y", kLateralShiftRule);
   Scene scene = base;
   if (!request.model.empty()) scene.normal.model = parse_normal_model(request.model);
   if (request.mu) {
-    RAILTAB_CHECK(std::isfinite(*request.mu) && *request.mu >= 0.0, "--mu must be finite and >= 0, got {}", *request.mu);
+    check_number_input(*request.mu, "--mu", kFrictionRule);
     scene.tangential.friction = *request.mu;
   }
   const bool with_creep = !request.creepage.empty();
@@ -108,7 +111,7 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
 
   double roll = 0.0;
   if (request.roll) {
-    RAILTAB_CHECK(std::isfinite(*request.roll), "--roll must be finite, got {}", *request.roll);
+    check_number_input(*request.roll, "--roll", kRollRule);
     RAILTAB_CHECK(!request.equilibrium_roll, "--roll and --equilibrium-roll exclude each other");
     roll = *request.roll;
   } else if (request.equilibrium_roll || scene.equilibrium_roll) {
@@ -123,7 +126,7 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
     RAILTAB_CHECK(!scene.grids.load.empty(), "scene '{}' has no load grid: give --load", scene.name);
     load = scene.grids.load.front();
   }
-  RAILTAB_CHECK(std::isfinite(load) && load >= 0.0, "--load must be finite and >= 0 N, got {}", load);
+  check_number_input(load, "--load", kWheelLoadRule);
   // 0 is a rigid, unloaded wheelset; between 0 and 1 kN it is a load typed in kN (scene.hpp).
   RAILTAB_CHECK(load == 0.0 || load >= kMinWheelLoad,
                 "--load {} N is below {} N: the load is in N (SI: 78.5 kN is 78.5e3)", load, kMinWheelLoad);

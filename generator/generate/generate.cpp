@@ -10,6 +10,7 @@
 #include <iostream>
 #include <thread>
 
+#include "core/number_input.hpp"
 #include "adaptive/adaptive_grid.hpp"
 #include "kernel/contact_kernel.hpp"
 #include "adaptive/jump_locator.hpp"

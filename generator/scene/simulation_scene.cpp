@@ -222,10 +222,12 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
     RAILTAB_CHECK(p == "leading" || p == "trailing", "expected \"leading\" or \"trailing\", got \"{}\"", p);
   });
   scene.speed = k.number("speed", 0.0, [](double v) { return v > 0.0 && v < 150.0; }, "in (0, 150) m/s", true);
-  scene.time_step = k.number("time_step", scene.time_step, [](double v) { return v > 0.0 && v <= 0.01; }, "in (0, 0.01] s");
+  scene.time_step = k.number("time_step", scene.time_step, [](double v) { return v >= kMinTimeStep && v <= 0.01; },
+                             "in [1e-6, 0.01] s");
   scene.initial_y = k.number("initial_y", 0.0, [](double v) { return std::abs(v) <= 0.02; }, "in [-0.02, 0.02] m");
   scene.wear_steps = k.integer("wear_steps", 1, 1, 100);
-  scene.running_distance = k.number("running_distance", 0.0, positive, "> 0 m", true);
+  scene.running_distance = k.number("running_distance", 0.0, [](double v) { return v > 0.0 && v <= kMaxRunningDistance; },
+                                    "in (0, 1e9] m (1e6 km)", true);
   scene.lubrication_factor = k.number("lubrication_factor", 5.5, [](double v) { return v >= 1.0; }, ">= 1");
   scene.profile_smoothing = k.number("profile_smoothing", 0.0, non_negative, ">= 0 m");
   scene.step_depth_limit = k.number("step_depth_limit", 0.0, non_negative, ">= 0 m");
@@ -234,6 +236,14 @@ SimulationScene parse_simulation_scene(std::string_view toml_text, const std::st
 
   parse_vehicle(file, root, scene.vehicle);
   parse_route(file, root, scene);
+  // The RK4 steps of one run over the route: refused up front when a run could not end.
+  const double steps = scene.route_length() / scene.speed / scene.time_step;
+  if (!(steps <= kMaxDynamicsSteps)) {
+    fail(file, k.node("time_step") ? k.node("time_step")->source() : k.source(), "simulation.time_step",
+         fmt::format("{} s steps over the route ({} m at {} m/s) are {:.3g} RK4 steps per run, above the limit of "
+                     "{:.0e}: raise time_step or shorten the route",
+                     scene.time_step, scene.route_length(), scene.speed, steps, kMaxDynamicsSteps));
+  }
   return scene;
 }
 

@@ -16,6 +16,12 @@
 
 namespace railtab {
 
+// Limits of a simulation scene (docs/simulation.md): a run must end and its wear stay physical.
+inline constexpr double kMinTimeStep = 1e-6;            // [s]: 1000x below the RK4 steps that run
+inline constexpr double kMaxDynamicsSteps = 1e8;        // RK4 steps of one run over the route [-]
+inline constexpr double kMaxRunningDistance = 1e9;      // [m]: 1e6 km, beyond any wheel's life
+inline constexpr double kMaxProfileUpdateDepth = 0.01;  // [m]: one wear step's deepest profile update
+
 struct SimulationScene {
   std::string name;                        // [simulation] name (default: the file's stem)
   std::string description;                 // [simulation] description

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/check.hpp"
+#include "scene/scene.hpp"
 #include "simulate/direct_contact_model.hpp"
 #include "simulate/lookup_contact_model.hpp"
 #include "table/interrupt.hpp"
@@ -40,6 +41,35 @@ double slot_force_ratio(const vehicle::ContactSnapshot& snap, double mu) {
 }
 
 const char* kWheelsetNames[vehicle::kBogieWheelsets] = {"leading", "trailing"};
+
+bool finite(const vehicle::WheelsetState& s) {
+  return std::isfinite(s.y) && std::isfinite(s.yaw) && std::isfinite(s.lateral_velocity) && std::isfinite(s.yaw_rate);
+}
+
+// The scene's file for messages (its name when it was parsed from a string).
+std::string scene_label(const SimulationScene& sim) { return sim.path.empty() ? sim.name : sim.path.string(); }
+
+// Throws naming the scene, the step and the time when the last RK4 step left the physics: a
+// state that is not finite or a wheelset off the rail head. Without this the run went on with
+// nonsense (a "wear sample: speed must be > 0" error, or a worn profile from garbage states).
+void check_not_blown_up(const SimulationScene& sim, const vehicle::BogieSimulation& bogie, std::uint64_t step,
+                        double stable_estimate) {
+  const vehicle::BogieState& x = bogie.state();
+  const vehicle::BogieSnapshot& snap = bogie.snapshot();
+  for (int i = 0; i < vehicle::kBogieWheelsets; ++i) {
+    const double y = snap.wheelset[i].y_relative;
+    if (finite(x.wheelset[i]) && finite(x.frame) && std::abs(y) <= kMaxLateralShift) continue;
+    throw Error(fmt::format(
+        "{}: the dynamics blew up at t = {:.4f} s (RK4 step {}, {:.2f} m along the route): {} wheelset y = {:.4g} m "
+        "relative to the track, yaw = {:.4g} rad (|y| beyond {} m is off the rail head); simulation.time_step = {} s{}: "
+        "lower time_step or check [vehicle]",
+        scene_label(sim), bogie.time(), step + 1, bogie.distance(), kWheelsetNames[i], y, x.wheelset[i].yaw,
+        kMaxLateralShift, sim.time_step,
+        stable_estimate > 0.0 && std::isfinite(stable_estimate)
+            ? fmt::format(" against a stable-step estimate of {:.3g} s", stable_estimate)
+            : std::string()));
+  }
+}
 
 std::string trajectory_header() {
   std::string h = "s_m,t_s,frame_y_m,frame_yaw_rad";
@@ -148,7 +178,10 @@ RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact,
   RunSummary r;
   double duration = (track.length() - 2.0 * a) / sim.speed;
   if (max_duration > 0.0) duration = std::min(duration, max_duration);
-  const auto steps = static_cast<std::uint64_t>(std::llround(duration / sim.time_step));
+  const double step_count = std::round(duration / sim.time_step);
+  RAILTAB_CHECK(step_count <= kMaxDynamicsSteps, "{}: simulation.time_step: {} s over {} s is {:.3g} RK4 steps, above "
+                "the limit of {:.0e}", scene_label(sim), sim.time_step, duration, step_count, kMaxDynamicsSteps);
+  const auto steps = static_cast<std::uint64_t>(step_count);
   const double revolution = 2.0 * std::numbers::pi * parameters.wheelset.nominal_radius;
   double next_row = 0.0, next_estimate = 0.0;
   double next_wear[vehicle::kBogieWheelsets] = {0.0, 0.0};
@@ -166,6 +199,7 @@ RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact,
     bogie.step();
     r.dynamics_wall_seconds += seconds_since(t0);
     ++r.steps;
+    check_not_blown_up(sim, bogie, k, r.stable_time_step_estimate);
     const vehicle::BogieSnapshot& snap = bogie.snapshot();
     const double travelled = bogie.distance() - a - sim.speed * sim.time_step;  // the snapshot's, from the start
     r.status |= snap.status;
@@ -175,7 +209,12 @@ RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact,
       r.max_abs_y[i] = std::max(r.max_abs_y[i], std::abs(w.y_relative));
       r.max_abs_yaw[i] = std::max(r.max_abs_yaw[i], std::abs(before.wheelset[i].yaw));
       if (wear.counts(i) && travelled >= next_wear[i]) {
-        wear.sample(wheelset_sample(i, w, revolution));
+        try {
+          wear.sample(wheelset_sample(i, w, revolution));
+        } catch (const Error& e) {
+          throw Error(fmt::format("{}: t = {:.4f} s (RK4 step {}), {} wheelset: {}", scene_label(sim), bogie.time(),
+                                  k + 1, kWheelsetNames[i], e.what()));
+        }
         next_wear[i] += revolution;
       }
     }

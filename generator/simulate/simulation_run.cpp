@@ -328,6 +328,15 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
           step.profile_peak_depth = sim.step_depth_limit;
           step.depth_limited = true;
         }
+        // A profile update deeper than this is no wear step of a wheel: the linear scaling of the
+        // route's wear to the step's distance has left the physics (running_distance 1e300 gave
+        // a worn profile 1e290 mm deep, written with exit 0).
+        RAILTAB_CHECK(step.profile_peak_depth <= kMaxProfileUpdateDepth,
+                      "{}: {} step {}: the profile update would wear {:.4g} mm deep over {:.4g} km "
+                      "(simulation.running_distance / wear_steps), beyond {} mm for one step: raise wear_steps, "
+                      "lower running_distance or set step_depth_limit",
+                      sim.path.empty() ? sim.name : sim.path.string(), processor, k, step.profile_peak_depth * 1e3,
+                      step.running_distance / 1e3, kMaxProfileUpdateDepth * 1e3);
         std::vector<std::array<std::vector<double>, vehicle::kWheels>> depth;
         std::vector<double> mean(u.size(), 0.0);
         for (std::size_t i = 0; i < sim.positions.size(); ++i) {

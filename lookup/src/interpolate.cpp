@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <utility>
 
 #include "part_spec.hpp"
@@ -132,8 +133,29 @@ double limit_slope(double m, double s_left, double s_right) noexcept {
   return sign * std::min(std::max(m * sign, 0.0), bound);
 }
 
+// Values of a larger magnitude are scaled down before the limited Hermite: their secants and
+// slopes (differences over a node spacing) would overflow to infinity, and inf - inf is NaN.
+constexpr double kScaleAbove = 0x1p500;  // about 3.3e150
+
+double hermite(const CubicAxis& a, const double f[4], bool monotone) noexcept;
+
+// The limited Hermite of values near the double range: by a power of two to |f| <= 1, which
+// is exact, so the result is the unscaled one wherever that does not overflow.
+double hermite_scaled(const CubicAxis& a, const double f[4], double magnitude) noexcept {
+  const int exponent = std::ilogb(magnitude) + 1;
+  double g[4];
+  for (int j = 0; j < 4; ++j) g[j] = std::ldexp(f[j], -exponent);
+  return std::ldexp(hermite(a, g, true), exponent);
+}
+
 double hermite(const CubicAxis& a, const double f[4], bool monotone) noexcept {
   const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
+  if (monotone) {
+    double magnitude = 0.0;
+    for (int j = lo; j <= hi; ++j) magnitude = std::max(magnitude, std::abs(f[j]));
+    if (magnitude > kScaleAbove && magnitude <= std::numeric_limits<double>::max())
+      return hermite_scaled(a, f, magnitude);
+  }
   double m0 = 0.0, m1 = 0.0;
   for (int j = lo; j <= hi; ++j) {
     m0 += a.c0[j] * f[j];

@@ -161,6 +161,16 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
     contact[s].status = (any & ~status::kConverged) | (all & status::kConverged) | q;
     contact[s].reserved = 0;
   }
+  // A cubic through finite values can still overshoot the double range (values near 1.8e308):
+  // such a contact is failed with zero outputs, never an infinity or NaN flagged converged. The
+  // linear method weighs values by weights in [0, 1] and cannot.
+  if (d.method != Method::kLinear) {
+    for (int s = 0; s < n; ++s) {
+      bool finite = true;
+      for (const double v : contact[s].value) finite &= std::isfinite(v);
+      if (!finite) zero_contact(contact[s], status::kFailed | q);
+    }
+  }
 }
 
 }  // namespace

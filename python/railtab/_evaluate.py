@@ -1,12 +1,12 @@
 # SPDX-License-Identifier: Apache-2.0
 """railtab.evaluate: the direct contact models at one wheelset state (the code of `railtab eval`)."""
 import json
-import os
 import re
 
 import numpy as np
 
 from . import _railtab
+from ._inputs import checked_path
 from ._shapes import broadcast_named
 
 
@@ -20,7 +20,7 @@ class Scene:
     @classmethod
     def load(cls, path):
         """Raises railtab.Error (a ValueError) naming the file and the problem."""
-        return cls(_railtab.Scene.load(os.fspath(path)))
+        return cls(_railtab.Scene.load(checked_path("path", path)))
 
     name = property(lambda self: self._s.name)
     path = property(lambda self: self._s.path)

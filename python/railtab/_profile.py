@@ -1,10 +1,12 @@
 # SPDX-License-Identifier: Apache-2.0
 """railtab.Profile: wheel and rail profiles from files (docs/profiles.md), on numpy arrays."""
-import os
-
 import numpy as np
 
 from . import _railtab
+from ._inputs import checked_number, checked_path
+
+# Sampling steps of sample() and write_simpack() [m]: a micrometre up to a centimetre.
+_STEP = (1e-6, 0.01)
 
 
 class Profile:
@@ -18,7 +20,8 @@ class Profile:
     def read(cls, path, kind, smoothing_length=0.0):
         """kind: 'wheel' or 'rail'. smoothing_length [m]: 0 interpolates the points, > 0 is
         CONTACT's filter length. Raises railtab.Error (a ValueError) naming the file and line."""
-        return cls(_railtab.Profile.read(os.fspath(path), kind, float(smoothing_length)))
+        return cls(_railtab.Profile.read(checked_path("path", path), kind,
+                                         checked_number("smoothing_length", smoothing_length, 0.0, 1.0, unit="m")))
 
     @classmethod
     def s1002(cls):
@@ -48,13 +51,14 @@ class Profile:
 
     def sample(self, step=0.0002):
         """(u, z) every `step` [m] over the whole range, the last point at u_max."""
+        step = checked_number("step", step, *_STEP, unit="m")
         u = np.arange(self.u_min, self.u_max, step)
         u = np.append(u[u < self.u_max - 1e-3 * step], self.u_max)
         return u, self(u)
 
     def write_simpack(self, path, step=0.0002, comment=""):
         """Writes the profile sampled every `step` [m] as a SIMPACK file (.prw wheel, .prr rail)."""
-        u, z = self.sample(step)
+        u, z = self.sample(step)  # checks step
         write_simpack(path, self.kind, u, z, comment or self.name)
 
     def __repr__(self):
@@ -64,5 +68,5 @@ class Profile:
 
 def write_simpack(path, kind, u, z, comment=""):
     """Writes points u, z [m] (profile frame, ascending u) as a SIMPACK .prw (wheel) / .prr (rail)."""
-    _railtab._write_simpack(os.fspath(path), kind, np.asarray(u, dtype=np.float64).tolist(),
+    _railtab._write_simpack(checked_path("path", path), kind, np.asarray(u, dtype=np.float64).tolist(),
                             np.asarray(z, dtype=np.float64).tolist(), comment)

@@ -1,10 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """railtab.Table: a contact table loaded with railtab's lookup, queried on numpy arrays."""
-import os
-
 import numpy as np
 
 from . import _railtab
+from ._inputs import checked_number, checked_path
 from ._shapes import broadcast_named
 from ._status import cf_flag_attributes
 from ._units import AXIS_UNITS, OUTPUT_UNITS
@@ -15,7 +14,8 @@ _WHEELS = {"left": 0, "right": 1}
 
 
 def _wheel_codes(wheel):
-    """'left'/'right'/0/1, or an array of them, as int32 codes 0/1."""
+    """'left'/'right'/0/1, or an array of them, as int32 codes 0/1. A number other than exactly 0
+    or 1 (0.7, 2**32, -1, NaN) is refused, never cut to an int32."""
     if isinstance(wheel, str):
         if wheel not in _WHEELS:
             raise ValueError(f"wheel must be 'left' or 'right', got {wheel!r}")
@@ -26,10 +26,12 @@ def _wheel_codes(wheel):
         if bad:
             raise ValueError(f"wheel must be 'left' or 'right', got {sorted(bad)}")
         return (arr == "right").astype(np.int32)
-    codes = arr.astype(np.int32)
-    if codes.size and not np.isin(codes, (0, 1)).all():
-        raise ValueError("wheel must be 0 (left) or 1 (right)")
-    return codes
+    if arr.dtype.kind not in "biuf":
+        raise TypeError(f"wheel must be 'left', 'right', 0 or 1, got an array of {arr.dtype}")
+    bad = ~np.isin(arr, (0, 1))
+    if bad.any():  # the first offender, in the words of the number reader
+        checked_number("wheel (0 = left, 1 = right)", arr[bad].flat[0].item(), 0, 1, whole=True)
+    return arr.astype(np.int32)
 
 
 def _flat(arr, shape, n):
@@ -63,7 +65,7 @@ class Table:
         """Loads a table file. method: 'linear' (default), 'cubic' or 'monotone-cubic'.
 
         Raises OSError naming the file and the problem (missing, corrupt, unknown version)."""
-        return cls(_railtab.Table.load(os.fspath(path), method))
+        return cls(_railtab.Table.load(checked_path("path", path), method))
 
     path = property(lambda self: self._t.path)
     method = property(lambda self: self._t.method)
@@ -133,7 +135,7 @@ class Table:
         shape = broadcast_named("the state arrays",
                                 {"wheel": codes.shape, **{k: values[k].shape for k in _STATE if given[k] is not None}})
         n = int(np.prod(shape, dtype=np.int64))
-        slot_arg = -1 if slot is None else int(slot)
+        slot_arg = -1 if slot is None else int(checked_number("slot", slot, 0, self.n_slots - 1, whole=True))
         raw, part_status, status, deriv = self._t._query_arrays(
             n, _flat(codes, shape, n), *(_flat(values[k], shape, n) for k in _STATE), slot_arg,
             bool(derivatives))

@@ -10,4 +10,5 @@ PYBIND11_MODULE(_railtab, m) {
   railtab::python::bind_table(m);
   railtab::python::bind_profile(m);
   railtab::python::bind_evaluate(m);
+  railtab::python::bind_numbers(m);
 }

@@ -154,6 +154,8 @@ void bind_table(py::module_& m) {
       .def_static(
           "load",
           [](const std::string& path, const std::string& method) {
+            // HDF5 takes a C string: a NUL would cut the name and open another file.
+            if (path.find('\0') != std::string::npos) throw py::value_error("path contains a NUL character: not a file name");
             try {
               return lk::Table::load(path, {parse_method(method)});
             } catch (const lk::LoadError& e) {

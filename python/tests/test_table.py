@@ -94,7 +94,7 @@ def test_bad_arguments_are_refused_with_names(fixture_table):
         t.query("middle", y=0.0)
     with pytest.raises(ValueError, match="wheel"):
         t.query(2, y=0.0)
-    with pytest.raises(ValueError, match="slot 5"):
+    with pytest.raises(ValueError, match="slot: must be a whole number in .0, 1., got 5"):
         t.query("left", y=0.0, slot=5)
     with pytest.raises(ValueError, match=r"y \(3,\), xi \(4,\)"):   # named, not numpy's "arg 1", "arg 3"
         t.query("left", y=np.zeros(3), xi=np.zeros(4))   # shapes that do not broadcast

@@ -213,5 +213,78 @@ TEST(Interpolate, MonotoneCubicDoesNotOvershootASteep) {
   EXPECT_GT(cubic_hi, 1.01);  // the unlimited cubic does overshoot: the limiter is doing work
 }
 
+// A y-only geometry table holding `value` (one slot): for the double-range tests below.
+std::string write_y_table(TempFile& file, testing::ValueFn value) {
+  FixtureSpec spec;
+  spec.axes = {{0, linspace(-0.01, 0.01, 9)}};
+  spec.fixed = {{1, 0.0}};
+  spec.parts = {0};
+  spec.n_slots = 1;
+  spec.value = std::move(value);
+  testing::write_fixture(file.path, spec);
+  return file.path;
+}
+
+// Values near the top of the double range: the monotone cubic's secants and slopes (differences
+// over a 2.5 mm spacing, about 400 x the values) overflowed to inf, inf - inf gave NaN, and the
+// query returned NaN flagged converged. Now it interpolates them like any others.
+TEST(Interpolate, MonotoneCubicOfValuesNearTheDoubleRangeIsFinite) {
+  TempFile file("huge");
+  const auto line = [](int, int, int, int, const double* x) { return 1e307 * (1.0 + 10.0 * x[0]); };
+  const Table mono = Table::load(write_y_table(file, line), {Method::kMonotoneCubic});
+  for (const double y : {-0.0093, -0.0012, 0.0, 0.0031, 0.0099}) {
+    const Contact c = mono.query(Wheel::kLeft, State{y, 0, 0, 0, 0, 0}).contact[0];
+    EXPECT_NEAR(c.value[kContactAngle], 1e307 * (1.0 + 10.0 * y), 1e-12 * 1e307) << "y = " << y;
+    EXPECT_TRUE(c.status & status::kConverged) << "y = " << y;
+  }
+  // The same values a millionth as large give the same digits: the scaling is exact.
+  TempFile small_file("huge_scaled");
+  const auto small = [](int, int, int, int, const double* x) { return 1e301 * (1.0 + 10.0 * x[0]); };
+  const Table mono_small = Table::load(write_y_table(small_file, small), {Method::kMonotoneCubic});
+  const double v = mono.query(Wheel::kLeft, State{0.0031, 0, 0, 0, 0, 0}).contact[0].value[kContactAngle];
+  const double w = mono_small.query(Wheel::kLeft, State{0.0031, 0, 0, 0, 0, 0}).contact[0].value[kContactAngle];
+  EXPECT_NEAR(v / w, 1e6, 1e-9);
+}
+
+// A cubic overshooting beyond the largest double: the contact is failed with zero outputs, never
+// an infinity flagged converged.
+TEST(Interpolate, CubicOvershootBeyondTheDoubleRangeIsFailed) {
+  TempFile file("overshoot");
+  const auto bump = [](int, int, int, int, const double* x) { return std::abs(x[0]) < 0.003 ? 1.7e308 : 0.0; };
+  const Table cubic = Table::load(write_y_table(file, bump), {Method::kCubic});
+  bool overshoot_seen = false;
+  for (int k = 0; k <= 200; ++k) {
+    const Contact c = cubic.query(Wheel::kLeft, State{-0.01 + 0.02 * k / 200.0, 0, 0, 0, 0, 0}).contact[0];
+    for (const double v : c.value) ASSERT_TRUE(std::isfinite(v)) << k;
+    if (c.status & status::kFailed) {
+      overshoot_seen = true;
+      EXPECT_FALSE(c.status & status::kConverged);
+      EXPECT_EQ(c.value[kContactAngle], 0.0);
+    }
+  }
+  EXPECT_TRUE(overshoot_seen);  // the bump does overshoot somewhere
+}
+
+// The table the hostile probe found (a well-formed table, rolling radius near 1e306): every
+// method answers finite values at the probe's state.
+TEST(Interpolate, HostileTableNearTheDoubleRangeAnswersFinite) {
+  const std::string path = std::string(RAILTAB_TEST_DATA_DIR) + "/monotone_cubic_rr1e306.h5";
+  for (Method method : {Method::kLinear, Method::kCubic, Method::kMonotoneCubic}) {
+    const Table table = Table::load(path, {method});
+    State s = table.default_state();
+    s.y = -0.004;
+    s.load = 60000.0;
+    s.xi = -0.002;
+    s.eta = -0.001;
+    const Result r = table.query(Wheel::kLeft, s);
+    for (int slot = 0; slot < r.n_slots; ++slot) {
+      for (const double v : r.contact[slot].value) EXPECT_TRUE(std::isfinite(v)) << static_cast<int>(method);
+      if (!(r.contact[slot].status & status::kFailed)) {
+        EXPECT_NE(r.contact[slot].value[kRollingRadius], 0.0);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace railtab::lookup

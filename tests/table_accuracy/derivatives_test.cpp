@@ -14,7 +14,7 @@
 #include <optional>
 
 #include "accuracy_util.hpp"
-#include "sweep/jump_locator.hpp"
+#include "adaptive/jump_locator.hpp"
 
 namespace railtab::accuracy::derivatives_test {  // own namespace: unity builds compile several test files as one
 namespace {

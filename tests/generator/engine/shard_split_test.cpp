@@ -69,6 +69,11 @@ struct SlurmEnv {
 
 TEST(ShardSplit, AutoReadsTheSlurmJobArray) {
   EXPECT_EQ(parse_shard_spec("2/8"), (std::pair<int, int>{2, 8}));
+  // I and N are whole numbers by the number reader: no fraction, space, sign or overflow.
+  for (const char* bad : {"1.5/2", "1/2.0e0x", " 1/2", "1 /2", "0/2", "3/2", "1/", "/2", "1/99999999999", "-1/2",
+                          "1/2/3", "nan/2", ""}) {
+    EXPECT_THROW(parse_shard_spec(bad), Error) << bad;
+  }
   {
     SlurmEnv env("0", "4", "0");  // sbatch --array=0-3
     EXPECT_EQ(parse_shard_spec("auto"), (std::pair<int, int>{1, 4}));

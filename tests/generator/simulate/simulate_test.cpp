@@ -467,5 +467,65 @@ TEST_F(SimulateTest, InterruptStopsTheRunWithoutWritingHalfFiles) {
   }
 }
 
+// Absurd time steps, distances and step counts are refused when the scene is read, naming the
+// file, the line and the key: time_step 1e-300 made a run that never ended, running_distance
+// 1e300 a worn profile 1e290 mm deep written with exit 0.
+TEST_F(SimulateTest, AbsurdTimeStepDistanceAndStepCountAreRefusedUpFront) {
+  EXPECT_NE(error_of(simulation_text("time_step = 1e-300"), *dir_).find("sim.toml:6: simulation.time_step: must be in "
+                                                                        "[1e-6, 0.01] s, got 1e-300"),
+            std::string::npos)
+      << error_of(simulation_text("time_step = 1e-300"), *dir_);
+  std::string huge = simulation_text("");
+  huge.replace(huge.find("running_distance = 1e6"), 22, "running_distance = 1e300");
+  EXPECT_NE(error_of(huge, *dir_).find("sim.toml:5: simulation.running_distance: must be in (0, 1e9] m"),
+            std::string::npos)
+      << error_of(huge, *dir_);
+  // In range each, too many steps together: 1e6 m at 20 m/s in 1e-5 s steps is 5e9 steps.
+  std::string long_route = simulation_text("time_step = 1e-5");
+  long_route.replace(long_route.find("length = 100.0"), 14, "length = 1e6");
+  EXPECT_NE(error_of(long_route, *dir_).find("sim.toml:6: simulation.time_step: 1e-05 s steps over the route"),
+            std::string::npos)
+      << error_of(long_route, *dir_);
+  EXPECT_NO_THROW(parse_simulation_scene(simulation_text("time_step = 1e-6"), "sim.toml", *dir_));
+}
+
+// A dynamics run that blows up (here: a 15 kg wheelset at 10 ms steps) stops at the step where
+// it leaves the rail head, naming the scene, the time and the time step; it ended with "wear
+// sample: speed must be > 0 m/s, got 0" and no scene before.
+TEST_F(SimulateTest, BlownUpDynamicsStopsNamingTheSceneAndTheStep) {
+  std::ofstream(*dir_ / "blowup.toml") << "[simulation]\ncontact_scene = \"scene.toml\"\n"
+                                          "wear_post_processors = [\"hertz\"]\nspeed = 20.0\ntime_step = 0.01\n"
+                                          "running_distance = 1e6\n[vehicle]\nbody_mass = 20620.0\nmass = 15.0\n"
+                                          "yaw_inertia = 0.7\n[route]\n[[route.section]]\nkind = \"tangent\"\n"
+                                          "length = 40.0\n";
+  const SimulationScene sim = load_simulation_scene(*dir_ / "blowup.toml");
+  LookupContactModel contact(table());
+  WearPostProcessing wear(scene(), sim.wear_post_processors, sim.positions);
+  const std::string message = test::error_message(
+      [&] { run_bogie(sim, contact, &contact, nullptr, 0.3, 0.0, *dir_ / "trajectory_blowup.csv", wear); });
+  EXPECT_NE(message.find("blowup.toml: the dynamics blew up at t = "), std::string::npos) << message;
+  EXPECT_NE(message.find("simulation.time_step = 0.01 s"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(*dir_ / "trajectory_blowup.csv"));
+}
+
+// A step whose profile update would be deeper than a wheel can wear in one step is an error
+// naming the scene, the post-processor and the step, not a worn profile written with exit 0.
+TEST_F(SimulateTest, ProfileUpdateBeyondAnyWheelWearIsRefused) {
+  std::ofstream(*dir_ / "deep.toml") << "[simulation]\ncontact_scene = \"scene.toml\"\n"
+                                        "wear_post_processors = [\"hertz\"]\nspeed = 20.0\nrunning_distance = 1e9\n"
+                                     << kLightVehicle
+                                     << "[route]\n[[route.section]]\nkind = \"tangent\"\nlength = 20.0\n"
+                                        "[[route.section]]\nkind = \"transition\"\nlength = 20.0\n"
+                                        "[[route.section]]\nkind = \"circular\"\nlength = 20.0\nradius = 300.0\n";
+  SimulationOptions options;
+  options.out = *dir_ / "out_deep";
+  options.threads = 2;
+  const std::string message =
+      test::error_message([&] { run_simulation(load_simulation_scene(*dir_ / "deep.toml"), options); });
+  EXPECT_NE(message.find("deep.toml: hertz step 0: the profile update would wear"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(options.out / "deep" / "hertz" / "step1" / "wheel_worn.txt"));
+  EXPECT_FALSE(fs::exists(options.out / "deep" / "summary.json"));
+}
+
 }  // namespace
 }  // namespace railtab
