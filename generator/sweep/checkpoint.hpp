@@ -7,7 +7,6 @@
 #pragma once
 
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
 #include <string_view>
 #include <vector>
@@ -26,7 +25,9 @@ void unpack_block(Table& table, std::size_t blocks, std::size_t block, const std
 class Checkpoint {
  public:
   // Open or create `path` for a run identified by `key` whose records hold `record_bytes` bytes.
-  // A file with another key (other scene or build) is started afresh: discarded() says so.
+  // A file with another key (other scene or build) is started afresh: discarded() says so. Throws
+  // railtab::Error for a path that is a symbolic link, a hard link, not a regular file, an input
+  // of the run or held by another live run (table/output_file.hpp, open_output_to_continue).
   Checkpoint(std::filesystem::path path, std::uint64_t key, std::size_t record_bytes);
   ~Checkpoint();
   Checkpoint(const Checkpoint&) = delete;
@@ -50,7 +51,7 @@ class Checkpoint {
   std::filesystem::path path_;
   std::uint64_t key_;
   std::size_t record_bytes_;
-  std::FILE* file_ = nullptr;
+  int fd_ = -1;  // the checkpoint, open for appending (and locked) while the run lasts
   std::vector<Record> records_;
   bool discarded_ = false;
 };

@@ -45,6 +45,13 @@ SweepSummary generate_table(const GenerateOptions& options) {
   check_output_path(options.output, {options.scene});
   if (options.resume || options.always_checkpoint) check_output_path(checkpoint_path(options.output), {options.scene});
   Scene scene = load_scene(options.scene);
+  // The profile files the scene names are inputs too: the output may replace none of them.
+  std::vector<std::filesystem::path> inputs{options.scene};
+  for (const ProfileSource* profile : {&scene.wheel, &scene.rail}) {
+    if (!profile->file.empty()) inputs.push_back(profile->file);
+  }
+  check_output_path(options.output, inputs);
+  if (options.resume || options.always_checkpoint) check_output_path(checkpoint_path(options.output), inputs);
   // [accuracy] scenes: place the adaptive axes' nodes first (docs/adaptive-grids.md); deterministic,
   // so shards and resumed runs get the same grids.
   AdaptiveGridSummary adaptive = build_adaptive_grids(scene, options.threads);
@@ -150,7 +157,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
                           std::chrono::duration<double>(t2 - t1).count());
     }
   }
-  write_table(result.table, options.output, options.interrupt, {options.scene});
+  write_table(result.table, options.output, options.interrupt, inputs);
   if (keep_checkpoint) {
     std::error_code ignored;
     std::filesystem::remove(sweep.checkpoint, ignored);

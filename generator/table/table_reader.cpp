@@ -3,6 +3,7 @@
 // that a damaged or foreign file fails here with the file name and the problem, not later with
 // garbage. Format 2's typed attributes come back as the text the Table holds (table_writer.cpp).
 #include <hdf5_hl.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/check.hpp"
+#include "core/input_files.hpp"
 #include "lookup_vlen/vlen_string.hpp"
 #include "table/h5_util.hpp"
 #include "table/table_io.hpp"
@@ -94,7 +96,8 @@ class Reader {
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
   Table read() {
-    RAILTAB_CHECK(std::filesystem::exists(file_), "{}: no such file", file_);
+    // A regular file only (a FIFO would block every reader below), recorded as an input of the run.
+    ::close(open_input_file(file_, "table file"));
     // Metadata without checksums are refused before libhdf5 parses them (lookup/src/vlen_string.hpp).
     const std::string unchecked = lookup::detail::unchecksummed_metadata_problem(file_);
     RAILTAB_CHECK(unchecked.empty(), "{}: {}", file_, unchecked);

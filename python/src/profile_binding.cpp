@@ -15,6 +15,7 @@
 #include "profile/s1002.hpp"
 #include "profile/simpack_writer.hpp"
 #include "profile/uic60.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab::python {
 namespace {
@@ -76,7 +77,10 @@ void bind_profile(py::module_& m) {
       "_write_simpack",
       [](const std::filesystem::path& path, const std::string& kind, const std::vector<double>& u,
          const std::vector<double>& z, const std::string& comment) {
-        write_simpack_profile(path, parse_kind(kind), u, z, comment);
+        // Through the one output path: no link, FIFO or device replaced, an exclusive temporary.
+        const ProfileKind k = parse_kind(kind);
+        check_simpack_extension(path, k);
+        write_text_file(path, simpack_profile_text(k, u, z, comment));
       },
       py::arg("path"), py::arg("kind"), py::arg("u"), py::arg("z"), py::arg("comment") = "");
 }

@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
+// The SIMPACK rail-wheel profile text (simpack_writer.hpp).
 #include "profile/simpack_writer.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <system_error>
 
 #include "core/check.hpp"
 
@@ -59,30 +58,12 @@ std::string simpack_profile_text(ProfileKind kind, std::span<const double> u, st
   return out;
 }
 
-void write_simpack_profile(const std::filesystem::path& file, ProfileKind kind, std::span<const double> u,
-                           std::span<const double> z, std::string_view comment) {
+void check_simpack_extension(const std::filesystem::path& file, ProfileKind kind) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   const char* expected = kind == ProfileKind::wheel ? ".prw" : ".prr";
   RAILTAB_CHECK(ext == expected, "{}: a SIMPACK {} profile needs the extension {}", file.string(),
                 kind == ProfileKind::wheel ? "wheel" : "rail", expected);
-  const std::string text = simpack_profile_text(kind, u, z, comment);
-  std::filesystem::path tmp = file;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    RAILTAB_CHECK(out.is_open(), "{}: cannot open for writing", tmp.string());
-    out << text;
-    out.close();
-    RAILTAB_CHECK(out.good(), "{}: write failed", tmp.string());
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) {
-    const std::string reason = ec.message();
-    std::filesystem::remove(tmp, ec);
-    throw Error(fmt::format("{}: cannot move the finished file into place: {}", file.string(), reason));
-  }
 }
 
 }  // namespace railtab

@@ -23,10 +23,9 @@ namespace railtab {
 std::string simpack_profile_text(ProfileKind kind, std::span<const double> u, std::span<const double> z,
                                  std::string_view comment = {});
 
-// Writes simpack_profile_text to `file`, through a temporary name renamed when complete. The
-// extension must be .prw for a wheel and .prr for a rail (another tool decides the kind by it).
-// Throws railtab::Error naming the file for a wrong extension or an I/O error.
-void write_simpack_profile(const std::filesystem::path& file, ProfileKind kind, std::span<const double> u,
-                           std::span<const double> z, std::string_view comment = {});
+// Throws railtab::Error naming `file` unless its extension is .prw for a wheel or .prr for a
+// rail (another tool decides the kind by it). The file itself is written by the program's one
+// output path (generator/table/output_file.hpp, write_text_file): src/ writes no files.
+void check_simpack_extension(const std::filesystem::path& file, ProfileKind kind);
 
 }  // namespace railtab
