@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """Text from an input file never runs a command through gnuplot: every chart command (chart-geometry,
-chart-pressure, chart-stability, chart, simulate's wear charts) draws its chart for a scene whose
+chart-pressure, chart-stability, chart, conicity, simulate's wear charts) draws its chart for a scene whose
 name and description hold backquotes, $(...), '@' macros, quotes, backslashes and a newline; no
 command runs, the titles come back word for word, and -q leaves stderr empty (no gnuplot warning).
 The scenes are the hostile inputs of tests/data/hostile/ (README there)."""
@@ -46,6 +46,7 @@ def check_no_command_ran(tmp_path):
 CHARTS = {
     "chart-geometry": (["--y-min", "-0.002", "--y-max", "0.002", "--y-step", "0.001"], ["geometry.gp"]),
     "chart-pressure": ([], ["pressure.gp"]),
+    "conicity": (["--amplitudes", "0.002", "0.004"], ["conicity.gp"]),
     "chart-stability": (["--y-min", "-0.002", "--y-max", "0.002", "--y-step", "0.002"], ["stability_map.gp"]),
     # Four CONTACT reference states keep the speed-accuracy run short (~15 s).
     "chart": (["--quick", "--repeats", "1", "--reference", str(HOSTILE / "blockC_four_states.csv")],
@@ -67,7 +68,7 @@ def test_chart_titles_run_nothing(railtab_program, tmp_path, command):
         assert "`" not in script and "@" not in script
         strings = decoded_gnuplot_strings(script)
         assert any(NAME_TEXT in s for s in strings), strings
-        if command != "chart":   # the speed-accuracy charts name the scene only
+        if command not in ("chart", "conicity"):   # these charts name the scene only
             assert any(DESCRIPTION_TEXT in s for s in strings), strings
         assert (tmp_path / "out" / name.replace(".gp", ".png")).stat().st_size > 0
 
