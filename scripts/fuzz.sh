@@ -25,7 +25,7 @@ bash scripts/asan_build.sh "${targets[@]}"
 
 # Executions per target: ~1/3 of what each did in 45 s with the machine's load average at ~20
 # (fuzz_profile 12,800, fuzz_scene 144,340, fuzz_table_load 1,595; docs/ci.md).
-declare -A runs=([fuzz_profile]=4000 [fuzz_scene]=40000 [fuzz_table_load]=500)
+declare -A runs=([fuzz_profile]=4000 [fuzz_scene]=40000 [fuzz_table_load]=500 [fuzz_chart_title]=20000)
 seed=${FUZZ_SEED:-19}
 
 mkdir -p build/fuzz/artifacts

@@ -112,11 +112,15 @@ TEST(Checkpoint, TornLastRecordIsDropped) {
     EXPECT_EQ(records[0].block, 0u);
     c.append(5, std::vector<char>(8, 'c'));
   }
-  Checkpoint c(path, 42, 8);
-  auto records = c.take_records();
-  ASSERT_EQ(records.size(), 2u);
-  EXPECT_EQ(records[1].block, 5u);
-  EXPECT_FALSE(c.discarded());
+  {
+    Checkpoint c(path, 42, 8);
+    auto records = c.take_records();
+    ASSERT_EQ(records.size(), 2u);
+    EXPECT_EQ(records[1].block, 5u);
+    EXPECT_FALSE(c.discarded());
+    // Held while open: a second writer of the same checkpoint is refused.
+    EXPECT_THROW(Checkpoint(path, 42, 8), Error);
+  }
   Checkpoint other(path, 43, 8);
   EXPECT_TRUE(other.discarded());
   EXPECT_TRUE(other.take_records().empty());
