@@ -34,7 +34,7 @@ ALLOWED = [
     ("generator/table/output_file.cpp", "::rename(", 1, "the output path itself: the commit"),
     ("generator/table/table_writer.cpp", "H5Fcreate(", 1,
      "HDF5 writes the table into OutputFile's temporary (write_table), renamed by its commit"),
-    ("generator/sweep/checkpoint.cpp", "::ftruncate(", 1,
+    ("generator/engine/checkpoint.cpp", "::ftruncate(", 1,
      "the checkpoint's torn tail cut on the descriptor open_output_to_continue checked and locked"),
 ]
 

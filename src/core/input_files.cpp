@@ -47,11 +47,11 @@ void track_input_files(bool on) {
   if (!on) r.files.clear();
 }
 
-void note_input_file(const std::filesystem::path& path, FileIdentity id) {
+void note_input_file(const std::string& path, FileIdentity id) {
   Registry& r = registry();
   if (!r.on) return;
   const std::lock_guard<std::mutex> lock(r.mutex);
-  r.files.emplace(std::make_pair(id.device, id.inode), path.string());
+  r.files.emplace(std::make_pair(id.device, id.inode), path);
 }
 
 std::string input_file_path(FileIdentity id) {
@@ -62,24 +62,24 @@ std::string input_file_path(FileIdentity id) {
 }
 
 // Throws unless `st` is a regular file's.
-void require_regular(const struct stat& st, const std::filesystem::path& path, std::string_view what) {
-  RAILTAB_CHECK(S_ISREG(st.st_mode), "{} {}: it is {}, not a regular file: refused", what, path.string(),
+void require_regular(const struct stat& st, const std::string& path, std::string_view what) {
+  RAILTAB_CHECK(S_ISREG(st.st_mode), "{} {}: it is {}, not a regular file: refused", what, path,
                 kind_of(st.st_mode));
 }
 
-int open_input_file(const std::filesystem::path& path, std::string_view what) {
+int open_input_file(const std::string& path, std::string_view what) {
   // stat first: a device is refused without being opened (opening some has effects, a tape
   // rewinds); fstat after the open: what was opened is what is checked.
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
-    RAILTAB_CHECK(errno != ENOENT, "{} {}: no such file", what, path.string());
-    throw Error(fmt::format("{} {}: cannot open it for reading ({})", what, path.string(), std::strerror(errno)));
+    RAILTAB_CHECK(errno != ENOENT, "{} {}: no such file", what, path);
+    throw Error(fmt::format("{} {}: cannot open it for reading ({})", what, path, std::strerror(errno)));
   }
   require_regular(st, path, what);
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  RAILTAB_CHECK(fd >= 0, "{} {}: cannot open it for reading ({})", what, path.string(), std::strerror(errno));
+  RAILTAB_CHECK(fd >= 0, "{} {}: cannot open it for reading ({})", what, path, std::strerror(errno));
   try {
-    RAILTAB_CHECK(::fstat(fd, &st) == 0, "{} {}: cannot stat it ({})", what, path.string(), std::strerror(errno));
+    RAILTAB_CHECK(::fstat(fd, &st) == 0, "{} {}: cannot stat it ({})", what, path, std::strerror(errno));
     require_regular(st, path, what);
   } catch (...) {
     ::close(fd);

@@ -7,7 +7,6 @@
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -23,7 +22,7 @@ struct FileIdentity {
 void track_input_files(bool on);
 
 // Records that this run read `path`, the file `id` (nothing while recording is off).
-void note_input_file(const std::filesystem::path& path, FileIdentity id);
+void note_input_file(const std::string& path, FileIdentity id);
 
 // The path under which this run read the file `id`; empty when it read no such file.
 std::string input_file_path(FileIdentity id);
@@ -31,6 +30,6 @@ std::string input_file_path(FileIdentity id);
 // Opens `path` for reading without waiting (a FIFO without a writer must not hang the run) and
 // refuses anything but a regular file: throws railtab::Error naming `what` and the path. Records
 // the file as an input and returns its descriptor, back in blocking mode; the caller closes it.
-int open_input_file(const std::filesystem::path& path, std::string_view what);
+int open_input_file(const std::string& path, std::string_view what);
 
 }  // namespace railtab

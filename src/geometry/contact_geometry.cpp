@@ -10,7 +10,7 @@
 #include "core/check.hpp"
 #include "geometry/curvature_steps.hpp"
 #include "geometry/placement.hpp"
-#include "profile/profile_checks.hpp"
+#include "profile/formats/profile_checks.hpp"
 
 namespace railtab {
 

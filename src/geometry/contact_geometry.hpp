@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/status.hpp"
-#include "profile/profile.hpp"
+#include "profile/curves/profile.hpp"
 
 namespace railtab {
 

@@ -503,8 +503,14 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
     r = std::move(next);
     return tangential_vertical(r);
   };
+  if (!solve_vertical_load_fixed_point(vertical_load, round, [&r] { return r.patches.empty(); })) mark_not_converged(r);
+  return r;
+}
+
+bool solve_vertical_load_fixed_point(double vertical_load, const std::function<double(double)>& round,
+                                     const std::function<bool()>& stop_after_first) {
   double t0 = 0.0, g0 = round(t0) - t0;  // fixed point tz = T(tz): root of g = T(tz) - tz
-  if (r.patches.empty()) return r;
+  if (stop_after_first()) return true;
   double t1 = t0 + g0, g1 = round(t1) - t1;
   bool ok = std::abs(g1) <= 1e-4 * vertical_load;
   for (int it = 0; it < 18 && !ok; ++it) {
@@ -515,12 +521,12 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
     g1 = round(t1) - t1;
     ok = std::abs(g1) <= 1e-4 * vertical_load;
   }
-  if (!ok) {
-    r.status = (r.status & ~status::kConverged) | status::kNotConverged;
-    for (HalfspacePatch& hp : r.patches)
-      hp.status = (hp.status & ~status::kConverged) | status::kNotConverged;
-  }
-  return r;
+  return ok;
+}
+
+void mark_not_converged(WheelHalfspaceResult& r) {
+  r.status = (r.status & ~status::kConverged) | status::kNotConverged;
+  for (HalfspacePatch& hp : r.patches) hp.status = (hp.status & ~status::kConverged) | status::kNotConverged;
 }
 
 double archard_wear_per_pass(const HalfspacePatch& hp, double speed, const WearOptions& wear,

@@ -33,6 +33,7 @@
 // root, two-point contact merged into one patch).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "core/material.hpp"
@@ -116,6 +117,19 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
                                              double mu, const Material& material,
                                              const HalfspaceOptions& options,
                                              Workspace& workspace);
+
+// The vertical-load fixed point of solve_halfspace_rolling, for callers that solve their own rounds
+// (the generator's per-patch creepages): `round(tz)` solves the normal problem for F_z - tz and the
+// tangential problems on top, and returns the new tangential vertical part sum fy sin g. The fixed
+// point tz = round(tz) is found by the secant method from tz = 0 (at most 20 rounds; converged
+// within 1e-4 F_z). The first round is always made; `stop_after_first()`, asked after it, ends the
+// iteration there (an uncoupled solve, or no patch), which counts as converged. Returns false when
+// the rounds ran out: the caller marks its result with mark_not_converged.
+bool solve_vertical_load_fixed_point(double vertical_load, const std::function<double(double)>& round,
+                                     const std::function<bool()>& stop_after_first);
+
+// kNotConverged instead of kConverged on the result and each of its patches.
+void mark_not_converged(WheelHalfspaceResult& result);
 
 // Archard wear with the KTH map per element of one solved patch: depth per pass removed from the
 // wheel material crossing each element, k(p, V|s|) p |s| dx / H [m] (elements in slip only);

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "geometry/contact_geometry.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 
 namespace railtab::yaw_zero_test {
 namespace {

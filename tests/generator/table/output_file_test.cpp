@@ -150,7 +150,7 @@ TEST(OutputFile, RefusesAFileTheRunRead) {
   std::ofstream(dir / "profile.txt") << "read";
   fs::create_hard_link(dir / "profile.txt", dir / "other_name.txt");
   track_input_files(true);
-  ::close(open_input_file(dir / "profile.txt", "profile"));
+  ::close(open_input_file((dir / "profile.txt").string(), "profile"));
   const std::string error = test::error_message([&] { write_text_file(dir.path() / "." / "profile.txt", "x"); });
   track_input_files(false);
   EXPECT_NE(error.find("is the input"), std::string::npos) << error;

@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: Apache-2.0
+// railtab generate as a library call (generator/generate/generate.hpp): target file, interrupt,
+// resume, shards.
+#include "generate/generate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "generator/synthetic_kernel.hpp"
+#include "generator/test_tables.hpp"
+#include "engine/checkpoint.hpp"
+#include "table/interrupt.hpp"
+#include "table/table_io.hpp"
+
+namespace railtab {
+namespace {
+
+struct Fixture {
+  testing::TempDir dir;
+  testing::SyntheticControl control;
+  std::atomic<bool> stop{false};
+  GenerateOptions options;
+
+  explicit Fixture(const std::string& name) : dir(name) {
+    std::ofstream(dir / "scene.toml") << testing::kSyntheticScene;
+    options.scene = dir / "scene.toml";
+    options.output = dir / "t.h5";
+    options.threads = 1;
+    options.interrupt = &stop;
+    control.flag = &stop;
+    options.make_kernel = [this](const Scene& s) { return testing::synthetic_kernel(s, &control); };
+  }
+};
+
+Table fresh_table(const std::string& name) {
+  Fixture f(name);
+  generate_table(f.options);
+  return read_table(f.options.output);
+}
+
+TEST(Generate, WritesTargetOnlyAndReportsPoints) {
+  Fixture f("gen_plain");
+  SweepSummary s = generate_table(f.options);
+  EXPECT_EQ(f.dir.files(), (std::vector<std::string>{"scene.toml", "t.h5"}));
+  EXPECT_EQ(s.points_computed, s.points_total);
+  EXPECT_EQ(read_table(f.options.output).attribute("scene_name") ? 1 : 0, 1);
+}
+
+TEST(Generate, InterruptedRunLeavesNoTarget) {
+  Fixture f("gen_interrupt");
+  f.control.interrupt_after = 3;
+  EXPECT_THROW(generate_table(f.options), Interrupted);
+  EXPECT_EQ(f.dir.files(), std::vector<std::string>{"scene.toml"});  // no target, temp or checkpoint
+  // An interrupt during writing removes the temporary file too.
+  f.stop = false;
+  f.control.interrupt_after = 1000;  // the last column sets the flag: the sweep completes, writing stops
+  f.control.columns = 1000 - 14;
+  EXPECT_THROW(generate_table(f.options), Interrupted);
+  EXPECT_EQ(f.dir.files(), std::vector<std::string>{"scene.toml"});
+}
+
+TEST(Generate, ResumeAfterInterruptEqualsFreshRun) {
+  Table fresh = fresh_table("gen_fresh");
+  for (int threads : {1, 2}) {
+    Fixture f("gen_resume");
+    f.options.resume = true;
+    f.options.threads = threads;
+    f.control.interrupt_after = 5;  // 14 columns: 7 y blocks x 2 rolls
+    EXPECT_THROW(generate_table(f.options), Interrupted);
+    EXPECT_FALSE(std::filesystem::exists(f.options.output));
+    ASSERT_TRUE(std::filesystem::exists(checkpoint_path(f.options.output)));
+
+    f.stop = false;
+    f.control.interrupt_after = -1;
+    f.control.columns = 0;
+    SweepSummary s = generate_table(f.options);
+    EXPECT_GT(s.points_resumed, 0u);
+    EXPECT_LT(f.control.columns.load(), 14);  // finished blocks were not recomputed
+    EXPECT_EQ(s.points_resumed + s.points_computed, s.points_total);
+    EXPECT_FALSE(std::filesystem::exists(checkpoint_path(f.options.output)));  // removed when done
+    testing::expect_same_datasets(fresh, read_table(f.options.output));
+  }
+}
+
+TEST(Generate, CheckpointOfAnotherSceneIsDiscarded) {
+  Fixture f("gen_stale");
+  f.options.resume = true;
+  f.control.interrupt_after = 6;
+  EXPECT_THROW(generate_table(f.options), Interrupted);
+  std::ofstream(f.dir / "scene.toml", std::ios::app) << "# edited\n";  // other scene text
+  f.stop = false;
+  f.control.interrupt_after = -1;
+  SweepSummary s = generate_table(f.options);
+  EXPECT_EQ(s.points_resumed, 0u);
+  EXPECT_EQ(s.points_computed, s.points_total);
+}
+
+TEST(Checkpoint, TornLastRecordIsDropped) {
+  testing::TempDir dir("ckpt_torn");
+  auto path = dir / "c.partial";
+  {
+    Checkpoint c(path, 42, 8);
+    c.append(0, std::vector<char>(8, 'a'));
+    c.append(3, std::vector<char>(8, 'b'));
+  }
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 3);  // crash mid-record
+  {
+    Checkpoint c(path, 42, 8);
+    auto records = c.take_records();
+    ASSERT_EQ(records.size(), 1u);
+    EXPECT_EQ(records[0].block, 0u);
+    c.append(5, std::vector<char>(8, 'c'));
+  }
+  {
+    Checkpoint c(path, 42, 8);
+    auto records = c.take_records();
+    ASSERT_EQ(records.size(), 2u);
+    EXPECT_EQ(records[1].block, 5u);
+    EXPECT_FALSE(c.discarded());
+    // Held while open: a second writer of the same checkpoint is refused.
+    EXPECT_THROW(Checkpoint(path, 42, 8), Error);
+  }
+  Checkpoint other(path, 43, 8);
+  EXPECT_TRUE(other.discarded());
+  EXPECT_TRUE(other.take_records().empty());
+}
+
+TEST(Generate, ShardArgument) {
+  EXPECT_EQ(parse_shard("2/8"), (std::pair<int, int>{2, 8}));
+  EXPECT_THROW(parse_shard("0/8"), Error);
+  EXPECT_THROW(parse_shard("9/8"), Error);
+  EXPECT_THROW(parse_shard("2-8"), Error);
+  EXPECT_THROW(parse_shard("2/8x"), Error);
+}
+
+}  // namespace
+}  // namespace railtab
