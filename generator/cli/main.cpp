@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   railtab::add_query_command(app);
   railtab::add_merge_command(app);
   railtab::add_chart_commands(app);
+  railtab::add_conicity_command(app);
   railtab::add_simulate_command(app);
   try {
     app.parse(argc, argv);

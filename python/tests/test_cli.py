@@ -9,7 +9,7 @@ import pytest
 from conftest import SOURCE_DIR
 
 COMMANDS = ["eval", "generate", "inspect", "query", "merge", "chart-geometry", "chart-pressure", "chart-stability",
-            "chart", "simulate"]
+            "chart", "simulate", "conicity"]
 SCENE = str(SOURCE_DIR / "tables" / "default.toml")
 
 
@@ -56,6 +56,7 @@ def test_results_on_stdout_diagnostics_on_stderr(railtab_program, default_table,
     ["generate", SCENE, "-o", "/nonexistent-railtab-dir/t.h5"],
     ["simulate", str(SOURCE_DIR / "tables" / "sim" / "r600.toml"), "--out", "/proc/railtab-not-writable"],
     ["chart-stability", "--scene", SCENE, "--out", "/proc/railtab-not-writable"],
+    ["conicity", "--scene", SCENE, "--out", "/proc/railtab-not-writable"],
 ])
 def test_unwritable_output_refused_before_work(railtab_program, args):
     r = run(railtab_program, *args, timeout=20)   # refused at once: no sweep, no table generation
@@ -73,6 +74,9 @@ def test_unwritable_output_refused_before_work(railtab_program, args):
     ["chart-geometry", "--scene", "MISSING", "--out", "OUT"],
     ["chart-stability", "--scene", "MISSING", "--out", "OUT"],
     ["chart-pressure", "--scene", "MISSING", "--out", "OUT"],
+    ["conicity", "--scene", "MISSING", "--out", "OUT"],
+    ["conicity", "--table", "MISSING", "--out", "OUT"],
+    ["conicity", "--scene", SCENE, "--compare", "MISSING", "--out", "OUT"],
 ])
 def test_missing_input_is_error_1_naming_it_with_nothing_written(railtab_program, tmp_path, args):
     # README: an unreadable file is an error (1), not a usage error (2): generate, merge and simulate
@@ -120,3 +124,30 @@ def test_generate_bad_thread_count_names_it(railtab_program, tmp_path, threads):
     assert r.returncode == 2 and r.stdout == "", (r.returncode, r.stderr)
     assert "--threads: must be a whole number of threads >= 0" in r.stderr and "179769" not in r.stderr, r.stderr
     assert not out.exists()
+
+
+def test_conicity_json_from_scene_and_table(railtab_program, default_table):
+    # docs/conicity.md: JSON with amplitude_m and equivalent_conicity; the default table's 0.5 mm
+    # tread grid gives the scene's value at 3 mm to 0.005 (docs/validation/conicity.md: 0.184 both)
+    import json
+    results = []
+    for source in (["--scene", SCENE], ["--table", str(default_table)]):
+        r = run(railtab_program, "conicity", *source, "--amplitudes", "0.001,0.003", "--json", timeout=120)
+        assert r.returncode == 0 and r.stderr == "", r.stderr
+        j = json.loads(r.stdout)
+        assert j["amplitude_m"] == [0.001, 0.003]
+        assert len(j["equivalent_conicity"]) == 2 and len(j["equivalent_conicity_regression"]) == 2
+        results.append(j["equivalent_conicity"][1])
+    assert 0.15 < results[0] < 0.22, results
+    assert abs(results[0] - results[1]) < 0.005, results
+
+
+@pytest.mark.parametrize("args, code, message", [
+    (["--amplitudes", "abc"], 2, "abc"),
+    (["--amplitudes", "-0.001"], 1, "amplitude -0.001 m"),
+    (["--table", "T.h5"], 2, "--table"),     # --scene and --table exclude each other
+])
+def test_conicity_bad_input_names_it(railtab_program, args, code, message):
+    r = run(railtab_program, "conicity", "--scene", SCENE, *args, timeout=60)
+    assert r.returncode == code and r.stdout == "", (r.returncode, r.stderr)
+    assert message in r.stderr, r.stderr
