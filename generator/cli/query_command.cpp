@@ -130,6 +130,12 @@ void run_query(const QueryOptions& opt) {
     }
   }();
   lk::State base = table.default_state();
+  // A table whose roll follows the equilibrium holds no other roll: --roll would be answered at
+  // the equilibrium anyway (the lookup flags it out_of_range), so it is refused outright.
+  RAILTAB_CHECK(!opt.roll || is_axis(table, "roll") || is_fixed(table, "roll"),
+                "--roll: {}: the table's roll follows the kinematic equilibrium at each y (roll_mode = "
+                "equilibrium), so roll is not an input; leave --roll out",
+                table.path());
   set_variable(table, opt.roll, "roll", base.roll);
   set_variable(table, opt.load, "load", base.load);
   if (!opt.creepage.empty()) {

@@ -67,7 +67,8 @@ extern "C" {
 #define RAILTAB_LOOKUP_NOT_PLANAR (1u << 15)       /* half-space: contact angle varies across the patch */
 #define RAILTAB_LOOKUP_NEAR_EQUAL_MINIMA (1u << 16) /* geometry: two near-equal rigid gap minima, the point may jump */
 #define RAILTAB_LOOKUP_CURVATURE_STEP (1u << 17)   /* geometry: a profile radius transition at the point: B steps */
-#define RAILTAB_LOOKUP_NUM_STATUS_BITS 18
+#define RAILTAB_LOOKUP_LOW_CONFIDENCE (1u << 18)   /* the query's cell spans a change the table does not resolve */
+#define RAILTAB_LOOKUP_NUM_STATUS_BITS 19
 
 /* Output indices into railtab_lookup_contact.value (railtab::lookup::Output). */
 enum {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "interpolate.hpp"
+#include "low_confidence.hpp"
 #include "table_data.hpp"
 
 namespace railtab::lookup::detail {
@@ -27,6 +28,22 @@ StatusBits fold_cell(const StatusBits* node_status, std::size_t n_parts, std::si
     all &= node_status[k * n_parts];
   }
   return (any & ~status::kConverged) | (all & status::kConverged);
+}
+
+// Whether the slot holds a contact at some corners of the cell and none at others: the cell spans
+// an onset, a lift-off or a hand-over between slots that its nodes do not locate
+// (low_confidence.hpp).
+bool cell_presence_mixed(const StatusBits* node_status, std::size_t n_parts, std::size_t node,
+                         const std::size_t* node_stride, int n_dims) {
+  std::size_t corner[1 << kMaxDims];
+  for (int c = 0; c < (1 << n_dims); ++c) {
+    std::size_t k = node;
+    for (int d = 0; d < n_dims; ++d)
+      if (c & (1 << d)) k += node_stride[d];
+    corner[c] = k;
+  }
+  auto status = [&](std::size_t k, int p) { return node_status[k * n_parts + static_cast<std::size_t>(p)]; };
+  return mixed_presence(status, static_cast<int>(n_parts), corner, 1 << n_dims);
 }
 
 // The kernels of the block's shape and value type (interpolate.hpp).
@@ -100,9 +117,11 @@ void prepare_query_layout(Block& b, const std::vector<double>& values, const std
         rest %= node_stride[d];
         starts_cell = starts_cell && i + 1 < static_cast<std::size_t>(b.size[d]);
       }
+      const bool mixed = starts_cell && cell_presence_mixed(node_status, np, n, node_stride, b.n_dims);
       for (std::size_t p = 0; p < np; ++p) {
-        const StatusBits cell = starts_cell ? fold_cell(node_status + p, np, n, node_stride, b.n_dims)
-                                            : node_status[n * np + p];
+        StatusBits cell = starts_cell ? fold_cell(node_status + p, np, n, node_stride, b.n_dims)
+                                      : node_status[n * np + p];
+        if (mixed) cell |= status::kLowConfidence;
         std::memcpy(out + b.status_offset + p * sizeof(StatusBits), &cell, sizeof cell);
       }
     }

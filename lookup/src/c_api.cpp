@@ -52,6 +52,7 @@ static_assert(RAILTAB_LOOKUP_AREA_TOO_SMALL == lk::status::kAreaTooSmall);
 static_assert(RAILTAB_LOOKUP_NOT_PLANAR == lk::status::kNotPlanar);
 static_assert(RAILTAB_LOOKUP_NEAR_EQUAL_MINIMA == lk::status::kNearEqualMinima);
 static_assert(RAILTAB_LOOKUP_CURVATURE_STEP == lk::status::kCurvatureStep);
+static_assert(RAILTAB_LOOKUP_LOW_CONFIDENCE == lk::status::kLowConfidence);
 static_assert(RAILTAB_LOOKUP_NUM_STATUS_BITS == lk::status::kNumBits);
 static_assert(RAILTAB_LOOKUP_WEAR == lk::kWear && RAILTAB_LOOKUP_NUM_PARTS == lk::kNumParts);
 

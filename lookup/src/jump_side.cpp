@@ -11,6 +11,7 @@
 #include "hdf5_file.hpp"
 #include "interpolate.hpp"
 #include "jump_piece.hpp"
+#include "low_confidence.hpp"
 #include "part_spec.hpp"
 #include "table_data.hpp"
 
@@ -115,7 +116,8 @@ void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_
                   static_cast<std::size_t>(p)] = st.values[k];
     }
   }
-  // Cell statuses over the creepage axes, as prepare_query_layout folds the block's.
+  // Cell statuses over the creepage axes, as prepare_query_layout folds the block's (with its
+  // low_confidence rule: a slot present at some corners of the creepage cell, absent at others).
   const int n_inner = b.n_dims - inner0;
   for (std::size_t s = 0; s < ns; ++s)
     for (std::size_t slice = 0; slice < slices; ++slice)
@@ -127,6 +129,21 @@ void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_
           idx[k] = static_cast<int>(rest % n);
           rest /= n;
         }
+        std::size_t corner_node[1 << kMaxJumpInner];
+        for (int corner = 0; corner < (1 << n_inner); ++corner) {
+          std::size_t other = 0;
+          for (int k = 0; k < n_inner; ++k) {
+            const int n = b.size[inner0 + k];
+            const int i = std::min(idx[k] + ((corner >> k) & 1), n - 1);
+            other = other * static_cast<std::size_t>(n) + static_cast<std::size_t>(i);
+          }
+          corner_node[corner] = other;
+        }
+        auto part_status = [&](std::size_t k, int p) {
+          return node_status[((s * slices + slice) * inner + k) * static_cast<std::size_t>(b.n_parts) +
+                             static_cast<std::size_t>(p)];
+        };
+        const bool mixed = mixed_presence(part_status, b.n_parts, corner_node, 1 << n_inner);
         for (int p = 0; p < b.n_parts; ++p) {
           StatusBits any = 0, all = ~0u;
           for (int corner = 0; corner < (1 << n_inner); ++corner) {
@@ -142,7 +159,8 @@ void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_
             any |= bits;
             all &= bits;
           }
-          const StatusBits cell = (any & ~status::kConverged) | (all & status::kConverged);
+          const StatusBits cell = (any & ~status::kConverged) | (all & status::kConverged) |
+                                  (mixed ? status::kLowConfidence : 0u);
           unsigned char* record = js.data.data() + s * js.slot_stride + slice * js.side_stride + node * rec;
           std::memcpy(record + b.status_offset + static_cast<std::size_t>(p) * sizeof(StatusBits), &cell, sizeof cell);
         }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "interpolate.hpp"
+#include "low_confidence.hpp"
 #include "part_spec.hpp"
 #include "railtab/lookup.hpp"
 #include "table_data.hpp"
@@ -150,6 +151,7 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
     interpolate_block(d, block, loc, slot_begin, slot_end, contact);
   }
   for (int s = 0; s < n; ++s) {
+    mark_unpaired_contact(d.has_part[kGeometry] && d.has_part[kNormal], contact[s]);
     StatusBits any = 0, all = ~0u;
     for (int p = 0; p < kNumParts; ++p) {
       if (!d.has_part[p]) continue;

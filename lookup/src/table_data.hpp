@@ -105,6 +105,8 @@ struct TableData {
   int n_fixed = 0;                    // fixed variables, and which (Var)
   int fixed_var[kNumVars] = {};
   double fixed_tolerance[kNumVars] = {};  // |query - fixed_value| above this: kOutOfRange
+  bool roll_equilibrium = false;      // roll follows the equilibrium (roll_mode): in fixed_var at 0,
+                                      // not in fixed[] / fixed_list (not a fixed value of the table)
   int n_absent = 0;                   // parts not in the table, and which (their outputs are 0)
   int absent_part[kNumParts] = {};
   bool has_part[kNumParts] = {};      // part present (for both wheels)

@@ -21,7 +21,7 @@ const char* bit_name(StatusBits bit) noexcept {
       "converged",    "not_converged",  "two_point",      "lift_off",      "curvature_clipped",
       "curvature_shifted", "fallback_model", "flange_contact", "non_hertzian", "full_slip",
       "out_of_range", "invalid_input",  "profile_edge",   "failed",         "area_too_small",
-      "not_planar",   "near_equal_minima", "curvature_step"};
+      "not_planar",   "near_equal_minima", "curvature_step", "low_confidence"};
   for (int b = 0; b < kNumBits; ++b)
     if (bit == (1u << b)) return names[b];
   return "unknown";

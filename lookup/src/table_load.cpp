@@ -10,6 +10,7 @@
 #include "flat_json.hpp"
 #include "hdf5_file.hpp"
 #include "interpolate.hpp"
+#include "low_confidence.hpp"
 #include "part_spec.hpp"
 
 namespace railtab::lookup::detail {
@@ -182,8 +183,11 @@ void read_fixed_axes(const Hdf5File& f, TableData& d) {
     if (d.tabulated[var]) f.fail("'" + e.key + "' is both an axis and in fixed_axes");
     if (e.is_text) {
       // Roll may follow the kinematic equilibrium at each y (root dataset /equilibrium_roll):
-      // then it is neither an axis nor an input, and queries ignore State::roll.
-      if (e.key == "roll" && e.text == "equilibrium") continue;
+      // then it is neither an axis nor an input (queries must leave State::roll at 0).
+      if (e.key == "roll" && e.text == "equilibrium") {
+        d.roll_equilibrium = true;
+        continue;
+      }
       f.fail("fixed_axes value of '" + e.key + "' must be a number (or \"equilibrium\" for roll), got \"" +
              e.text + "\"");
     }
@@ -203,7 +207,7 @@ void read_fixed_axes(const Hdf5File& f, TableData& d) {
 // Format 2: /axes holds the slot axis and one dataset per state variable, an axis or a scalar;
 // roll may instead follow the equilibrium (root attribute roll_mode = "equilibrium"). Every
 // state variable must be accounted for, as with format 1's fixed_axes.
-void check_fixed_variables(const Hdf5File& f, const TableData& d) {
+void check_fixed_variables(const Hdf5File& f, TableData& d) {
   if (f.has_attribute("/", "fixed_axes"))
     f.fail("root attribute fixed_axes in a format-2 table (format 2 stores fixed variables as "
            "scalar datasets /axes/<name>)");
@@ -213,16 +217,15 @@ void check_fixed_variables(const Hdf5File& f, const TableData& d) {
     if (var == kNumVars && member != "slot")
       f.fail("/axes/" + member + " is not a state variable (y, roll, load, xi, eta, phi) nor slot");
   }
-  bool roll_equilibrium = false;
   if (const auto mode = f.string_attribute("/", "roll_mode")) {
     if (*mode != "equilibrium")
       f.fail("root attribute roll_mode is '" + *mode + "' (the only mode is \"equilibrium\")");
     if (d.tabulated[kVarRoll] || d.fixed[kVarRoll])
       f.fail("roll_mode = \"equilibrium\" but /axes/roll exists too");
-    roll_equilibrium = true;
+    d.roll_equilibrium = true;
   }
   for (int var = 0; var < kNumVars; ++var)
-    if (!d.tabulated[var] && !d.fixed[var] && !(var == kVarRoll && roll_equilibrium))
+    if (!d.tabulated[var] && !d.fixed[var] && !(var == kVarRoll && d.roll_equilibrium))
       f.fail(std::string("state variable '") + var_name(var) + "' is neither an axis nor a fixed " +
              "value (dataset /axes/" + var_name(var) + ")");
 }
@@ -468,7 +471,10 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   else check_fixed_variables(f, *d);
   for (int var = 0; var < kNumVars; ++var) {
     if (d->tabulated[var]) d->tabulated_var[d->n_tabulated++] = var;
-    if (d->fixed[var]) d->fixed_var[d->n_fixed++] = var;
+    // Roll following the equilibrium is checked as a variable fixed at 0 (not listed in
+    // fixed_axes): the table holds no other roll, so a query that sets one is flagged
+    // kOutOfRange (NaN/inf: kInvalidInput) instead of being answered at the equilibrium silently.
+    if (d->fixed[var] || (var == kVarRoll && d->roll_equilibrium)) d->fixed_var[d->n_fixed++] = var;
     // A fixed variable counts as "at its fixed value" within 1e-9 relative (absolute below
     // magnitude 1): round-off in the caller's state must not flag kOutOfRange.
     d->fixed_tolerance[var] = 1e-9 * std::max(1.0, std::abs(d->fixed_value[var]));
@@ -527,6 +533,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   }
   read_creep_map(f, *d);
   read_jumps(f, *d);  // format 2.1; absent: no one-sided cells (as before)
+  mark_unbalanced_load(*d);  // low_confidence.hpp: the load-balance rule
   narrow_exact_blocks(*d);  // float records where every value is a float (format 2.2's creep, wear)
   // What the query does with each tabulated variable, fixed here so its loop has no branch on it.
   for (int k = 0; k < d->n_tabulated; ++k) {

@@ -23,6 +23,7 @@ STATUS_FLAGS = (
     ("not_planar", 1 << 15),
     ("near_equal_minima", 1 << 16),
     ("curvature_step", 1 << 17),
+    ("low_confidence", 1 << 18),
 )
 _MASK = dict(STATUS_FLAGS)
 

@@ -7,7 +7,7 @@
 namespace railtab::status {
 
 std::string describe(StatusBits bits) {
-  static constexpr std::array<std::pair<StatusBits, const char*>, 18> kNames{{
+  static constexpr std::array<std::pair<StatusBits, const char*>, 19> kNames{{
       {kConverged, "converged"},
       {kNotConverged, "not_converged"},
       {kTwoPoint, "two_point"},
@@ -26,6 +26,7 @@ std::string describe(StatusBits bits) {
       {kNotPlanar, "not_planar"},
       {kNearEqualMinima, "near_equal_minima"},
       {kCurvatureStep, "curvature_step"},
+      {kLowConfidence, "low_confidence"},
   }};
   std::string out;
   for (const auto& [bit, name] : kNames) {

@@ -40,6 +40,10 @@ inline constexpr StatusBits kNearEqualMinima = 1u << 16;
 // penetration and curvature treatment), steps where the point crosses it: the models' constant-
 // curvature assumption at the point fails there. Set on the point and on the wheel.
 inline constexpr StatusBits kCurvatureStep = 1u << 17;
+// Table lookup only (never set by the core): the query's interpolation cell spans a change the
+// table does not resolve, so the interpolated value may be far from the model's (the criteria:
+// docs/lookup.md, "Low confidence"). Set by railtab::lookup at load, per cell and slot.
+inline constexpr StatusBits kLowConfidence = 1u << 18;
 
 // Comma-separated names of the set bits, e.g. "converged,two_point"; "none" for 0.
 std::string describe(StatusBits bits);

@@ -74,6 +74,34 @@ TEST(CApi, QueriesMatchTheCppApi) {
   railtab_lookup_close(t);
 }
 
+// Roll following the equilibrium is not an input: a C caller that sets one gets the answer at the
+// equilibrium flagged RAILTAB_LOOKUP_OUT_OF_RANGE (query bits and every slot), never silently.
+TEST(CApi, RollOnAnEquilibriumRollTableIsFlagged) {
+  testing::TempFile file("capi_roll");
+  testing::FixtureSpec spec = testing::default_scene_spec();
+  spec.fixed = {{2, 78500.0}};
+  spec.fixed_text = "\"roll\":\"equilibrium\"";
+  testing::write_fixture(file.path, spec);
+  railtab_lookup_table* t = nullptr;
+  ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK)
+      << railtab_lookup_last_error();
+  railtab_lookup_state s;
+  ASSERT_EQ(railtab_lookup_default_state(t, &s), RAILTAB_LOOKUP_OK);
+  s.y = 0.003;
+  railtab_lookup_result at_equilibrium, rolled;
+  ASSERT_EQ(railtab_lookup_query(t, RAILTAB_LOOKUP_LEFT, &s, &at_equilibrium), RAILTAB_LOOKUP_OK);
+  EXPECT_EQ(at_equilibrium.status, 0u);
+  s.roll = 0.004;
+  ASSERT_EQ(railtab_lookup_query(t, RAILTAB_LOOKUP_LEFT, &s, &rolled), RAILTAB_LOOKUP_OK);
+  EXPECT_EQ(rolled.status, RAILTAB_LOOKUP_OUT_OF_RANGE);
+  EXPECT_TRUE(rolled.contact[0].status & RAILTAB_LOOKUP_OUT_OF_RANGE);
+  EXPECT_EQ(rolled.contact[0].value[RAILTAB_LOOKUP_FX], at_equilibrium.contact[0].value[RAILTAB_LOOKUP_FX]);
+  railtab_lookup_contact c;
+  ASSERT_EQ(railtab_lookup_query_slot(t, RAILTAB_LOOKUP_LEFT, &s, 1, &c), RAILTAB_LOOKUP_OK);
+  EXPECT_TRUE(c.status & RAILTAB_LOOKUP_OUT_OF_RANGE);
+  railtab_lookup_close(t);
+}
+
 }  // namespace
 }  // namespace railtab::lookup
 
@@ -92,7 +120,8 @@ TEST(CApiComplete, StatusBitNamesAndText) {
       RAILTAB_LOOKUP_OUT_OF_RANGE,      RAILTAB_LOOKUP_INVALID_INPUT,
       RAILTAB_LOOKUP_PROFILE_EDGE,      RAILTAB_LOOKUP_FAILED,
       RAILTAB_LOOKUP_AREA_TOO_SMALL,    RAILTAB_LOOKUP_NOT_PLANAR,
-      RAILTAB_LOOKUP_NEAR_EQUAL_MINIMA, RAILTAB_LOOKUP_CURVATURE_STEP};
+      RAILTAB_LOOKUP_NEAR_EQUAL_MINIMA, RAILTAB_LOOKUP_CURVATURE_STEP,
+      RAILTAB_LOOKUP_LOW_CONFIDENCE};
   for (int b = 0; b < RAILTAB_LOOKUP_NUM_STATUS_BITS; ++b) {
     EXPECT_EQ(bits[b], 1u << b);
     EXPECT_STRNE(railtab_lookup_status_bit_name(bits[b]), "unknown");

@@ -136,7 +136,9 @@ TEST(Kernel, CellStatusIsTheFoldOfItsCornerNodes) {
         }
         const std::uint32_t expected =
             (any & ~status::kConverged) | (all & status::kConverged);
-        ASSERT_EQ(r.contact[slot].part_status[part], expected)
+        // low_confidence is derived from the corners' presence across the block's parts and the
+        // slot's other parts (low_confidence_test.cpp checks it): not part of this fold.
+        ASSERT_EQ(r.contact[slot].part_status[part] & ~status::kLowConfidence, expected)
             << "part " << part << " slot " << slot << " query " << k;
       }
     }

@@ -46,6 +46,8 @@ TEST(StatusBits, MatchTheCore) {
   EXPECT_EQ(RAILTAB_LOOKUP_NEAR_EQUAL_MINIMA, railtab::status::kNearEqualMinima);
   EXPECT_EQ(status::kCurvatureStep, railtab::status::kCurvatureStep);
   EXPECT_EQ(RAILTAB_LOOKUP_CURVATURE_STEP, railtab::status::kCurvatureStep);
+  EXPECT_EQ(status::kLowConfidence, railtab::status::kLowConfidence);
+  EXPECT_EQ(RAILTAB_LOOKUP_LOW_CONFIDENCE, railtab::status::kLowConfidence);
   // Every bit has the core's name, and the core names no bit beyond the lookup's count.
   for (int b = 0; b < status::kNumBits; ++b) {
     EXPECT_EQ(status::bit_name(1u << b), railtab::status::describe(1u << b)) << "bit " << b;

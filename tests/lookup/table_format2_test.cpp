@@ -165,6 +165,12 @@ TEST(TableFormat2, RollModeEquilibriumLoadsAndOtherModesAreRefused) {
     testing::write_fixture(file.path, spec);
     const Table t = Table::load(file.path);
     EXPECT_EQ(t.fixed_axes().size(), 3u);
+    // roll is not an input of this table: a queried roll is flagged, never silently ignored.
+    State s = t.default_state();
+    EXPECT_EQ(s.roll, 0.0);
+    EXPECT_FALSE(t.query(Wheel::kLeft, s).status & status::kOutOfRange);
+    s.roll = -0.002;
+    EXPECT_TRUE(t.query(Wheel::kRight, s).status & status::kOutOfRange);
   }
   {
     TempFile file("v2rollbad");

@@ -2,6 +2,7 @@
 // Loading: every bad file is an error at load, of type LoadError, naming the file and the problem.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -221,8 +222,10 @@ TEST(TableLoad, FixedAxesMustParse) {
 }
 
 // The generator writes "roll":"equilibrium" when roll follows the kinematic equilibrium at each y
-// (docs/table-format.md): the table loads, roll is neither tabulated nor fixed, queries ignore it.
-TEST(TableLoad, EquilibriumRollLoadsAndIgnoresRoll) {
+// (docs/table-format.md): the table loads, roll is neither tabulated nor fixed. A query that sets
+// a roll is answered at the equilibrium and flagged out_of_range (never silently), a NaN roll is
+// invalid input; roll left at 0 (default_state) is the equilibrium.
+TEST(TableLoad, EquilibriumRollLoadsAndFlagsAQueriedRoll) {
   TempFile file("equilibrium_roll");
   FixtureSpec spec = tiny_spec();
   spec.fixed = {{2, 78500.0}, {3, 0.0}, {4, 0.0}};  // roll (1) follows the equilibrium instead
@@ -236,9 +239,16 @@ TEST(TableLoad, EquilibriumRollLoadsAndIgnoresRoll) {
   t.query(Wheel::kLeft, s, a);
   s.roll = 0.01;
   t.query(Wheel::kLeft, s, b);
-  EXPECT_EQ(a.status, b.status);
-  EXPECT_FALSE(b.status & status::kOutOfRange);
-  EXPECT_EQ(a.contact[0].value[0], b.contact[0].value[0]);
+  EXPECT_FALSE(a.status & status::kOutOfRange);
+  EXPECT_TRUE(b.status & status::kOutOfRange);
+  EXPECT_TRUE(b.contact[0].status & status::kOutOfRange);
+  EXPECT_EQ(a.contact[0].value[0], b.contact[0].value[0]);  // answered at the equilibrium
+  Contact c;
+  t.query_slot(Wheel::kLeft, s, 0, c);
+  EXPECT_TRUE(c.status & status::kOutOfRange);
+  s.roll = std::nan("");
+  t.query(Wheel::kLeft, s, b);
+  EXPECT_TRUE(b.status & status::kInvalidInput);
 }
 
 TEST(TableLoad, FixedAxesTextOnlyForEquilibriumRoll) {

@@ -53,7 +53,9 @@ inline constexpr StatusBits kNearEqualMinima = 1u << 16;  // geometry: two near-
                                                           // the contact point may jump between them
 inline constexpr StatusBits kCurvatureStep = 1u << 17;    // geometry: a profile radius transition at
                                                           // the point: B and the point models step
-inline constexpr int kNumBits = 18;                       // bits 0 .. kNumBits-1 are defined
+inline constexpr StatusBits kLowConfidence = 1u << 18;    // the query's cell spans a change the table
+                                                          // does not resolve (docs/lookup.md)
+inline constexpr int kNumBits = 19;                       // bits 0 .. kNumBits-1 are defined
 
 // Name of one bit as in the table files and `railtab inspect` ("converged", "two_point", ...;
 // "unknown" for a value that is not a single defined bit).
