@@ -28,11 +28,11 @@
 #include <vector>
 
 #include "../tests/lookup/table_fixture.hpp"
-#include "sweep/contact_kernel.hpp"
-#include "sweep/jump_locator.hpp"
+#include "kernel/contact_kernel.hpp"
+#include "adaptive/jump_locator.hpp"
 #include "railtab/lookup.hpp"
 #include "scene/scene.hpp"
-#include "sweep/sweep.hpp"
+#include "engine/sweep.hpp"
 #include "table/table_io.hpp"
 
 namespace {

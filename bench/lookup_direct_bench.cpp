@@ -22,8 +22,8 @@
 #include "../tests/lookup/table_fixture.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 #include "railtab/lookup.hpp"
 #include "tangential/fastsim.hpp"
 

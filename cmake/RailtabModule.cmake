@@ -1,9 +1,13 @@
 # SPDX-License-Identifier: Apache-2.0
-# railtab_module(NAME DEPENDS dep...)
-# One static library per layer of src/ (src/NAME/*.cpp), so each layer builds and tests on its own.
+# railtab_module(NAME [DIR dir] DEPENDS dep...)
+# One static library per layer of src/ (src/NAME/*.cpp, or src/DIR/*.cpp for a room of a layer such
+# as profile/curves), so each layer builds and tests on its own.
 function(railtab_module name)
-  cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cpp)
+  cmake_parse_arguments(ARG "" "DIR" "DEPENDS" ${ARGN})
+  if(NOT ARG_DIR)
+    set(ARG_DIR ${name})
+  endif()
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${ARG_DIR}/*.cpp)
   if(sources)
     add_library(railtab_${name} STATIC ${sources})
     target_include_directories(railtab_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
@@ -19,7 +23,7 @@ endfunction()
 
 # railtab_test(DIR LIBS lib... [LABELS label...])
 # tests/DIR/*_test.cpp -> one executable test_DIR, registered with CTest (label = DIR). A "/" in
-# DIR becomes "_" in the names: tests/generator/sweep -> test_generator_sweep.
+# DIR becomes "_" in the names: tests/generator/engine -> test_generator_engine.
 function(railtab_test dir)
   cmake_parse_arguments(ARG "" "" "LIBS;LABELS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/*_test.cpp)

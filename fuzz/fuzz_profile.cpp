@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/check.hpp"
-#include "profile/profile_io.hpp"
+#include "profile/formats/profile_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;

@@ -18,6 +18,7 @@ mkdir -p "$out"
 "$railtab" chart-stability --scene "$scene" --out "$out"
 "$railtab" chart-pressure --scene "$scene" --out "$out" --y 0 --load 78500
 "$railtab" chart --scene "$scene" --out "$out"
+"$railtab" conicity --scene "$scene" --out "$out"
 "$railtab" eval --scene "$scene" --y 0.003 --load 78500 --creepage 0.001,0,0 > "$out/eval_y3mm.txt"
 echo "run.sh: table $out/$name.h5, charts and CSV in $out/"
 ls -l "$out"

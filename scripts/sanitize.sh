@@ -3,15 +3,15 @@
 # Sanitizer runs (issue 19, docs/reliability.md). Both are CI stages (.ci/run); any report fails.
 #   asan: build/asan (clang 14, ASan + UBSan, scripts/asan_build.sh) of all of src/ (profiles,
 #         geometry, normal, tangential, wear, half-space, vehicle), the scene and table readers
-#         and the lookup, and their unit tests (the list below; HalfspaceReference.* left out: the
-#         CONTACT comparison needs ../shared and repeats the solver the other half-space tests
-#         run). Left out for the CI time budget: the sweep, charts, simulate, stability and table
+#         and the lookup, and their unit tests (the list below; HalfspaceReference.* and
+#         HalfspaceYawReference.* left out: the CONTACT comparisons repeat the solver the other
+#         half-space tests run, 75 solves for the yaw one). Left out for the CI time budget: the sweep, charts, simulate, stability and table
 #         accuracy suites; the `debug` preset (gcc ASan+UBSan) runs the whole suite by hand:
 #         docs/reliability.md.
 #   tsan: build/tsan (clang 14, ThreadSanitizer) of the lookup and the sweep: all of test_lookup
 #         (its eight-thread query tests share one Table, as a simulation does) and the sweep's
 #         multi-threaded tests (below), with scripts/tsan.supp. The sweep is built with
-#         RAILTAB_PLAIN_THREADS: its parallel loops (sweep/parallel_for.cpp, the generator's only
+#         RAILTAB_PLAIN_THREADS: its parallel loops (engine/parallel_for.cpp, the generator's only
 #         way to run in parallel) use std::threads there, because Debian's libtbb is not built
 #         with TSan and TSan reports races even in a correct 10-line tbb::parallel_for, some in
 #         the loop body itself (scripts/tsan.supp, docs/ci.md "ThreadSanitizer and
@@ -21,7 +21,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:?usage: sanitize.sh asan|tsan}
 jobs=$(nproc)
-sweep_threaded_tests='Sweep.BitIdenticalForAnyThreadCount:Generate.ResumeAfterInterruptEqualsFreshRun:Sweep.PreSetInterruptComputesNothing:ContactSweep.DefaultProfilesSmallGrid:AdaptiveContact.GridsDoNotDependOnThreads:ModelChoice.TableRecordsTheChoiceAndIsByteIdenticalForAnyThreadCount:HalfspaceSelectable.SweepDeterministicAndBalanced'
+# The table computation's tests that run on two or more threads, per test program (room): the table
+# sweep (fast and exact models, load and creep axes), the adaptive grids, the model choice, contact
+# jumps, generate, resume.
+threaded_tests=(
+  "test_generator_engine Sweep.BitIdenticalForAnyThreadCount:Sweep.PreSetInterruptComputesNothing"
+  "test_generator_kernel ContactSweep.DefaultProfilesSmallGrid"
+  "test_generator_adaptive AdaptiveContact.GridsDoNotDependOnThreads:HalfspaceSelectable.SweepDeterministicAndBalanced"
+  "test_generator_generate Generate.ResumeAfterInterruptEqualsFreshRun:ModelChoice.TableRecordsTheChoiceAndIsByteIdenticalForAnyThreadCount"
+)
 run() {  # program [gtest arguments]: one test program, its name and result printed
   echo "sanitize: $mode: $*"
   "$@" --gtest_brief=1
@@ -35,7 +43,7 @@ case "$mode" in
     # (libhdf5 frees its own at exit). UBSan is built with -fno-sanitize-recover=all.
     export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1
     export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
-    for t in "${tests[@]}"; do run "build/asan/tests/$t" --gtest_filter='-HalfspaceReference.*'; done
+    for t in "${tests[@]}"; do run "build/asan/tests/$t" --gtest_filter='-HalfspaceReference.*:HalfspaceYawReference.*'; done
     ;;
   tsan)
     flags="-fsanitize=thread -fno-omit-frame-pointer -fsized-deallocation"
@@ -47,13 +55,14 @@ case "$mode" in
         -DRAILTAB_BUILD_BENCH=OFF -DRAILTAB_BUILD_PYTHON=OFF -DRAILTAB_MPI=OFF \
         -DRAILTAB_LOOKUP_SHARED=OFF -DRAILTAB_PLAIN_THREADS=ON > build/tsan-configure.log
     fi
-    cmake --build build/tsan --parallel "$jobs" --target test_lookup test_generator_sweep
+    cmake --build build/tsan --parallel "$jobs" --target test_lookup test_generator_engine test_generator_kernel \
+      test_generator_adaptive test_generator_generate
     # halt_on_error + exitcode: the first report fails the program (and so CI).
     export TSAN_OPTIONS="halt_on_error=1:exitcode=66:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan.supp"
     run build/tsan/tests/test_lookup
-    # The sweep's tests that run on two or more threads: the table sweep (fast and exact models,
-    # load and creep axes), the adaptive grids, the model choice, contact jumps, generate, resume.
-    run build/tsan/tests/test_generator_sweep --gtest_filter="$sweep_threaded_tests"
+    for entry in "${threaded_tests[@]}"; do
+      run "build/tsan/tests/${entry%% *}" --gtest_filter="${entry#* }"
+    done
     ;;
   *) echo "sanitize.sh: unknown mode '$mode' (asan or tsan)" >&2; exit 2 ;;
 esac

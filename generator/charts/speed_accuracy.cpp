@@ -16,9 +16,9 @@
 
 #include "charts/speed_accuracy_states.hpp"
 #include "core/check.hpp"
-#include "sweep/contact_kernel.hpp"
-#include "sweep/halfspace_contact.hpp"
-#include "sweep/sweep.hpp"
+#include "kernel/contact_kernel.hpp"
+#include "kernel/halfspace_contact.hpp"
+#include "engine/sweep.hpp"
 #include "table/table_io.hpp"
 
 namespace railtab {

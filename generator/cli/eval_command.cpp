@@ -15,7 +15,8 @@
 #include "cli/commands.hpp"
 #include "normal/normal_model.hpp"
 #include "scene/scene.hpp"
-#include "sweep/state_eval.hpp"
+#include "eval/state_eval.hpp"
+#include "eval/state_json.hpp"
 
 namespace railtab {
 namespace {
@@ -88,7 +89,7 @@ void print_eval_text(const nlohmann::json& out) {
 }
 
 void run_eval(const EvalOptions& opt) {
-  const nlohmann::json out = evaluate_state(load_scene(opt.scene_path), opt.request);
+  const nlohmann::json out = state_json(evaluate_state(load_scene(opt.scene_path), opt.request));
   if (opt.json) {
     std::cout << out.dump(2) << "\n";
   } else {

@@ -9,8 +9,8 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
-#include "sweep/generate.hpp"
-#include "sweep/shard_split.hpp"
+#include "generate/generate.hpp"
+#include "engine/shard_split.hpp"
 #ifdef RAILTAB_HAVE_MPI
 #include "distributed/mpi_sweep.hpp"
 #endif

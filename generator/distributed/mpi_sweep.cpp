@@ -17,9 +17,9 @@
 #include <thread>
 
 #include "core/check.hpp"
-#include "sweep/checkpoint.hpp"
-#include "sweep/parallel_for.hpp"
-#include "sweep/sweep_plan.hpp"
+#include "engine/checkpoint.hpp"
+#include "engine/parallel_for.hpp"
+#include "engine/sweep_plan.hpp"
 #include "table/interrupt.hpp"
 #include "table/version.hpp"
 

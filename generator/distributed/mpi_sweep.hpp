@@ -6,8 +6,8 @@
 #include <optional>
 
 #include "scene/scene.hpp"
-#include "sweep/generate.hpp"
-#include "sweep/sweep.hpp"
+#include "generate/generate.hpp"
+#include "engine/sweep.hpp"
 
 namespace railtab {
 

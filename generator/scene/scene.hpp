@@ -13,7 +13,7 @@
 #include "core/material.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
-#include "profile/profile_io.hpp"
+#include "profile/formats/profile_io.hpp"
 #include "tangential/coupled_load.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "wear/archard.hpp"
@@ -24,7 +24,7 @@ struct ProfileSource {
   std::string name;        // built-in name ("s1002", "uic60") or a file path as written in the scene
   std::filesystem::path file;  // resolved file path (relative to the scene file); empty for built-ins
   double smoothing_length = 0.0;  // smoothing of measured profiles, 0 = interpolate [m]
-  AxisMirror mirror_y = AxisMirror::automatic;  // MiniProf lateral axis (profile/profile_io.hpp)
+  AxisMirror mirror_y = AxisMirror::automatic;  // MiniProf lateral axis (profile/formats/profile_io.hpp)
   AxisMirror mirror_z = AxisMirror::automatic;  // MiniProf vertical axis
   double lateral_shift = 0.0;     // added to the file's lateral coordinate (wheel_shift_y) [m]
 };
@@ -105,7 +105,7 @@ struct Scene {
   WearSettings wear;
   bool equilibrium_roll = false;  // roll follows the kinematic equilibrium instead of the roll grid
   // [grid] creep_coordinates = "normalised": the creep and wear parts are tabulated over
-  // normalised creepage coordinates (format 2.1, sweep/creep_map.hpp); the creepage lists then
+  // normalised creepage coordinates (format 2.1, kernel/creep_map.hpp); the creepage lists then
   // give the range (first and last value) and the node count. false = "physical" (the default).
   bool creep_normalised = false;
   // [grid] creep_knee = [k_xi, k_eta, k_phi] (normalised coordinates only, default 1): the knee of

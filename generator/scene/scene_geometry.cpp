@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include "core/check.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 #include "scene/scene.hpp"
-#if __has_include("profile/profile_io.hpp")
-#include "profile/profile_io.hpp"
+#if __has_include("profile/formats/profile_io.hpp")
+#include "profile/formats/profile_io.hpp"
 #define RAILTAB_HAVE_PROFILE_IO 1
 #endif
 

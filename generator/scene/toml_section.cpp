@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "profile/text_file.hpp"
+#include "profile/formats/text_file.hpp"
 
 namespace railtab::scene_toml {
 
@@ -133,7 +133,7 @@ const toml::table* table_at(const Context& ctx, const toml::table& parent, const
 }
 
 std::string read_text(const std::filesystem::path& path, const char* what) {
-  // Regular files only, size-limited, without blocking on a FIFO (src/profile/text_file.hpp).
+  // Regular files only, size-limited, without blocking on a FIFO (src/profile/formats/text_file.hpp).
   try {
     return read_regular_file(path, kMaxSceneFileBytes);
   } catch (const Error& e) {

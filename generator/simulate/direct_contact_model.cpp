@@ -5,7 +5,7 @@
 #include <exception>
 
 #include "core/check.hpp"
-#include "sweep/contact_kernel.hpp"
+#include "kernel/contact_kernel.hpp"
 #include "tangential/coupled_load.hpp"
 
 namespace railtab {

@@ -17,8 +17,8 @@
 
 #include "normal/normal_model.hpp"
 #include "scene/scene.hpp"
-#include "sweep/contact_kernel.hpp"
-#include "sweep/halfspace_contact.hpp"
+#include "kernel/contact_kernel.hpp"
+#include "kernel/halfspace_contact.hpp"
 #include "tangential/coupled_load.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "vehicle/contact_model.hpp"

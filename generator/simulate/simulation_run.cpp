@@ -19,15 +19,15 @@
 
 #include "charts/wear_chart.hpp"
 #include "core/check.hpp"
-#include "profile/profile_io.hpp"
-#include "profile/s1002.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/standard/s1002.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_section.hpp"
 #include "simulate/bogie_run.hpp"
 #include "simulate/direct_contact_model.hpp"
 #include "simulate/lookup_contact_model.hpp"
 #include "simulate/worn_profile.hpp"
-#include "sweep/generate.hpp"
+#include "generate/generate.hpp"
 #include "table/interrupt.hpp"
 #include "table/output_file.hpp"
 

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "core/check.hpp"
-#include "profile/simpack_writer.hpp"
+#include "profile/formats/simpack_writer.hpp"
 #include "table/output_file.hpp"
 
 namespace railtab {

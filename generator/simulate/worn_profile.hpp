@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "profile/profile.hpp"
+#include "profile/curves/profile.hpp"
 
 namespace railtab {
 
@@ -15,7 +15,7 @@ namespace railtab {
 // removes it from `wheel` (rolling radius r(u) - depth(u), i.e. z + depth; depth linear between
 // bin centres, 0 beyond the bins), and writes the profile at `step` spacing over the wheel's
 // range to `file` (lateral and vertical in mm, CONTACT orientation), and the same points as a
-// SIMPACK wheel profile beside it (`file` with the extension .prw, profile/simpack_writer.hpp).
+// SIMPACK wheel profile beside it (`file` with the extension .prw, profile/formats/simpack_writer.hpp).
 // Written to temporary names and renamed. Throws railtab::Error naming the file for I/O errors or non-finite input.
 void write_worn_profile(const Profile& wheel, const std::vector<double>& u,
                         const std::vector<double>& depth, double smoothing_length,

@@ -16,7 +16,8 @@
 namespace railtab::lookup::detail {
 namespace {
 
-// Status of a cell: trouble bits from ANY corner, kConverged only if ALL corners converged.
+// Status of a cell: trouble bits from ANY corner, kEveryCorner's (converged, full_slip) only if ALL
+// corners have them.
 StatusBits fold_cell(const StatusBits* node_status, std::size_t n_parts, std::size_t node,
                      const std::size_t* node_stride, int n_dims) {
   StatusBits any = 0, all = ~0u;
@@ -27,7 +28,7 @@ StatusBits fold_cell(const StatusBits* node_status, std::size_t n_parts, std::si
     any |= node_status[k * n_parts];
     all &= node_status[k * n_parts];
   }
-  return (any & ~status::kConverged) | (all & status::kConverged);
+  return (any & ~kEveryCorner) | (all & kEveryCorner);
 }
 
 // Whether the slot holds a contact at some corners of the cell and none at others: the cell spans

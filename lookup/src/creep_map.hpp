@@ -4,7 +4,7 @@
 // creepage axis instead of the physical creepage, per (y, roll, load) node and slot, and store
 // the creep forces as F / (mu N) minus a saturation law. A query maps its physical creepages to v
 // with the scales of the slot's normal contact (interpolated at (y, roll, load)), interpolates,
-// and scales back to N. The generator's side is generator/sweep/creep_map.hpp: same formulas.
+// and scales back to N. The generator's side is generator/kernel/creep_map.hpp: same formulas.
 #pragma once
 
 #include <algorithm>
@@ -67,7 +67,7 @@ inline void bilinear_scales(const double* p00, std::size_t stride0, std::size_t 
 }
 
 // N from the creep part's stored vertical load share (creep_map "normal_force": "vertical_share";
-// generator/sweep/creep_map.hpp): N = share / (cos(angle) + mu r_y sin(angle)), r_y = fy / (mu N)
+// generator/kernel/creep_map.hpp): N = share / (cos(angle) + mu r_y sin(angle)), r_y = fy / (mu N)
 // the interpolated normalised force, angle the slot's contact angle (geometry part).
 // `cos_angle`, `sin_angle`: std::cos and std::sin of the angle (the fast path computes them early,
 // off the critical path, fast_path.cpp).

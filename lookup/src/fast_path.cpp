@@ -174,7 +174,7 @@ struct CutStatus {
   }
   void store(const Block& b, Contact& c) const noexcept {
     for (int p = 0; p < NP; ++p)
-      c.part_status[b.part[p]] = (any[p] & ~status::kConverged) | (all[p] & status::kConverged);
+      c.part_status[b.part[p]] = (any[p] & ~kEveryCorner) | (all[p] & kEveryCorner);
   }
 };
 

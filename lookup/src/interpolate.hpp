@@ -12,7 +12,7 @@ namespace railtab::lookup::detail {
 // `n_values` values (1..kMaxSlotValues), chosen once at load. It interpolates the block's
 // values of slots [slot_begin, slot_end) at the cells loc[var] (indexed by state variable)
 // straight into contact[slot - slot_begin].value, and copies the cell's status (query layout,
-// table_data.hpp: every bit but kConverged ORed over the 2^D corners, kConverged ANDed) into
+// table_data.hpp: every bit but kEveryCorner's ORed over the 2^D corners, those ANDed) into
 // .part_status[part]. The corner weights and offsets are computed once for all slots; both
 // counts are template parameters so the corner loop unrolls and the sums stay in registers.
 // value_bytes: the records' value type (Block::value_bytes, 8 double or 4 float; float records of

@@ -159,7 +159,7 @@ void read_samples(const Hdf5File& f, TableData& d, int w, int bi, std::size_t n_
             any |= bits;
             all &= bits;
           }
-          const StatusBits cell = (any & ~status::kConverged) | (all & status::kConverged) |
+          const StatusBits cell = (any & ~kEveryCorner) | (all & kEveryCorner) |
                                   (mixed ? status::kLowConfidence : 0u);
           unsigned char* record = js.data.data() + s * js.slot_stride + slice * js.side_stride + node * rec;
           std::memcpy(record + b.status_offset + static_cast<std::size_t>(p) * sizeof(StatusBits), &cell, sizeof cell);
@@ -494,7 +494,7 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
       if (b.first_output >= 0) std::memcpy(c.value + b.first_output, values, static_cast<std::size_t>(b.n_values) * sizeof(double));
       else for (int v = 0; v < b.n_values; ++v) c.value[b.output_of[v]] = values[v];  // Block::output_of
       for (int p = 0; p < b.n_parts; ++p)
-        c.part_status[b.part[p]] = (any[p] & ~status::kConverged) | (all[p] & status::kConverged);
+        c.part_status[b.part[p]] = (any[p] & ~kEveryCorner) | (all[p] & kEveryCorner);
       if (map.vertical_share && b.n_parts > 0 && b.part[0] == kGeometry) {
         // The contact angle is final: its sine and cosine now, off the creep block's critical path.
         cos_angle[s] = std::cos(c.value[kContactAngle]);

@@ -26,7 +26,7 @@ inline constexpr std::uint32_t kGeometricJumps = 0x3Fu;
 // One block's one-sided values at the jumps (format 2.1, /jumps/<wheel>/<part>): per slot, load
 // node, jump and side (0 left, 1 right of the jump) a slice over the block's creepage axes, in the
 // block's query record layout (values, then the statuses of the creepage CELL the record starts,
-// folded as the block's: every bit but converged ORed, converged ANDed), with the block's value
+// folded as the block's: every bit but converged and full_slip ORed, those ANDed), with the block's value
 // type (doubles as read, floats after narrow_exact_blocks when the block's are).
 // One jump cell's sum over one block (weighted_sum.hpp, jump_sum): the records at end[e] +
 // corner_off[c] (bytes) weighted by end_w[e] x corner_w[c], into out[0 .. n_values-1].

@@ -11,7 +11,7 @@
 //     [ values of part a, part b, .. | CELL statuses as uint32: part a, part b, .. |
 //       zero padding to a multiple of 16 bytes ]
 // where the cell status of a node is the status of the interpolation cell whose lowest corner
-// it is: every bit but kConverged ORed over the cell's 2^D corner nodes, kConverged ANDed
+// it is: every bit but kEveryCorner's ORed over the cell's 2^D corner nodes, those ANDed
 // (docs/lookup.md). A query reads the statuses of one record (the cell's corner 0) instead of
 // folding 2^D of them, with the same result. Nodes on the last node of an axis start no
 // cell; they keep their own status.
@@ -36,6 +36,12 @@
 #include "records.hpp"
 
 namespace railtab::lookup::detail {
+
+// Status bits a cell (or a one-sided piece) carries only when EVERY node it is built from carries
+// them: converged, and full_slip (a cell with one saturated corner is not a saturated state: a
+// state at zero creepage must not read full_slip from its cell's far corners). Every other bit is
+// ORed over the nodes (docs/lookup.md, "What a query returns").
+inline constexpr StatusBits kEveryCorner = status::kConverged | status::kFullSlip;
 
 inline constexpr int kMaxDims = kNumVars;  // a block tabulates at most y, roll, load, xi, eta, phi
 inline constexpr int kMaxSlotValues = kNumOutputs;  // values in one slot record, at most

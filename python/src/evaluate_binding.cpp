@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // railtab.evaluate: one wheelset state of a scene through the direct models, the very code of
-// `railtab eval --json` (sweep/state_eval.hpp), returned as its JSON text (railtab/_evaluate.py
+// `railtab eval --json` (eval/state_eval.hpp), returned as its JSON text (railtab/_evaluate.py
 // parses it), so Python and the command line cannot drift apart.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -14,7 +14,8 @@
 
 #include "bindings.hpp"
 #include "scene/scene.hpp"
-#include "sweep/state_eval.hpp"
+#include "eval/state_eval.hpp"
+#include "eval/state_json.hpp"
 
 namespace railtab::python {
 namespace {
@@ -51,7 +52,7 @@ void bind_evaluate(py::module_& m) {
         std::string text;
         {
           py::gil_scoped_release release;  // pure C++: other Python threads may run
-          text = evaluate_state(*s.scene, request).dump();
+          text = state_json(evaluate_state(*s.scene, request)).dump();
         }
         return text;
       },

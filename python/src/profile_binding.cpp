@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// railtab.Profile: wheel and rail profiles from files (profile/profile_io.hpp), the built-in
+// railtab.Profile: wheel and rail profiles from files (profile/formats/profile_io.hpp), the built-in
 // S1002 and UIC60, evaluation on numpy arrays, and the SIMPACK writer.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -11,10 +11,11 @@
 
 #include "bindings.hpp"
 #include "core/check.hpp"
-#include "profile/profile_io.hpp"
-#include "profile/s1002.hpp"
-#include "profile/simpack_writer.hpp"
-#include "profile/uic60.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/formats/simpack_writer.hpp"
+#include "table/output_file.hpp"
+#include "profile/standard/uic60.hpp"
 
 namespace railtab::python {
 namespace {
@@ -76,7 +77,9 @@ void bind_profile(py::module_& m) {
       "_write_simpack",
       [](const std::filesystem::path& path, const std::string& kind, const std::vector<double>& u,
          const std::vector<double>& z, const std::string& comment) {
-        write_simpack_profile(path, parse_kind(kind), u, z, comment);
+        // src/ writes no file: the text is written through the generator's safe output file.
+        check_simpack_file_name(path, parse_kind(kind));
+        write_text_file(path, simpack_profile_text(parse_kind(kind), u, z, comment));
       },
       py::arg("path"), py::arg("kind"), py::arg("u"), py::arg("z"), py::arg("comment") = "");
 }

@@ -21,10 +21,19 @@ Facing facing_wheel_point(const Profile& wheel, const WheelPose& pose, const Rai
   int clamped = 0;
   for (int it = 0; it < 40; ++it) {
     const CurveSample e = wheel.curve(u);
-    const Point2 w = pose.place(e.y, e.z);
+    Point2 w, tangent;
+    if (pose.yawed) {  // the silhouette; its tangent's length taken from the profile (a Newton slope)
+      const TracePoint tp = pose.trace(e);
+      const double speed = std::hypot(e.dy, e.dz);
+      w = tp.p;
+      tangent = {speed * std::cos(tp.angle), speed * std::sin(tp.angle)};
+    } else {
+      w = pose.place(e.y, e.z);
+      tangent = pose.tangent(e.dy, e.dz);
+    }
     const Point2 d{w.q - rp.p.q, w.z - rp.p.z};
     const double f = cross(d, n);
-    const double df = cross(pose.tangent(e.dy, e.dz), n);
+    const double df = cross(tangent, n);
     if (!(std::abs(df) > 1e-6)) return Facing::failed;  // normal tangent to the wheel
     double step = -f / df;
     step = std::clamp(step, -5e-3, 5e-3);
@@ -85,7 +94,8 @@ bool build_band(const PlacedRail& rail, const Profile& wheel, const WheelPose& p
         break;
       }
       const CurveSample e = wheel.curve(u);
-      const Point2 w = pose.place(e.y, e.z);
+      const TracePoint tp = pose.yawed ? pose.trace(e) : TracePoint{};
+      const Point2 w = pose.yawed ? tp.p : pose.place(e.y, e.z);
       const double gap = (w.q - rp.p.q) * n.q + (w.z - rp.p.z) * n.z;
       const bool beyond = dir > 0 ? s_rel > s_cut : s_rel < s_cut;
       if (beyond && gap > settings.band_max_gap) break;
@@ -101,6 +111,17 @@ bool build_band(const PlacedRail& rail, const Profile& wheel, const WheelPose& p
       b.rolling_radius = pose.r0 - e.z;
       b.curvature_wheel = curvature_numerator(e) / (slope_term * std::sqrt(slope_term));  // convex: > 0
       b.curvature_rail = rp.curvature;
+      if (pose.yawed) {  // Euler: circumferential (Meusnier, N_r / r) and meridional curvatures
+        const double k_circ = e.dy / (std::sqrt(slope_term) * b.rolling_radius);
+        const double c2 = tp.cos_chi * tp.cos_chi;
+        b.x_track = tp.x;
+        b.x_wheel = tp.x_wheel;
+        b.curvature_rolling = k_circ * c2 + b.curvature_wheel * (1.0 - c2);
+      } else {
+        b.x_track = 0.0;
+        b.x_wheel = 0.0;
+        b.curvature_rolling = std::cos(rp.angle - pose.theta) / b.rolling_radius;
+      }
       kept = k;
     }
     // Reaching the requested extent while the rail has ended is a profile edge too.

@@ -10,7 +10,7 @@
 #include "core/check.hpp"
 #include "geometry/curvature_steps.hpp"
 #include "geometry/placement.hpp"
-#include "profile/profile_checks.hpp"
+#include "profile/formats/profile_checks.hpp"
 
 namespace railtab {
 
@@ -191,6 +191,9 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
   RAILTAB_CHECK(std::isfinite(state.y), "contact geometry: wheelset state y = {} is not finite", state.y);
   RAILTAB_CHECK(std::isfinite(state.roll), "contact geometry: wheelset state roll = {} is not finite",
                 state.roll);
+  RAILTAB_CHECK(std::isfinite(state.yaw) && std::abs(state.yaw) <= kMaxYaw,
+                "contact geometry: wheelset state yaw = {} rad must be finite with |yaw| <= {} rad",
+                state.yaw, kMaxYaw);
   const int i = static_cast<int>(side);
   const double sigma = outward_sign(side);
   const detail::PlacedRail& rail = *placed_rail_[i];
@@ -203,6 +206,7 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
   out.side = side;
   out.wheel_drop = -found.gap_min;  // lower the wheel until the smallest gap closes
   out.wheel_roll = pose.theta;
+  out.wheel_yaw = pose.psi;
   pose.zc += out.wheel_drop;
   out.points.reserve(found.minima.size());
   for (const detail::RawContact& m : found.minima) {
@@ -226,6 +230,19 @@ WheelContactGeometry ContactGeometrySolver::solve_wheel(Side side, const Wheelse
     const double k_wheel = detail::curvature_numerator(ew) / (slope_term * std::sqrt(slope_term));  // convex: > 0
     cp.curvature_b = 0.5 * (k_wheel + rp.curvature);
     cp.status = 0;
+    cp.x_track = 0.0;
+    cp.x_wheel = 0.0;
+    if (pose.yawed) {
+      // A is half the wheel's normal curvature along track x, by Euler's formula between the
+      // circumferential (Meusnier) and the meridional curvature: the rail's rolling direction
+      // crosses the circle at the angle chi.
+      const detail::TracePoint tp = pose.trace(ew);
+      const double c2 = tp.cos_chi * tp.cos_chi;
+      const double k_circ = ew.dy / (std::sqrt(slope_term) * cp.rolling_radius);
+      cp.curvature_a = 0.5 * (k_circ * c2 + k_wheel * (1.0 - c2));
+      cp.x_track = tp.x;
+      cp.x_wheel = tp.x_wheel;
+    }
     if (cp.contact_angle_side > settings_.flange_angle) cp.status |= status::kFlangeContact;
     if (!(cp.curvature_a > 0.0) || !(cp.curvature_b > 0.0)) cp.status |= status::kNonHertzian;
     if (m.edge) cp.status |= status::kProfileEdge;

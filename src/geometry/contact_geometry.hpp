@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/status.hpp"
-#include "profile/profile.hpp"
+#include "profile/curves/profile.hpp"
 
 namespace railtab {
 
@@ -60,6 +60,10 @@ struct GeometrySettings {
 struct WheelsetState {
   double y = 0.0;     // lateral displacement of the wheelset, track frame, + left [m]
   double roll = 0.0;  // roll angle relative to the track, right-hand about +x (left wheel up) [rad]
+  double yaw = 0.0;   // yaw angle (angle of attack) relative to the track, right-hand about +z: +
+                      // turns the wheelset's forward axis towards +y (left); orientation
+                      // R_x(roll) R_z(yaw), roll about the track's x axis (as CONTACT); 0 is
+                      // exactly the yaw-free geometry [rad]
 };
 
 // One sample of the gap band: a point on the rail surface and the wheel point facing it along
@@ -76,6 +80,11 @@ struct BandSample {
   double rolling_radius;   // wheel radius at the facing wheel point [m]
   double curvature_wheel;  // lateral curvature of the wheel surface, + convex (bulging to rail) [1/m]
   double curvature_rail;   // lateral curvature of the rail surface, + convex (crown) [1/m]
+  double x_track;          // longitudinal position of the facing wheel point (the wheel's
+                           // silhouette seen along the track), track x from the axle centre [m]
+  double x_wheel;          // lead of that wheel point along the wheel's rolling direction, r sin(tau) [m]
+  double curvature_rolling;  // normal curvature of the wheel along track x there, + convex:
+                             // cos(angle - roll)/r without yaw, Euler's formula with yaw [1/m]
 };
 
 struct ContactPoint {
@@ -94,6 +103,10 @@ struct ContactPoint {
                             //   kNearEqualMinima (this point and the primary, see GeometrySettings)
   double wheel_t;           // wheel curve parameter (Profile::curve; = wheel_u for z(u) profiles) [m]
   double rail_t;            // rail curve parameter (= rail_u for z(u) profiles) [m]
+  double x_track;           // longitudinal position, track x from the axle centre (yaw: the
+                            // rigid-body shift of the wheel plus its lead; 0 without yaw) [m]
+  double x_wheel;           // lead of the contact along the wheel's own rolling direction, from
+                            // the vertical plane through its axle (CONTACT's XCP(W)); + ahead [m]
 };
 
 struct WheelContactGeometry {
@@ -103,6 +116,7 @@ struct WheelContactGeometry {
   double band_step = 0.0;            // s spacing of band [m]
   double wheel_drop = 0.0;           // vertical position of the wheel at rigid contact [m]
   double wheel_roll = 0.0;           // roll of the wheel in its side frame, sigma*roll [rad]
+  double wheel_yaw = 0.0;            // yaw of the wheel in its side frame, sigma*yaw [rad]
   StatusBits status = 0;             // kTwoPoint when more than one point, kProfileEdge,
                                      //   kNearEqualMinima (GeometrySettings::near_equal_gap)
 };
@@ -111,6 +125,8 @@ struct WheelsetContactGeometry {
   std::array<WheelContactGeometry, 2> wheels;  // [0] left, [1] right
   double rolling_radius_difference = 0.0;      // r_left - r_right of the primary contacts [m]
 };
+
+inline constexpr double kMaxYaw = 0.2;  // largest |yaw| the contact search accepts [rad]
 
 // Profiles and geometry of one wheelset on one track. Immutable after construction; solve() is
 // const and thread-safe.
@@ -121,7 +137,9 @@ class ContactGeometrySolver {
                         ProfilePtr rail_right, TrackGeometry track, WheelsetGeometry wheelset,
                         GeometrySettings settings = {});
 
-  // Both wheels at the given state. NaN input throws railtab::Error naming the input.
+  // Both wheels at the given state. NaN input, or |yaw| > kMaxYaw, throws railtab::Error naming
+  // the input. With yaw the contact points lie on each wheel's silhouette seen along the track
+  // (docs/conventions.md "Yaw"); yaw = 0 takes the yaw-free path, bit for bit.
   WheelsetContactGeometry solve(const WheelsetState& state) const;
 
   // One wheel only (the table sweep solves each side on its own grid point).

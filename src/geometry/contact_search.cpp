@@ -26,6 +26,15 @@ struct GapEval {
 
 GapEval eval_gap(const PlacedRail& rail, const Profile& wheel, const WheelPose& pose, double u) {
   const CurveSample e = wheel.curve(u);
+  if (pose.yawed) {  // the silhouette; dphi keeps the yaw-free curvature (a Newton slope only)
+    const TracePoint tp = pose.trace(e);
+    const double q = std::clamp(tp.p.q, rail.q_lo(), rail.q_hi());
+    const double ur = rail.t_at_q(q);
+    const RailPoint rp = rail.point(ur);
+    const Point2 tw = pose.tangent(e.dy, e.dz);
+    return {tp.p.z - rp.p.z, tp.angle - rp.angle,
+            curvature_numerator(e) / speed_squared(e) - rp.dangle_dt * (tw.q / rp.tangent.q), ur};
+  }
   const Point2 w = pose.place(e.y, e.z);
   const double q = std::clamp(w.q, rail.q_lo(), rail.q_hi());
   const double ur = rail.t_at_q(q);
@@ -118,7 +127,7 @@ SearchResult search_contacts(const PlacedRail& rail, const Profile& wheel,
     }
   };
   for (int i = lo; i <= hi; ++i) {
-    const Point2 w = pose.place(samples.y[i], samples.z[i]);
+    const Point2 w = pose.yawed ? pose.trace(samples.at(i)).p : pose.place(samples.y[i], samples.z[i]);
     if (w.q < rail.q_lo()) continue;
     if (w.q > rail.q_hi()) break;
     const double g = w.z - rail.z_at_q_table(w.q, hint);

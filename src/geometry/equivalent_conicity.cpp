@@ -191,7 +191,8 @@ KinematicOscillation kinematic_oscillation(const LateralFunction& delta_r, doubl
     return 0.5 * (y_max - y_min);
   };
   // (y_max - y_min)/2 grows with the level C (the first crossings move outwards): bisect on C.
-  const double top = std::min(s_of_y.max_level(+1), s_of_y.max_level(-1));
+  // The highest level both sides reach (a hair below, so that rounding cannot lose its crossing).
+  const double top = std::min(s_of_y.max_level(+1), s_of_y.max_level(-1)) * (1.0 - 1e-12);
   double y_min = kNaN, y_max = kNaN;
   if (!(top > 0.0) || !(half_width(top, y_min, y_max) >= amplitude)) {
     out.y_min = y_min;

@@ -239,7 +239,46 @@ WheelPose make_pose(Side side, const WheelsetState& state, const WheelsetGeometr
   pose.sin_t = std::sin(pose.theta);
   pose.q0 = 0.5 * wheelset.back_to_back - wheelset.flange_back_position;
   pose.r0 = wheelset.nominal_radius;
+  if (state.yaw != 0.0) {
+    pose.yawed = true;
+    pose.psi = sigma * state.yaw;
+    pose.cos_p = std::cos(pose.psi);
+    pose.sin_p = std::sin(pose.psi);
+  }
   return pose;
+}
+
+// Wheel axes in the side frame (x forward, q outward, z up) for the orientation R_x(theta) R_z(psi)
+// (yawed about the vertical, then rolled about the track's x axis, as CONTACT places a wheelset):
+// forward e_f = (cp, sp ct, sp st), up e_v = (0, -st, ct), axle (outward) e_a = (-sp, cp ct, cp st).
+// Profile point u lies on the circle of radius r = r0 - z_w(u) about C + a e_a, a = q0 + y_w(u);
+// at the angle tau from its lowest point it is P = C + a e_a + r rho, rho = -cos(tau) e_v +
+// sin(tau) e_f, with the outward surface normal n = N_a e_a + N_r rho, (N_a, N_r) = (z', y')/|.|
+// the profile normal in the (axial, radial) half-plane (N_a/N_r = tan(gamma_w), gamma_w the
+// wheel's own contact angle there). The rail is extruded along x, so contact needs n_x = 0:
+//   -N_a sin(psi) + N_r sin(tau) cos(psi) = 0,  i.e.  sin(tau) = tan(gamma_w) tan(psi)
+// for any roll, and the contact leads the wheel's axle plane by r sin(tau) = r tan(gamma_w)
+// tan(psi) (the flange lead of a yawed wheel).
+TracePoint WheelPose::trace(const CurveSample& e) const {
+  const double a = q0 + e.y;
+  const double r = r0 - e.z;
+  const double speed = std::hypot(e.dy, e.dz);
+  const double na = e.dz / speed, nr = e.dy / speed;
+  const double s_tau = std::clamp(na * sin_p / (nr * cos_p), -1.0, 1.0);  // nr > 0 facing the rail
+  const double c_tau = std::sqrt(1.0 - s_tau * s_tau);
+  // rho = -c_tau e_v + s_tau e_f
+  const double rho_x = s_tau * cos_p;
+  const double rho_q = c_tau * sin_t + s_tau * sin_p * cos_t;
+  const double rho_z = -c_tau * cos_t + s_tau * sin_p * sin_t;
+  const double ea_q = cos_p * cos_t, ea_z = cos_p * sin_t;
+  TracePoint tp;
+  tp.x = -a * sin_p + r * rho_x;
+  tp.p = {qc + a * ea_q + r * rho_q, zc + a * ea_z + r * rho_z};
+  tp.x_wheel = r * s_tau;
+  const double n_q = na * ea_q + nr * rho_q, n_z = na * ea_z + nr * rho_z;  // points into the rail
+  tp.angle = std::atan2(n_q, -n_z);
+  tp.cos_chi = c_tau * cos_p;  // circle tangent s_tau e_v + c_tau e_f against track x
+  return tp;
 }
 
 }  // namespace railtab::detail

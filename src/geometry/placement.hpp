@@ -98,6 +98,14 @@ struct WheelSamples {
   WheelSamples(const Profile& wheel, double step);
   double t_end;             // last node = wheel t_max [m]
   double t(int i) const { return i + 1 == size() ? t_end : t0 + h * i; }
+  CurveSample at(int i) const {  // position and slope of node i (no second derivatives)
+    CurveSample c{};
+    c.y = y[i];
+    c.z = z[i];
+    c.dy = dy[i];
+    c.dz = dz[i];
+    return c;
+  }
   int size() const { return static_cast<int>(z.size()); }
 };
 
@@ -111,6 +119,19 @@ inline double tangent_angle(double dy, double dz) {
 inline double curvature_numerator(const CurveSample& c) { return c.dy * c.d2z - c.dz * c.d2y; }
 inline double speed_squared(const CurveSample& c) { return c.dy * c.dy + c.dz * c.dz; }
 
+// The point of a yawed wheel's circle through one profile point at which the wheel surface
+// normal has no component along the track (x): the silhouette of the wheel seen along the track,
+// which is where a rail extruded along x can touch it (docs/conventions.md "Yaw").
+struct TracePoint {
+  Point2 p;        // silhouette point in the side plane [m]
+  double x;        // its longitudinal position, track x from the axle centre [m]
+  double x_wheel;  // along the wheel's forward axis from the vertical plane through the axle,
+                   // r sin(tau) (tau the angle on the circle from its lowest point) [m]
+  double angle;    // tangent angle of the silhouette from the q axis = angle of the wheel's
+                   // normal from vertical in the side plane [rad]
+  double cos_chi;  // cos of the angle between track x and the circle's tangent there [-]
+};
+
 // Pose of one wheel in its side frame.
 struct WheelPose {
   double qc;      // axle centre, lateral = sigma*y [m]
@@ -120,6 +141,10 @@ struct WheelPose {
   double theta;   // sigma*roll [rad]
   double q0;      // lateral distance axle centre -> running circle, back_to_back/2 - flange_back [m]
   double r0;      // nominal radius [m]
+  bool yawed = false;  // psi != 0: the contact search works on trace() instead of place()
+  double psi = 0.0;    // sigma*yaw [rad]
+  double cos_p = 1.0;  // cos(psi)
+  double sin_p = 0.0;  // sin(psi)
 
   Point2 place(double y_w, double z_w) const {
     const double a = q0 + y_w;
@@ -129,6 +154,8 @@ struct WheelPose {
   Point2 tangent(double dy_w, double dz_w) const {
     return {cos_t * dy_w - sin_t * dz_w, sin_t * dy_w + cos_t * dz_w};
   }
+  // Silhouette point of the circle through profile sample e (yawed wheel; placement.cpp).
+  TracePoint trace(const CurveSample& e) const;
 };
 
 WheelPose make_pose(Side side, const WheelsetState& state, const WheelsetGeometry& wheelset);

@@ -16,6 +16,8 @@ struct PlaneSample {  // one band sample seen in the patch's tangent plane
   double h;           // gap along the reference normal [m]
   double A;           // rolling-direction relative curvature [1/m]
   double angle;       // side-frame contact angle [rad]
+  double x;           // longitudinal position of the gap's minimum along x (the wheel's
+                      // silhouette), from the reference point; 0 without yaw [m]
 };
 
 // Band samples of [s_lo, s_hi] in the plane of the reference (index i_ref interpolated at s_ref).
@@ -30,6 +32,8 @@ std::vector<PlaneSample> plane_samples(const WheelContactGeometry& g, double s_r
   const double f = std::clamp(t - k0, 0.0, 1.0);
   const double q_ref = (1 - f) * g.band[k0].q + f * g.band[k0 + 1].q;
   const double z_ref = (1 - f) * g.band[k0].z + f * g.band[k0 + 1].z;
+  const bool yawed = g.wheel_yaw != 0.0;
+  const double x_ref = yawed ? (1 - f) * g.band[k0].x_track + f * g.band[k0 + 1].x_track : 0.0;
   const double tq = std::cos(g_ref), tz = std::sin(g_ref);  // tangent towards the field side
   std::vector<PlaneSample> out;
   for (const BandSample& b : g.band) {
@@ -39,6 +43,11 @@ std::vector<PlaneSample> plane_samples(const WheelContactGeometry& g, double s_r
     p.h = b.gap / std::cos(b.contact_angle - g_ref);
     p.A = std::cos(b.contact_angle - g.wheel_roll) / (2.0 * b.rolling_radius);
     p.angle = b.contact_angle;
+    p.x = 0.0;
+    if (yawed) {  // the strip's gap is smallest on the wheel's silhouette, curved by Euler's k_x
+      p.A = 0.5 * b.curvature_rolling;
+      p.x = b.x_track - x_ref;
+    }
     out.push_back(p);
   }
   std::sort(out.begin(), out.end(), [](const PlaneSample& a, const PlaneSample& b) {
@@ -56,9 +65,17 @@ bool sample_at(const std::vector<PlaneSample>& s, double y, PlaneSample* out) {
   const PlaneSample& b = *it;
   const PlaneSample& a = *(it - 1);
   const double f = b.y > a.y ? (y - a.y) / (b.y - a.y) : 0.0;
-  *out = {y, a.h + f * (b.h - a.h), a.A + f * (b.A - a.A), a.angle + f * (b.angle - a.angle)};
+  *out = {y, a.h + f * (b.h - a.h), a.A + f * (b.A - a.A), a.angle + f * (b.angle - a.angle),
+          a.x + f * (b.x - a.x)};
   return true;
 }
+
+// Grid and gap of a yawed patch: each strip's gap is smallest at its own x (the wheel's
+// silhouette leads or lags by r tan(gamma_w) tan(yaw)), so the rigid overlap is sheared along x;
+// the grid covers the overlap of every strip, h(x, y) = h(y) + A(y) (x - x(y))^2.
+void build_yawed_grid(const std::vector<PlaneSample>& samples, double delta_n, double grow,
+                      double ylo, double yhi, double half_length, const HalfspaceOptions& o,
+                      HalfspacePatch& hp);
 
 // Grid and gap of a patch: rigid overlap at the normal approach delta_n, widened by `grow`.
 void build_grid(const WheelContactGeometry& geometry, const ContactPatch& np, double delta_n,
@@ -83,6 +100,10 @@ void build_grid(const WheelContactGeometry& geometry, const ContactPatch& np, do
     yhi = 2 * o.element_size;
     half_length = 2 * o.element_size;
   }
+  if (geometry.wheel_yaw != 0.0) {
+    build_yawed_grid(samples, delta_n, grow, ylo, yhi, half_length, o, hp);
+    return;
+  }
   const double wy = yhi - ylo;
   ylo -= grow * wy + o.element_size;
   yhi += grow * wy + o.element_size;
@@ -98,6 +119,41 @@ void build_grid(const WheelContactGeometry& geometry, const ContactPatch& np, do
     PlaneSample p;
     if (!sample_at(samples, gr.y(j), &p)) continue;
     for (int i = 0; i < gr.nx; ++i) hp.gap[gr.index(i, j)] = p.h + p.A * gr.x(i) * gr.x(i);
+  }
+}
+
+void build_yawed_grid(const std::vector<PlaneSample>& samples, double delta_n, double grow,
+                      double ylo, double yhi, double half_length, const HalfspaceOptions& o,
+                      HalfspacePatch& hp) {
+  double xlo = -half_length, xhi = half_length;  // no overlap: around the reference
+  bool any = false;
+  for (const PlaneSample& p : samples) {
+    if (p.h >= delta_n) continue;
+    const double l = std::sqrt((delta_n - p.h) / p.A);
+    xlo = any ? std::min(xlo, p.x - l) : p.x - l;
+    xhi = any ? std::max(xhi, p.x + l) : p.x + l;
+    any = true;
+  }
+  const double wx = xhi - xlo, wy = yhi - ylo;
+  xlo -= 0.5 * grow * wx + o.element_size;
+  xhi += 0.5 * grow * wx + o.element_size;
+  ylo -= grow * wy + o.element_size;
+  yhi += grow * wy + o.element_size;
+  Grid& gr = hp.grid;
+  gr.dx = gr.dy = o.element_size;
+  const int i0 = static_cast<int>(std::floor(xlo / gr.dx));  // element centres on multiples of dx
+  gr.nx = std::max(3, static_cast<int>(std::ceil(xhi / gr.dx)) - i0 + 1);
+  gr.ny = std::max(3, static_cast<int>(std::ceil((yhi - ylo) / gr.dy)) + 1);
+  gr.x0 = i0 * gr.dx;
+  gr.y0 = ylo;
+  hp.gap.assign(gr.size(), 1.0);  // outside the band: far apart
+  for (int j = 0; j < gr.ny; ++j) {
+    PlaneSample p;
+    if (!sample_at(samples, gr.y(j), &p)) continue;
+    for (int i = 0; i < gr.nx; ++i) {
+      const double dx = gr.x(i) - p.x;
+      hp.gap[gr.index(i, j)] = p.h + p.A * dx * dx;
+    }
   }
 }
 
@@ -206,6 +262,17 @@ void solve_on_contact_box(HalfspacePatch& hp, const RollingCreepage& c, double m
 
 namespace {
 
+// Longitudinal position and lead of a patch's reference point (band interpolated at s).
+void reference_x(const WheelContactGeometry& g, double s, HalfspacePatch& hp) {
+  const int nb = static_cast<int>(g.band.size());
+  if (nb < 2) return;
+  const double t = (s - g.band.front().s) / g.band_step;
+  const int k0 = std::clamp(static_cast<int>(std::floor(t)), 0, nb - 2);
+  const double f = std::clamp(t - k0, 0.0, 1.0);
+  hp.x_track = (1 - f) * g.band[k0].x_track + f * g.band[k0 + 1].x_track;
+  hp.x_wheel = (1 - f) * g.band[k0].x_wheel + f * g.band[k0 + 1].x_wheel;
+}
+
 WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double vertical_load,
                                     const Material& material, const HalfspaceOptions& o,
                                     Workspace& ws, const WheelHalfspaceResult* previous,
@@ -275,6 +342,7 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
     hp.rolling_radius = np.rolling_radius;
     hp.wheel_u = np.wheel_u;
     hp.rail_u = np.rail_u;
+    if (geometry.wheel_yaw != 0.0) reference_x(geometry, np.band_s, hp);
     if (previous && previous->patches.size() == first.patches.size()) {
       hp.grid = previous->patches[k].grid;  // kept (warm start) when the new grid is the same
       hp.normal.pressure = previous->patches[k].normal.pressure;
@@ -435,8 +503,14 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
     r = std::move(next);
     return tangential_vertical(r);
   };
+  if (!solve_vertical_load_fixed_point(vertical_load, round, [&r] { return r.patches.empty(); })) mark_not_converged(r);
+  return r;
+}
+
+bool solve_vertical_load_fixed_point(double vertical_load, const std::function<double(double)>& round,
+                                     const std::function<bool()>& stop_after_first) {
   double t0 = 0.0, g0 = round(t0) - t0;  // fixed point tz = T(tz): root of g = T(tz) - tz
-  if (r.patches.empty()) return r;
+  if (stop_after_first()) return true;
   double t1 = t0 + g0, g1 = round(t1) - t1;
   bool ok = std::abs(g1) <= 1e-4 * vertical_load;
   for (int it = 0; it < 18 && !ok; ++it) {
@@ -447,12 +521,12 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
     g1 = round(t1) - t1;
     ok = std::abs(g1) <= 1e-4 * vertical_load;
   }
-  if (!ok) {
-    r.status = (r.status & ~status::kConverged) | status::kNotConverged;
-    for (HalfspacePatch& hp : r.patches)
-      hp.status = (hp.status & ~status::kConverged) | status::kNotConverged;
-  }
-  return r;
+  return ok;
+}
+
+void mark_not_converged(WheelHalfspaceResult& r) {
+  r.status = (r.status & ~status::kConverged) | status::kNotConverged;
+  for (HalfspacePatch& hp : r.patches) hp.status = (hp.status & ~status::kConverged) | status::kNotConverged;
 }
 
 double archard_wear_per_pass(const HalfspacePatch& hp, double speed, const WearOptions& wear,

@@ -14,6 +14,12 @@
 //    + A(s) x^2, A(s) = cos(g(s) - wheel_roll) / (2 r(s)) (the wheel's rolling-direction
 //    curvature, Meusnier), interpolated linearly between band samples;
 //  - normal approach of the plane: delta_z cos(g_ref) for the vertical approach delta_z.
+//  - with yaw (WheelContactGeometry::wheel_yaw != 0) the patch sits at the longitudinal position
+//    of its reference (x_track: the wheel's rigid shift plus its lead) and each strip's gap is
+//    smallest on the wheel's silhouette, x(s) = x_track(s) - x_track(ref), curved along x by
+//    Euler's k_x: h(x, y) = gap(s) / cos(g(s) - g_ref) + k_x(s)/2 (x - x(s))^2 (a sheared
+//    patch in flange contact, where the lead changes fast across the patch; docs/conventions.md
+//    "Yaw"). Creepages of the yawed kinematics: wheelset_kinematics.hpp.
 // Potential area: the rigid overlap of the patch at the first approach (h < delta_n), widened by
 // `margin` on every side, on square elements of `element_size` (default 0.3 mm: CONTACT's grid
 // of block C, and the size at which the tread results are within 1 % of mu N of CONTACT; error and
@@ -27,6 +33,7 @@
 // root, two-point contact merged into one patch).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "core/material.hpp"
@@ -57,6 +64,9 @@ struct HalfspacePatch {
   double contact_angle_side = 0.0;  // side frame [rad]
   double rolling_radius = 0.0;  // undeformed wheel radius at the reference [m]
   double wheel_u = 0.0, rail_u = 0.0;  // [m]
+  double x_track = 0.0;         // longitudinal position of the reference (grid origin), track x
+                                // from the axle centre; 0 without yaw [m]
+  double x_wheel = 0.0;         // its lead along the wheel's rolling direction (CONTACT's XCP(W)) [m]
   Grid grid;                    // potential contact area (origin = reference point)
   std::vector<double> gap;      // undeformed gap h per element [m]
   NormalSolution normal;        // pressure, normal force, area, approach
@@ -107,6 +117,19 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
                                              double mu, const Material& material,
                                              const HalfspaceOptions& options,
                                              Workspace& workspace);
+
+// The vertical-load fixed point of solve_halfspace_rolling, for callers that solve their own rounds
+// (the generator's per-patch creepages): `round(tz)` solves the normal problem for F_z - tz and the
+// tangential problems on top, and returns the new tangential vertical part sum fy sin g. The fixed
+// point tz = round(tz) is found by the secant method from tz = 0 (at most 20 rounds; converged
+// within 1e-4 F_z). The first round is always made; `stop_after_first()`, asked after it, ends the
+// iteration there (an uncoupled solve, or no patch), which counts as converged. Returns false when
+// the rounds ran out: the caller marks its result with mark_not_converged.
+bool solve_vertical_load_fixed_point(double vertical_load, const std::function<double(double)>& round,
+                                     const std::function<bool()>& stop_after_first);
+
+// kNotConverged instead of kConverged on the result and each of its patches.
+void mark_not_converged(WheelHalfspaceResult& result);
 
 // Archard wear with the KTH map per element of one solved patch: depth per pass removed from the
 // wheel material crossing each element, k(p, V|s|) p |s| dx / H [m] (elements in slip only);

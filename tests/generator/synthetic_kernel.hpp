@@ -8,7 +8,7 @@
 #include <string>
 
 #include "scene/scene.hpp"
-#include "sweep/sweep.hpp"
+#include "engine/sweep.hpp"
 #include "table/table.hpp"
 
 namespace railtab::testing {

@@ -6,8 +6,8 @@
 
 #include "core/status.hpp"
 #include "geometry/contact_geometry.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 #include "synthetic_profiles.hpp"
 
 namespace railtab {

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "geometry/contact_geometry.hpp"
-#include "profile/parametric_profile.hpp"
-#include "profile/profile_io.hpp"
-#include "profile/s1002.hpp"
+#include "profile/curves/parametric_profile.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/standard/s1002.hpp"
 #include "profile/test_profile_files.hpp"
 
 namespace railtab {

@@ -12,9 +12,9 @@
 #include "error_message.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "profile/mbench_files.hpp"
-#include "profile/profile_checks.hpp"
-#include "profile/profile_io.hpp"
-#include "profile/spline_profile.hpp"
+#include "profile/formats/profile_checks.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/curves/spline_profile.hpp"
 #include "profile/test_profile_files.hpp"
 
 namespace railtab {

@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "geometry/contact_geometry.hpp"
-#include "profile/profile.hpp"
+#include "profile/curves/profile.hpp"
 
 namespace railtab::testing {
 

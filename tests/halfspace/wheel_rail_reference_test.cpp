@@ -14,8 +14,8 @@
 
 #include "geometry/contact_geometry.hpp"
 #include "halfspace/wheel_rail.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 #include "tangential/patch_test_helper.hpp"
 
 namespace railtab {

@@ -9,8 +9,8 @@
 
 #include "core/check.hpp"
 #include "geometry/contact_geometry.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 
 namespace railtab::wheel_rail_test {  // own namespace: unity builds compile several test files as one
 namespace {

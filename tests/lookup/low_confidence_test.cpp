@@ -72,7 +72,9 @@ TEST(LowConfidence, FlagsOnsetsAndUnpairedForcesOnly) {
     // point, flagged; linear interpolation keeps the slot empty there.)
     for (double y : {-0.009, -0.004, -0.001, 0.008, 0.0099}) {
       EXPECT_FALSE(low(at(y, 0))) << "y " << y;
-      if (method == Method::kLinear || y != -0.001) EXPECT_FALSE(low(at(y, 1))) << "y " << y;
+      if (method == Method::kLinear || y != -0.001) {
+        EXPECT_FALSE(low(at(y, 1))) << "y " << y;
+      }
     }
     for (double y : {0.001, 0.006, 0.007}) {
       EXPECT_FALSE(low(at(y, 0))) << "tread, y " << y;

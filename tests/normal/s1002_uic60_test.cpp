@@ -16,8 +16,8 @@
 
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 
 namespace railtab {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "profile/profile.hpp"
+#include "profile/curves/profile.hpp"
 
 namespace railtab::test {
 

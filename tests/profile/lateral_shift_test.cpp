@@ -12,7 +12,7 @@
 #include <string>
 
 #include "core/check.hpp"
-#include "profile/profile_io.hpp"
+#include "profile/formats/profile_io.hpp"
 #include "test_profile_files.hpp"
 
 namespace railtab {

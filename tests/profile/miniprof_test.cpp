@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// MiniProf reader (src/profile/miniprof.cpp): the three forms of the file (old style with a
+// MiniProf reader (src/profile/formats/miniprof.cpp): the three forms of the file (old style with a
 // banner, keyed header, plain columns), the automatic orientation and the wheel placement, a
 // vertical flange back and an undercut gauge corner kept as parametric curves, and the
 // file:line errors.
@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "error_message.hpp"
-#include "profile/parametric_profile.hpp"
-#include "profile/profile_io.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/curves/parametric_profile.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 #include "test_profile_files.hpp"
 
 namespace railtab {

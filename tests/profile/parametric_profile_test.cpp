@@ -2,7 +2,7 @@
 // ParametricProfile: a curve through points in their order, parametrised by chord length, that
 // may overhang. Checked on a circle (which turns back on itself laterally) and on the
 // single-valued view eval(u) that wheel and rail callers get.
-#include "profile/parametric_profile.hpp"
+#include "profile/curves/parametric_profile.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "profile/profile_io.hpp"
+#include "profile/formats/profile_io.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 
 #include "core/check.hpp"
 #include "mbench_files.hpp"
-#include "profile/parametric_profile.hpp"
-#include "profile/s1002.hpp"
-#include "profile/spline_profile.hpp"
+#include "profile/curves/parametric_profile.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/curves/spline_profile.hpp"
 
 namespace railtab {
 namespace {

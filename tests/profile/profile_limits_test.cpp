@@ -12,9 +12,9 @@
 #include <string>
 
 #include "error_message.hpp"
-#include "profile/profile_checks.hpp"
-#include "profile/profile_io.hpp"
-#include "profile/profile_limits.hpp"
+#include "profile/formats/profile_checks.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/formats/profile_limits.hpp"
 #include "test_profile_files.hpp"
 
 namespace railtab::profile_limits_test {  // own namespace: unity builds compile several test files as one

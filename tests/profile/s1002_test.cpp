@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "profile/s1002.hpp"
+#include "profile/standard/s1002.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include "core/check.hpp"
 #include "derivative_check.hpp"
 #include "mbench_files.hpp"
-#include "profile/profile_io.hpp"
-#include "profile/spline_profile.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/curves/spline_profile.hpp"
 
 namespace railtab {
 namespace {

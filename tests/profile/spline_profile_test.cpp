@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "profile/spline_profile.hpp"
+#include "profile/curves/spline_profile.hpp"
 
 #include <gtest/gtest.h>
 

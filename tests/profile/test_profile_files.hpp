@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 
 namespace railtab::test {
 

@@ -21,8 +21,8 @@
 #include "core/status.hpp"
 #include "geometry/contact_geometry.hpp"
 #include "normal/normal_model.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "wear/archard.hpp"
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "profile/profile_io.hpp"
-#include "profile/spline_profile.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/curves/spline_profile.hpp"
 #include "stability_common.hpp"
 
 namespace railtab::stability {

@@ -27,9 +27,9 @@
 
 #include "railtab/lookup.hpp"
 #include "scene/scene.hpp"
-#include "sweep/contact_kernel.hpp"
-#include "sweep/creep_map.hpp"
-#include "sweep/sweep.hpp"
+#include "kernel/contact_kernel.hpp"
+#include "kernel/creep_map.hpp"
+#include "engine/sweep.hpp"
 #include "table/table_io.hpp"
 
 namespace railtab::accuracy {

@@ -26,7 +26,7 @@
 
 #include "accuracy_util.hpp"
 #include "charts/speed_accuracy_states.hpp"
-#include "sweep/jump_locator.hpp"
+#include "adaptive/jump_locator.hpp"
 
 namespace railtab::accuracy {
 namespace {

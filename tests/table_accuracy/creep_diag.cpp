@@ -17,7 +17,7 @@
 #include <map>
 
 #include "accuracy_util.hpp"
-#include "sweep/jump_locator.hpp"
+#include "adaptive/jump_locator.hpp"
 
 using namespace railtab;
 using namespace railtab::accuracy;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The normalised creep coordinates of format 2.1 exist twice, in the generator
-// (generator/sweep/creep_map.hpp) and in the lookup (lookup/src/creep_map.hpp, which links
+// (generator/kernel/creep_map.hpp) and in the lookup (lookup/src/creep_map.hpp, which links
 // nothing of the generator): both must give the same numbers, and the map must be what
 // docs/table-format.md says.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "creep_map.hpp"  // lookup/src
-#include "sweep/creep_map.hpp"
+#include "kernel/creep_map.hpp"
 #include "tangential/kalker_coefficients.hpp"
 
 namespace railtab {

@@ -26,7 +26,7 @@
 #include <optional>
 
 #include "accuracy_util.hpp"
-#include "sweep/jump_locator.hpp"
+#include "adaptive/jump_locator.hpp"
 #include "table/storage_precision.hpp"
 
 namespace railtab::accuracy {

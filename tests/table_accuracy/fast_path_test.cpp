@@ -15,7 +15,7 @@
 #include <random>
 
 #include "accuracy_util.hpp"
-#include "sweep/jump_locator.hpp"
+#include "adaptive/jump_locator.hpp"
 
 namespace railtab::accuracy {
 namespace {

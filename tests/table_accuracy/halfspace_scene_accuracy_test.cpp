@@ -31,7 +31,7 @@
 #include <optional>
 
 #include "accuracy_util.hpp"
-#include "sweep/jump_locator.hpp"
+#include "adaptive/jump_locator.hpp"
 
 namespace railtab::accuracy::halfspace_scene_accuracy_test {  // own namespace: unity builds compile several test files as one
 namespace {

@@ -20,8 +20,8 @@
 #include <optional>
 
 #include "accuracy_util.hpp"
-#include "sweep/contact_probe.hpp"
-#include "sweep/jump_locator.hpp"
+#include "adaptive/contact_probe.hpp"
+#include "adaptive/jump_locator.hpp"
 
 namespace railtab::accuracy::jump_cells_test {  // own namespace: unity builds compile several test files as one
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "geometry/contact_geometry.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 #include "tangential/coupled_load.hpp"
 #include "tangential/patch_test_helper.hpp"
 

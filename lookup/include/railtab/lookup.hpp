@@ -126,8 +126,8 @@ struct Contact {
 };
 
 // One query's answer. Status is not interpolated: for each part and slot, the trouble bits are
-// the OR over the 2^D corner nodes of the interpolation cell, and kConverged is set only if it is
-// set at every corner (an AND). Conservative on purpose: an interpolated value is only as good
+// the OR over the 2^D corner nodes of the interpolation cell, and kConverged and kFullSlip are set
+// only if set at every corner (an AND). Conservative on purpose: an interpolated value is only as good
 // as the worst node it is built from, and a cell half in lift-off must not look like a clean
 // contact. Jumps (tread -> flange) live in separate slots and in status, they are not smoothed.
 struct Result {

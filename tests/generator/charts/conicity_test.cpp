@@ -15,8 +15,8 @@
 #include "core/check.hpp"
 #include "generator/test_tables.hpp"
 #include "geometry/synthetic_profiles.hpp"
-#include "profile/s1002.hpp"
-#include "profile/uic60.hpp"
+#include "profile/standard/s1002.hpp"
+#include "profile/standard/uic60.hpp"
 
 namespace railtab {
 namespace {

@@ -26,7 +26,7 @@
 #include "simulate/simulation_run.hpp"
 #include "simulate/wear_accumulator.hpp"
 #include "simulate/worn_profile.hpp"
-#include "sweep/generate.hpp"
+#include "generate/generate.hpp"
 #include "table/interrupt.hpp"
 #include "table/storage_precision.hpp"
 #include "vehicle/wheelset_model.hpp"

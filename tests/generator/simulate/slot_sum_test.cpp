@@ -13,8 +13,8 @@
 #include "generator/test_tables.hpp"
 #include "scene/scene.hpp"
 #include "simulate/direct_contact_model.hpp"
-#include "sweep/contact_kernel.hpp"
-#include "sweep/sweep.hpp"
+#include "kernel/contact_kernel.hpp"
+#include "engine/sweep.hpp"
 
 namespace railtab {
 namespace {

@@ -17,8 +17,8 @@
 #include "charts/wear_chart.hpp"
 #include "core/check.hpp"
 #include "error_message.hpp"
-#include "profile/profile_io.hpp"
-#include "profile/s1002.hpp"
+#include "profile/formats/profile_io.hpp"
+#include "profile/standard/s1002.hpp"
 #include "simulate/worn_profile.hpp"
 
 namespace railtab::wear_accumulator_test {  // own namespace: unity builds compile several test files as one

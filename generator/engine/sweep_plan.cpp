@@ -1,0 +1,277 @@
+// SPDX-License-Identifier: Apache-2.0
+// One sweep laid out: sizes, the table skeleton, the run key, and one column computed into it.
+#include "engine/sweep_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <limits>
+
+#include "core/check.hpp"
+#include "engine/checkpoint.hpp"
+#include "engine/shard_split.hpp"
+#include "engine/table_size.hpp"
+#include "table/version.hpp"
+
+namespace railtab {
+
+namespace {
+
+struct AxisInfo {
+  const char* name;
+  const char* units;
+  const char* description;
+};
+constexpr AxisInfo kStateAxes[] = {
+    {"y", "m", "wheelset lateral displacement, track frame, positive to the left"},
+    {"roll", "rad", "wheelset roll relative to the track, right-hand about +x (left wheel up)"},
+    {"load", "N", "vertical wheel load in track axes"},
+    {"xi", "1", "longitudinal creepage, wheel relative to rail, per rolling distance"},
+    {"eta", "1", "lateral creepage, wheel relative to rail, per rolling distance"},
+    {"phi", "rad/m", "spin creepage, wheel relative to rail, per rolling distance"},
+};
+
+const std::vector<double>& grid_of(const Scene& scene, const std::string& name) {
+  const SceneGrids& g = scene.grids;
+  if (name == "y") return g.y;
+  if (name == "roll") return g.roll;
+  if (name == "load") return g.load;
+  if (name == "xi") return g.xi;
+  if (name == "eta") return g.eta;
+  if (name == "phi") return g.phi;
+  throw Error(fmt::format("sweep: unknown state axis '{}'", name));
+}
+
+
+bool tabulated(const Scene& scene, const std::string& axis) {
+  if (axis == "roll" && scene.equilibrium_roll) return false;
+  return grid_of(scene, axis).size() > 1;
+}
+
+SweepLayout make_layout(const Scene& scene, const SweepKernel& kernel, const SweepOptions& options) {
+  SweepLayout l;
+  if (options.y_costs.empty()) {
+    std::tie(l.y_begin, l.y_end) = shard_range(scene.grids.y.size(), options.shard_index, options.shard_count);
+  } else {
+    RAILTAB_CHECK(options.y_costs.size() == scene.grids.y.size(), "sweep: {} column costs for {} y values",
+                  options.y_costs.size(), scene.grids.y.size());
+    std::tie(l.y_begin, l.y_end) = weighted_shard_range(options.y_costs, options.shard_index, options.shard_count);
+  }
+  l.ny = l.y_end - l.y_begin;
+  l.y_tabulated = scene.grids.y.size() > 1;
+  l.roll_tabulated = tabulated(scene, "roll");
+  l.nroll = scene.equilibrium_roll ? 1 : scene.grids.roll.size();
+  l.first_output.push_back(0);
+  for (const PartSpec& part : kernel.parts) {
+    std::size_t cells = kSlots;
+    for (const std::string& axis : part.inner_axes) cells *= grid_of(scene, axis).size();
+    l.cells.push_back(cells);
+    l.first_output.push_back(l.first_output.back() + part.outputs.size());
+  }
+  return l;
+}
+
+nlohmann::json fixed_axes(const Scene& scene) {
+  nlohmann::json fixed = nlohmann::json::object();
+  for (const AxisInfo& axis : kStateAxes) {
+    if (std::string(axis.name) == "roll" && scene.equilibrium_roll) {
+      fixed["roll"] = "equilibrium";  // per y in the root dataset /equilibrium_roll
+    } else if (grid_of(scene, axis.name).size() == 1) {
+      fixed[axis.name] = grid_of(scene, axis.name).front();
+    }
+  }
+  return fixed;
+}
+
+// The table with every dataset allocated (zeros) and every attribute but `created`.
+Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const SweepLayout& l, const SweepOptions& options) {
+  Table t;
+  t.set_attribute("format_version", kTableFormatVersion);
+  t.set_attribute("railtab_version", version_string());
+  t.set_attribute("git_commit", git_commit());
+  t.set_attribute("created", "");
+  t.set_attribute("scene", scene.text);
+  t.set_attribute("scene_name", scene.name);
+  t.set_attribute("models", kernel.models.dump());
+  t.set_attribute("fixed_axes", fixed_axes(scene).dump());
+  for (const auto& [name, text] : kernel.attributes) t.set_attribute(name, text);
+  if (options.shard_count > 1) {
+    // A shard is a valid table over its part of y; merge needs to know which part.
+    t.set_attribute("shard", fmt::format("{}/{}", options.shard_index, options.shard_count));
+    t.set_attribute("shard_y_begin", std::to_string(l.y_begin));
+    t.set_attribute("shard_y_end", std::to_string(l.y_end));
+    t.set_attribute("shard_y_total", std::to_string(scene.grids.y.size()));
+  }
+
+  for (const AxisInfo& info : kStateAxes) {
+    std::string name = info.name;
+    bool used = name == "y" ? l.y_tabulated : tabulated(scene, name);
+    if (!used) continue;
+    TableAxis axis{name, info.units, info.description, grid_of(scene, name), false};
+    for (const TableAxis& own : kernel.own_axes) {
+      if (own.name != name) continue;
+      RAILTAB_CHECK(own.values.size() == axis.values.size(), "sweep: the kernel's axis {} has {} nodes for {} in the scene",
+                    name, own.values.size(), axis.values.size());
+      axis = own;
+    }
+    if (name == "y") {
+      axis.values.assign(scene.grids.y.begin() + static_cast<std::ptrdiff_t>(l.y_begin),
+                         scene.grids.y.begin() + static_cast<std::ptrdiff_t>(l.y_end));
+    }
+    t.axes.push_back(std::move(axis));
+  }
+  t.axes.push_back({"slot", "1", "contact slot: 0 = tread contact, 1 = flange contact", {0.0, 1.0}, true});
+
+  std::vector<std::string> outer_axes;
+  std::vector<std::size_t> outer_shape;
+  if (l.y_tabulated) {
+    outer_axes.push_back("y");
+    outer_shape.push_back(l.ny);
+  }
+  if (l.roll_tabulated) {
+    outer_axes.push_back("roll");
+    outer_shape.push_back(l.nroll);
+  }
+  for (const char* wheel : {"left", "right"}) {
+    for (const PartSpec& part : kernel.parts) {
+      std::vector<std::string> axes = outer_axes;
+      std::vector<std::size_t> shape = outer_shape;
+      for (const std::string& axis : part.inner_axes) {
+        if (!tabulated(scene, axis)) continue;
+        axes.push_back(axis);
+        shape.push_back(grid_of(scene, axis).size());
+      }
+      axes.push_back("slot");
+      shape.push_back(kSlots);
+      TableGroup group{std::string(wheel) + "/" + part.name, {}};
+      for (const OutputInfo& out : part.outputs) {
+        TableDataset d{out.name, out.units, out.description, axes, shape, {}, {}, false, 0};
+        d.values.assign(d.size(), 0.0);
+        group.datasets.push_back(std::move(d));
+      }
+      TableDataset status{"status", "1", "status bits per point and slot (src/core/status.hpp); 0 = no contact",
+                          axes, shape, {}, {}, true, 0};
+      status.status.assign(status.size(), 0u);
+      group.datasets.push_back(std::move(status));
+      t.groups.push_back(std::move(group));
+    }
+  }
+  TableGroup root{"", {}};
+  if (scene.equilibrium_roll) {
+    TableDataset roll{"equilibrium_roll", "rad",
+                      "kinematic equilibrium roll at each y, used for every output; NaN where the search failed",
+                      {}, {}, {}, {}, false, 0};
+    if (l.y_tabulated) {
+      roll.axes = {"y"};
+      roll.shape = {l.ny};
+    }
+    roll.values.assign(l.ny, 0.0);
+    root.datasets.push_back(std::move(roll));
+  }
+  for (const SweepKernel::PerYOutput& out : kernel.per_y) {
+    RAILTAB_CHECK(out.values.size() == scene.grids.y.size(), "sweep: root dataset {} has {} values for {} y nodes",
+                  out.info.name, out.values.size(), scene.grids.y.size());
+    TableDataset d{out.info.name, out.info.units, out.info.description, {}, {}, {}, {}, false, 0};
+    if (l.y_tabulated) {
+      d.axes = {"y"};
+      d.shape = {l.ny};
+    }
+    d.values.assign(out.values.begin() + static_cast<std::ptrdiff_t>(l.y_begin),
+                    out.values.begin() + static_cast<std::ptrdiff_t>(l.y_end));
+    root.datasets.push_back(std::move(d));
+  }
+  if (!root.datasets.empty()) t.groups.push_back(std::move(root));
+  return t;
+}
+
+}  // namespace
+
+// Identity of a run for its checkpoint: anything that could change a stored byte.
+std::uint64_t SweepPlan::run_key() const {
+  const Table& t = table_;
+  std::string id = fmt::format("{}|{}|{}|{}|{}|{}", *t.attribute("scene"), *t.attribute("models"),
+                               *t.attribute("railtab_version"), *t.attribute("git_commit"),
+                               t.attribute("shard") ? *t.attribute("shard") : "1/1", kTableFormatVersion);
+  for (const TableGroup& g : t.groups) {
+    for (const TableDataset& d : g.datasets) {
+      id += "|" + g.path + "/" + d.name;
+      for (std::size_t n : d.shape) id += fmt::format(",{}", n);
+    }
+  }
+  return fnv1a(id);
+}
+
+SweepPlan::SweepPlan(const Scene& scene, const SweepKernel& kernel, const SweepOptions& options)
+    : scene_(scene), kernel_(kernel) {
+  RAILTAB_CHECK(!scene.equilibrium_roll || kernel.equilibrium_roll,
+                "sweep: the scene asks for equilibrium roll but the kernel cannot compute it");
+  RAILTAB_CHECK(kernel.compute, "sweep: kernel without compute function");
+  layout_ = make_layout(scene, kernel, options);
+  // Before any allocation (every engine makes its skeleton here): every size of the skeleton fits
+  // once the totals do. make_layout only does arithmetic on the grid sizes.
+  check_table_size(scene, table_points(scene, layout_.ny), table_bytes(scene, kernel, layout_.ny),
+                   options.max_points, options.max_bytes, kernel.point_cost);
+  table_ = make_skeleton(scene, kernel, layout_, options);
+  TableGroup* root = table_.group("");
+  TableDataset* roll_dataset = root ? root->find("equilibrium_roll") : nullptr;
+  equilibrium_roll_ = roll_dataset ? roll_dataset->values.data() : nullptr;
+}
+
+ColumnReport SweepPlan::compute_column(std::size_t block, std::size_t iroll) {
+  const SweepLayout& l = layout_;
+  const std::size_t parts = kernel_.parts.size();
+  ColumnState state;
+  state.iy = l.y_begin + block;
+  state.iroll = iroll;
+  state.y = scene_.grids.y[state.iy];
+  std::vector<double*> values;
+  std::vector<StatusBits*> status;
+  for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+    for (std::size_t p = 0; p < parts; ++p) {
+      TableGroup& group = table_.groups[wheel * parts + p];
+      std::size_t offset = (block * l.nroll + iroll) * l.cells[p];
+      for (std::size_t o = 0; o < kernel_.parts[p].outputs.size(); ++o) {
+        values.push_back(group.datasets[o].values.data() + offset);
+      }
+      status.push_back(group.datasets.back().status.data() + offset);
+    }
+  }
+  ColumnOutput out(std::move(values), std::move(status), l.first_output, parts);
+  if (scene_.equilibrium_roll) {
+    try {
+      state.roll = kernel_.equilibrium_roll(state.y);
+    } catch (const std::exception& e) {
+      // The kernel then flags every point of the column (NaN input) as a failure.
+      state.roll = std::numeric_limits<double>::quiet_NaN();
+      out.failure(fmt::format("equilibrium roll at y = {} m: {}", state.y, e.what()));
+    }
+    equilibrium_roll_[block] = state.roll;
+  } else {
+    state.roll = scene_.grids.roll[iroll];
+  }
+  kernel_.compute(state, out);
+  return {out.failures(), out.first_failure()};
+}
+
+std::unique_ptr<Checkpoint> SweepPlan::resume(const std::filesystem::path& path, std::vector<char>& block_done,
+                                              SweepSummary& summary) {
+  const std::size_t ny = layout_.ny;
+  block_done.assign(ny, 0);
+  if (path.empty()) return nullptr;
+  auto checkpoint = std::make_unique<Checkpoint>(path, run_key(), pack_block(table_, ny, 0).size());
+  summary.checkpoint_discarded = checkpoint->discarded();
+  for (Checkpoint::Record& r : checkpoint->take_records()) {
+    if (r.block >= ny || block_done[r.block]) continue;
+    unpack_block(table_, ny, r.block, r.bytes);
+    const std::string altered = first_non_finite(table_, ny, r.block);
+    RAILTAB_CHECK(altered.empty(),
+                  "{}: the record of y block {} holds a non-finite value in {}, which the sweep never stores (the "
+                  "checkpoint was altered): delete it, or run without --resume",
+                  path.string(), r.block, altered);
+    block_done[r.block] = 1;
+    ++summary.blocks_done;
+  }
+  summary.points_resumed = summary.blocks_done * points_per_block();
+  return checkpoint;
+}
+
+}  // namespace railtab

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: Apache-2.0
+// The contact kernel's creep and wear loops: one wheel, one load node, every creepage of the grid,
+// written into the column's creep and wear cells (and, with the load coupling, the creep part's
+// normal outputs). Internal to the sweep (contact_kernel.cpp calls them).
+#pragma once
+
+#include <cstddef>
+
+#include "halfspace/wheel_rail.hpp"
+#include "kernel/kernel_cells.hpp"
+
+namespace railtab::kernel {
+
+// FASTSIM on one slot's loaded patches, the load's creepage-free normal contact (no coupling).
+// `scales`: the slots' creepage scales with normalised coordinates, else nullptr.
+void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                 const PatchSlots& slots, const ColumnState& state, std::size_t wheel, std::size_t il,
+                 std::size_t slot, const creep_map::Scales* scales, ColumnOutput& out);
+
+// With the load coupling (issue 14): per creepage the normal contact is re-solved so that normal
+// and creep forces together carry the load, starting from `uncoupled`; both slots' cells.
+void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geometry,
+                         const WheelNormalResult& uncoupled, const PatchSlots& uncoupled_slots,
+                         const ColumnState& state, std::size_t wheel, std::size_t il,
+                         const creep_map::Scales* scales, ColumnOutput& out);
+
+// The exact half-space model's steady rolling solution per creepage (physical coordinates only).
+void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geometry,
+                           const halfspace::WheelHalfspaceResult& uncoupled, const PatchSlots& uncoupled_slots,
+                           const ColumnState& state, std::size_t wheel, std::size_t il, ColumnOutput& out);
+
+}  // namespace railtab::kernel

@@ -1,0 +1,198 @@
+// SPDX-License-Identifier: Apache-2.0
+// Reliability of railtab generate, merge and eval (issue 19): the output is never an input or a
+// non-regular file, table sizes are checked (overflow, --max-points, --max-bytes) before any
+// allocation, and non-finite results are failed, never converged.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "core/check.hpp"
+#include "generator/synthetic_kernel.hpp"
+#include "generator/test_tables.hpp"
+#include "kernel/contact_kernel.hpp"
+#include "generate/generate.hpp"
+#include "engine/table_size.hpp"
+#include "table/merge.hpp"
+#include "table/table_io.hpp"
+
+namespace railtab::reliability_test {  // own namespace: unity builds compile several test files as one
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
+GenerateOptions synthetic_options(const testing::TempDir& dir, const std::string& scene_text = testing::kSyntheticScene) {
+  std::ofstream(dir / "scene.toml") << scene_text;
+  GenerateOptions o;
+  o.scene = dir / "scene.toml";
+  o.output = dir / "t.h5";
+  o.threads = 1;
+  o.make_kernel = [](const Scene& s) { return testing::synthetic_kernel(s); };
+  return o;
+}
+
+TEST(GenerateOutput, RefusesTheSceneItselfAndNonRegularTargets) {
+  testing::TempDir dir("rel_scene_out");
+  GenerateOptions o = synthetic_options(dir);
+  const std::string scene_before = read_all(o.scene);
+  fs::create_symlink("scene.toml", dir / "link.h5");
+  for (const fs::path& target : {o.scene, dir / "link.h5", dir.path() / "." / "scene.toml"}) {
+    o.output = target;
+    EXPECT_NE(message_of([&] { generate_table(o); }).find("is the input"), std::string::npos) << target;
+  }
+  EXPECT_EQ(read_all(o.scene), scene_before);  // the scene is untouched
+  o.output = "/dev/null";
+  EXPECT_NE(message_of([&] { generate_table(o); }).find("character device"), std::string::npos);
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"link.h5", "scene.toml"}));
+}
+
+TEST(MergeOutput, RefusesAnInputShardAsOutput) {
+  testing::TempDir dir("rel_merge_out");
+  GenerateOptions o = synthetic_options(dir);
+  std::vector<std::string> shards;
+  for (int i = 1; i <= 2; ++i) {
+    o.output = dir / fmt::format("s{}.h5", i);
+    o.shard_index = i;
+    o.shard_count = 2;
+    generate_table(o);
+    shards.push_back(o.output.string());
+  }
+  const std::string before = read_all(shards[0]);
+  EXPECT_NE(message_of([&] { merge_table_files(shards, shards[0]); }).find("is the input"), std::string::npos);
+  EXPECT_EQ(read_all(shards[0]), before);
+  EXPECT_NO_THROW(merge_table_files(shards, (dir / "all.h5").string()));
+}
+
+// A shard holding a NaN (written past the lookup's check, as a tampered file would be) is refused
+// by merge before anything is joined, naming the shard; no output is written.
+TEST(MergeInput, ShardTheLookupRefusesIsNamed) {
+  testing::TempDir dir("rel_merge_nan");
+  GenerateOptions o = synthetic_options(dir);
+  std::vector<std::string> shards;
+  for (int i = 1; i <= 2; ++i) {
+    o.output = dir / fmt::format("s{}.h5", i);
+    o.shard_index = i;
+    o.shard_count = 2;
+    generate_table(o);
+    shards.push_back(o.output.string());
+  }
+  Table bad = read_table(shards[1]);
+  TableDataset* d = nullptr;
+  for (TableGroup& g : bad.groups)
+    for (TableDataset& x : g.datasets)
+      if (!d && !x.is_status && !g.path.empty()) d = &x;
+  ASSERT_TRUE(d);
+  d->values[0] = std::nan("");
+  write_table(bad, shards[1] + ".nan", nullptr, {}, WrittenCheck::none);
+  fs::rename(shards[1] + ".nan", shards[1]);
+  const std::string m = message_of([&] { merge_table_files(shards, (dir / "all.h5").string()); });
+  EXPECT_NE(m.find("merge: " + shards[1] + ": "), std::string::npos) << m;
+  EXPECT_NE(m.find("non-finite"), std::string::npos) << m;
+  EXPECT_FALSE(fs::exists(dir / "all.h5"));
+}
+
+// hostile/grid_product_overflow.toml: every axis under the per-axis limit, the product wraps 2^64.
+constexpr const char* kOverflowScene = R"(
+[scene]
+name = "ovf"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[grid]
+y = [0.0, 0.001]
+roll = [0.0, 0.0001]
+load = {start = 60000, stop = 100000, count = 524288}
+xi = {start = -0.01, stop = 0.01, count = 524288}
+eta = {start = -0.01, stop = 0.01, count = 524288}
+phi = {start = -1, stop = 1, count = 32}
+)";
+
+TEST(TableSize, ProductOverflowIsAnErrorNotACrash) {
+  testing::TempDir dir("rel_overflow");
+  GenerateOptions o = synthetic_options(dir, kOverflowScene);
+  EXPECT_NE(message_of([&] { generate_table(o); }).find("overflows 64 bits"), std::string::npos);
+  Scene scene = parse_scene(kOverflowScene, "ovf.toml");
+  EXPECT_THROW(table_points(scene, scene.grids.y.size()), Error);
+  // run_sweep checks the same before allocating, whoever calls it.
+  EXPECT_THROW(run_sweep(scene, testing::synthetic_kernel(scene), SweepOptions{}), Error);
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.toml"});
+}
+
+TEST(TableSize, LimitsRefuseAndAFlagRaisesThem) {
+  testing::TempDir dir("rel_limits");
+  GenerateOptions o = synthetic_options(dir);
+  const Scene scene = parse_scene(testing::kSyntheticScene, "s.toml");
+  const std::uint64_t points = table_points(scene, scene.grids.y.size());
+  EXPECT_EQ(points, 7u * 2 * 2 * 3 * 1 * 2);
+  o.max_points = points - 1;
+  EXPECT_NE(message_of([&] { generate_table(o); }).find("--max-points"), std::string::npos);
+  o.max_points = points;
+  o.max_bytes = 1000;
+  EXPECT_NE(message_of([&] { generate_table(o); }).find("--max-bytes"), std::string::npos);
+  o.max_bytes = kDefaultMaxBytes;
+  std::ostringstream log;
+  o.log = &log;
+  EXPECT_NO_THROW(generate_table(o));
+  EXPECT_NE(log.str().find("table: 168 grid points"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("estimated time"), std::string::npos);
+}
+
+// The refusal states the run time at the scene's model's cost per point: microseconds for a fast
+// model, tens of milliseconds for the exact one (3 points: 150-600 us, or 120-360 ms).
+TEST(TableSize, RefusalUsesTheModelsCostPerPoint) {
+  Scene scene = parse_scene(testing::kSyntheticScene, "s.toml");
+  const std::string fast = message_of([&] { check_table_size(scene, 3, 0, 2, kDefaultMaxBytes, contact_point_cost(scene)); });
+  EXPECT_NE(fast.find("50-200 us per point"), std::string::npos) << fast;
+  scene.normal.model = NormalModel::halfspace;
+  const std::string exact = message_of([&] { check_table_size(scene, 3, 0, 2, kDefaultMaxBytes, contact_point_cost(scene)); });
+  EXPECT_NE(exact.find("40-120 ms per point"), std::string::npos) << exact;
+}
+
+constexpr const char* kTreadScene = R"(
+[scene]
+name = "tread"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[grid]
+y = [0.001]
+load = [60000]
+xi = [0.001]
+)";
+
+// A y grid reaching off the rail with the equilibrium roll fails in the jump locator: the message
+// names the scene file and the stage (it was the bare "wheel 'S1002' does not overlap its rail").
+TEST(NonFinite, JumpLocatorFailureNamesSceneAndStage) {
+  testing::TempDir dir("jump_locator_failure");
+  const std::string text = std::string(kTreadScene).replace(std::string(kTreadScene).find("y = [0.001]"), 11,
+                                                            "y = {start = -0.08, stop = 0.08, step = 0.01}") +
+                           "equilibrium_roll = true\n";
+  std::ofstream(dir / "off.toml") << text;
+  GenerateOptions o;
+  o.scene = dir / "off.toml";
+  o.output = dir / "off.h5";
+  o.threads = 1;
+  const std::string message = message_of([&] { generate_table(o); });
+  EXPECT_NE(message.find("off.toml: locating the contact jumps along y"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not overlap its rail"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(dir / "off.h5"));
+}
+
+}  // namespace
+}  // namespace railtab::reliability_test
