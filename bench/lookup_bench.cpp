@@ -189,6 +189,24 @@ void run_full(benchmark::State& bench, Source source, Method method, bool cohere
   bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
 }
 
+// Table::query_derivatives at the states of run_full: values plus every output's partial
+// derivatives (target: at most 2.5x the plain query of the same states, BM_LookupLinearRandom).
+void run_derivatives(benchmark::State& bench, Method method, bool coherent) {
+  const Table& t = table(Source::kDefaultScene, method);
+  const auto q = coherent ? coherent_queries(t, 1 << 14) : random_queries(t, 1 << 14);
+  Result r;
+  lk::Derivatives d;
+  std::size_t k = 0;
+  for (auto _ : bench) {
+    const Query& item = q[k];
+    t.query_derivatives(item.wheel, item.state, r, d);
+    benchmark::DoNotOptimize(r);
+    benchmark::DoNotOptimize(d);
+    k = (k + 1) & (q.size() - 1);
+  }
+  bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
+}
+
 // One contact per query (the tread, slot 0): what a simulation reads for a one-point contact.
 void run_slot(benchmark::State& bench, Source source, Method method, bool coherent) {
   const Table& t = table(source, method);
@@ -230,6 +248,9 @@ void BM_LookupSlotLinearRandom(benchmark::State& s) { run_slot(s, kDefault, Meth
 void BM_LookupSlotLinearCoherent(benchmark::State& s) { run_slot(s, kDefault, Method::kLinear, true); }
 void BM_LookupLinearRandom(benchmark::State& s) { run_full(s, kDefault, Method::kLinear, false); }
 void BM_LookupLinearCoherent(benchmark::State& s) { run_full(s, kDefault, Method::kLinear, true); }
+void BM_LookupDerivativesLinearRandom(benchmark::State& s) { run_derivatives(s, Method::kLinear, false); }
+void BM_LookupDerivativesLinearCoherent(benchmark::State& s) { run_derivatives(s, Method::kLinear, true); }
+void BM_LookupDerivativesCubicRandom(benchmark::State& s) { run_derivatives(s, Method::kCubic, false); }
 void BM_LookupSlotCubicRandom(benchmark::State& s) { run_slot(s, kDefault, Method::kCubic, false); }
 void BM_LookupCubicRandom(benchmark::State& s) { run_full(s, kDefault, Method::kCubic, false); }
 void BM_LookupCubicCoherent(benchmark::State& s) { run_full(s, kDefault, Method::kCubic, true); }
@@ -266,9 +287,12 @@ BENCHMARK(BM_LookupSlotLinearRandomAwayFromJumps);
 BENCHMARK(BM_LookupSlotLinearRandomNearJumps);
 BENCHMARK(BM_LookupLinearRandom);
 BENCHMARK(BM_LookupLinearCoherent);
+BENCHMARK(BM_LookupDerivativesLinearRandom);
+BENCHMARK(BM_LookupDerivativesLinearCoherent);
 BENCHMARK(BM_LookupSlotCubicRandom);
 BENCHMARK(BM_LookupCubicRandom);
 BENCHMARK(BM_LookupCubicCoherent);
+BENCHMARK(BM_LookupDerivativesCubicRandom);
 BENCHMARK(BM_LookupMonotoneCubicRandom);
 BENCHMARK(BM_LookupLinearBatch)->Arg(8)->Arg(64);
 BENCHMARK(BM_FixtureSlotLinearRandom);

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // railtab query TABLE.h5 --y Y[,Y...] [--roll R] [--load N] [--creepage XI,ETA,PHI] [--wheel W]
-//               [--method M] [--json]
+//               [--method M] [--derivatives] [--json]
 // Interpolates a table with the runtime library (railtab::lookup, exactly what a simulation
 // gets): every output of every slot at each state, with units and status text. Checks a table
-// one ships against `railtab eval` (the direct models) at the same state.
+// one ships against `railtab eval` (the direct models) at the same state. --derivatives adds each
+// output's exact partial derivatives of the interpolant with respect to every tabulated axis.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -33,6 +34,7 @@ struct QueryOptions {
   std::vector<double> creepage;   // xi, eta [1], phi [rad/m]; empty: 0, 0, 0
   std::string wheel = "both";     // left, right or both
   std::string method = "linear";  // interpolation method
+  bool derivatives = false;       // also the partial derivatives per tabulated axis
   bool json = false;
 };
 
@@ -71,6 +73,21 @@ void set_variable(const lk::Table& table, const std::optional<double>& given, co
   } else {
     RAILTAB_CHECK(!is_axis(table, name), "{}: {} is an axis of this table: give --{}", table.path(), name, name);
   }
+}
+
+// {output: {axis: d output / d axis}} for the outputs the table holds and its tabulated axes.
+nlohmann::ordered_json derivatives_json(const lk::Table& table, const double (*d)[lk::kNumVariables]) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (int o = 0; o < lk::kNumOutputs; ++o) {
+    const auto out = static_cast<lk::Output>(o);
+    if (!table.has_part(lk::output_part(out))) continue;
+    nlohmann::ordered_json per_axis = nlohmann::ordered_json::object();
+    for (const lk::AxisInfo& a : table.axes())
+      for (int v = 0; v < lk::kNumVariables; ++v)
+        if (a.name == lk::variable_name(v)) per_axis[a.name] = d[o][v];
+    j[lk::output_name(out)] = per_axis;
+  }
+  return j;
 }
 
 nlohmann::ordered_json contact_json(const lk::Table& table, const lk::Contact& c, int slot) {
@@ -112,6 +129,15 @@ void print_text(const nlohmann::ordered_json& out) {
     std::cout << fmt::format("  {:<16} {:>8}", "status", "");
     for (const auto& c : contacts) std::cout << fmt::format(" {:>14}", c["status"].get<std::string>());
     std::cout << "\n";
+    if (!contacts.empty() && contacts[0].contains("derivatives")) {
+      std::cout << "  partial derivatives (output units per axis unit):\n";
+      for (const auto& [name, unit] : units.items())
+        for (const auto& [axis, value] : contacts[0]["derivatives"][name].items()) {
+          std::cout << fmt::format("  d {:<12} / d {:<4}", name, axis);
+          for (const auto& c : contacts) std::cout << fmt::format(" {:>14.6g}", c["derivatives"][name][axis].get<double>());
+          std::cout << "\n";
+        }
+    }
   }
 }
 
@@ -122,6 +148,9 @@ void run_query(const QueryOptions& opt) {
   RAILTAB_CHECK(opt.wheel == "left" || opt.wheel == "right" || opt.wheel == "both",
                 "--wheel must be left, right or both, got '{}'", opt.wheel);
   const lk::Method method = parse_method(opt.method);
+  RAILTAB_CHECK(!opt.derivatives || method != lk::Method::kMonotoneCubic,
+                "--derivatives needs --method linear or cubic: the monotone cubic's limited slopes are not "
+                "differentiated");
   lk::Table table = [&] {
     try {
       return lk::Table::load(opt.table, {method});
@@ -161,7 +190,10 @@ void run_query(const QueryOptions& opt) {
       if ((opt.wheel == "left" && w == 1) || (opt.wheel == "right" && w == 0)) continue;
       lk::State s = base;
       s.y = y;
-      const lk::Result r = table.query(static_cast<lk::Wheel>(w), s);
+      lk::Result r;
+      auto d = std::make_unique<lk::Derivatives>();
+      if (opt.derivatives) table.query_derivatives(static_cast<lk::Wheel>(w), s, r, *d);
+      else table.query(static_cast<lk::Wheel>(w), s, r);
       nlohmann::ordered_json q;
       q["wheel"] = w == 0 ? "left" : "right";
       q["state"] = {{"y", s.y}, {"roll", s.roll}, {"load", s.load}, {"xi", s.xi}, {"eta", s.eta}, {"phi", s.phi}};
@@ -169,7 +201,10 @@ void run_query(const QueryOptions& opt) {
       if (!is_axis(table, "roll") && !is_fixed(table, "roll")) q["state"]["roll"] = nullptr;
       q["query_status"] = status::describe(r.status);
       q["contacts"] = nlohmann::ordered_json::array();
-      for (int slot = 0; slot < r.n_slots; ++slot) q["contacts"].push_back(contact_json(table, r.contact[slot], slot));
+      for (int slot = 0; slot < r.n_slots; ++slot) {
+        q["contacts"].push_back(contact_json(table, r.contact[slot], slot));
+        if (opt.derivatives) q["contacts"].back()["derivatives"] = derivatives_json(table, d->d[slot]);
+      }
       out["queries"].push_back(q);
     }
   }
@@ -202,6 +237,9 @@ void add_query_command(CLI::App& app) {
   cmd->add_option("--method", opt->method, "Interpolation: linear, cubic or monotone-cubic")
       ->check(CLI::IsMember({"linear", "cubic", "monotone-cubic"}))
       ->capture_default_str();
+  cmd->add_flag("--derivatives", opt->derivatives,
+               "Also each output's partial derivatives with respect to every tabulated axis (exact for the "
+               "interpolant, SI: output units per axis unit; linear and cubic methods)");
   cmd->add_flag("--json", opt->json, "Print JSON (stable keys, SI units) instead of text");
   add_quiet_flag(cmd);  // query prints results only; accepted for uniformity
   cmd->callback([opt] { run_query(*opt); });

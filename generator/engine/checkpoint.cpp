@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 
 #include "core/check.hpp"
@@ -41,7 +42,7 @@ std::uint64_t record_checksum(std::uint64_t block, const std::vector<char>& byte
   return fnv1a(std::string_view(bytes.data(), bytes.size()), h);
 }
 
-// Every dataset in table order: (pointer to its bytes, bytes per block).
+// Every dataset in table order: (pointer to its bytes, bytes per block, the dataset, its group).
 template <class Fn>
 void for_each_slice(Table& table, std::size_t blocks, std::size_t block, Fn fn) {
   for (auto& group : table.groups) {
@@ -52,7 +53,7 @@ void for_each_slice(Table& table, std::size_t blocks, std::size_t block, Fn fn) 
                     d.name, blocks);
       std::size_t per_block = count / blocks * element;
       char* base = d.is_status ? reinterpret_cast<char*>(d.status.data()) : reinterpret_cast<char*>(d.values.data());
-      fn(base + block * per_block, per_block);
+      fn(base + block * per_block, per_block, d, group);
     }
   }
 }
@@ -71,18 +72,38 @@ std::uint64_t fnv1a(std::string_view bytes, std::uint64_t seed) {
 std::vector<char> pack_block(const Table& table, std::size_t blocks, std::size_t block) {
   std::vector<char> out;
   Table& mutable_table = const_cast<Table&>(table);  // read only below; shares the slice walker
-  for_each_slice(mutable_table, blocks, block, [&](char* data, std::size_t n) { out.insert(out.end(), data, data + n); });
+  for_each_slice(mutable_table, blocks, block, [&](char* data, std::size_t n, const TableDataset&, const TableGroup&) {
+    out.insert(out.end(), data, data + n);
+  });
   return out;
 }
 
 void unpack_block(Table& table, std::size_t blocks, std::size_t block, const std::vector<char>& bytes) {
   std::size_t at = 0;
-  for_each_slice(table, blocks, block, [&](char* data, std::size_t n) {
+  for_each_slice(table, blocks, block, [&](char* data, std::size_t n, const TableDataset&, const TableGroup&) {
     RAILTAB_CHECK(at + n <= bytes.size(), "checkpoint: block {} is too short", block);
     std::memcpy(data, bytes.data() + at, n);
     at += n;
   });
   RAILTAB_CHECK(at == bytes.size(), "checkpoint: block {} has {} bytes, expected {}", block, bytes.size(), at);
+}
+
+std::string first_non_finite(const Table& table, std::size_t blocks, std::size_t block) {
+  std::string where;
+  Table& mutable_table = const_cast<Table&>(table);  // read only below; shares the slice walker
+  for_each_slice(mutable_table, blocks, block, [&](char* data, std::size_t n, const TableDataset& d, const TableGroup& g) {
+    // /equilibrium_roll holds NaN where the roll search failed, by design (docs/table-format.md).
+    if (!where.empty() || d.is_status || d.name == "equilibrium_roll") return;
+    for (std::size_t i = 0; i < n / sizeof(double); ++i) {
+      double v = 0.0;
+      std::memcpy(&v, data + i * sizeof(double), sizeof v);
+      if (!std::isfinite(v)) {
+        where = "/" + (g.path.empty() ? d.name : g.path + "/" + d.name);
+        return;
+      }
+    }
+  });
+  return where;
 }
 
 Checkpoint::Checkpoint(std::filesystem::path path, std::uint64_t key, std::size_t record_bytes)

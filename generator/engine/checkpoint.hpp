@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -21,6 +22,11 @@ std::uint64_t fnv1a(std::string_view bytes, std::uint64_t seed = 146959810393466
 // The slice of every dataset of `table` for y block `block` of `blocks` (y outermost), and back.
 std::vector<char> pack_block(const Table& table, std::size_t blocks, std::size_t block);
 void unpack_block(Table& table, std::size_t blocks, std::size_t block, const std::vector<char>& bytes);
+
+// The dataset ("/left/creep/fx") holding the first non-finite value in y block `block` of
+// `blocks`, or "" when there is none. The sweep stores 0 for every non-finite result (NaN only in
+// /equilibrium_roll, by design, not counted), so a resumed record with one was altered.
+std::string first_non_finite(const Table& table, std::size_t blocks, std::size_t block);
 
 class Checkpoint {
  public:

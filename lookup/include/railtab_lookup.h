@@ -124,6 +124,26 @@ typedef struct railtab_lookup_result {
   uint32_t status; /* query bits: RAILTAB_LOOKUP_OUT_OF_RANGE, RAILTAB_LOOKUP_INVALID_INPUT */
 } railtab_lookup_result;
 
+/* State variables as indices (railtab::lookup::Variable): the last index of
+ * railtab_lookup_derivatives.d; names by railtab_lookup_var_name. */
+enum {
+  RAILTAB_LOOKUP_VAR_Y = 0, /* [m] */
+  RAILTAB_LOOKUP_VAR_ROLL,  /* [rad] */
+  RAILTAB_LOOKUP_VAR_LOAD,  /* [N] */
+  RAILTAB_LOOKUP_VAR_XI,    /* [1] */
+  RAILTAB_LOOKUP_VAR_ETA,   /* [1] */
+  RAILTAB_LOOKUP_VAR_PHI,   /* [rad/m] */
+  RAILTAB_LOOKUP_NUM_VARS
+};
+
+/* Partial derivatives of every output of every slot with respect to each state variable, exact
+ * for the table's interpolant, SI (output units per variable unit): d[slot][output][var], e.g.
+ * d[0][RAILTAB_LOOKUP_FX][RAILTAB_LOOKUP_VAR_XI] in N. 0 for a variable the table does not
+ * tabulate or that was clamped to the table's range (docs/lookup.md, "Derivatives"). */
+typedef struct railtab_lookup_derivatives {
+  double d[RAILTAB_LOOKUP_MAX_SLOTS][RAILTAB_LOOKUP_NUM_OUTPUTS][RAILTAB_LOOKUP_NUM_VARS];
+} railtab_lookup_derivatives;
+
 typedef struct railtab_lookup_table railtab_lookup_table; /* opaque */
 
 /* Loads `path` with `method`; on success *table is a handle to close with
@@ -146,6 +166,13 @@ RAILTAB_LOOKUP_API int railtab_lookup_query(const railtab_lookup_table* table, i
 RAILTAB_LOOKUP_API int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
                               const railtab_lookup_state* state, int slot,
                               railtab_lookup_contact* contact);
+
+/* As railtab_lookup_query, plus the partial derivatives of every output. Tables opened with
+ * RAILTAB_LOOKUP_LINEAR or RAILTAB_LOOKUP_CUBIC; with RAILTAB_LOOKUP_MONOTONE_CUBIC it returns
+ * RAILTAB_LOOKUP_ERROR_ARGUMENT (the last error says so) and writes nothing. */
+RAILTAB_LOOKUP_API int railtab_lookup_query_derivatives(const railtab_lookup_table* table, int wheel,
+                                     const railtab_lookup_state* state, railtab_lookup_result* result,
+                                     railtab_lookup_derivatives* derivatives);
 
 /* n states at once (e.g. both wheels of every wheelset): results[k] for wheels[k], states[k].
  * `results` must hold n results. */
@@ -198,6 +225,8 @@ RAILTAB_LOOKUP_API const char* railtab_lookup_output_units(int output);
 RAILTAB_LOOKUP_API int railtab_lookup_output_part(int output);
 RAILTAB_LOOKUP_API const char* railtab_lookup_part_name(int part);
 RAILTAB_LOOKUP_API const char* railtab_lookup_slot_name(int slot);
+/* Name of a state variable ("y", "roll", "load", "xi", "eta", "phi"; "?" out of range). */
+RAILTAB_LOOKUP_API const char* railtab_lookup_var_name(int var);
 
 /* Name of one status bit ("converged", "two_point", ...; "unknown" if not a single defined bit). */
 RAILTAB_LOOKUP_API const char* railtab_lookup_status_bit_name(uint32_t bit);

@@ -56,6 +56,10 @@ static_assert(RAILTAB_LOOKUP_LOW_CONFIDENCE == lk::status::kLowConfidence);
 static_assert(RAILTAB_LOOKUP_NUM_STATUS_BITS == lk::status::kNumBits);
 static_assert(RAILTAB_LOOKUP_WEAR == lk::kWear && RAILTAB_LOOKUP_NUM_PARTS == lk::kNumParts);
 
+static_assert(sizeof(railtab_lookup_derivatives) == sizeof(lk::Derivatives));
+static_assert(int{RAILTAB_LOOKUP_NUM_VARS} == int{lk::kNumVariables});
+static_assert(int{RAILTAB_LOOKUP_VAR_PHI} == int{lk::kPhi} && int{RAILTAB_LOOKUP_VAR_LOAD} == int{lk::kLoad});
+
 thread_local std::string last_error;
 
 int fail(int code, const char* message) noexcept {
@@ -117,6 +121,25 @@ int railtab_lookup_query(const railtab_lookup_table* table, int wheel,
   lk::Result r;
   table->table.query(static_cast<lk::Wheel>(wheel), to_state(*state), r);
   store(r, result);
+  return RAILTAB_LOOKUP_OK;
+}
+
+int railtab_lookup_query_derivatives(const railtab_lookup_table* table, int wheel,
+                                     const railtab_lookup_state* state, railtab_lookup_result* result,
+                                     railtab_lookup_derivatives* derivatives) {
+  if (!table || !state || !result || !derivatives)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_derivatives: null argument");
+  if (wheel != RAILTAB_LOOKUP_LEFT && wheel != RAILTAB_LOOKUP_RIGHT)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_derivatives: wheel must be 0 or 1");
+  if (!table->table.derivatives_supported())
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT,
+                "railtab_lookup_query_derivatives: derivatives need a table opened with RAILTAB_LOOKUP_LINEAR "
+                "or RAILTAB_LOOKUP_CUBIC, not RAILTAB_LOOKUP_MONOTONE_CUBIC");
+  lk::Result r;
+  lk::Derivatives d;
+  table->table.query_derivatives(static_cast<lk::Wheel>(wheel), to_state(*state), r, d);
+  store(r, result);
+  std::memcpy(derivatives, &d, sizeof(*derivatives));
   return RAILTAB_LOOKUP_OK;
 }
 
@@ -231,6 +254,8 @@ const char* railtab_lookup_slot_name(int slot) {
   static const char* const names[RAILTAB_LOOKUP_MAX_SLOTS] = {"tread", "flange", "slot2", "slot3"};
   return (slot >= 0 && slot < RAILTAB_LOOKUP_MAX_SLOTS) ? names[slot] : "?";
 }
+
+const char* railtab_lookup_var_name(int var) { return lk::variable_name(var); }
 
 const char* railtab_lookup_status_bit_name(uint32_t bit) { return lk::status::bit_name(bit); }
 

@@ -85,7 +85,7 @@ class Table:
         return f"<railtab.Table {self.path!r} scene={self.scene_name!r} axes: {axes}>"
 
     def query(self, wheel, y=None, roll=None, load=None, xi=None, eta=None, phi=None, *, slot=None,
-              as_xarray=None):
+              derivatives=False, as_xarray=None):
         """Interpolates the table at many states at once.
 
         wheel: 'left', 'right' (or 0, 1, or an array of them). y [m], roll [rad], load [N],
@@ -102,6 +102,11 @@ class Table:
         'part_status' holds them per part. Never extrapolates: outside the table the values are
         clamped to the edge and flagged out_of_range. A NaN or infinite state does not raise (one
         bad state must not lose a batch): its outputs are 0 and flagged invalid_input.
+
+        derivatives=True adds, for every output and every tabulated axis, the exact partial
+        derivative of the interpolant 'd_<output>_d_<axis>' (e.g. d_fx_d_xi [N], d_fy_d_y [N/m]),
+        same dims as the output, units output unit per axis unit; 0 where the axis was clamped to
+        the table's range. Methods 'linear' and 'cubic' (ValueError for 'monotone-cubic').
 
         Raises TypeError for a missing tabulated variable or a complex value, ValueError for
         shapes that do not broadcast (naming each argument's shape), an unknown wheel or slot.
@@ -129,8 +134,9 @@ class Table:
                                 {"wheel": codes.shape, **{k: values[k].shape for k in _STATE if given[k] is not None}})
         n = int(np.prod(shape, dtype=np.int64))
         slot_arg = -1 if slot is None else int(slot)
-        raw, part_status, status = self._t._query_arrays(
-            n, _flat(codes, shape, n), *(_flat(values[k], shape, n) for k in _STATE), slot_arg)
+        raw, part_status, status, deriv = self._t._query_arrays(
+            n, _flat(codes, shape, n), *(_flat(values[k], shape, n) for k in _STATE), slot_arg,
+            bool(derivatives))
         slots = raw.shape[1]
         raw = raw.reshape(shape + (slots, raw.shape[2]))
         part_status = part_status.reshape(shape + (slots, part_status.shape[2]))
@@ -146,6 +152,17 @@ class Table:
                 out[name] = raw[..., k]
                 out.units[name] = OUTPUT_UNITS[name]
                 out.dims[name] = state_dims + ("slot",)
+        if deriv is not None:
+            deriv = deriv.reshape(shape + (slots,) + deriv.shape[2:])
+            for k, (name, part) in enumerate(_railtab.OUTPUTS):
+                if part not in parts:
+                    continue
+                for v, axis in enumerate(_STATE):
+                    if axis in axes:
+                        key = f"d_{name}_d_{axis}"
+                        out[key] = deriv[..., k, v]
+                        out.units[key] = _per(OUTPUT_UNITS[name], AXIS_UNITS[axis])
+                        out.dims[key] = state_dims + ("slot",)
         out["status"] = status
         out.dims["status"] = state_dims + ("slot",)
         out["part_status"] = part_status
@@ -166,6 +183,14 @@ class Table:
             except ImportError:
                 as_xarray = False
         return _to_xarray(out, given) if as_xarray else out
+
+
+def _per(unit, axis_unit):
+    """Units of d output / d axis: 'N' per 'm' is 'N/m', per '1' stays 'N', per 'rad/m' is 'N/(rad/m)'."""
+    if axis_unit == "1":
+        return unit
+    axis = f"({axis_unit})" if "/" in axis_unit or " " in axis_unit else axis_unit
+    return f"{unit}/{axis}"
 
 
 def _to_xarray(result, given):

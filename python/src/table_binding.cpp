@@ -68,10 +68,12 @@ py::array_t<T> uninitialised(std::vector<py::ssize_t> shape) {
 
 // Queries n states. Inputs are 1-D arrays of length n or 1; `slot` < 0: every slot, else that
 // slot only (Table::query_slot, about half the cost). Returns (values [n, slots, outputs],
-// part_status [n, slots, parts], status [n, slots]) with slots = n_slots or 1.
+// part_status [n, slots, parts], status [n, slots], derivatives) with slots = n_slots or 1;
+// `derivatives`: None, or with want_derivatives (Table::query_derivatives) d output / d variable
+// [n, slots, outputs, variables] (variables y, roll, load, xi, eta, phi).
 py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel, const Doubles& y,
                        const Doubles& roll, const Doubles& load, const Doubles& xi, const Doubles& eta,
-                       const Doubles& phi, int slot) {
+                       const Doubles& phi, int slot, bool want_derivatives) {
   if (n < 0) throw py::value_error("n must be >= 0");
   if (wheel.ndim() != 1 || (wheel.shape(0) != n && wheel.shape(0) != 1)) {
     throw py::value_error("wheel: expected 1 or " + std::to_string(n) + " values");
@@ -87,7 +89,18 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
   for (py::ssize_t k = 0; k < wheel.shape(0); ++k) {
     if (wheels[k] != 0 && wheels[k] != 1) throw py::value_error("wheel must be 0 (left) or 1 (right)");
   }
+  if (want_derivatives && !table.derivatives_supported())
+    throw py::value_error("derivatives=True needs a table loaded with method 'linear' or 'cubic', not '" +
+                          std::string(method_name(table.method())) + "' (its limited slopes are not differentiated)");
   const py::ssize_t slots = slot < 0 ? table.n_slots() : 1;
+  constexpr py::ssize_t kVars = lk::kNumVariables;
+  py::object derivative_array = py::none();
+  double* dv = nullptr;
+  if (want_derivatives) {
+    auto a = uninitialised<double>({n, slots, static_cast<py::ssize_t>(lk::kNumOutputs), kVars});
+    dv = a.mutable_data();
+    derivative_array = a;
+  }
   auto values = uninitialised<double>({n, slots, static_cast<py::ssize_t>(lk::kNumOutputs)});
   auto part_status = uninitialised<std::uint32_t>({n, slots, static_cast<py::ssize_t>(lk::kNumParts)});
   auto status = uninitialised<std::uint32_t>({n, slots});
@@ -99,6 +112,7 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
     lk::State s = table.default_state();
     lk::Result r;
     lk::Contact c;
+    lk::Derivatives d;
     for (py::ssize_t k = 0; k < n; ++k) {
       s.y = in[0].at(k);
       s.roll = in[1].at(k);
@@ -108,7 +122,14 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
       s.phi = in[5].at(k);
       const auto w = static_cast<lk::Wheel>(wheels[k * wheel_step]);
       const lk::Contact* contacts = &c;
-      if (slot < 0) {
+      if (dv) {
+        table.query_derivatives(w, s, r, d);
+        contacts = r.contact + std::max(slot, 0);
+        for (py::ssize_t j = 0; j < slots; ++j) {
+          std::copy_n(&d.d[std::max(slot, 0) + j][0][0], lk::kNumOutputs * kVars, dv);
+          dv += lk::kNumOutputs * kVars;
+        }
+      } else if (slot < 0) {
         table.query(w, s, r);
         contacts = r.contact;
       } else {
@@ -123,7 +144,7 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
       }
     }
   }
-  return py::make_tuple(values, part_status, status);
+  return py::make_tuple(values, part_status, status, derivative_array);
 }
 
 }  // namespace
@@ -170,7 +191,7 @@ void bind_table(py::module_& m) {
       .def_property_readonly("scene_name", &lk::Table::scene_name)
       .def_property_readonly("memory_bytes", &lk::Table::memory_bytes)
       .def("_query_arrays", &query_arrays, py::arg("n"), py::arg("wheel"), py::arg("y"), py::arg("roll"), py::arg("load"),
-           py::arg("xi"), py::arg("eta"), py::arg("phi"), py::arg("slot"));
+           py::arg("xi"), py::arg("eta"), py::arg("phi"), py::arg("slot"), py::arg("derivatives") = false);
 
   py::list outputs;
   for (int o = 0; o < lk::kNumOutputs; ++o) {

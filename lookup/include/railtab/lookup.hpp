@@ -136,6 +136,22 @@ struct Result {
   StatusBits status = 0;       // query bits only: kOutOfRange, kInvalidInput
 };
 
+// State variables as indices (the order of State and of the table's axes): the second index of
+// Derivatives::d. The C API uses the same numbers (RAILTAB_LOOKUP_VAR_*).
+enum Variable : int { kY = 0, kRoll = 1, kLoad = 2, kXi = 3, kEta = 4, kPhi = 5, kNumVariables = 6 };
+// Name of a state variable as in the table files ("y", "roll", "load", "xi", "eta", "phi"; "?"
+// out of range).
+RAILTAB_LOOKUP_API const char* variable_name(int variable) noexcept;
+
+// Partial derivatives of every output of every slot with respect to each state variable: the
+// exact derivatives of the interpolant the query evaluates (docs/lookup.md, "Derivatives"), in
+// SI: output units per variable unit (fx per xi in N, fy per y in N/m, mz per phi in N m / (rad/m)).
+// Zero for a variable the table does not tabulate, for a variable clamped to the table's range
+// (the value does not change there), for parts the table does not hold and for invalid input.
+struct Derivatives {
+  double d[kMaxSlots][kNumOutputs][kNumVariables] = {};  // [slot][Output][Variable]
+};
+
 // One item of a batch query (e.g. both wheels of every wheelset).
 struct Query {
   Wheel wheel = Wheel::kLeft;  // which wheel-rail pair
@@ -156,6 +172,10 @@ struct LoadOptions {
   // Refuse a table without dataset checksums (another tool's; format 1.0 is always refused) instead of loading it with
   // Table::checksums_verified() false. docs/table-format.md, "Integrity".
   bool require_checksums = false;
+  // Load a shard (`railtab generate --shard I/N`, root attribute `shard`) as the table of its own
+  // y range instead of refusing it: what the generator's writers use to check a shard they wrote
+  // or are about to merge. A simulation loads the merged table.
+  bool accept_shard = false;
 };
 
 // Any problem while loading a table: missing/truncated/corrupt file, unknown major version,
@@ -210,6 +230,14 @@ class RAILTAB_LOOKUP_API Table {
   // and kInvalidInput. Never throws, allocates nothing.
   void query_slot(Wheel wheel, const State& state, int slot, Contact& contact) const noexcept;
   Contact query_slot(Wheel wheel, const State& state, int slot) const noexcept;
+
+  // query() plus the partial derivatives of every output (Derivatives): `result` receives exactly
+  // what query() gives. Linear and cubic methods; returns false for kMonotoneCubic (its limited
+  // slopes are not differentiated: `derivatives` all 0, `result` still filled; see
+  // derivatives_supported()). Never throws, allocates nothing.
+  bool query_derivatives(Wheel wheel, const State& state, Result& result,
+                         Derivatives& derivatives) const noexcept;
+  bool derivatives_supported() const noexcept;  // method() is kLinear or kCubic
 
   // Batch: results[k] = query(queries[k]). Returns false, and touches nothing, when
   // results.size() < queries.size() (a short buffer is an error, not a silent truncation);

@@ -139,6 +139,34 @@ TEST(MergeInput, RefusesAFifoShardWithoutBlocking) {
   EXPECT_FALSE(fs::exists(dir / "m.h5"));
 }
 
+// A shard holding a NaN (written past the lookup's check, as a tampered file would be) is refused
+// by merge before anything is joined, naming the shard; no output is written.
+TEST(MergeInput, ShardTheLookupRefusesIsNamed) {
+  testing::TempDir dir("rel_merge_nan");
+  GenerateOptions o = synthetic_options(dir);
+  std::vector<std::string> shards;
+  for (int i = 1; i <= 2; ++i) {
+    o.output = dir / fmt::format("s{}.h5", i);
+    o.shard_index = i;
+    o.shard_count = 2;
+    generate_table(o);
+    shards.push_back(o.output.string());
+  }
+  Table bad = read_table(shards[1]);
+  TableDataset* d = nullptr;
+  for (TableGroup& g : bad.groups)
+    for (TableDataset& x : g.datasets)
+      if (!d && !x.is_status && !g.path.empty()) d = &x;
+  ASSERT_TRUE(d);
+  d->values[0] = std::nan("");
+  write_table(bad, shards[1] + ".nan", nullptr, {}, WrittenCheck::none);
+  fs::rename(shards[1] + ".nan", shards[1]);
+  const std::string m = message_of([&] { merge_table_files(shards, (dir / "all.h5").string()); });
+  EXPECT_NE(m.find("merge: " + shards[1] + ": "), std::string::npos) << m;
+  EXPECT_NE(m.find("non-finite"), std::string::npos) << m;
+  EXPECT_FALSE(fs::exists(dir / "all.h5"));
+}
+
 // hostile/grid_product_overflow.toml: every axis under the per-axis limit, the product wraps 2^64.
 constexpr const char* kOverflowScene = R"(
 [scene]

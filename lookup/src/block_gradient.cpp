@@ -1,0 +1,306 @@
+// SPDX-License-Identifier: Apache-2.0
+// Exact derivatives of one block's interpolant (block_gradient.hpp).
+#include "block_gradient.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace railtab::lookup::detail {
+
+namespace {
+
+// multilinear_gradient for N dimensions, the values in chunks of kLanes (the corner loops unroll,
+// the lane loops vectorise).
+constexpr int kLanes = 8;
+
+template <int N, class T>
+void multilinear_gradient_n(RecordPtr p, const std::size_t* stride, const double* t, int n_values, double* value,
+                            double (*out_dt)[kMaxDims]) noexcept {
+  // Corner c holds the upper node along dimension dim where bit (N - 1 - dim) of c is set, so the
+  // two corners of a pair (2e, 2e + 1) differ in the last dimension. The cell is reduced one
+  // dimension at a time, last first: a pair's value is the lerp of its two, its derivative along
+  // the reduced dimension their difference, and the derivatives already found are lerped along.
+  constexpr int kCorners = 1 << N;
+  std::size_t off[kCorners];
+#pragma GCC unroll 64
+  for (int c = 0; c < kCorners; ++c) {
+    std::size_t o = 0;
+    for (int dim = 0; dim < N; ++dim)
+      if ((c >> (N - 1 - dim)) & 1) o += stride[dim];
+    off[c] = o;
+  }
+  for (int k0 = 0; k0 < n_values; k0 += kLanes) {
+    const int lanes = std::min(kLanes, n_values - k0);
+    double v[kCorners][kLanes], g[kCorners][N > 0 ? N : 1][kLanes];
+    for (int c = 0; c < kCorners; ++c)
+      for (int k = 0; k < kLanes; ++k) v[c][k] = k < lanes ? record_value<T>(p + off[c], k0 + k) : 0.0;
+    int m = kCorners;
+#pragma GCC unroll 8
+    for (int dim = N - 1; dim >= 0; --dim) {
+      m >>= 1;
+      const double tt = t[dim], u = 1.0 - tt;
+      for (int e = 0; e < m; ++e) {
+        const int lo = 2 * e, hi = 2 * e + 1;
+        for (int r = dim + 1; r < N; ++r)
+          for (int k = 0; k < kLanes; ++k) g[e][r][k] = u * g[lo][r][k] + tt * g[hi][r][k];
+        for (int k = 0; k < kLanes; ++k) {
+          g[e][dim][k] = v[hi][k] - v[lo][k];
+          v[e][k] = u * v[lo][k] + tt * v[hi][k];
+        }
+      }
+    }
+    for (int k = 0; k < lanes; ++k) {
+      value[k0 + k] = v[0][k];
+      for (int dim = 0; dim < N; ++dim) out_dt[k0 + k][dim] = g[0][dim][k];
+    }
+  }
+}
+
+}  // namespace
+
+template <class T>
+void multilinear_gradient(RecordPtr p, int n, const std::size_t* stride, const double* t, int n_values,
+                          double* value, double (*out_dt)[kMaxDims]) noexcept {
+  switch (n) {
+    case 0: multilinear_gradient_n<0, T>(p, stride, t, n_values, value, out_dt); break;
+    case 1: multilinear_gradient_n<1, T>(p, stride, t, n_values, value, out_dt); break;
+    case 2: multilinear_gradient_n<2, T>(p, stride, t, n_values, value, out_dt); break;
+    case 3: multilinear_gradient_n<3, T>(p, stride, t, n_values, value, out_dt); break;
+    case 4: multilinear_gradient_n<4, T>(p, stride, t, n_values, value, out_dt); break;
+    case 5: multilinear_gradient_n<5, T>(p, stride, t, n_values, value, out_dt); break;
+    default: multilinear_gradient_n<kMaxDims, T>(p, stride, t, n_values, value, out_dt); break;
+  }
+}
+template void multilinear_gradient<double>(RecordPtr, int, const std::size_t*, const double*, int, double*,
+                                           double (*)[kMaxDims]) noexcept;
+template void multilinear_gradient<float>(RecordPtr, int, const std::size_t*, const double*, int, double*,
+                                          double (*)[kMaxDims]) noexcept;
+
+namespace {
+
+void clear(BlockGradient& g, int n_values) noexcept {
+  for (int k = 0; k < n_values; ++k)
+    for (double& x : g.d[k]) x = 0.0;
+}
+
+void block_multilinear(const Block& b, RecordPtr p, int n, const std::size_t* stride, const double* t,
+                       double* value, double (*dt)[kMaxDims]) noexcept {
+  if (b.value_bytes == sizeof(float)) multilinear_gradient<float>(p, n, stride, t, b.n_values, value, dt);
+  else multilinear_gradient<double>(p, n, stride, t, b.n_values, value, dt);
+}
+
+// Derivative at e of the parabola through (p[0], p[1], p[2]), as weights on the three values
+// (interpolate.cpp's cubic slopes).
+void parabola_slope(const double p[3], double e, double w[3]) noexcept {
+  w[0] = ((e - p[1]) + (e - p[2])) / ((p[0] - p[1]) * (p[0] - p[2]));
+  w[1] = ((e - p[0]) + (e - p[2])) / ((p[1] - p[0]) * (p[1] - p[2]));
+  w[2] = ((e - p[0]) + (e - p[1])) / ((p[2] - p[0]) * (p[2] - p[1]));
+}
+
+// One axis of the cubic stencil as weights on its 2-4 consecutive nodes, and the weights of the
+// derivative with respect to the axis's variable: the stencil, slopes and Hermite basis of
+// interpolate.cpp's make_cubic_axis / cubic_weights, the basis differentiated.
+struct StencilWeights {
+  int first = 0;     // first stencil node
+  int count = 0;     // stencil nodes (2..4)
+  double w[4] = {};  // value weights
+  double dw[4] = {}; // derivative weights [1 / axis unit]
+};
+
+StencilWeights cubic_stencil(const Axis& axis, const AxisLoc& l) noexcept {
+  const int n = axis.size();
+  const double* xs = axis.nodes();
+  const int i = l.i;
+  const bool has_left = i >= 1 && !(l.cut_stencil & 1);
+  const bool has_right = i + 2 <= n - 1 && !(l.cut_stencil & 2);
+  double x[4];
+  for (int j = 0; j < 4; ++j) x[j] = xs[std::clamp(i - 1 + j, 0, n - 1)];
+  const double h = x[2] - x[1];
+  double c0[4] = {}, c1[4] = {}, w[3];
+  if (has_left) {
+    parabola_slope(&x[0], x[1], w);
+    c0[0] = w[0], c0[1] = w[1], c0[2] = w[2];
+  } else if (has_right) {
+    parabola_slope(&x[1], x[1], w);
+    c0[1] = w[0], c0[2] = w[1], c0[3] = w[2];
+  } else {
+    c0[1] = -1.0 / h, c0[2] = 1.0 / h;
+  }
+  if (has_right) {
+    parabola_slope(&x[1], x[2], w);
+    c1[1] = w[0], c1[2] = w[1], c1[3] = w[2];
+  } else if (has_left) {
+    parabola_slope(&x[0], x[2], w);
+    c1[0] = w[0], c1[1] = w[1], c1[2] = w[2];
+  } else {
+    c1[1] = -1.0 / h, c1[2] = 1.0 / h;
+  }
+  const double t = l.t, t2 = t * t, t3 = t2 * t;
+  const double h00 = 2 * t3 - 3 * t2 + 1, h01 = -2 * t3 + 3 * t2;
+  const double h10 = (t3 - 2 * t2 + t) * h, h11 = (t3 - t2) * h;
+  // d/dx = d/dt / h.
+  const double d00 = (6 * t2 - 6 * t) / h, d01 = (-6 * t2 + 6 * t) / h;
+  const double d10 = 3 * t2 - 4 * t + 1, d11 = 3 * t2 - 2 * t;
+  const int lo = has_left ? 0 : 1, hi = has_right ? 3 : 2;
+  StencilWeights s;
+  s.first = std::clamp(i - 1 + lo, 0, n - 1);
+  s.count = hi - lo + 1;
+  for (int j = lo; j <= hi; ++j) {
+    s.w[j - lo] = (j == 1 ? h00 : 0.0) + (j == 2 ? h01 : 0.0) + h10 * c0[j] + h11 * c1[j];
+    s.dw[j - lo] = (j == 1 ? d00 : 0.0) + (j == 2 ? d01 : 0.0) + d10 * c0[j] + d11 * c1[j];
+  }
+  return s;
+}
+
+template <class T>
+void cubic_sum(const Block& b, const StencilWeights* sw, RecordPtr p, BlockGradient& g) noexcept {
+  const int n = b.n_dims, nv = b.n_values, last = n - 1;
+  double value[kMaxSlotValues] = {}, dt[kMaxSlotValues][kMaxDims] = {};
+  // Outer dimensions 0 .. n-2 by a mixed-radix counter; the last (unit-stride) one inside.
+  int idx[kMaxDims] = {};
+  const StencilWeights& in = sw[last];
+  for (;;) {
+    std::size_t off = 0;
+    double weight = 1.0, dweight[kMaxDims];
+    for (int dim = 0; dim < last; ++dim) {
+      off += static_cast<std::size_t>(idx[dim]) * b.stride[dim];
+      dweight[dim] = 1.0;
+    }
+    for (int dim = 0; dim < last; ++dim) {
+      for (int e = 0; e < last; ++e) dweight[e] *= e == dim ? sw[dim].dw[idx[dim]] : sw[dim].w[idx[dim]];
+      weight *= sw[dim].w[idx[dim]];
+    }
+    // The inner axis: its value and derivative sums per value, each record read once.
+    double a[kMaxSlotValues] = {}, da[kMaxSlotValues] = {};
+    RecordPtr r = p + off;
+    for (int j = 0; j < in.count; ++j, r += b.stride[last]) {
+      const double wj = in.w[j], dwj = in.dw[j];
+      for (int k = 0; k < nv; ++k) {
+        const double f = record_value<T>(r, k);
+        a[k] += wj * f;
+        da[k] += dwj * f;
+      }
+    }
+    for (int k = 0; k < nv; ++k) {
+      value[k] += weight * a[k];
+      dt[k][last] += weight * da[k];
+      for (int dim = 0; dim < last; ++dim) dt[k][dim] += dweight[dim] * a[k];
+    }
+    int dim = last - 1;
+    while (dim >= 0 && ++idx[dim] == sw[dim].count) idx[dim--] = 0;
+    if (dim < 0) break;
+  }
+  for (int k = 0; k < nv; ++k) {
+    g.value[k] = value[k];
+    for (int dim = 0; dim < n; ++dim) g.d[k][b.var[dim]] = dt[k][dim];
+  }
+}
+
+}  // namespace
+
+void linear_gradient(const Block& b, const Axis* axes, const AxisLoc* loc, int slot, BlockGradient& g) noexcept {
+  clear(g, b.n_values);
+  std::size_t base = 0;
+  double t[kMaxDims];
+  for (int dim = 0; dim < b.n_dims; ++dim) {
+    const AxisLoc& l = loc[b.var[dim]];
+    base += static_cast<std::size_t>(l.i) * b.stride[dim];
+    t[dim] = l.t;
+  }
+  double dt[kMaxSlotValues][kMaxDims];
+  RecordPtr p = b.data.data() + static_cast<std::size_t>(slot) * b.slot_size + base;
+  block_multilinear(b, p, b.n_dims, b.stride, t, g.value, dt);
+  for (int dim = 0; dim < b.n_dims; ++dim) {
+    const int var = b.var[dim];
+    const double inv = inverse_width(axes[var], loc[var]);
+    for (int k = 0; k < b.n_values; ++k) g.d[k][var] = dt[k][dim] * inv;
+  }
+}
+
+void cubic_gradient(const Block& b, const Axis* axes, const AxisLoc* loc, int slot, BlockGradient& g) noexcept {
+  if (b.n_dims == 0) {
+    linear_gradient(b, axes, loc, slot, g);
+    return;
+  }
+  clear(g, b.n_values);
+  StencilWeights sw[kMaxDims];
+  std::size_t base = 0;
+  for (int dim = 0; dim < b.n_dims; ++dim) {
+    sw[dim] = cubic_stencil(axes[b.var[dim]], loc[b.var[dim]]);
+    base += static_cast<std::size_t>(sw[dim].first) * b.stride[dim];
+  }
+  RecordPtr p = b.data.data() + static_cast<std::size_t>(slot) * b.slot_size + base;
+  if (b.value_bytes == sizeof(float)) cubic_sum<float>(b, sw, p, g);
+  else cubic_sum<double>(b, sw, p, g);
+}
+
+double piece_slope(const JumpWheel& j, const Axis& y_axis, std::size_t load_node, const Piece& piece,
+                   double yq) noexcept {
+  auto position = [&](const End& e) {
+    return e.sample ? j.y[0][load_node][static_cast<std::size_t>(e.index)] : y_axis.nodes()[e.index];
+  };
+  const double from = position(piece.a), to = position(piece.b);
+  if (!(to > from)) return 0.0;
+  const double raw = (yq - from) / (to - from);
+  return raw >= 0.0 && raw <= 1.0 ? 1.0 / (to - from) : 0.0;
+}
+
+void jump_gradient(const TableData& d, int w, int bi, const AxisLoc* loc, const Piece (*pieces)[2], int slot,
+                   BlockGradient& g) noexcept {
+  const Block& b = d.block[w][bi];
+  const JumpWheel& j = d.jumps[w];
+  const JumpSamples& js = j.samples[bi];
+  const int nv = b.n_values, inner0 = js.inner0, n_inner = js.n_inner, ld = js.load_dim;
+  const int nodes = j.load_axis ? 2 : 1;
+  const int lc = j.load_axis ? loc[kVarLoad].i : 0;
+  const double weight[2] = {j.load_axis ? 1.0 - loc[kVarLoad].t : 1.0, j.load_axis ? loc[kVarLoad].t : 0.0};
+  const double* x = d.axis[kVarY].nodes();
+  const double yq = x[loc[kVarY].i] + loc[kVarY].t * (x[loc[kVarY].i + 1] - x[loc[kVarY].i]);
+  // The creepage cell (as creep_cell in jump_side.cpp).
+  std::size_t base = 0;
+  double t[kMaxDims];
+  for (int q = 0; q < n_inner; ++q) {
+    const AxisLoc& l = loc[b.var[inner0 + q]];
+    base += static_cast<std::size_t>(l.i) * b.stride[inner0 + q];
+    t[q] = l.t;
+  }
+  clear(g, nv);
+  double piece_value[2][kMaxSlotValues] = {};
+  for (int k = 0; k < nv; ++k) g.value[k] = 0.0;
+  const std::size_t s = static_cast<std::size_t>(slot);
+  for (int k = 0; k < nodes; ++k) {
+    const Piece& piece = pieces[js.list][k];
+    const std::size_t lnode = static_cast<std::size_t>(lc + k);
+    auto slice = [&](const End& e) -> RecordPtr {
+      if (e.sample)
+        return js.data.data() + s * js.slot_stride + lnode * js.load_stride +
+               static_cast<std::size_t>(e.index) * js.jump_stride + static_cast<std::size_t>(e.side) * js.side_stride;
+      return b.data.data() + s * b.slot_size + static_cast<std::size_t>(e.index) * b.stride[0] +
+             (ld >= 0 ? lnode * b.stride[ld] : 0);
+    };
+    double va[kMaxSlotValues], vb[kMaxSlotValues], da[kMaxSlotValues][kMaxDims], db[kMaxSlotValues][kMaxDims];
+    block_multilinear(b, slice(piece.a) + base, n_inner, b.stride + inner0, t, va, da);
+    block_multilinear(b, slice(piece.b) + base, n_inner, b.stride + inner0, t, vb, db);
+    const double pt = piece.t, slope = piece_slope(j, d.axis[kVarY], lnode, piece, yq);
+    for (int v = 0; v < nv; ++v) {
+      piece_value[k][v] = (1.0 - pt) * va[v] + pt * vb[v];
+      g.value[v] += weight[k] * piece_value[k][v];
+      g.d[v][kVarY] += weight[k] * (vb[v] - va[v]) * slope;
+      for (int q = 0; q < n_inner; ++q)
+        g.d[v][b.var[inner0 + q]] += weight[k] * ((1.0 - pt) * da[v][q] + pt * db[v][q]);
+    }
+  }
+  for (int q = 0; q < n_inner; ++q) {
+    const int var = b.var[inner0 + q];
+    const double inv = inverse_width(d.axis[var], loc[var]);
+    for (int v = 0; v < nv; ++v) g.d[v][var] *= inv;
+  }
+  // The two load nodes' pieces are blended with the load weights, for a block over y alone too
+  // (its pieces differ where the two load nodes' jumps do).
+  if (j.load_axis) {
+    const double inv = inverse_width(d.axis[kVarLoad], loc[kVarLoad]);
+    for (int v = 0; v < nv; ++v) g.d[v][kVarLoad] = (piece_value[1][v] - piece_value[0][v]) * inv;
+  }
+}
+
+}  // namespace railtab::lookup::detail

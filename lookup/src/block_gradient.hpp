@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: Apache-2.0
+// Exact derivatives of one block's interpolant (Table::query_derivatives, derivatives.cpp): the
+// values of one slot and their partial derivatives with respect to the block's coordinates, for
+// the multilinear and the cubic Hermite kernels of a cell no jump cuts and for the one-sided
+// linear rule of a cut cell (jump_side.hpp). Same cells, stencils and one-sided pieces as the
+// value kernels (interpolate.cpp, jump_side.cpp); nothing here changes a value the query returns.
+#pragma once
+
+#include <cstddef>
+
+#include "grid.hpp"
+#include "jump_piece.hpp"
+#include "records.hpp"
+#include "table_data.hpp"
+
+namespace railtab::lookup::detail {
+
+// One slot's values (record order, Block::output_of) and d value / d coordinate per state
+// variable: per SI unit of the variable on a physical axis, per unit of v on a normalised creep
+// axis (creep_map.hpp); 0 for variables the block is not tabulated over.
+struct BlockGradient {
+  double value[kMaxSlotValues];
+  double d[kMaxSlotValues][kNumVars];
+};
+
+// Multilinear value and derivatives with respect to the cell fractions t[0 .. n-1] of n_values
+// values of T (double or float) at the 2^n corners of the cell whose first record is `p`
+// (stride: bytes between neighbouring nodes per dimension). out_dt[k][dim] = d value_k / d t_dim.
+template <class T>
+void multilinear_gradient(RecordPtr p, int n, const std::size_t* stride, const double* t,
+                          int n_values, double* value, double (*out_dt)[kMaxDims]) noexcept;
+
+// 1 / width of the cell `loc` lies in.
+inline double inverse_width(const Axis& axis, const AxisLoc& loc) noexcept {
+  const double* x = axis.nodes();
+  return 1.0 / (x[loc.i + 1] - x[loc.i]);
+}
+
+// A cell no jump cuts: the multilinear kernel's interpolant.
+void linear_gradient(const Block& b, const Axis* axes, const AxisLoc* loc, int slot,
+                     BlockGradient& g) noexcept;
+
+// A cell no jump cuts: the tensor cubic Hermite kernel's interpolant (same stencils and slopes,
+// loc[..].cut_stencil honoured). Exact derivative of each axis's Hermite cubic.
+void cubic_gradient(const Block& b, const Axis* axes, const AxisLoc* loc, int slot,
+                    BlockGradient& g) noexcept;
+
+// d piece.t / d y of a jump piece at load node `load_node` (absolute index) for the query's y:
+// 1 / (to - from) while the fraction is inside [0, 1], 0 where it is clamped (the one-sided value
+// at the jump is held) or the piece is one node.
+double piece_slope(const JumpWheel& j, const Axis& y_axis, std::size_t load_node, const Piece& piece,
+                   double yq) noexcept;
+
+// A cut cell: the one-sided linear rule of interpolate_jump_cell for block `bi` of wheel w, the
+// creepage cell at loc (for a normalised creep block: its v cells), `pieces` from query_pieces.
+void jump_gradient(const TableData& d, int w, int bi, const AxisLoc* loc, const Piece (*pieces)[2],
+                   int slot, BlockGradient& g) noexcept;
+
+}  // namespace railtab::lookup::detail

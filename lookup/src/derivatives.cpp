@@ -1,0 +1,283 @@
+// SPDX-License-Identifier: Apache-2.0
+// Table::query_derivatives: the query's values plus the exact partial derivatives of its
+// interpolant with respect to every state variable (docs/lookup.md, "Derivatives"). The values
+// are query()'s own; the derivatives come from the same cells, stencils and one-sided pieces
+// (block_gradient.hpp) and, with normalised creep coordinates, the chain rule through the slot's
+// scales, the coordinate map, the saturation law and the normal force (creep_map.hpp).
+#include <algorithm>
+#include <cmath>
+
+#include "block_gradient.hpp"
+#include "creep_map.hpp"
+#include "jump_piece.hpp"
+#include "railtab/lookup.hpp"
+#include "table_data.hpp"
+
+namespace railtab::lookup {
+namespace detail {
+namespace {
+
+// The public Variable numbers are the internal Var ones.
+constexpr bool same(int a, int b) { return a == b; }
+static_assert(same(kNumVars, kNumVariables) && same(kVarY, kY) && same(kVarRoll, kRoll) && same(kVarLoad, kLoad) &&
+              same(kVarXi, kXi) && same(kVarEta, kEta) && same(kVarPhi, kPhi));
+
+// Where the query lies, as locate_state (table.cpp) places it, and which variables are held at
+// the table's edge (their derivative is 0: the value does not change there).
+struct Location {
+  AxisLoc loc[kNumVars];
+  double creepage[3] = {};       // normalised creep coordinates: physical creepages, clamped
+  bool frozen[kNumVars] = {};    // clamped to the table's range
+  bool cut = false;              // a located jump may cut the cell (one-sided, jump_side.hpp)
+  Piece pieces[2][2];            // the cut cell's pieces (query_pieces)
+};
+
+void locate(const TableData& d, int w, const State& state, Location& at) noexcept {
+  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi};
+  const CreepMap& map = d.creep_map;
+  for (int k = 0; k < d.n_located; ++k) {
+    const int var = d.located_var[k];
+    at.frozen[var] = d.axis[var].locate_fast(v[var], at.loc[var]);
+  }
+  for (int k = 0; k < d.n_clamped; ++k) {
+    const int c = d.clamped_var[k] - kVarXi;
+    const double x = v[kVarXi + c];
+    at.frozen[kVarXi + c] = x < map.lo[c] || x > map.hi[c];
+    at.creepage[c] = std::min(std::max(x, map.lo[c]), map.hi[c]);
+  }
+  if (map.active)
+    for (int c = 0; c < 3; ++c)
+      if (!map.swept[c]) at.creepage[c] = d.fixed[kVarXi + c] ? d.fixed_value[kVarXi + c] : 0.0;
+  at.cut = d.has_jumps && jump_cell(d, w, at.loc);
+  if (d.has_jumps && !at.cut && d.method != Method::kLinear) cubic_stencil_limits(d, w, at.loc);
+  if (at.cut) query_pieces(d.jumps[w], d.axis[kVarY], at.loc, d.jumps[w].load_axis ? 2 : 1, at.pieces);
+}
+
+// One slot's outputs and d output / d variable (`d` the caller's, zeroed), built block by block
+// as the query writes them.
+struct SlotGradient {
+  double value[kNumOutputs] = {};  // 0 for parts the table does not hold, as the query's
+  double (*d)[kNumVars] = nullptr;
+};
+
+void block_gradient(const TableData& d, int w, int bi, const Location& at, const AxisLoc* loc, int slot,
+                    BlockGradient& g) noexcept {
+  const Block& b = d.block[w][bi];
+  if (at.cut) jump_gradient(d, w, bi, loc, at.pieces, slot, g);
+  else if (d.method == Method::kLinear) linear_gradient(b, d.axis, loc, slot, g);
+  else cubic_gradient(b, d.axis, loc, slot, g);
+}
+
+// The slot's reciprocal creepage scales and their derivatives with respect to y, roll and load:
+// multilinear over the normal part's grid (interpolate_scales), or in a cut cell one-sided from
+// the pieces of every jump (one_sided_scales in jump_side.cpp).
+void scales(const TableData& d, int w, const Location& at, int slot, double inv[3], double dinv[3][kNumVars]) noexcept {
+  const CreepMap& map = d.creep_map;
+  for (int c = 0; c < 3; ++c)
+    for (int var = 0; var < kNumVars; ++var) dinv[c][var] = 0.0;
+  const std::size_t s = static_cast<std::size_t>(slot);
+  if (!at.cut) {
+    std::size_t origin = 0, stride[3];
+    double t[3], dt[3][kMaxDims];
+    for (int k = 0; k < map.n_dims; ++k) {
+      const AxisLoc& l = at.loc[map.var[k]];
+      origin += static_cast<std::size_t>(l.i) * map.stride[k];
+      stride[k] = map.stride[k] * 3 * sizeof(double);
+      t[k] = l.t;
+    }
+    const double* p = map.scale[w].data() + (s * map.nodes + origin) * 3;
+    multilinear_gradient<double>(reinterpret_cast<RecordPtr>(p), map.n_dims, stride, t, 3, inv, dt);
+    for (int k = 0; k < map.n_dims; ++k) {
+      const int var = map.var[k];
+      const double iw = inverse_width(d.axis[var], at.loc[var]);
+      for (int c = 0; c < 3; ++c) dinv[c][var] = dt[c][k] * iw;
+    }
+    return;
+  }
+  const JumpWheel& j = d.jumps[w];
+  int ydim = -1, ldim = -1;
+  for (int k = 0; k < map.n_dims; ++k) {
+    if (map.var[k] == kVarY) ydim = k;
+    if (map.var[k] == kVarLoad) ldim = k;
+  }
+  const int nodes = j.load_axis ? 2 : 1, lc = j.load_axis ? at.loc[kVarLoad].i : 0;
+  const double weight[2] = {j.load_axis ? 1.0 - at.loc[kVarLoad].t : 1.0, j.load_axis ? at.loc[kVarLoad].t : 0.0};
+  const double* x = d.axis[kVarY].nodes();
+  const AxisLoc& ly = at.loc[kVarY];
+  const double yq = x[ly.i] + ly.t * (x[ly.i + 1] - x[ly.i]);
+  double node_inv[2][3] = {};
+  inv[0] = inv[1] = inv[2] = 0.0;
+  for (int k = 0; k < nodes; ++k) {
+    const std::size_t lnode = static_cast<std::size_t>(lc + k);
+    auto end_scale = [&](const End& e) -> const double* {
+      if (e.sample)
+        return j.inv_scale.data() +
+               ((((s * j.n_load_nodes + lnode) * j.n_jumps + static_cast<std::size_t>(e.index)) * 2 +
+                 static_cast<std::size_t>(e.side)) * 3);
+      const std::size_t node = static_cast<std::size_t>(e.index) * map.stride[ydim] + (ldim >= 0 ? lnode * map.stride[ldim] : 0);
+      return map.scale[w].data() + (s * map.nodes + node) * 3;
+    };
+    const Piece& piece = at.pieces[0][k];
+    const double* a = end_scale(piece.a);
+    const double* b = end_scale(piece.b);
+    const double slope = piece_slope(j, d.axis[kVarY], lnode, piece, yq);
+    for (int c = 0; c < 3; ++c) {
+      node_inv[k][c] = (1.0 - piece.t) * a[c] + piece.t * b[c];
+      inv[c] += weight[k] * node_inv[k][c];
+      dinv[c][kVarY] += weight[k] * (b[c] - a[c]) * slope;
+    }
+  }
+  if (j.load_axis) {
+    const double iw = inverse_width(d.axis[kVarLoad], at.loc[kVarLoad]);
+    for (int c = 0; c < 3; ++c) dinv[c][kVarLoad] = (node_inv[1][c] - node_inv[0][c]) * iw;
+  }
+}
+
+// v = -1 + 2 (m(x) - m(a)) / (m(b) - m(a)) (creep_coordinate_normalised) and its partial
+// derivatives with respect to x, a and b; m(x) = x / (1 + |x|), m'(x) = 1 / (1 + |x|)^2.
+void coordinate_partials(double x, double a, double b, double out[3]) noexcept {
+  auto m = [](double z) { return z / (1.0 + std::abs(z)); };
+  auto dm = [](double z) { return 1.0 / ((1.0 + std::abs(z)) * (1.0 + std::abs(z))); };
+  const double mx = m(x), ma = m(a), mb = m(b), den = mb - ma;
+  out[0] = 2.0 * dm(x) / den;
+  out[1] = 2.0 * dm(a) * (mx - mb) / (den * den);
+  out[2] = -2.0 * dm(b) * (mx - ma) / (den * den);
+}
+
+// The saturation law (creep_law) and its Jacobian with respect to (xi', eta', psi'):
+// law = -q(r) (x, y), x = xi', y = eta' + psi' / 3, q = g / r = 3 - 3 r + r^2 below r = 1, 1 / r above.
+void law_jacobian(const double xn[3], double law[2], double jac[2][3]) noexcept {
+  const double x = xn[0], y = xn[1] + xn[2] / 3.0;
+  const double r = std::sqrt(x * x + y * y);
+  const double q = r < 1.0 ? 3.0 - 3.0 * r + r * r : 1.0 / r;
+  const double dq = r < 1.0 ? -3.0 + 2.0 * r : -1.0 / (r * r);
+  // The law is 0 at r = 0 (creep_law); its derivative there is the limit -3 I.
+  law[0] = r > 0.0 ? -q * x : 0.0;
+  law[1] = r > 0.0 ? -q * y : 0.0;
+  const double cx = r > 0.0 ? x / r : 0.0, cy = r > 0.0 ? y / r : 0.0;
+  const double dxx = -(q + dq * x * cx), dxy = -dq * x * cy, dyx = -dq * y * cx, dyy = -(q + dq * y * cy);
+  jac[0][0] = dxx, jac[0][1] = dxy, jac[0][2] = dxy / 3.0;
+  jac[1][0] = dyx, jac[1][1] = dyy, jac[1][2] = dyy / 3.0;
+}
+
+// The normalised creep block of one slot: its v cells at the slot's scales, its gradient chained
+// through v to y, roll, load and the physical creepages, then the forces scaled back to N
+// (denormalise_creep) with their derivatives.
+void normalised_creep(const TableData& d, int w, int bi, const Location& at, int slot, SlotGradient& out) noexcept {
+  const CreepMap& map = d.creep_map;
+  const Block& b = d.block[w][bi];
+  double inv[3], dinv[3][kNumVars];
+  scales(d, w, at, slot, inv, dinv);
+  AxisLoc loc[kNumVars];
+  std::copy(at.loc, at.loc + kNumVars, loc);
+  double xn[3], dxn[3][kNumVars] = {}, dv[3][kNumVars] = {};
+  for (int k = 0; k < 3; ++k) {
+    const int cv = kVarXi + k;
+    xn[k] = at.creepage[k] * inv[k];
+    for (int var = 0; var < kVarXi; ++var) dxn[k][var] = at.creepage[k] * dinv[k][var];
+    if (map.swept[k] && !at.frozen[cv]) dxn[k][cv] = inv[k];
+    if (!map.swept[k]) continue;
+    const double xa = xn[k] * map.kinv[k], a = map.lo_k[k] * inv[k], bb = map.hi_k[k] * inv[k];
+    d.axis[cv].locate_fast(creep_coordinate_normalised(xa, a, bb), loc[cv]);
+    double p[3];
+    coordinate_partials(xa, a, bb, p);
+    for (int var = 0; var < kVarXi; ++var)
+      dv[k][var] = p[0] * map.kinv[k] * dxn[k][var] + (p[1] * map.lo_k[k] + p[2] * map.hi_k[k]) * dinv[k][var];
+    dv[k][cv] = p[0] * map.kinv[k] * dxn[k][cv];
+  }
+  BlockGradient g;
+  block_gradient(d, w, bi, at, loc, slot, g);
+  for (int k = 0; k < b.n_values; ++k) {
+    const int o = b.output_of[k];
+    out.value[o] = g.value[k];
+    for (int var = 0; var < kNumVars; ++var) {
+      double sum = var < kVarXi ? g.d[k][var] : 0.0;
+      for (int q = 0; q < 3; ++q) sum += g.d[k][kVarXi + q] * dv[q][var];
+      out.d[o][var] = sum;
+    }
+  }
+  if (!d.has_part[kCreep]) return;
+  double law[2], jac[2][3], dlaw[2][kNumVars];
+  law_jacobian(xn, law, jac);
+  for (int c = 0; c < 2; ++c)
+    for (int var = 0; var < kNumVars; ++var)
+      dlaw[c][var] = jac[c][0] * dxn[0][var] + jac[c][1] * dxn[1][var] + jac[c][2] * dxn[2][var];
+  double* v = out.value;
+  double (*dd)[kNumVars] = out.d;
+  const double mu = map.friction;
+  if (map.vertical_share) {  // N = share / (cos a + mu r_y sin a), normal_from_share
+    const double share = v[kNormalForce], angle = v[kContactAngle];
+    const double ca = std::cos(angle), sa = std::sin(angle), ry = v[kFy] + law[1];
+    const double den = ca + mu * ry * sa;
+    const bool guarded = !(std::abs(den) > 1e-3);
+    const double used = guarded ? std::copysign(1e-3, den) : den;
+    const double n = share / used;
+    for (int var = 0; var < kNumVars; ++var) {
+      const double dry = dd[kFy][var] + dlaw[1][var];
+      const double dden = guarded ? 0.0 : -sa * dd[kContactAngle][var] + mu * dry * sa + mu * ry * ca * dd[kContactAngle][var];
+      dd[kNormalForce][var] = (dd[kNormalForce][var] - n * dden) / used;
+    }
+    v[kNormalForce] = n;
+  }
+  const double mun = mu * v[kNormalForce];
+  const double rx = v[kFx] + law[0], ry = v[kFy] + law[1], rz = v[kMz];
+  for (int var = 0; var < kNumVars; ++var) {
+    const double dmun = mu * dd[kNormalForce][var];
+    dd[kFx][var] = (dd[kFx][var] + dlaw[0][var]) * mun + rx * dmun;
+    dd[kFy][var] = (dd[kFy][var] + dlaw[1][var]) * mun + ry * dmun;
+    dd[kMz][var] = dd[kMz][var] * mun + rz * dmun;
+  }
+  v[kFx] = rx * mun;
+  v[kFy] = ry * mun;
+  v[kMz] = rz * mun;
+}
+
+void slot_gradient(const TableData& d, int w, const Location& at, int slot, SlotGradient& out) noexcept {
+  for (int bi = 0; bi < d.n_blocks; ++bi) {
+    if (d.creep_map.active && bi == d.creep_block) {
+      normalised_creep(d, w, bi, at, slot, out);
+      continue;
+    }
+    const Block& b = d.block[w][bi];
+    BlockGradient g;
+    block_gradient(d, w, bi, at, at.loc, slot, g);
+    for (int k = 0; k < b.n_values; ++k) {
+      const int o = b.output_of[k];
+      out.value[o] = g.value[k];
+      for (int var = 0; var < kNumVars; ++var) out.d[o][var] = g.d[k][var];
+    }
+  }
+}
+
+}  // namespace
+}  // namespace detail
+
+const char* variable_name(int variable) noexcept { return detail::var_name(variable); }
+
+bool Table::derivatives_supported() const noexcept { return data_->method != Method::kMonotoneCubic; }
+
+bool Table::query_derivatives(Wheel wheel, const State& state, Result& result, Derivatives& derivatives) const noexcept {
+  using namespace detail;
+  query(wheel, state, result);
+  const TableData& d = *data_;
+  const int ns = std::max(0, std::min(result.n_slots, kMaxSlots));
+  for (int s = 0; s < ns; ++s)
+    for (auto& row : derivatives.d[s])
+      for (double& x : row) x = 0.0;  // parts the table does not hold, untabulated variables
+  if (!derivatives_supported()) return false;
+  if (result.status & status::kInvalidInput) return true;
+  const int w = static_cast<int>(wheel);
+  Location at;
+  locate(d, w, state, at);
+  for (int s = 0; s < ns; ++s) {
+    SlotGradient g;
+    g.d = derivatives.d[s];
+    slot_gradient(d, w, at, s, g);
+    for (int var = 0; var < kNumVars; ++var)
+      if (at.frozen[var])
+        for (int o = 0; o < kNumOutputs; ++o) derivatives.d[s][o][var] = 0.0;
+  }
+  return true;
+}
+
+}  // namespace railtab::lookup
