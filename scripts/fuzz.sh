@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # Builds the libFuzzer targets (fuzz/, clang 14 with ASan+UBSan, in build/asan) and runs each on a
-# scratch copy of its seed corpus (fuzz/corpus/<name>/): the profile readers, the scene reader and
-# the table loader. A fixed -seed and a fixed number of executions (-runs) per target: the same
+# scratch copy of its seed corpus (fuzz/corpus/<name>/): the profile readers, the scene reader,
+# the table loader and the chart titles (scene names and descriptions as gnuplot strings). A fixed -seed and a fixed number of executions (-runs) per target: the same
 # amount of work on every run whatever the machine's speed or load, so the verdict does not
 # depend on how busy the machine is (the mutated inputs are not exactly the same on every run:
 # see the setarch comment below); the seconds are a cap only (sized so the runs finish well inside it on a loaded 2-core machine;
@@ -18,14 +18,14 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_profile fuzz_scene fuzz_table_load)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_profile fuzz_scene fuzz_table_load fuzz_chart_title)
 # build/asan: the same clang ASan+UBSan build as scripts/sanitize.sh asan (scripts/asan_build.sh,
 # which says why each flag): built once, the fuzz targets only link against it.
 bash scripts/asan_build.sh "${targets[@]}"
 
 # Executions per target: ~1/3 of what each did in 45 s with the machine's load average at ~20
 # (fuzz_profile 12,800, fuzz_scene 144,340, fuzz_table_load 1,595; docs/ci.md).
-declare -A runs=([fuzz_profile]=4000 [fuzz_scene]=40000 [fuzz_table_load]=500)
+declare -A runs=([fuzz_profile]=4000 [fuzz_scene]=40000 [fuzz_table_load]=500 [fuzz_chart_title]=20000)
 seed=${FUZZ_SEED:-19}
 
 mkdir -p build/fuzz/artifacts

@@ -145,26 +145,28 @@ bool roll_is_axis(const Scene& scene) {
 }  // namespace
 
 ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options, int threads,
-                          const StageProgress& progress) {
+                          const StageProgress& progress, CellRange range) {
   ContactJumps result;
   const std::vector<double>& y = scene.grids.y;
   const std::vector<double>& loads = scene.grids.load;
   if (roll_is_axis(scene) || y.size() < 2 || loads.empty()) return result;
+  const std::size_t first = std::min(range.first, y.size() - 1), last = std::clamp(range.last, first, y.size() - 1);
   const ContactProbe probe(scene);
-  // The configuration at every node, per wheel and load (no creep forces: the signature has none).
-  const std::size_t n_load = loads.size(), cells = y.size() - 1, tasks = 2 * n_load * cells;
-  std::vector<Signature> nodes(2 * n_load * y.size());  // [wheel][load][y]
+  // The configuration at the cells' nodes, per wheel and load (no creep forces: the signature has
+  // none); node k is y[first + k].
+  const std::size_t n_load = loads.size(), cells = last - first, span = cells + 1, tasks = 2 * n_load * cells;
+  std::vector<Signature> nodes(cells > 0 ? 2 * n_load * span : 0);  // [wheel][load][node]
   std::vector<std::vector<ContactJump>> found(tasks);
   std::vector<std::size_t> spent(tasks, 0);
   TaskProgress ticks(progress, nodes.size() + tasks);  // nodes, then cells (most without a jump)
   parallel_for_index(threads, nodes.size(), [&](std::size_t t) {
-    const std::size_t wheel = t / (n_load * y.size()), l = (t / y.size()) % n_load, i = t % y.size();
+    const std::size_t wheel = t / (n_load * span), l = (t / span) % n_load, i = first + t % span;
     nodes[t] = signature(probe.configuration(y[i], wheel, loads[l]));
     ticks.tick();
   });
   parallel_for_index(threads, tasks, [&](std::size_t task) {
-    const std::size_t wheel = task / (n_load * cells), l = (task / cells) % n_load, i = task % cells;
-    const std::size_t node = (wheel * n_load + l) * y.size() + i;
+    const std::size_t wheel = task / (n_load * cells), l = (task / cells) % n_load, k = task % cells, i = first + k;
+    const std::size_t node = (wheel * n_load + l) * span + k;
     Bisection bisection(probe, wheel, loads[l], options);
     bisection.find(y[i], nodes[node], y[i + 1], nodes[node + 1], {}, found[task]);
     spent[task] = bisection.evaluations();
@@ -185,7 +187,7 @@ ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options,
 }
 
 void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, const JumpLocatorOptions& options,
-               int threads, const StageProgress& progress) {
+               int threads, const StageProgress& progress, const std::string& root) {
   if (roll_is_axis(scene)) return;
   std::size_t count = 0;
   for (const auto& wheel : jumps.wheel)
@@ -193,7 +195,7 @@ void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, cons
   if (count == 0) return;  // no jumps: no group (the lookup then interpolates as before 2.1)
   const bool load_axis = table.axis("load") != nullptr;
   const std::size_t n_load = jumps.wheel[0].size();
-  TableGroup group{"jumps", {}};
+  TableGroup group{root, {}};
   const char* names[2] = {"left", "right"};
   for (std::size_t w = 0; w < 2; ++w) {
     TableDataset y = dataset(std::string(names[w]) + "_y", std::string("m"), fmt_jump_description(options));
@@ -214,7 +216,7 @@ void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, cons
     group.datasets.push_back(std::move(kind));
   }
   table.groups.push_back(std::move(group));
-  add_jump_samples(table, scene, jumps, threads, progress);
+  add_jump_samples(table, scene, jumps, threads, progress, root);
 }
 
 }  // namespace railtab

@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "scene/scene.hpp"
@@ -55,27 +57,34 @@ struct ContactJumps {
 using StageProgress = std::function<void(const SweepProgress&)>;
 
 // Every jump inside the y grid of `scene` (between its first and last node), per wheel and load
-// node. Deterministic; `threads` as the sweep's (0 = all cores). Scenes with a roll axis are not
+// node; with `cells`, only those in y cells [first, last) (cell i lies between nodes i and i + 1:
+// a shard's cells, joined by merge). Deterministic, and each cell's jumps do not depend on the
+// others; `threads` as the sweep's (0 = all cores). Scenes with a roll axis are not
 // supported (returns no jumps: the caller writes none). Each step evaluates the contact
 // configuration of one wheel at one load (ContactProbe::configuration: geometry and normal
 // contact, no creep forces; for the exact model the exact normal problem only in states with
 // two or more candidate patches). progress counts the y nodes and the cells.
+struct CellRange {
+  std::size_t first = 0;                                      // first y cell [-]
+  std::size_t last = std::numeric_limits<std::size_t>::max();  // one past the last (clamped to the grid) [-]
+};
 ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options = {}, int threads = 0,
-                          const StageProgress& progress = {});
+                          const StageProgress& progress = {}, CellRange cells = {});
 
-// Adds the group `jumps` (datasets left_y, left_kind, right_y, right_kind over (load, jump) or
+// Adds the group `root` (datasets left_y, left_kind, right_y, right_kind over (load, jump) or
 // (jump)) and the one-sided values (add_jump_samples) to `table`. Nothing is added when the scene
-// has a roll axis or no jump was found.
-// threads and progress: those of add_jump_samples.
+// has a roll axis or no jump was found. `root` is kJumpGroup for a table, kShardJumpGroup for a
+// shard (its jumps may lie in the cell after its last y node, outside its own y axis; merge joins
+// them into kJumpGroup). threads and progress: those of add_jump_samples.
 void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, const JumpLocatorOptions& options = {},
-               int threads = 0, const StageProgress& progress = {});
+               int threads = 0, const StageProgress& progress = {}, const std::string& root = kJumpGroup);
 
 // One-sided values: every output of every part of the contact kernel at the ends of each jump's
-// final interval (side 0 = left end, 1 = right end), added as groups jumps/<wheel>/<part> with
+// final interval (side 0 = left end, 1 = right end), added as groups <root>/<wheel>/<part> with
 // datasets over ([load,] jump, side, the part's creepage axes, slot). add_jumps calls it. Each
 // column is computed for the jump's wheel only (ColumnState::wheels); progress counts columns.
 void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads = 0,
-                      const StageProgress& progress = {});
+                      const StageProgress& progress = {}, const std::string& root = kJumpGroup);
 
 // The names of the jump-list and side dimensions: plain dimensions, not axes (no coordinate).
 inline constexpr const char* kJumpDimension = "jump";

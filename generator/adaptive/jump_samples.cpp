@@ -60,8 +60,8 @@ Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std
 }  // namespace
 
 void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads,
-                      const StageProgress& progress) {
-  const TableGroup* list = table.group("jumps");
+                      const StageProgress& progress, const std::string& root) {
+  const TableGroup* list = table.group(root);
   if (!list) return;  // no jumps
   const std::size_t n_load = scene.grids.load.size();
   std::size_t count = 0;
@@ -96,7 +96,7 @@ void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jump
   for (std::size_t w = 0; w < 2; ++w) {
     for (std::size_t p = 0; p < kernel.parts.size(); ++p) {
       const PartSpec& part = kernel.parts[p];
-      TableGroup group{std::string("jumps/") + names[w] + "/" + part.name, {}};
+      TableGroup group{root + "/" + names[w] + "/" + part.name, {}};
       std::vector<std::string> axes;
       std::vector<std::size_t> shape;
       if (load_axis) axes.emplace_back("load"), shape.push_back(n_load);

@@ -53,13 +53,16 @@ double detail_range(const ConicityCurve& c) {
 std::string chart_script(const ConicityCurve& c, const std::filesystem::path& points, const std::filesystem::path& functions,
                          const std::optional<ConicityCurve>& other, const std::filesystem::path& other_points,
                          const std::filesystem::path& other_functions) {
-  const std::string name = gnuplot_text(c.functions.name);
+  // Names and titles come from the scene or table: gnuplot strings only (charts/gnuplot_string.hpp).
+  const std::string& name = c.functions.name;
   const std::string title =
-      gnuplot_text(other ? c.functions.name + " beside " + other->functions.name : c.functions.title);
+      gnuplot_string(fmt::format("{}: equivalent conicity, rigid wheelset, roll {}",
+                                 other ? c.functions.name + " beside " + other->functions.name : c.functions.title,
+                                 c.functions.roll_mode));
   const double detail = std::max(detail_range(c), other ? detail_range(*other) : 0.0);
   auto series = [](const std::filesystem::path& csv, const std::string& using_, const std::string& style,
                    const std::string& label) {
-    return fmt::format("{} every ::1 using {} with {} title \"{}\"", gnuplot_quote(csv), using_, style, label);
+    return fmt::format("{} every ::1 using {} with {} title {}", gnuplot_quote(csv), using_, style, gnuplot_string(label));
   };
   std::string conicity = series(points, "($1*1e3):2", "linespoints lw 2 pt 7 lc 1", name + ": wavelength (EN 15302)") +
                          ", \\\n     " +
@@ -67,7 +70,7 @@ std::string chart_script(const ConicityCurve& c, const std::filesystem::path& po
   std::string delta_r = series(functions, "($1*1e3):($3*1e3)", "lines lw 2 lc 1", name);
   std::string delta_tan = series(functions, "($1*1e3):4", "lines lw 2 lc 1", name);
   if (other) {
-    const std::string other_name = gnuplot_text(other->functions.name);
+    const std::string& other_name = other->functions.name;
     conicity += ", \\\n     " +
                 series(other_points, "($1*1e3):2", "linespoints lw 2 pt 5 lc 2", other_name + ": wavelength (EN 15302)") +
                 ", \\\n     " +
@@ -78,7 +81,7 @@ std::string chart_script(const ConicityCurve& c, const std::filesystem::path& po
   return fmt::format(R"(set terminal pngcairo noenhanced size 1000,1400 font ",11"
 set datafile separator ','
 set datafile missing 'nan'
-set multiplot layout 4,1 title "{title}: equivalent conicity, rigid wheelset, roll {roll}"
+set multiplot layout 4,1 title {title} noenhanced
 set grid
 set key top left
 set xlabel 'amplitude of the lateral motion [mm]'
@@ -95,7 +98,7 @@ set ylabel 'tan(g_left) - tan(g_right) [-]'
 plot {delta_tan}
 unset multiplot
 )",
-                     fmt::arg("title", title), fmt::arg("roll", gnuplot_text(c.functions.roll_mode)),
+                     fmt::arg("title", title),
                      fmt::arg("conicity", conicity), fmt::arg("delta_r", delta_r),
                      fmt::arg("detail", fmt::format("{:.6g}", detail)),
                      fmt::arg("delta_tan", delta_tan));

@@ -39,7 +39,7 @@ std::pair<std::filesystem::path, std::filesystem::path> draw_geometry_chart(cons
   const std::filesystem::path png = dir / "geometry.png";
   const std::string script = fmt::format(R"(set terminal pngcairo noenhanced size 1000,800 font ",11"
 set datafile separator ','
-set multiplot layout 2,1 title "{title}: rigid contact geometry, roll {roll}"
+set multiplot layout 2,1 title {title} noenhanced
 set grid
 set key top left
 set xlabel 'wheelset lateral displacement y [mm] (+ left)'
@@ -51,8 +51,10 @@ plot {csv} every ::1 using ($1*1e3):($4*180/pi) with lines lw 2 title 'left whee
 unset multiplot
 )",
                                          fmt::arg("csv", gnuplot_quote(csv)),
-                                         fmt::arg("title", gnuplot_text(scene_title(scene.name, scene.description))),
-                                         fmt::arg("roll", scene.equilibrium_roll ? "at kinematic equilibrium" : "0"));
+                                         fmt::arg("title", gnuplot_string(fmt::format(
+                                                               "{}: rigid contact geometry, roll {}",
+                                                               scene_title(scene.name, scene.description),
+                                                               scene.equilibrium_roll ? "at kinematic equilibrium" : "0"))));
   run_gnuplot(dir / "geometry.gp", script, png);
   return {csv, png};
 }

@@ -72,15 +72,18 @@ void draw_pressure_chart(const Scene& scene, const std::filesystem::path& out_di
   const std::filesystem::path png = out_dir / "pressure.png";
   const std::string script = fmt::format(R"gp(set terminal pngcairo noenhanced size 1100,650 font ",11"
 set datafile separator ','
-set title "{title}\npeak pressure along the strip centre lines, {side} wheel, y = {y:.1f} mm, {load:.1f} kN"
+set title {title} noenhanced
 set xlabel 'lateral position on the rail profile [mm] (+ field side)'
 set ylabel 'pressure [MPa]'
 set grid
 set key outside right top
 plot {plots}
 )gp",
-      fmt::arg("title", gnuplot_text(scene_title(scene.name, scene.description))), fmt::arg("side", to_string(options.side)),
-      fmt::arg("y", options.y * 1e3), fmt::arg("load", options.load * 1e-3), fmt::arg("plots", plots));
+      fmt::arg("title", gnuplot_string(fmt::format(
+                            "{}\npeak pressure along the strip centre lines, {} wheel, y = {:.1f} mm, {:.1f} kN",
+                            scene_title(scene.name, scene.description), to_string(options.side), options.y * 1e3,
+                            options.load * 1e-3))),
+      fmt::arg("plots", plots));
   run_gnuplot(out_dir / "pressure.gp", script, png);
 }
 

@@ -101,10 +101,10 @@ set key bottom left font ',8' box opaque
 # Labels start right of their point (left-aligned): centred ones ran past the y axis, over its tics,
 # for the lookups at ~0.1 us; the x range starts below them for the same reason.
 set xrange [0.03:*]
-set multiplot layout 1,2 title "{scene}: speed against accuracy, {ref}\n{setup}" font ',11'
+set multiplot layout 1,2 title {title} noenhanced font ',11'
 )GP",
-                                   fmt::arg("scene", gnuplot_text(scene.name)),
-                                   fmt::arg("ref", ref_title), fmt::arg("setup", r.setup));
+                                   fmt::arg("title", gnuplot_string(fmt::format("{}: speed against accuracy, {}\n{}",
+                                                                                 scene.name, ref_title, r.setup))));
   script += panel(9, 15, 26, 0, "tread contact (dy = -6..6 mm)");
   script += "unset key\n";
   script += panel(10, 16, 27, 1, "flange contact (dy = 7..10 mm)");
@@ -124,7 +124,7 @@ set xlabel 'table size in memory [bytes] (Table::memory_bytes; file sizes in tab
 set yrange [5e-4:1]
 set ylabel 'median relative creep-force error'
 set key top right font ',8' box opaque
-set title "{scene}: table lookup error against memory, {ref}\n(y step; 'fine' = fine creepage grid; roll 0 and load fixed)"
+set title {title} noenhanced
 plot {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):10 with points ps 1.4 pt 7 lc rgb '#1b9e77' title 'linear, tread', \
      {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):11 with points ps 1.4 pt 5 lc rgb '#d95f02' title 'linear, flange', \
      {csv} using (strcol(2) eq 'cubic' ? $6 : 1/0):10 with points ps 1.4 pt 6 lc rgb '#1b9e77' title 'cubic, tread', \
@@ -133,7 +133,10 @@ plot {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):10 with points ps 1.4 pt 7 l
      {csv} using (strcol(2) eq 'linear' ? $6 : 1/0):10:(strcol(1)[8:*]) with labels font ',8' offset 0,0.8 notitle
 )GP",
                                           fmt::arg("csv", gnuplot_quote(mem_csv)),
-                                          fmt::arg("scene", gnuplot_text(scene.name)), fmt::arg("ref", ref_title));
+                                          fmt::arg("title", gnuplot_string(fmt::format(
+                                                                "{}: table lookup error against memory, {}\n(y step; 'fine' = "
+                                                                "fine creepage grid; roll 0 and load fixed)",
+                                                                scene.name, ref_title))));
   run_gnuplot(dir / "table_memory.gp", mscript, mpng);
 
   return r;

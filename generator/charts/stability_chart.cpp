@@ -99,7 +99,7 @@ void draw_stability_chart(const Scene& scene, const std::filesystem::path& out_d
   const std::filesystem::path png = out_dir / "stability_map.png";
   const std::string script = fmt::format(R"gp(set terminal pngcairo noenhanced size 1400,{height} font ",10"
 set datafile separator ','
-set title "{title}\nstatus flags of each normal model across y (load {load:.1f} kN, roll {roll})"
+set title {title} noenhanced
 set xlabel 'wheelset lateral displacement y [mm] (+ left)'
 set ytics ({ytics})
 set yrange [-0.7:{top}]
@@ -109,9 +109,11 @@ set key outside right top
 plot {plots}
 )gp",
       fmt::arg("height", 300 + 40 * row_labels.size()),
-      fmt::arg("title", gnuplot_text(scene_title(scene.name, scene.description))),
-      fmt::arg("load", scene.grids.load[scene.grids.load.size() / 2] * 1e-3),
-      fmt::arg("roll", scene.equilibrium_roll ? "kinematic equilibrium" : "0"), fmt::arg("ytics", ytics),
+      fmt::arg("title", gnuplot_string(fmt::format(
+                            "{}\nstatus flags of each normal model across y (load {:.1f} kN, roll {})",
+                            scene_title(scene.name, scene.description), scene.grids.load[scene.grids.load.size() / 2] * 1e-3,
+                            scene.equilibrium_roll ? "kinematic equilibrium" : "0"))),
+      fmt::arg("ytics", ytics),
       fmt::arg("top", row_labels.size() - 0.3), fmt::arg("xmin", options.y_min * 1e3),
       fmt::arg("xmax", options.y_max * 1e3), fmt::arg("plots", plots));
   run_gnuplot(out_dir / "stability_map.gp", script, png);

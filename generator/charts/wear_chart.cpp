@@ -16,15 +16,13 @@ namespace railtab {
 void draw_wear_chart(const std::vector<WearSeries>& series, const std::filesystem::path& png,
                      const std::string& title) {
   RAILTAB_CHECK(!series.empty(), "wear chart {}: no series to draw", png.string());
-  RAILTAB_CHECK(title.find_first_of("\"\n") == std::string::npos,
-                "wear chart {}: title must not contain double quotes or newlines", png.string());
   for (const WearSeries& s : series) {
     RAILTAB_CHECK(s.u.size() == s.depth.size() && !s.u.empty(),
                   "wear chart {}: series '{}' has {} positions and {} depths", png.string(), s.name, s.u.size(),
                   s.depth.size());
-    // The name goes into a quoted gnuplot title and a CSV field.
-    RAILTAB_CHECK(s.name.find_first_of("'\",\n") == std::string::npos,
-                  "wear chart {}: series name '{}' must not contain quotes, commas or newlines", png.string(),
+    // The name is a CSV field (and a gnuplot string, which takes any text).
+    RAILTAB_CHECK(s.name.find_first_of("\",\n") == std::string::npos,
+                  "wear chart {}: series name '{}' must not contain double quotes, commas or newlines", png.string(),
                   s.name);
   }
   if (png.has_parent_path()) std::filesystem::create_directories(png.parent_path());
@@ -43,21 +41,21 @@ void draw_wear_chart(const std::vector<WearSeries>& series, const std::filesyste
                     "wear chart {}: series '{}' has a non-finite value at bin {}", png.string(), s.name, i);
       out << fmt::format("{},{},{:.4f},{:.6g}\n", k, s.name, s.u[i] * 1e3, s.depth[i] * 1e3);
     }
-    plots += fmt::format("{}{} every ::1 using ($1=={} ? $3 : NaN):4 with lines lw {} title '{}'",
-                         k ? ", \\\n     " : "", gnuplot_quote(csv), k, s.bold ? 3.0 : 1.2, s.name);
+    plots += fmt::format("{}{} every ::1 using ($1=={} ? $3 : NaN):4 with lines lw {} title {}",
+                         k ? ", \\\n     " : "", gnuplot_quote(csv), k, s.bold ? 3.0 : 1.2, gnuplot_string(s.name));
   }
   write_text_file(csv, out.str());
 
   const std::string script = fmt::format(R"gp(set terminal pngcairo noenhanced size 1100,650 font ",11"
 set datafile separator ','
-set title "{title}"
+set title {title}
 set xlabel 'wheel profile lateral coordinate u [mm] (+ field side, 0 = running circle)'
 set ylabel 'radial wear depth [mm]'
 set grid
 set key top left
 plot {plots}
 )gp",
-                                         fmt::arg("title", title),
+                                         fmt::arg("title", gnuplot_string(title)),
                                          fmt::arg("plots", plots));
   run_gnuplot(gp, script, png);
 }

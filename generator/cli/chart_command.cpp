@@ -14,6 +14,7 @@
 #include <string>
 
 #include "charts/geometry_chart.hpp"
+#include "charts/gnuplot.hpp"
 #include "charts/pressure_chart.hpp"
 #include "charts/speed_accuracy_chart.hpp"
 #include "charts/stability_chart.hpp"
@@ -85,6 +86,8 @@ void add_scene_and_out(CLI::App* cmd, std::string& scene_path, std::string& out_
   cmd->add_option("--scene", scene_path, "Scene file (TOML)")->capture_default_str();
   cmd->add_option("--out", out_dir, "Output directory")->capture_default_str();
   cmd->add_flag("-q,--quiet", quiet, "No progress or diagnostics on stderr (results and errors are still printed)");
+  // gnuplot's warnings are diagnostics too: silenced by -q (its errors are in the error message).
+  cmd->parse_complete_callback([&quiet] { set_gnuplot_messages(diagnostics(quiet)); });
 }
 
 // A y sweep: first, last and step [m]; the step from 1 um (at most 2e5 points over the widest

@@ -7,13 +7,13 @@
 #include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <system_error>
 
 #include "core/check.hpp"
 #include "table/interrupt.hpp"
+#include "table/output_file.hpp"
 
 namespace railtab {
 namespace {
@@ -23,18 +23,6 @@ class NullBuffer : public std::streambuf {
  protected:
   int overflow(int c) override { return c; }
 };
-
-// Creates and removes one probe file in `dir`; the error names `what` (the user's path).
-void probe(const std::filesystem::path& dir, const std::filesystem::path& what) {
-  const std::filesystem::path file = dir / (".railtab-write-check." + std::to_string(::getpid()));
-  std::ofstream out(file);
-  const int error = errno;
-  RAILTAB_CHECK(out.is_open(), "{}: cannot write there ({}); refused before starting", what.string(),
-                std::strerror(error));
-  out.close();
-  std::error_code ignored;
-  std::filesystem::remove(file, ignored);
-}
 
 }  // namespace
 
@@ -55,7 +43,7 @@ void require_writable_directory(const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir, ec);
   RAILTAB_CHECK(!ec && std::filesystem::is_directory(dir), "{}: cannot create the output directory ({}); refused "
                 "before starting", dir.string(), ec ? ec.message() : "not a directory");
-  probe(dir, dir);
+  check_output_directory(dir);
 }
 
 CLI::Validator error_check_validator(std::function<void(const std::string&)> check) {

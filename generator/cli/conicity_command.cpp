@@ -16,6 +16,7 @@
 
 #include "charts/conicity.hpp"
 #include "charts/conicity_chart.hpp"
+#include "charts/gnuplot.hpp"
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
 #include "cli/number_options.hpp"
@@ -142,7 +143,10 @@ void add_conicity_command(CLI::App& app) {
   cmd->add_flag("--json", opt->json, "Print JSON (amplitude_m, equivalent_conicity, ...) instead of text");
   cmd->add_option("--out", opt->out_dir, "Write conicity.csv, conicity_functions.csv, conicity.json and conicity.png here");
   cmd->add_flag("-q,--quiet", opt->quiet, "No diagnostics on stderr (results and errors are still printed)");
-  cmd->callback([opt] { run_conicity(*opt); });
+  cmd->callback([opt] {
+    set_gnuplot_messages(diagnostics(opt->quiet));  // gnuplot's warnings: silenced by -q
+    run_conicity(*opt);
+  });
 }
 
 }  // namespace railtab

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "core/input_files.hpp"
 #include "table/version.hpp"
 
 namespace {
@@ -27,6 +28,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(railtab::version_string()) + " (" +
                                         railtab::git_commit() + ")");
   app.require_subcommand(1);
+  // One command is one run: no output of it may replace a file it read (core/input_files.hpp).
+  railtab::track_input_files(true);
   railtab::add_eval_command(app);
   railtab::add_generate_command(app);
   railtab::add_inspect_command(app);

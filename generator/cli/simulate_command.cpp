@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/cli_common.hpp"
+#include "charts/gnuplot.hpp"
 #include "cli/commands.hpp"
 #include "cli/number_options.hpp"
 #include "scene/simulation_scene.hpp"
@@ -47,6 +48,7 @@ void add_simulate_command(CLI::App& app) {
     const SimulationScene scene = load_simulation_scene(*scene_file);
     require_writable_directory(opt->out);
     opt->log = *quiet ? nullptr : &std::cerr;
+    set_gnuplot_messages(diagnostics(*quiet));  // the wear charts' gnuplot warnings: silenced by -q
     // Ctrl-C / SIGTERM only set a flag that the table generation and the RK4 loop poll, so no
     // file is cut mid-write.
     SimulationSummary summary;

@@ -7,8 +7,8 @@
 #pragma once
 
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -23,10 +23,17 @@ std::uint64_t fnv1a(std::string_view bytes, std::uint64_t seed = 146959810393466
 std::vector<char> pack_block(const Table& table, std::size_t blocks, std::size_t block);
 void unpack_block(Table& table, std::size_t blocks, std::size_t block, const std::vector<char>& bytes);
 
+// The dataset ("/left/creep/fx") holding the first non-finite value in y block `block` of
+// `blocks`, or "" when there is none. The sweep stores 0 for every non-finite result (NaN only in
+// /equilibrium_roll, by design, not counted), so a resumed record with one was altered.
+std::string first_non_finite(const Table& table, std::size_t blocks, std::size_t block);
+
 class Checkpoint {
  public:
   // Open or create `path` for a run identified by `key` whose records hold `record_bytes` bytes.
-  // A file with another key (other scene or build) is started afresh: discarded() says so.
+  // A file with another key (other scene or build) is started afresh: discarded() says so. Throws
+  // railtab::Error for a path that is a symbolic link, a hard link, not a regular file, an input
+  // of the run or held by another live run (table/output_file.hpp, open_output_to_continue).
   Checkpoint(std::filesystem::path path, std::uint64_t key, std::size_t record_bytes);
   ~Checkpoint();
   Checkpoint(const Checkpoint&) = delete;
@@ -50,7 +57,7 @@ class Checkpoint {
   std::filesystem::path path_;
   std::uint64_t key_;
   std::size_t record_bytes_;
-  std::FILE* file_ = nullptr;
+  int fd_ = -1;  // the checkpoint, open for appending (and locked) while the run lasts
   std::vector<Record> records_;
   bool discarded_ = false;
 };

@@ -262,6 +262,11 @@ std::unique_ptr<Checkpoint> SweepPlan::resume(const std::filesystem::path& path,
   for (Checkpoint::Record& r : checkpoint->take_records()) {
     if (r.block >= ny || block_done[r.block]) continue;
     unpack_block(table_, ny, r.block, r.bytes);
+    const std::string altered = first_non_finite(table_, ny, r.block);
+    RAILTAB_CHECK(altered.empty(),
+                  "{}: the record of y block {} holds a non-finite value in {}, which the sweep never stores (the "
+                  "checkpoint was altered): delete it, or run without --resume",
+                  path.string(), r.block, altered);
     block_done[r.block] = 1;
     ++summary.blocks_done;
   }

@@ -38,6 +38,13 @@ SweepSummary generate_table(const GenerateOptions& options) {
   check_output_path(options.output, {options.scene});
   if (options.resume || options.always_checkpoint) check_output_path(checkpoint_path(options.output), {options.scene});
   Scene scene = load_scene(options.scene);
+  // The profile files the scene names are inputs too: the output may replace none of them.
+  std::vector<std::filesystem::path> inputs{options.scene};
+  for (const ProfileSource* profile : {&scene.wheel, &scene.rail}) {
+    if (!profile->file.empty()) inputs.push_back(profile->file);
+  }
+  check_output_path(options.output, inputs);
+  if (options.resume || options.always_checkpoint) check_output_path(checkpoint_path(options.output), inputs);
   // [accuracy] scenes: place the adaptive axes' nodes first (docs/adaptive-grids.md); deterministic,
   // so shards and resumed runs get the same grids.
   AdaptiveGridSummary adaptive = build_adaptive_grids(scene, options.threads);
@@ -104,10 +111,19 @@ SweepSummary generate_table(const GenerateOptions& options) {
     result.table.set_attribute("accuracy_targets", adaptive.targets_json(scene).dump());
     result.table.set_attribute("accuracy_achieved", adaptive.achieved_json().dump());
   }
-  // Contact jumps along y (format 2.1): located on the whole y grid, so not in a shard (its merge
-  // would need them joined; a merged table has none and interpolates as before 2.1), and only
-  // with the contact kernel (the probe runs the scene's contact chain).
-  if (options.shard_count == 1 && !options.make_kernel) {
+  // Contact jumps along y (format 2.1), only with the contact kernel (the probe runs the scene's
+  // contact chain). Every y cell's jumps are located independently, so a shard locates those of
+  // its own cells (from its first node to the next shard's first) into kShardJumpGroup, and
+  // `railtab merge` joins them into the single run's kJumpGroup.
+  const bool sharded = options.shard_count > 1;
+  if (sharded) result.table.set_attribute("shard_jumps", options.make_kernel ? "not located" : "located");
+  if (!options.make_kernel) {
+    CellRange cells;
+    if (sharded) {
+      cells.first = std::stoull(*result.table.attribute("shard_y_begin"));
+      cells.last = std::stoull(*result.table.attribute("shard_y_end"));
+    }
+    const std::string root = sharded ? kShardJumpGroup : kJumpGroup;
     // Its own progress lines (the one-sided values cost columns of the kernel: minutes for the
     // exact model); none with --quiet.
     ProgressPrinter locating(log ? *log : std::cerr, options.terminal, "locating contact jumps", "tasks");
@@ -119,10 +135,10 @@ SweepSummary generate_table(const GenerateOptions& options) {
     ContactJumps jumps;
     auto t1 = t0;
     try {
-      jumps = locate_jumps(scene, {}, options.threads, locate_progress);
+      jumps = locate_jumps(scene, {}, options.threads, locate_progress, cells);
       locating.finish();
       t1 = std::chrono::steady_clock::now();
-      add_jumps(result.table, scene, jumps, {}, options.threads, sample_progress);
+      add_jumps(result.table, scene, jumps, {}, options.threads, sample_progress, root);
     } catch (const Interrupted&) {
       throw;
     } catch (const Error& e) {
@@ -143,7 +159,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
                           std::chrono::duration<double>(t2 - t1).count());
     }
   }
-  write_table(result.table, options.output, options.interrupt, {options.scene});
+  write_table(result.table, options.output, options.interrupt, inputs);
   if (keep_checkpoint) {
     std::error_code ignored;
     std::filesystem::remove(sweep.checkpoint, ignored);

@@ -21,6 +21,14 @@ namespace railtab {
 namespace {
 
 constexpr std::size_t kMaxAxisPoints = 1'000'000;  // guards against a range with a tiny step
+// The scene text is stored whole in the table (root attribute `scene`); the lookup refuses a string
+// attribute over 1 MiB (lookup/src/hdf5_file.hpp), so a larger scene could never make a table.
+constexpr std::size_t kMaxSceneTextBytes = 1'000'000;
+constexpr std::size_t kMaxDescriptionBytes = 100'000;  // scene.description: a paragraph, not a file
+// Adjacent grid nodes closer than this, relative to max(1, |node|), are refused: the lookup needs
+// a finite reciprocal of every cell width, and nodes a few ulps apart cannot be interpolated
+// between (y = [0, 5e-324, 1e-323] would make a table the lookup refuses).
+constexpr double kMinRelativeSpacing = 1e-12;
 
 using scene_toml::Context;
 using scene_toml::fail;
@@ -146,6 +154,13 @@ std::vector<double> parse_axis(const Section& s, const std::string& key, const t
     if (!(values[i] > values[i - 1])) {
       fail(s.context(), n.source(), s.dotted(key),
            fmt::format("grid is not strictly increasing ({} after {})", values[i], values[i - 1]));
+    }
+    const double scale = std::max({1.0, std::abs(values[i]), std::abs(values[i - 1])});
+    if (!(values[i] - values[i - 1] >= kMinRelativeSpacing * scale)) {
+      fail(s.context(), n.source(), s.dotted(key),
+           fmt::format("grid nodes {:g} and {:g} are too close (adjacent nodes must differ by at least {:g} x "
+                       "max(1, |node|)): the lookup cannot interpolate between them",
+                       values[i - 1], values[i], kMinRelativeSpacing));
     }
   }
   if (values.size() > kMaxAxisPoints) fail(s.context(), n.source(), s.dotted(key), "grid too large");
@@ -279,12 +294,20 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   }
 
   Scene scene;
+  RAILTAB_CHECK(toml_text.size() <= kMaxSceneTextBytes,
+                "{}: the scene is {} bytes, above the limit of {} (a table stores its scene text, and the lookup "
+                "refuses a text attribute over 1 MiB)",
+                source_name, toml_text.size(), kMaxSceneTextBytes);
   scene.text = std::string(toml_text);
 
   Section sc = section(ctx, root, "scene", {"name", "description"});
   scene.name = sc.string(sc.required("name"), "name");
   if (scene.name.empty()) fail(ctx, sc.required("name").source(), "scene.name", "must not be empty");
   scene.description = sc.string("description").value_or("");
+  if (scene.description.size() > kMaxDescriptionBytes) {
+    fail(ctx, sc.required("description").source(), "scene.description",
+         fmt::format("{} bytes, above the limit of {}", scene.description.size(), kMaxDescriptionBytes));
+  }
 
   Section pr = section(ctx, root, "profiles",
                        {"wheel", "rail", "smoothing", "wheel_mirror_y", "wheel_mirror_z", "rail_mirror_y",

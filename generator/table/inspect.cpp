@@ -79,7 +79,7 @@ std::string table_summary_json(const Table& table, const std::string& path, std:
     for (const TableDataset& d : g.datasets) {
       nlohmann::ordered_json dj{{"name", d.name},   {"units", d.units}, {"description", d.description},
                                 {"axes", d.axes},   {"shape", d.shape}, {"storage_bytes", d.storage_bytes}};
-      if (d.is_status) dj["status_counts"] = status_counts(d);
+      if (d.is_status && d.name == "status") dj["status_counts"] = status_counts(d);  // not the jump kinds
       gj["datasets"].push_back(dj);
     }
     out["groups"].push_back(gj);
@@ -118,7 +118,7 @@ void print_table_summary(const Table& table, const std::string& path, std::uintm
                        g.datasets.size(), bytes_text(static_cast<double>(raw)), bytes_text(static_cast<double>(stored)));
     for (const TableDataset& d : g.datasets) {
       out << fmt::format("    {:16} [{}] {}  {}\n", d.name, d.units, shape_text(d), d.description);
-      if (d.is_status) print_status(d, out);
+      if (d.is_status && d.name == "status") print_status(d, out);  // not the jump kinds
     }
   }
 }

@@ -5,14 +5,42 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <ctime>
 #include <numeric>
 
 #include "core/check.hpp"
+#include "table/merge_jumps.hpp"
 #include "table/table_io.hpp"
 
 namespace railtab {
 namespace {
+
+// The shard's jumps (group shard_jumps and below): joined by join_shard_jumps, not along y.
+bool is_jump_group(const TableGroup& g) {
+  const std::string root = kShardJumpGroup;
+  return g.path == root || g.path.rfind(root + "/", 0) == 0;
+}
+
+// Groups joined along y (the wheel parts, the root datasets).
+std::size_t joined_groups(const Table& t) {
+  return static_cast<std::size_t>(std::count_if(t.groups.begin(), t.groups.end(),
+                                                [](const TableGroup& g) { return !is_jump_group(g); }));
+}
+
+// The first dataset of `t` holding a NaN or an infinity ("" when none): every output and one-sided
+// value; not /equilibrium_roll (NaN where the roll search failed, by design) nor the jump
+// positions (NaN padding, checked by join_shard_jumps).
+std::string first_non_finite(const Table& t) {
+  for (const TableGroup& g : t.groups) {
+    for (const TableDataset& d : g.datasets) {
+      if (d.name == "equilibrium_roll" || (g.path == kShardJumpGroup && !d.is_status)) continue;
+      if (!std::all_of(d.values.begin(), d.values.end(), [](double v) { return std::isfinite(v); }))
+        return "/" + (g.path.empty() ? d.name : g.path + "/" + d.name);
+    }
+  }
+  return "";
+}
 
 struct ShardId {
   int index = 0;
@@ -67,20 +95,29 @@ Table merge_shards(const std::vector<Table>& shards, const std::vector<std::stri
     RAILTAB_CHECK(id.y_begin == expected_begin && id.y_end > id.y_begin && id.y_total == ids[order[0]].y_total,
                   "merge: {}: y range [{}, {}) does not continue the previous shards", name, id.y_begin, id.y_end);
     expected_begin = id.y_end;
-    for (const char* attr : {"format_version", "scene", "models", "fixed_axes", "railtab_version", "git_commit"}) {
+    // Shards written before the shards carried their jumps would merge into a table without them
+    // (different answers near a jump): refused.
+    RAILTAB_CHECK(t.attribute("shard_jumps"),
+                  "merge: {}: this shard carries no contact jumps of its y cells (written by an older railtab): "
+                  "generate the shards again",
+                  name);
+    for (const char* attr : {"format_version", "scene", "models", "fixed_axes", "railtab_version", "git_commit",
+                             "shard_jumps"}) {
       const std::string* a = t.attribute(attr);
       const std::string* b = first.attribute(attr);
       RAILTAB_CHECK(a && b && *a == *b, "merge: {} differs from {} in '{}' (not shards of one run)", name,
                     names[order[0]], attr);
     }
-    RAILTAB_CHECK(t.axes.size() == first.axes.size() && t.groups.size() == first.groups.size(),
+    RAILTAB_CHECK(t.axes.size() == first.axes.size() && joined_groups(t) == joined_groups(first),
                   "merge: {} has another layout than {}", name, names[order[0]]);
   }
   RAILTAB_CHECK(expected_begin == ids[order[0]].y_total, "merge: the shards cover {} of {} y values", expected_begin,
                 ids[order[0]].y_total);
 
   Table merged = first;
-  for (const char* attr : {"shard", "shard_y_begin", "shard_y_end", "shard_y_total"}) merged.remove_attribute(attr);
+  for (const char* attr : {"shard", "shard_y_begin", "shard_y_end", "shard_y_total", "shard_jumps"})
+    merged.remove_attribute(attr);
+  std::erase_if(merged.groups, [](const TableGroup& g) { return is_jump_group(g); });
   merged.set_attribute("created", utc_timestamp());
   for (TableAxis& axis : merged.axes) {
     for (std::size_t k = 1; k < order.size(); ++k) {
@@ -111,6 +148,10 @@ Table merge_shards(const std::vector<Table>& shards, const std::vector<std::stri
       d.storage_bytes = 0;
     }
   }
+  std::vector<const Table*> in_order;
+  std::vector<std::string> ordered_names;
+  for (std::size_t k : order) in_order.push_back(&shards[k]), ordered_names.push_back(names[k]);
+  join_shard_jumps(in_order, ordered_names, merged);
   return merged;
 }
 
@@ -118,7 +159,14 @@ std::size_t merge_table_files(const std::vector<std::string>& inputs, const std:
   std::vector<std::filesystem::path> input_paths(inputs.begin(), inputs.end());
   check_output_path(output, input_paths);  // before reading: an input is never overwritten
   std::vector<Table> shards;
-  for (const std::string& path : inputs) shards.push_back(read_table(path));
+  for (const std::string& path : inputs) {
+    shards.push_back(read_table(path));
+    // A value the lookup would refuse is named with its shard here, not later in the merged table
+    // (whose own load by the lookup, write_table's check, stays the last word).
+    const std::string where = first_non_finite(shards.back());
+    RAILTAB_CHECK(where.empty(), "merge: {}: dataset {} holds a non-finite value (the generator never writes one: "
+                  "the shard was altered or damaged); generate this shard again", path, where);
+  }
   Table merged = merge_shards(shards, inputs);
   shards.clear();  // the shards' memory before writing
   write_table(merged, output, nullptr, input_paths);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Safe output files (output_file.hpp): target checks by device and inode, a locked temporary
-// beside the target, fsync around the rename, removal of temporaries left by killed runs.
+// beside the target, fsync around the rename, removal of temporaries left by killed runs, the
+// checked reopening of an output a run continues.
 #include "table/output_file.hpp"
 
 #include <fcntl.h>
@@ -9,12 +10,13 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
-#include <fstream>
 
 #include "core/check.hpp"
+#include "core/input_files.hpp"
 
 namespace railtab {
 namespace {
@@ -54,6 +56,32 @@ void sync_directory(const fs::path& dir) {
   ::close(fd);
 }
 
+// Throws when the file `st` (reached as `target`) is one of `inputs` or a file this run read.
+void refuse_inputs(const fs::path& target, const struct stat& st, const std::vector<fs::path>& inputs) {
+  for (const fs::path& input : inputs) {
+    struct stat in {};
+    if (::stat(input.c_str(), &in) != 0) continue;
+    RAILTAB_CHECK(!(in.st_dev == st.st_dev && in.st_ino == st.st_ino),
+                  "{}: refusing to write: it is the input {} (same file); choose another output path",
+                  target.string(), input.string());
+  }
+  const std::string read = input_file_path({static_cast<std::uint64_t>(st.st_dev), static_cast<std::uint64_t>(st.st_ino)});
+  RAILTAB_CHECK(read.empty(), "{}: refusing to write: it is the input {} of this run (same file); choose another "
+                "output path", target.string(), read);
+}
+
+// Throws unless the existing `target` (`link`: its lstat) may be replaced or continued: a regular
+// file with one name, not a symbolic link.
+void refuse_links_and_special_files(const fs::path& target, const struct stat& link) {
+  RAILTAB_CHECK(!S_ISLNK(link.st_mode), "{}: refusing to write: it is a symbolic link; railtab writes only regular "
+                "files of their own (give the file it points to, or another path)", target.string());
+  RAILTAB_CHECK(S_ISREG(link.st_mode), "{}: refusing to write: it is {}, railtab writes only regular files",
+                target.string(), kind_of(link.st_mode));
+  RAILTAB_CHECK(link.st_nlink == 1, "{}: refusing to write: the file has {} names (hard links), and another name "
+                "may be someone's input; remove this name first or choose another path",
+                target.string(), static_cast<unsigned long long>(link.st_nlink));
+}
+
 }  // namespace
 
 fs::path temporary_path(const fs::path& target) { return target.string() + ".tmp." + std::to_string(::getpid()); }
@@ -69,20 +97,24 @@ void check_output_path(const fs::path& target, const std::vector<fs::path>& inpu
   // minute of work before the write would be lost.
   RAILTAB_CHECK(::access(parent.c_str(), W_OK | X_OK) == 0, "{}: cannot write in directory {} ({}); refused before starting",
                 target.string(), parent.string(), std::strerror(errno));
-  struct stat st {};
-  if (::stat(target.c_str(), &st) != 0) {
+  struct stat link {};
+  if (::lstat(target.c_str(), &link) != 0) {
     RAILTAB_CHECK(errno == ENOENT, "{}: cannot check the output path: {}", target.string(), std::strerror(errno));
     return;  // a new file
   }
-  RAILTAB_CHECK(S_ISREG(st.st_mode), "{}: refusing to write: it is {}, railtab writes only regular files",
-                target.string(), kind_of(st.st_mode));
-  for (const fs::path& input : inputs) {
-    struct stat in {};
-    if (::stat(input.c_str(), &in) != 0) continue;
-    RAILTAB_CHECK(!(in.st_dev == st.st_dev && in.st_ino == st.st_ino),
-                  "{}: refusing to write: it is the input {} (same file); choose another output path",
-                  target.string(), input.string());
-  }
+  // An input reached through a link is named as the input: the most useful message.
+  struct stat st {};
+  if (::stat(target.c_str(), &st) == 0) refuse_inputs(target, st, inputs);
+  refuse_links_and_special_files(target, link);
+}
+
+void check_output_directory(const fs::path& dir) {
+  static std::atomic<unsigned> serial{0};
+  const fs::path probe = dir / fmt::format(".railtab-write-check.{}.{}", ::getpid(), serial++);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  RAILTAB_CHECK(fd >= 0, "{}: cannot write there ({}); refused before starting", dir.string(), std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
 }
 
 std::size_t remove_stale_temporaries(const fs::path& target) {
@@ -109,7 +141,7 @@ std::size_t remove_stale_temporaries(const fs::path& target) {
 }
 
 OutputFile::OutputFile(fs::path target, const std::vector<fs::path>& inputs)
-    : target_(std::move(target)), temporary_(temporary_path(target_)) {
+    : target_(std::move(target)), temporary_(temporary_path(target_)), inputs_(inputs) {
   check_output_path(target_, inputs);
   remove_stale_temporaries(target_);
   lock_fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
@@ -136,21 +168,64 @@ void OutputFile::commit() {
   // file or the complete new one.
   RAILTAB_CHECK(::fsync(lock_fd_) == 0, "{}: cannot sync {}: {}", target_.string(), temporary_.string(),
                 std::strerror(errno));
-  check_output_path(target_);  // something non-regular may have appeared there meanwhile
+  // The name still leads to the file created (not a link or a file planted in its place).
+  struct stat held {};
+  struct stat named {};
+  RAILTAB_CHECK(::fstat(lock_fd_, &held) == 0 && ::lstat(temporary_.c_str(), &named) == 0 && S_ISREG(named.st_mode) &&
+                    held.st_dev == named.st_dev && held.st_ino == named.st_ino,
+                "{}: the temporary {} was replaced while it was written; not renamed", target_.string(),
+                temporary_.string());
+  check_output_path(target_, inputs_);  // something may have appeared there meanwhile
   RAILTAB_CHECK(::rename(temporary_.c_str(), target_.c_str()) == 0, "{}: cannot rename {} into place: {}",
                 target_.string(), temporary_.string(), std::strerror(errno));
   committed_ = true;
   sync_directory(directory_of(target_));
 }
 
-void write_text_file(const fs::path& target, std::string_view text) {
-  OutputFile file(target);
-  {
-    std::ofstream out(file.temporary(), std::ios::binary | std::ios::trunc);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.close();
-    RAILTAB_CHECK(out.good(), "{}: write failed", file.temporary().string());
+int OutputFile::commit_and_keep_open() {
+  commit();
+  const int fd = lock_fd_;
+  lock_fd_ = -1;
+  return fd;
+}
+
+int open_output_to_continue(const fs::path& path, const std::vector<fs::path>& inputs) {
+  struct stat link {};
+  if (::lstat(path.c_str(), &link) != 0) {
+    RAILTAB_CHECK(errno == ENOENT, "{}: cannot check the file: {}", path.string(), std::strerror(errno));
+    return -1;
   }
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) refuse_inputs(path, st, inputs);
+  refuse_links_and_special_files(path, link);  // before opening: a device is never opened
+  const int fd = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  RAILTAB_CHECK(fd >= 0, "{}: cannot open the file to continue it: {}", path.string(), std::strerror(errno));
+  try {
+    // What was opened is what is checked (the name may have changed since the lstat).
+    RAILTAB_CHECK(::fstat(fd, &link) == 0, "{}: cannot stat the file: {}", path.string(), std::strerror(errno));
+    refuse_inputs(path, link, inputs);
+    refuse_links_and_special_files(path, link);
+    RAILTAB_CHECK(try_lock(fd), "{}: another railtab run is writing this file; refused", path.string());
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  return fd;
+}
+
+void write_all(int fd, std::string_view bytes, const fs::path& file) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    RAILTAB_CHECK(n > 0, "{}: write failed: {}", file.string(), n < 0 ? std::strerror(errno) : "nothing written");
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+void write_text_file(const fs::path& target, std::string_view text, const std::vector<fs::path>& inputs) {
+  OutputFile file(target, inputs);
+  write_all(file.descriptor(), text, file.temporary());
   file.commit();
 }
 

@@ -24,6 +24,11 @@ inline constexpr int kTableFormatMajor = 2;
 inline constexpr int kTableFormatMinor = 2;
 inline constexpr const char* kTableFormatVersion = "2.2";
 
+// The group of the contact jumps along y (format 2.1, docs/table-format.md) and the one a shard
+// carries instead: the jumps of its y cells, which `railtab merge` joins into kJumpGroup.
+inline constexpr const char* kJumpGroup = "jumps";
+inline constexpr const char* kShardJumpGroup = "shard_jumps";
+
 struct TableAxis {
   std::string name;          // "y", "roll", "load", "xi", "eta", "phi", "slot"
   std::string units;         // "m", "rad", "N", "1", "rad/m"

@@ -12,13 +12,20 @@
 
 namespace railtab {
 
+// What write_table checks in the file it wrote before renaming it over the target.
+enum class WrittenCheck {
+  lookup,  // the lookup's own loader accepts it (table/loadable_check.hpp): every table railtab ships
+  none,    // nothing (tests writing deliberately odd tables for a reader to refuse)
+};
+
 // Write `table` to `target` through an OutputFile (table/output_file.hpp): first to
-// `target.tmp.<pid>`, synced and renamed to `target` only once complete and closed. Refuses a
-// target that is not a regular file or is one of `inputs`. Any failure (or `cancel` becoming true
-// between datasets, which throws Interrupted) removes the temporary file and leaves an existing
-// `target` untouched.
+// `target.tmp.<pid>`, synced, loaded by the lookup (`check`), and renamed to `target` only once
+// complete, closed and accepted. Refuses a target that is not a regular file or is one of
+// `inputs`. Any failure (or `cancel` becoming true between datasets, which throws Interrupted)
+// removes the temporary file and leaves an existing `target` untouched.
 void write_table(const Table& table, const std::filesystem::path& target,
-                 const std::atomic<bool>* cancel = nullptr, const std::vector<std::filesystem::path>& inputs = {});
+                 const std::atomic<bool>* cancel = nullptr, const std::vector<std::filesystem::path>& inputs = {},
+                 WrittenCheck check = WrittenCheck::lookup);
 
 // Read a whole table. Throws railtab::Error naming the file and the problem for: a missing or
 // non-HDF5 file, a truncated file, an unknown major format version, missing required groups,

@@ -3,6 +3,7 @@
 // that a damaged or foreign file fails here with the file name and the problem, not later with
 // garbage. Format 2's typed attributes come back as the text the Table holds (table_writer.cpp).
 #include <hdf5_hl.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/check.hpp"
+#include "core/input_files.hpp"
 #include "lookup_vlen/vlen_string.hpp"
 #include "table/h5_util.hpp"
 #include "table/table_io.hpp"
@@ -70,9 +72,16 @@ std::vector<std::string> split_axes(const std::string& text) {
 constexpr const char* kObjectAttributes[] = {"models", "accuracy_targets", "accuracy_achieved"};
 constexpr const char* kAttributeOrder[] = {"format_version", "railtab_version", "git_commit", "created",
                                           "scene", "scene_name", "models", "fixed_axes", "shard",
-                                          "shard_y_begin", "shard_y_end", "shard_y_total",
+                                          "shard_y_begin", "shard_y_end", "shard_y_total", "shard_jumps",
                                           "accuracy_targets", "accuracy_achieved"};
 constexpr const char* kCoordinateNames[] = {"y", "roll", "load", "xi", "eta", "phi", "slot"};
+
+// Dimensions without a coordinate (the jump list and its side), and uint32 datasets: status bits
+// and the jump kinds (<wheel>_kind).
+bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side"; }
+bool is_uint32_dataset(const std::string& name) {
+  return name == "status" || (name.size() > 5 && name.compare(name.size() - 5, 5, "_kind") == 0);
+}
 
 bool is_coordinate(const std::string& name) {
   return std::any_of(std::begin(kCoordinateNames), std::end(kCoordinateNames), [&](const char* n) { return name == n; });
@@ -94,7 +103,8 @@ class Reader {
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
   Table read() {
-    RAILTAB_CHECK(std::filesystem::exists(file_), "{}: no such file", file_);
+    // A regular file only (a FIFO would block every reader below), recorded as an input of the run.
+    ::close(open_input_file(file_, "table file"));
     // Metadata without checksums are refused before libhdf5 parses them (lookup/src/vlen_string.hpp).
     const std::string unchecked = lookup::detail::unchecksummed_metadata_problem(file_);
     RAILTAB_CHECK(unchecked.empty(), "{}: {}", file_, unchecked);
@@ -168,6 +178,9 @@ class Reader {
         table.groups.push_back(std::move(group));
       }
     }
+    for (const char* root : {kJumpGroup, kShardJumpGroup}) {
+      if (H5Lexists(file, root, H5P_DEFAULT) > 0) read_tree(table, file, root);
+    }
     return table;
   }
 
@@ -184,6 +197,24 @@ class Reader {
                   "{}: table format version {} is not supported (this railtab reads 1.x to {}.x); regenerate the "
                   "table or use a matching railtab",
                   file_, version, kTableFormatMajor);
+  }
+
+  // The group `path` (under `parent`) and its subgroups, depth first, each group's datasets
+  // before its subgroups (the order the generator writes /jumps and /jumps/<wheel>/<part> in).
+  void read_tree(Table& table, hid_t parent, const std::string& path) const {
+    const std::string name = path.substr(path.rfind('/') + 1);
+    h5::Id g(h5::check_id(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), file_, "open /" + path), H5Gclose);
+    TableGroup group{path, {}};
+    std::vector<std::string> subgroups;
+    for (const std::string& member : links(g, file_, "/" + path)) {
+      if (is_coordinate(member) || is_plain_dimension(member)) continue;  // the group's copies of its axes
+      h5::Id object(h5::check_id(H5Oopen(g, member.c_str(), H5P_DEFAULT), file_, "open /" + path + "/" + member),
+                    H5Oclose);
+      if (H5Iget_type(object) == H5I_GROUP) subgroups.push_back(member);
+      else group.datasets.push_back(read_dataset(table, g, path, member));
+    }
+    if (!group.datasets.empty()) table.groups.push_back(std::move(group));
+    for (const std::string& sub : subgroups) read_tree(table, g, path + "/" + sub);
   }
 
   bool is_scalar(hid_t group, const std::string& name) const {
@@ -242,6 +273,7 @@ class Reader {
     std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
     if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
     for (int i = 0; i < rank; ++i) {
+      if (is_plain_dimension(d.axes[static_cast<std::size_t>(i)])) continue;  // a list index: any extent
       const TableAxis* axis = table.axis(d.axes[static_cast<std::size_t>(i)]);
       RAILTAB_CHECK(axis, "{}: {}: axis '{}' not in /axes", file_, where, d.axes[static_cast<std::size_t>(i)]);
       RAILTAB_CHECK(axis->values.size() == dims[static_cast<std::size_t>(i)],
@@ -251,8 +283,8 @@ class Reader {
     d.shape.assign(dims.begin(), dims.end());
     h5::Id type(h5::check_id(H5Dget_type(ds), file_, where), H5Tclose);
     d.is_status = H5Tget_class(type) == H5T_INTEGER;
-    RAILTAB_CHECK(d.is_status == (name == "status"), "{}: {}: {} dataset expected", file_, where,
-                  name == "status" ? "uint32" : "float64");
+    RAILTAB_CHECK(d.is_status == is_uint32_dataset(name), "{}: {}: {} dataset expected", file_, where,
+                  is_uint32_dataset(name) ? "uint32" : "float64");
     std::string what = "read " + where + " (truncated or damaged file?)";
     if (d.is_status) {
       d.status.resize(d.size());

@@ -464,7 +464,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   // would touch (measured: 5 in 1,000 single-byte changes), while the lookup alone reads none.
   if (d->checksums_verified) f.check_all_string_attributes();
   const int major = read_version(f, *d);
-  refuse_shard(f);
+  if (!options.accept_shard) refuse_shard(f);
   d->scene_name = f.string_attribute("/", "scene_name").value_or("");
   read_axes(f, *d, major);
   if (major == 1) read_fixed_axes(f, *d);  // format 2 stores them in /axes (read_axes)

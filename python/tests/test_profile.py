@@ -50,6 +50,24 @@ def test_simpack_round_trip(tmp_path):
         railtab.write_simpack(tmp_path / "rail.prw", "rail", u, z)
 
 
+def test_write_simpack_goes_through_the_safe_output_path(tmp_path):
+    """A FIFO, a symbolic link or a second name of another file at the target is refused; a link
+    planted at PATH.tmp is not followed (the temporary is created exclusively)."""
+    import os
+    wheel = railtab.Profile.s1002()
+    (tmp_path / "victim.txt").write_text("precious")
+    os.mkfifo(tmp_path / "f.prw")
+    os.symlink("victim.txt", tmp_path / "soft.prw")
+    os.link(tmp_path / "victim.txt", tmp_path / "hard.prw")
+    for name, problem in (("f.prw", "FIFO"), ("soft.prw", "symbolic link"), ("hard.prw", "hard links")):
+        with pytest.raises(railtab.Error, match=problem):
+            wheel.write_simpack(tmp_path / name)
+    os.symlink("victim.txt", tmp_path / "z.prw.tmp")
+    wheel.write_simpack(tmp_path / "z.prw")
+    assert (tmp_path / "victim.txt").read_text() == "precious"
+    assert (tmp_path / "f.prw").is_fifo() and (tmp_path / "z.prw").read_text().startswith("! SIMPACK")
+
+
 @pytest.mark.skipif(not SHARED.exists(), reason=f"{SHARED} absent (reference data, optional)")
 def test_manchester_benchmark_wheel_is_s1002():
     mbench = railtab.Profile.read(SHARED / "MBench_S1002_v3.prw", "wheel")

@@ -172,6 +172,10 @@ struct LoadOptions {
   // Refuse a table without dataset checksums (another tool's; format 1.0 is always refused) instead of loading it with
   // Table::checksums_verified() false. docs/table-format.md, "Integrity".
   bool require_checksums = false;
+  // Load a shard (`railtab generate --shard I/N`, root attribute `shard`) as the table of its own
+  // y range instead of refusing it: what the generator's writers use to check a shard they wrote
+  // or are about to merge. A simulation loads the merged table.
+  bool accept_shard = false;
 };
 
 // Any problem while loading a table: missing/truncated/corrupt file, unknown major version,

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "core/check.hpp"
+#include "core/input_files.hpp"
 #include "profile/formats/profile_limits.hpp"
 
 namespace railtab {
@@ -35,6 +36,7 @@ std::string read_regular_file(const std::filesystem::path& file, std::size_t max
   struct stat st {};
   if (::fstat(d.fd, &st) != 0) fail(file, fmt::format("cannot stat the file ({})", std::strerror(errno)));
   if (!S_ISREG(st.st_mode)) fail(file, "not a regular file (a device, FIFO, socket or directory): refused");
+  note_input_file(file.string(), {static_cast<std::uint64_t>(st.st_dev), static_cast<std::uint64_t>(st.st_ino)});
   if (st.st_size < 0 || static_cast<std::size_t>(st.st_size) > max_bytes) {
     fail(file, fmt::format("{} bytes, more than the limit of {} bytes", static_cast<long long>(st.st_size),
                            max_bytes));

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 
 #include "generator/synthetic_kernel.hpp"
@@ -96,6 +97,42 @@ TEST(Generate, CheckpointOfAnotherSceneIsDiscarded) {
   EXPECT_EQ(s.points_computed, s.points_total);
 }
 
+// A checkpoint record altered with its checksum recomputed (every byte of its payload 0xff: NaN
+// in every float64 output) is refused on resume, naming the checkpoint; no table is written.
+TEST(Generate, AlteredCheckpointRecordIsRefused) {
+  Fixture f("gen_ckpt_nan");
+  f.options.resume = true;
+  f.control.interrupt_after = 5;
+  EXPECT_THROW(generate_table(f.options), Interrupted);
+  const std::filesystem::path partial = checkpoint_path(f.options.output);
+  std::string bytes;
+  {
+    std::ifstream in(partial, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // Layout (sweep/checkpoint.cpp): 32-byte header (magic, key, record bytes), then records of
+  // block index, payload and FNV-1a checksum over both.
+  std::uint64_t record_bytes = 0;
+  std::memcpy(&record_bytes, bytes.data() + 24, sizeof record_bytes);
+  ASSERT_GE(bytes.size(), 32 + 16 + record_bytes);
+  std::fill_n(bytes.begin() + 40, record_bytes, '\xff');
+  const std::uint64_t sum = fnv1a(std::string_view(bytes.data() + 40, record_bytes), fnv1a(std::string_view(bytes.data() + 32, 8)));
+  std::memcpy(bytes.data() + 40 + record_bytes, &sum, sizeof sum);
+  std::ofstream(partial, std::ios::binary | std::ios::trunc) << bytes;
+
+  f.stop = false;
+  f.control.interrupt_after = -1;
+  try {
+    generate_table(f.options);
+    ADD_FAILURE() << "an altered checkpoint was resumed";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(partial.string() + ": the record of y block"), std::string::npos) << m;
+    EXPECT_NE(m.find("non-finite"), std::string::npos) << m;
+  }
+  EXPECT_FALSE(std::filesystem::exists(f.options.output));
+}
+
 TEST(Checkpoint, TornLastRecordIsDropped) {
   testing::TempDir dir("ckpt_torn");
   auto path = dir / "c.partial";
@@ -112,11 +149,15 @@ TEST(Checkpoint, TornLastRecordIsDropped) {
     EXPECT_EQ(records[0].block, 0u);
     c.append(5, std::vector<char>(8, 'c'));
   }
-  Checkpoint c(path, 42, 8);
-  auto records = c.take_records();
-  ASSERT_EQ(records.size(), 2u);
-  EXPECT_EQ(records[1].block, 5u);
-  EXPECT_FALSE(c.discarded());
+  {
+    Checkpoint c(path, 42, 8);
+    auto records = c.take_records();
+    ASSERT_EQ(records.size(), 2u);
+    EXPECT_EQ(records[1].block, 5u);
+    EXPECT_FALSE(c.discarded());
+    // Held while open: a second writer of the same checkpoint is refused.
+    EXPECT_THROW(Checkpoint(path, 42, 8), Error);
+  }
   Checkpoint other(path, 43, 8);
   EXPECT_TRUE(other.discarded());
   EXPECT_TRUE(other.take_records().empty());

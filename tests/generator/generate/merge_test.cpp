@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <railtab/lookup.hpp>
+
+#include <cstring>
 #include <fstream>
 
 #include "core/check.hpp"
@@ -51,6 +54,106 @@ TEST(Merge, ShardsEqualASingleRun) {
   EXPECT_FALSE(back.attribute("shard"));
   for (const char* attr : {"format_version", "scene", "scene_name", "models", "fixed_axes"}) {
     EXPECT_EQ(*back.attribute(attr), *single.tables[0].attribute(attr)) << attr;
+  }
+}
+
+// A contact scene (the real kernel) whose y grid is crossed by contact jumps: flange onset,
+// lift-off and rolling-radius steps fall between its 5 y nodes at both loads.
+constexpr const char* kJumpScene = R"(
+[scene]
+name = "jumps"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[contact]
+normal_model = "hertz"
+[grid]
+y = { start = -0.004, stop = 0.004, count = 5 }
+equilibrium_roll = true
+load = [60e3, 90e3]
+xi = [-0.002, 0.0, 0.002]
+eta = [-0.001, 0.001]
+)";
+
+// Positions of the jumps of one wheel ("left"/"right") at load node `l` (the list before its NaN
+// padding).
+std::vector<double> jump_positions(const Table& t, const std::string& wheel, std::size_t l) {
+  std::vector<double> out;
+  const TableDataset* y = t.group(kJumpGroup)->find(wheel + "_y");
+  const std::size_t width = y->shape.back();
+  for (std::size_t j = 0; j < width && !std::isnan(y->values[l * width + j]); ++j) out.push_back(y->values[l * width + j]);
+  return out;
+}
+
+TEST(Merge, MergedTableCarriesTheJumpsAndAnswersOfASingleRun) {
+  testing::TempDir dir{"merge_jumps"};
+  std::ofstream(dir / "scene.toml") << kJumpScene;
+  auto generate = [&](const std::string& output, int index, int count) {
+    GenerateOptions o;
+    o.scene = dir / "scene.toml";
+    o.output = dir / output;
+    o.shard_index = index;
+    o.shard_count = count;
+    o.threads = 2;
+    generate_table(o);
+    return o.output.string();
+  };
+  const std::string single_path = generate("single.h5", 1, 1);
+  // Three shards: the two shard boundaries cut the y grid, so jumps in the cells between shards count.
+  std::vector<std::string> shards;
+  for (int i = 1; i <= 3; ++i) shards.push_back(generate(fmt::format("s{}.h5", i), i, 3));
+  const std::string merged_path = (dir / "merged.h5").string();
+  merge_table_files({shards[2], shards[0], shards[1]}, merged_path);
+
+  const Table single = read_table(single_path), merged = read_table(merged_path);
+  ASSERT_TRUE(single.group(kJumpGroup)) << "the scene must have contact jumps for this test to mean anything";
+  ASSERT_TRUE(merged.group(kJumpGroup)) << "the merged table lost the jumps";
+  testing::expect_same_datasets(single, merged);  // the jump lists and one-sided values included
+
+  // The lookup's answers near every located jump (both sides, within the bisection tolerance and
+  // a little beyond) and at every y node, linear and cubic, bit for bit.
+  const TableAxis& loads = *single.axis("load");
+  std::size_t jumps = 0;
+  for (lookup::Method method : {lookup::Method::kLinear, lookup::Method::kCubic}) {
+    const lookup::Table a = lookup::Table::load(single_path, {method});
+    const lookup::Table b = lookup::Table::load(merged_path, {method});
+    for (int w = 0; w < 2; ++w) {
+      for (std::size_t l = 0; l < loads.values.size(); ++l) {
+        std::vector<double> ys = jump_positions(single, w == 0 ? "left" : "right", l);
+        jumps += ys.size();
+        std::vector<double> probes = single.axis("y")->values;
+        for (double y : ys)
+          for (double dy : {-1e-5, -1e-6, -4e-7, 0.0, 4e-7, 1e-6, 1e-5}) probes.push_back(y + dy);
+        for (double y : probes) {
+          lookup::State s = a.default_state();
+          s.y = y;
+          s.load = loads.values[l] + (l == 0 ? 1e3 : -1e3);  // inside the load cell, not on a node
+          s.xi = 0.001;
+          const lookup::Wheel wheel = w == 0 ? lookup::Wheel::kLeft : lookup::Wheel::kRight;
+          lookup::Result ra{}, rb{};
+          a.query(wheel, s, ra);
+          b.query(wheel, s, rb);
+          EXPECT_EQ(std::memcmp(&ra, &rb, sizeof ra), 0)
+              << "wheel " << w << " load " << s.load << " y " << y << ": contact angle "
+              << ra.contact[0].value[static_cast<int>(lookup::Output::kContactAngle)] << " (single) vs "
+              << rb.contact[0].value[static_cast<int>(lookup::Output::kContactAngle)] << " (merged)";
+        }
+      }
+    }
+  }
+  EXPECT_GT(jumps, 0u);
+}
+
+TEST(Merge, RefusesShardsWithoutTheirJumps) {
+  Shards two(2);
+  std::vector<Table> old = two.tables;
+  old[0].remove_attribute("shard_jumps");
+  try {
+    merge_shards(old, two.names);
+    ADD_FAILURE() << "a shard without its jumps was merged";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(two.names[0]), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("contact jumps"), std::string::npos) << e.what();
   }
 }
 

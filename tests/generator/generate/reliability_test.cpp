@@ -3,6 +3,7 @@
 // non-regular file, table sizes are checked (overflow, --max-points, --max-bytes) before any
 // allocation, and non-finite results are failed, never converged.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <fstream>
@@ -77,6 +78,93 @@ TEST(MergeOutput, RefusesAnInputShardAsOutput) {
   EXPECT_NE(message_of([&] { merge_table_files(shards, shards[0]); }).find("is the input"), std::string::npos);
   EXPECT_EQ(read_all(shards[0]), before);
   EXPECT_NO_THROW(merge_table_files(shards, (dir / "all.h5").string()));
+}
+
+// --resume continues OUTPUT.partial only when it is the run's own regular file: a symbolic link,
+// a second name of another file or a FIFO planted there is refused and the file it leads to is
+// untouched (it used to be overwritten with the checkpoint, exit 0).
+TEST(ResumeCheckpoint, RefusesALinkOrFifoPlantedAsThePartialFile) {
+  testing::TempDir dir("rel_partial");
+  GenerateOptions o = synthetic_options(dir);
+  o.resume = true;
+  std::ofstream(dir / "victim.txt") << "precious data";
+  fs::create_symlink("victim.txt", dir / "t.h5.partial");
+  EXPECT_NE(message_of([&] { generate_table(o); }).find("symbolic link"), std::string::npos);
+  fs::remove(dir / "t.h5.partial");
+  fs::create_hard_link(dir / "victim.txt", dir / "t.h5.partial");
+  EXPECT_NE(message_of([&] { generate_table(o); }).find("hard links"), std::string::npos);
+  fs::remove(dir / "t.h5.partial");
+  ASSERT_EQ(::mkfifo((dir / "t.h5.partial").c_str(), 0600), 0);
+  EXPECT_NE(message_of([&] { generate_table(o); }).find("FIFO"), std::string::npos);
+  EXPECT_EQ(read_all(dir / "victim.txt"), "precious data");
+  EXPECT_FALSE(fs::exists(dir / "t.h5"));
+}
+
+// The profile files a scene names are inputs: -o naming one is refused, whatever the spelling.
+TEST(GenerateOutput, RefusesAProfileOfTheScene) {
+  testing::TempDir dir("rel_profile_out");
+  const fs::path profiles = fs::path(RAILTAB_SOURCE_DIR) / "tests" / "data" / "profiles";
+  fs::copy_file(profiles / "Car7216_0001r.whl", dir / "Car7216_0001r.whl");
+  fs::copy_file(profiles / "avg_HR.BAN", dir / "avg_HR.BAN");
+  GenerateOptions o = synthetic_options(dir, R"([scene]
+name = "worn"
+[profiles]
+wheel = "Car7216_0001r.whl"
+rail = "avg_HR.BAN"
+[grid]
+y = { start = -0.004, stop = 0.004, count = 3 }
+load = 80e3
+)");
+  const std::string rail_before = read_all(dir / "avg_HR.BAN");
+  for (const fs::path& target : {dir / "avg_HR.BAN", dir.path() / "." / "Car7216_0001r.whl"}) {
+    o.output = target;
+    EXPECT_NE(message_of([&] { generate_table(o); }).find("is the input"), std::string::npos) << target;
+  }
+  EXPECT_EQ(read_all(dir / "avg_HR.BAN"), rail_before);
+}
+
+// A shard that is not a regular file (a FIFO without a writer) is refused at once, not waited on.
+TEST(MergeInput, RefusesAFifoShardWithoutBlocking) {
+  testing::TempDir dir("rel_merge_fifo");
+  GenerateOptions o = synthetic_options(dir);
+  o.output = dir / "s1.h5";
+  o.shard_index = 1;
+  o.shard_count = 2;
+  generate_table(o);
+  ASSERT_EQ(::mkfifo((dir / "s2.h5").c_str(), 0600), 0);
+  const std::string error =
+      message_of([&] { merge_table_files({(dir / "s1.h5").string(), (dir / "s2.h5").string()}, (dir / "m.h5").string()); });
+  EXPECT_NE(error.find("s2.h5"), std::string::npos) << error;
+  EXPECT_NE(error.find("FIFO"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(dir / "m.h5"));
+}
+
+// A shard holding a NaN (written past the lookup's check, as a tampered file would be) is refused
+// by merge before anything is joined, naming the shard; no output is written.
+TEST(MergeInput, ShardTheLookupRefusesIsNamed) {
+  testing::TempDir dir("rel_merge_nan");
+  GenerateOptions o = synthetic_options(dir);
+  std::vector<std::string> shards;
+  for (int i = 1; i <= 2; ++i) {
+    o.output = dir / fmt::format("s{}.h5", i);
+    o.shard_index = i;
+    o.shard_count = 2;
+    generate_table(o);
+    shards.push_back(o.output.string());
+  }
+  Table bad = read_table(shards[1]);
+  TableDataset* d = nullptr;
+  for (TableGroup& g : bad.groups)
+    for (TableDataset& x : g.datasets)
+      if (!d && !x.is_status && !g.path.empty()) d = &x;
+  ASSERT_TRUE(d);
+  d->values[0] = std::nan("");
+  write_table(bad, shards[1] + ".nan", nullptr, {}, WrittenCheck::none);
+  fs::rename(shards[1] + ".nan", shards[1]);
+  const std::string m = message_of([&] { merge_table_files(shards, (dir / "all.h5").string()); });
+  EXPECT_NE(m.find("merge: " + shards[1] + ": "), std::string::npos) << m;
+  EXPECT_NE(m.find("non-finite"), std::string::npos) << m;
+  EXPECT_FALSE(fs::exists(dir / "all.h5"));
 }
 
 // hostile/grid_product_overflow.toml: every axis under the per-axis limit, the product wraps 2^64.

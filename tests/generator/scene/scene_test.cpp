@@ -196,6 +196,44 @@ TEST(Scene, ValuesInTheWrongUnitAreRefused) {
   EXPECT_EQ(error_of(head + "y = [-0.05, 0.05]\nload = [5e3, 250e3]\n"), "");
 }
 
+// Grids the lookup could not interpolate (tests/data/hostile/scene_y_subnormal.toml: y nodes
+// 5e-324 apart) and scene texts too large for the table's scene attribute are refused up front,
+// naming the file and the key, before any table is computed.
+TEST(Scene, GridNodesTooCloseAreRefused) {
+  const std::filesystem::path file = std::filesystem::path(RAILTAB_SOURCE_DIR) / "tests/data/hostile/scene_y_subnormal.toml";
+  const std::string m = test::error_message([&] { load_scene(file); });
+  EXPECT_EQ(m.rfind(file.string() + ":", 0), 0u) << m;
+  EXPECT_NE(m.find("grid.y"), std::string::npos) << m;
+  EXPECT_NE(m.find("too close"), std::string::npos) << m;
+  expect_errors({{"nodes 1e-13 apart", "[scene]\nname = \"t\"\n[profiles]\nwheel = \"s1002\"\nrail = \"uic60\"\n"
+                                       "[grid]\ny = [0.001, 0.0010000000000001]\nload = 78500\n",
+                  "grid.y", "too close"},
+                 {"a range of subnormal width", "[scene]\nname = \"t\"\n[profiles]\nwheel = \"s1002\"\nrail = \"uic60\"\n"
+                                                "[grid]\ny = 0.0\nload = {start = 6e4, stop = 6.00000000000001e4, count = 3}\n",
+                  "grid.load", "too close"}});
+  // Close but resolvable nodes still parse (1e-9 m apart).
+  EXPECT_EQ(error_of("[scene]\nname = \"t\"\n[profiles]\nwheel = \"s1002\"\nrail = \"uic60\"\n"
+                     "[grid]\ny = [0.001, 0.001000001]\nload = 78500\n"),
+            "");
+}
+
+TEST(Scene, OversizedDescriptionOrSceneIsRefused) {
+  const std::string head = "[scene]\nname = \"t\"\ndescription = \"";
+  const std::string tail = "\"\n[profiles]\nwheel = \"s1002\"\nrail = \"uic60\"\n[grid]\ny = 0.0\nload = 78500\n";
+  // The round's case: a 1.5 MB description (the table would carry it in its scene attribute,
+  // which the lookup refuses above 1 MiB).
+  std::string m = error_of(head + std::string(1'500'000, 'd') + tail);
+  EXPECT_EQ(m.rfind("bad.toml", 0), 0u) << m.substr(0, 200);
+  EXPECT_NE(m.find("above the limit"), std::string::npos) << m.substr(0, 200);
+  m = error_of(head + std::string(200'000, 'd') + tail);
+  EXPECT_NE(m.find("scene.description"), std::string::npos) << m.substr(0, 200);
+  EXPECT_NE(m.find("above the limit of 100000"), std::string::npos) << m.substr(0, 200);
+  // Comments count too: the whole text is stored.
+  m = error_of(head + "d" + tail + "#" + std::string(1'100'000, 'c') + "\n");
+  EXPECT_NE(m.find("the scene is 1100"), std::string::npos) << m.substr(0, 200);
+  EXPECT_EQ(error_of(head + std::string(90'000, 'd') + tail), "");
+}
+
 TEST(Scene, ErrorGivesTheLineOfTheKey) {
   std::string text = std::string(kMinimal) + "[track]\n\ngague = 1.435\n";
   int line = 0;

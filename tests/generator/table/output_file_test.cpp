@@ -14,6 +14,8 @@
 #include <fstream>
 
 #include "core/check.hpp"
+#include "core/input_files.hpp"
+#include "error_message.hpp"
 #include "generator/test_tables.hpp"
 #include "table/interrupt.hpp"
 
@@ -108,6 +110,90 @@ TEST(OutputFile, TemporaryOfThisProcessIsLockedWhileAlive) {
   EXPECT_THROW(OutputFile(dir / "t.h5"), Error);
   EXPECT_EQ(remove_stale_temporaries(dir / "t.h5"), 0u);  // held: not stale
   EXPECT_TRUE(fs::exists(first.temporary()));
+}
+
+// Where it writes, the output path follows no symbolic link and replaces no file with a second
+// name: the file the link or the other name leads to keeps its content.
+TEST(OutputFile, RefusesSymbolicAndHardLinks) {
+  testing::TempDir dir("out_links");
+  std::ofstream(dir / "victim.txt") << "precious";
+  fs::create_symlink("victim.txt", dir / "soft.csv");
+  fs::create_symlink("missing.txt", dir / "dangling.csv");
+  fs::create_hard_link(dir / "victim.txt", dir / "hard.csv");
+  for (const char* name : {"soft.csv", "dangling.csv"}) {
+    const std::string error = test::error_message([&] { write_text_file(dir / name, "x"); });
+    EXPECT_NE(error.find("symbolic link"), std::string::npos) << name << ": " << error;
+  }
+  const std::string error = test::error_message([&] { write_text_file(dir / "hard.csv", "x"); });
+  EXPECT_NE(error.find("2 names (hard links)"), std::string::npos) << error;
+  EXPECT_EQ(read_all(dir / "victim.txt"), "precious");
+  EXPECT_FALSE(fs::exists(dir / "missing.txt"));
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"dangling.csv", "hard.csv", "soft.csv", "victim.txt"}));
+}
+
+// A temporary replaced while it is written (a link planted in its place) is not renamed.
+TEST(OutputFile, CommitRefusesAReplacedTemporary) {
+  testing::TempDir dir("out_swap");
+  std::ofstream(dir / "victim.txt") << "precious";
+  OutputFile f(dir / "t.csv");
+  fs::remove(f.temporary());
+  fs::create_symlink("victim.txt", f.temporary());
+  EXPECT_NE(test::error_message([&] { f.commit(); }).find("was replaced"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "t.csv"));
+  EXPECT_EQ(read_all(dir / "victim.txt"), "precious");
+}
+
+// A file the run read (core/input_files.hpp, on in the railtab command) is never an output,
+// whatever path or link names it; with recording off only the inputs given count.
+TEST(OutputFile, RefusesAFileTheRunRead) {
+  testing::TempDir dir("out_read");
+  std::ofstream(dir / "profile.txt") << "read";
+  fs::create_hard_link(dir / "profile.txt", dir / "other_name.txt");
+  track_input_files(true);
+  ::close(open_input_file((dir / "profile.txt").string(), "profile"));
+  const std::string error = test::error_message([&] { write_text_file(dir.path() / "." / "profile.txt", "x"); });
+  track_input_files(false);
+  EXPECT_NE(error.find("is the input"), std::string::npos) << error;
+  EXPECT_NE(error.find("of this run"), std::string::npos) << error;
+  EXPECT_EQ(read_all(dir / "profile.txt"), "read");
+}
+
+// --resume: an existing output is continued only when it is a regular file of one name, not an
+// input and not held by another run; a FIFO is refused without waiting for a writer.
+TEST(OutputFile, ContinuesOnlyARegularFileOfOneName) {
+  testing::TempDir dir("out_continue");
+  EXPECT_EQ(open_output_to_continue(dir / "none.partial"), -1);
+  std::ofstream(dir / "victim.txt") << "precious";
+  std::ofstream(dir / "scene.toml") << "scene";
+  fs::create_symlink("victim.txt", dir / "soft.partial");
+  fs::create_hard_link(dir / "victim.txt", dir / "hard.partial");
+  ASSERT_EQ(::mkfifo((dir / "fifo.partial").c_str(), 0600), 0);
+  EXPECT_NE(test::error_message([&] { open_output_to_continue(dir / "soft.partial"); }).find("symbolic link"),
+            std::string::npos);
+  EXPECT_NE(test::error_message([&] { open_output_to_continue(dir / "hard.partial"); }).find("hard links"),
+            std::string::npos);
+  EXPECT_NE(test::error_message([&] { open_output_to_continue(dir / "fifo.partial"); }).find("FIFO"),
+            std::string::npos);
+  EXPECT_NE(test::error_message([&] { open_output_to_continue(dir / "scene.toml", {dir / "scene.toml"}); })
+                .find("is the input"),
+            std::string::npos);
+  EXPECT_EQ(read_all(dir / "victim.txt"), "precious");
+  std::ofstream(dir / "ok.partial") << "records";
+  const int fd = open_output_to_continue(dir / "ok.partial");
+  ASSERT_GE(fd, 0);
+  EXPECT_NE(test::error_message([&] { open_output_to_continue(dir / "ok.partial"); }).find("another railtab run"),
+            std::string::npos);  // held while the first run has it open
+  ::close(fd);
+  const int again = open_output_to_continue(dir / "ok.partial");
+  EXPECT_GE(again, 0);
+  ::close(again);
+}
+
+TEST(OutputFile, DirectoryProbeLeavesNothing) {
+  testing::TempDir dir("out_probe");
+  EXPECT_NO_THROW(check_output_directory(dir.path()));
+  EXPECT_TRUE(dir.files().empty());
+  EXPECT_THROW(check_output_directory(dir / "missing"), Error);
 }
 
 TEST(Interrupt, SigtermSetsTheFlagLikeSigint) {

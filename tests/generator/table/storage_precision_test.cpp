@@ -76,12 +76,12 @@ TEST(StoragePrecision, FormatVersionChoosesTheStorage) {
 
 // A format-2.2 table with every part: geometry and normal (float64), creep and wear (float32),
 // all over (y, load, slot) but geometry (y, slot); with `jumps` also a jump list and one-sided
-// creep values in /jumps (which the generator's reader skips).
+// creep values in /jumps (partial: only for the types on disk).
 Table table_22(bool jumps) {
   Table t;
   t.attributes = {{"format_version", "2.2"}, {"railtab_version", "0.1.0"}, {"git_commit", "abc"},
                   {"created", "2026-11-26T00:00:00Z"}, {"scene", "[scene]\nname = \"t\"\n"},
-                  {"scene_name", "t"}, {"models", R"({"normal":"hertz"})"}, {"fixed_axes", R"({"roll":0.0})"}};
+                  {"scene_name", "t"}, {"models", R"({"normal":"hertz"})"}, {"fixed_axes", R"({"eta":0.0,"phi":0.0,"roll":0.0,"xi":0.0})"}};  // every state variable: the lookup loads it
   t.axes = {{"y", "m", "lateral displacement", {-0.002, -0.001, 0.0, 0.001, 0.002}, false},
             {"load", "N", "wheel load", {5e4, 8e4, 1e5}, false},
             {"slot", "1", "contact slot", {0, 1}, true}};
@@ -142,7 +142,8 @@ OnDisk on_disk(const std::filesystem::path& file, const std::string& dataset) {
 
 TEST(StoragePrecision, CreepAndWearOutputsAreWrittenAsRoundedFloat32) {
   testing::TempDir dir("storage_precision");
-  write_table(table_22(true), dir / "jumps.h5");
+  // A partial /jumps (one wheel's list, one part): the file types are all this test reads.
+  write_table(table_22(true), dir / "jumps.h5", nullptr, {}, WrittenCheck::none);
   for (const char* name : {"/left/creep/fx", "/left/creep/slip_fraction", "/right/creep/normal_force",
                            "/left/wear/wear_rate", "/jumps/left/creep/fx"}) {
     const OnDisk d = on_disk(dir / "jumps.h5", name);

@@ -11,6 +11,7 @@
 #include "core/check.hpp"
 #include "generator/test_tables.hpp"
 #include "table/interrupt.hpp"
+#include "table/loadable_check.hpp"
 #include "table/table_io.hpp"
 
 namespace railtab {
@@ -21,7 +22,7 @@ Table small_table(std::size_t ny = 3) {
   Table t;
   t.attributes = {{"format_version", "2.0"}, {"railtab_version", "0.1.0"}, {"git_commit", "abc"},
                   {"created", "2024-01-01T00:00:00Z"}, {"scene", "[scene]\nname = \"t\"\n"},
-                  {"scene_name", "t"}, {"models", R"({"normal":"hertz"})"}, {"fixed_axes", R"({"roll":0.0})"}};
+                  {"scene_name", "t"}, {"models", R"({"normal":"hertz"})"}, {"fixed_axes", R"({"eta":0.0,"phi":0.0,"roll":0.0,"xi":0.0})"}};  // every state variable: the lookup loads it
   TableAxis y{"y", "m", "lateral displacement", {}, false};
   for (std::size_t i = 0; i < ny; ++i) y.values.push_back(-0.001 + 0.001 * static_cast<double>(i));
   t.axes = {y, {"load", "N", "wheel load", {5e4, 8e4}, false}, {"slot", "1", "contact slot", {0, 1}, true}};
@@ -44,6 +45,12 @@ Table small_table(std::size_t ny = 3) {
     }
   }
   return t;
+}
+
+// Writes `t` unchecked to `path` and returns the lookup's problem with it ("" when it loads).
+std::string lookup_refusal_text(const Table& t, const std::filesystem::path& path) {
+  write_table(t, path, nullptr, {}, WrittenCheck::none);
+  return lookup_refusal(path, false).value_or("");
 }
 
 TEST(TableWriter, RoundTripKeepsEverything) {
@@ -140,6 +147,32 @@ TEST(TableWriter, InconsistentTableWritesNothing) {
   EXPECT_TRUE(dir.files().empty());
 }
 
+// The writer's last check: a table the lookup would refuse (here a NaN output, or y nodes 5e-324
+// apart) never replaces the target, and the error names the target and the lookup's problem.
+TEST(TableWriter, TableTheLookupRefusesIsNotWritten) {
+  testing::TempDir dir("writer_lookup_check");
+  const std::filesystem::path target = dir / "t.h5";
+  write_table(small_table(2), target);
+  Table nan = small_table(5);
+  ASSERT_FALSE(nan.groups[0].datasets[0].is_status);
+  nan.groups[0].datasets[0].values[1] = std::nan("");
+  Table subnormal = small_table(3);
+  subnormal.axes[0].values = {0.0, 5e-324, 1e-323};
+  for (const Table* bad : {&nan, &subnormal}) {
+    try {
+      write_table(*bad, target);
+      ADD_FAILURE() << "a table the lookup refuses was written";
+    } catch (const Error& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(target.string() + ": not written: the lookup would refuse"), std::string::npos) << m;
+      EXPECT_EQ(m.find(".tmp."), std::string::npos) << "names the temporary: " << m;
+    }
+    EXPECT_EQ(dir.files(), std::vector<std::string>{"t.h5"});  // no temporary left
+    EXPECT_EQ(read_table(target).axis("y")->values.size(), 2u);  // the old file is intact
+  }
+  EXPECT_NE(std::string(lookup_refusal_text(nan, dir / "nan.h5")).find("non-finite"), std::string::npos);
+}
+
 TEST(TableWriter, CancelRemovesTemporaryAndKeepsOldTarget) {
   testing::TempDir dir("writer_cancel");
   std::filesystem::path target = dir / "t.h5";
@@ -154,7 +187,7 @@ TEST(TableReader, RejectsUnknownMajorVersion) {
   testing::TempDir dir("reader_version");
   Table t = small_table();
   t.set_attribute("format_version", "3.0");
-  write_table(t, dir / "t.h5");
+  write_table(t, dir / "t.h5", nullptr, {}, WrittenCheck::none);  // the lookup refuses it too
   try {
     read_table(dir / "t.h5");
     FAIL() << "version 3.0 accepted";
@@ -188,7 +221,7 @@ TEST(TableReader, RejectsMissingDatasetsAndForeignFiles) {
   testing::TempDir dir("reader_missing");
   Table t = small_table();
   std::erase_if(t.group("right/normal")->datasets, [](const auto& d) { return d.name == "area"; });
-  write_table(t, dir / "t.h5");
+  write_table(t, dir / "t.h5", nullptr, {}, WrittenCheck::none);  // incomplete on purpose: for the reader
   try {
     read_table(dir / "t.h5");
     FAIL();
@@ -200,7 +233,7 @@ TEST(TableReader, RejectsMissingDatasetsAndForeignFiles) {
   EXPECT_THROW(read_table(dir / "absent.h5"), Error);
   t = small_table();
   t.remove_attribute("format_version");
-  write_table(t, dir / "nover.h5");
+  write_table(t, dir / "nover.h5", nullptr, {}, WrittenCheck::none);
   EXPECT_THROW(read_table(dir / "nover.h5"), Error);
 }
 
