@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Normalised creep coordinates (creep_map.hpp): node maps, saturation law, scales, vertical share.
 #include "kernel/creep_map.hpp"
 
 #include <algorithm>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Typed HDF5 attributes of format 2 (typed_attributes.hpp): writing and reading numbers, lists and strings.
 #include "table/typed_attributes.hpp"
 
 #include <fmt/format.h>

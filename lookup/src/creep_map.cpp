@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Normalised creep coordinates on the lookup side (creep_map.hpp): physical creepage to node coordinate and back to N.
 #include "creep_map.hpp"
 
 namespace railtab::lookup::detail {

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// The one JSON shape the lookup reads, a flat object such as the root attribute fixed_axes (flat_json.hpp).
 #include "flat_json.hpp"
 
 #include <charconv>

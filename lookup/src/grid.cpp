@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// One axis of nodes and the search placing a query value in its cell (grid.hpp).
 #include "grid.hpp"
 
 #include <algorithm>

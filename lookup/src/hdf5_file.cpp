@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Read-only HDF5 access for the loader (hdf5_file.hpp): every failure a LoadError naming the file.
 #include "hdf5_file.hpp"
 
 #include <filesystem>

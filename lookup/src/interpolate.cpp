@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// The interpolators over one block's records (interpolate.hpp): linear, cubic and monotone cubic.
 #include "interpolate.hpp"
 
 #include <algorithm>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Loading a table file into the query layout (table_load.hpp).
 #include "table_load.hpp"
 
 #include <algorithm>

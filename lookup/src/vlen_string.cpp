@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Variable-length string attributes read with bounds checks instead of libhdf5's own read (vlen_string.hpp).
 #include "vlen_string.hpp"
 
 #include <cstring>

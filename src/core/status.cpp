@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Status flags (status.hpp): their names and the text of a set of bits.
 #include "core/status.hpp"
 
 #include <array>

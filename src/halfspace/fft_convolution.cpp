@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Convolution of grid fields with influence kernels by FFT (fft_convolution.hpp).
 #include "halfspace/fft_convolution.hpp"
 
 #include <fftw3.h>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Influence coefficients of the elastic half-space for uniform loads on a rectangle (influence.hpp).
 #include "halfspace/influence.hpp"
 
 #include <cmath>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Normal contact of two elastic half-spaces on a grid (normal_solver.hpp): the BCCG solver.
 #include "halfspace/normal_solver.hpp"
 
 #include <algorithm>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Steady rolling with Coulomb friction on a grid (tangential_solver.hpp): Kalker's exact theory.
 #include "halfspace/tangential_solver.hpp"
 
 #include <algorithm>

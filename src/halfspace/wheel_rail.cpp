@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// The exact half-space model on a wheel-rail contact (wheel_rail.hpp): patches, grids, load control, wear.
 #include "halfspace/wheel_rail.hpp"
 
 #include <algorithm>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Per-thread FFT buffers and kernel spectra of the half-space solvers (workspace.hpp).
 #include "halfspace/workspace.hpp"
 
 #include "halfspace/influence.hpp"

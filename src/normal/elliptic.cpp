@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Complete elliptic integrals and the Hertz ellipse shape (elliptic.hpp).
 #include "normal/elliptic.hpp"
 
 #include <algorithm>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Hertz contact of two identical elastic bodies (hertz.hpp): semi-axes, approach, pressure.
 #include "normal/hertz.hpp"
 
 #include <algorithm>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// FASTSIM on an elliptic patch and on strips (fastsim.hpp): Kalker's simplified theory.
 #include "tangential/fastsim.hpp"
 
 #include <algorithm>

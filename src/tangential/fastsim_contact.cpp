@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// FASTSIM on any contact patch of the normal layer (fastsim_contact.hpp).
 #include "tangential/fastsim_contact.hpp"
 
 namespace railtab {

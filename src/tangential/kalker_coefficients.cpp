@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Kalker's creepage coefficients C11, C22, C23 of the linear theory (kalker_coefficients.hpp).
 #include "tangential/kalker_coefficients.hpp"
 
 #include <cmath>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Archard wear over a contact patch from the FASTSIM element results (archard.hpp).
 #include "wear/archard.hpp"
 
 #include <algorithm>

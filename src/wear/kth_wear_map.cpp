@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// The KTH wear map (kth_wear_map.hpp): wear coefficient by pressure and sliding speed.
 #include "wear/kth_wear_map.hpp"
 
 #include <cmath>

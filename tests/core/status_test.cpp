@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the status flags (src/core/status.hpp): names, text, bit values.
 #include "core/status.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the elliptic integrals and the Hertz ellipse shape (src/normal/elliptic.hpp).
 #include "normal/elliptic.hpp"
 
 #include <gtest/gtest.h>

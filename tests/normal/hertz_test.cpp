@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of Hertz contact of two identical elastic bodies (src/normal/hertz.hpp).
 #include "normal/hertz.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the Kik-Piotrowski model (src/normal/kik_piotrowski.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>

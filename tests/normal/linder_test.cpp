@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of Linder's model (src/normal/linder.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the normal model interface (src/normal/normal_model.hpp).
 #include "normal/normal_model.hpp"
 
 #include <gtest/gtest.h>

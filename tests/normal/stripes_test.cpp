@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of STRIPES with the A- and A&B-corrections (src/normal/stripes.cpp).
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of reading profile files (src/profile/formats/profile_io.hpp).
 #include "profile/formats/profile_io.hpp"
 
 #include <gtest/gtest.h>

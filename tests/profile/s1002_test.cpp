@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the S1002 wheel profile (src/profile/standard/s1002.hpp) against its definition.
 #include "profile/standard/s1002.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of spline profiles through measured points (src/profile/curves/spline_profile.hpp).
 #include "profile/curves/spline_profile.hpp"
 
 #include <gtest/gtest.h>

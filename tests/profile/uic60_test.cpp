@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the UIC60 rail head (src/profile/standard/uic60.hpp) against its definition.
 #include "profile/standard/uic60.hpp"
 
 #include <gtest/gtest.h>

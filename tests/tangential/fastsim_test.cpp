@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of FASTSIM on elliptic patches and strips (src/tangential/fastsim.hpp).
 #include "tangential/fastsim.hpp"
 
 #include <gtest/gtest.h>

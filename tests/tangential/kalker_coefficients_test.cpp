@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of Kalker's creepage coefficients (src/tangential/kalker_coefficients.hpp).
 #include "tangential/kalker_coefficients.hpp"
 
 #include <gtest/gtest.h>

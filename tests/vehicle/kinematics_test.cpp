@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the creepages from the wheelset's motion (src/vehicle/kinematics.hpp).
 #include "vehicle/kinematics.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the track a simulated wheelset runs on (src/vehicle/track_layout.hpp).
 #include "vehicle/track_layout.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of Archard wear over a patch (src/wear/archard.hpp).
 #include "wear/archard.hpp"
 
 #include <gtest/gtest.h>

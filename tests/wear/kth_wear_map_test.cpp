@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Tests of the KTH wear map (src/wear/kth_wear_map.hpp).
 #include "wear/kth_wear_map.hpp"
 
 #include <gtest/gtest.h>

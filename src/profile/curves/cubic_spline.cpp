@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Cubic splines through points, interpolating or smoothing (cubic_spline.hpp).
 #include "profile/curves/cubic_spline.hpp"
 
 #include <Eigen/Sparse>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Profiles that are not a function z(u): a parametric curve through measured points (parametric_profile.hpp).
 #include "profile/curves/parametric_profile.hpp"
 
 #include <algorithm>

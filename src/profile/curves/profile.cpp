@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// The Profile interface (profile.hpp): what every wheel and rail curve shares.
 #include "profile/curves/profile.hpp"
 
 #include <cmath>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// A profile through measured points as a C2 cubic spline (spline_profile.hpp).
 #include "profile/curves/spline_profile.hpp"
 
 #include <algorithm>

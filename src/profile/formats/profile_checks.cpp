@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Plausibility checks of a profile read from a file (profile_checks.hpp): units, orientation, extent.
 #include "profile/formats/profile_checks.hpp"
 
 #include <algorithm>

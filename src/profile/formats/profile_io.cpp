@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Reading profile files (profile_io.hpp): SIMPACK, MiniProf and two-column text into a Profile.
 #include "profile/formats/profile_io.hpp"
 
 #include <algorithm>

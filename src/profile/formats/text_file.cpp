@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// Reading an input file safely (text_file.hpp): regular files only, size capped.
 #include "profile/formats/text_file.hpp"
 
 #include <fcntl.h>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// The S1002 wheel profile from its piecewise analytic definition (s1002.hpp).
 #include "profile/standard/s1002.hpp"
 
 #include <cmath>

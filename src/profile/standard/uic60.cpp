@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+// The UIC60 / 60E1 rail head from its arcs (uic60.hpp).
 #include "profile/standard/uic60.hpp"
 
 #include <cmath>
