@@ -128,7 +128,7 @@ def test_generate_bad_thread_count_names_it(railtab_program, tmp_path, threads):
 
 def test_query_refuses_roll_on_an_equilibrium_roll_table(railtab_program, default_table):
     # The default table's roll follows the equilibrium: --roll would be silently ignored.
-    r = run(railtab_program, "query", str(default_table), "--y", "0.001", "--load", "70000", "--roll", "0.5")
+    r = run(railtab_program, "query", str(default_table), "--y", "0.001", "--load", "70000", "--roll", "0.005")
     assert r.returncode == 1 and r.stdout == "", (r.returncode, r.stdout)
     assert "--roll" in r.stderr and str(default_table) in r.stderr and "equilibrium" in r.stderr, r.stderr
     ok = run(railtab_program, "query", str(default_table), "--y", "0.001", "--load", "70000")
