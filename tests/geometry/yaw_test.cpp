@@ -162,7 +162,8 @@ Primary primary(const ContactGeometrySolver& solver, Side side, double y, double
   WheelsetState s;
   s.y = y;
   s.yaw = yaw;
-  const ContactPoint& p = solver.solve_wheel(side, s).points.front();
+  const WheelContactGeometry g = solver.solve_wheel(side, s);  // kept: p refers into it
+  const ContactPoint& p = g.points.front();
   return {p.wheel_u, p.rail_u, p.contact_angle, p.rolling_radius, p.x_track, p.x_wheel, p.curvature_a};
 }
 
