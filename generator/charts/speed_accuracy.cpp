@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Speed against accuracy: times and errors of every model setting and of table lookup at the states.
+// Speed against accuracy: times and errors of every model setting and of table lookup at the
+// states.
 #include "charts/speed_accuracy.hpp"
 
 #include <fmt/format.h>
@@ -150,7 +151,8 @@ SaOutcome evaluate(const Chain& c, const SaState& s, FastsimWorkspace& ws, WearD
   CreepConditions cc = c.creep;
   cc.friction = s.friction;
   const Creepage creepage{s.xi, s.eta, s.phi};
-  // The load is carried by normal and creep forces together (issue 14, scene key load_coupling).
+  // The load is carried by normal and creep forces together (load coupling, scene key
+  // load_coupling).
   CoupledLoadResult coupled;
   solve_coupled_load(g, s.load, solve_normal_for_load(g, s.load, c.material, c.normal), c.material, c.normal,
                      fastsim_tangential(g, [&](std::size_t, const ContactPatch&) { return creepage; }, cc,
@@ -278,8 +280,9 @@ std::vector<bool> pareto_front(const std::vector<double>& time, const std::vecto
   return front;
 }
 
-// CONTACT's block C runs are the built-in S1002 wheel on the built-in UIC60 rail at 1:40: a scene with
-// other profiles (a measured worn pair) or another cant is compared with the fallback reference.
+// CONTACT's block C runs are the built-in S1002 wheel on the built-in UIC60 rail at 1:40: a scene
+// with other profiles (a measured worn pair) or another cant is compared with the fallback
+// reference.
 bool contact_reference_applies(const Scene& scene) {
   return scene.wheel.name == "s1002" && scene.wheel.file.empty() && scene.rail.name == "uic60" &&
          scene.rail.file.empty() && scene.track.rail_inclination == 1.0 / 40.0;

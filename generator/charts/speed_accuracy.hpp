@@ -47,7 +47,7 @@ struct SaOutcome {
   double pmax = 0.0;          // [Pa] max over patches
   double angle = 0.0;         // contact angle of the patch with the largest normal force [rad]
   double fn = 0.0;            // [N] normal force, sum over patches (with the load coupling: at the
-                              //   state's creepage, issue 14)
+                              //   state's creepage)
   bool ok = false;            // a loaded contact was found
 };
 

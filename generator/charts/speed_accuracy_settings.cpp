@@ -30,7 +30,7 @@ std::vector<SaModelSetting> default_model_settings() {
   for (NormalModel m : {NormalModel::stripes_a, NormalModel::stripes_ab})
     for (int s : {10, 25, 50, 100})
       for (int e : {10, 20, 40}) v.push_back({m, s, e});
-  v.push_back({NormalModel::halfspace, 0, 0});  // where the exact model itself stands (issue 13)
+  v.push_back({NormalModel::halfspace, 0, 0});  // where the exact model itself stands
   return v;
 }
 

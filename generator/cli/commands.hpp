@@ -14,5 +14,5 @@ void add_query_command(CLI::App& app);     // query_command.cpp: interpolate a t
 void add_merge_command(CLI::App& app);     // merge_command.cpp: join shards into one table
 void add_chart_commands(CLI::App& app);    // chart_command.cpp: PNG charts from CSV
 void add_conicity_command(CLI::App& app);  // conicity_command.cpp: equivalent conicity (EN 15302)
-void add_simulate_command(CLI::App& app);  // simulate_command.cpp: wheelset run with wear (issue 8)
+void add_simulate_command(CLI::App& app);  // simulate_command.cpp: bogie run with wear
 }  // namespace railtab

@@ -49,7 +49,7 @@ void print_eval_text(const nlohmann::json& out) {
   for (const auto& w : out["wheels"]) {
     std::cout << fmt::format("\n{} wheel: vertical approach {:.4f} mm, status {}\n", w["side"].get<std::string>(),
                              w["vertical_approach"].get<double>() * 1e3, w["status"].get<std::string>());
-    if (w.contains("load_coupling")) {  // issue 14: the load carried by normal and creep forces
+    if (w.contains("load_coupling")) {  // the load coupling: normal and creep forces carry the load
       const auto& c = w["load_coupling"];
       // The half-space model's coupled solve does not report its iterations.
       const std::string iterations =

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// One wheelset state of a scene through the whole chain, as a typed result (state_eval.hpp; railtab eval).
+// One wheelset state of a scene through the whole chain, as a typed result (state_eval.hpp; railtab
+// eval).
 #include "eval/state_eval.hpp"
 
 #include <array>
@@ -149,8 +150,8 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
     FastsimWorkspace workspace;
     WearDistribution distribution;
     const Creepage creepage{request.creepage[0], request.creepage[1], request.creepage[2]};
-    // The load is carried by normal and creep forces together (issue 14): the normal contact is
-    // re-solved at the approach that balances both (tangential/coupled_load.hpp).
+    // The load is carried by normal and creep forces together (load coupling): the normal contact
+    // is re-solved at the approach that balances both (tangential/coupled_load.hpp).
     CoupledLoadResult coupled;
     solve_coupled_load(*e.geometry, load, e.normal, scene.material, scene.normal,
                        fastsim_tangential(*e.geometry, [&](std::size_t, const ContactPatch&) { return creepage; },
@@ -213,7 +214,8 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
         c.wear = e.creep[i].wear;
       }
       c.status = contact_status(c.patch, solver_bits, with_creep ? &e.creep[i] : nullptr);
-      // A failed contact makes its wheel failed too: the wheel line never says converged over a NaN.
+      // A failed contact makes its wheel failed too: the wheel line never says converged over a
+      // NaN.
       if (c.status & status::kFailed) wheel_bits = non_finite_status(wheel_bits);
       wheel.contacts.push_back(c);
     }

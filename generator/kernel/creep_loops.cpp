@@ -51,7 +51,7 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
   }
 }
 
-// With the load coupling (issue 14): per creepage the normal contact is re-solved so that normal
+// With the load coupling: per creepage the normal contact is re-solved so that normal
 // and creep forces together carry the load (tangential/coupled_load.hpp), starting from the
 // creepage-free solution `uncoupled` of load il; every loaded patch of the wheel gets the grid's
 // creepage (the table has one creepage per slot, shared by the slots in two-point contact). Both
@@ -99,7 +99,8 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
             const std::size_t cell = cells + s;
             if (!slots.occupied(s)) {
               // No patch here at this creepage: zeros; status 0 (no contact) as in the normal part,
-              // or converged,lift_off where the creepage-free solution had one (lifted by the coupling).
+              // or converged,lift_off where the creepage-free solution had one (lifted by the
+              // coupling).
               const StatusBits bits = uncoupled_slots.occupied(s) ? status::kConverged | status::kLiftOff : 0u;
               out.status(wheel, kCreepPart)[cell] = bits;
               out.status(wheel, kWearPart)[cell] = bits;
@@ -190,8 +191,8 @@ void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geom
             const std::size_t cell = cells + s;
             const ContactPatch patch = slots.occupied(s) ? slot_normal(normal, slots, s) : ContactPatch{};
             if (!(patch.normal_force > 0.0)) {
-              // No loaded patch here: zeros; status 0 where the creepage-free solution had none, else
-              // converged,lift_off (as solve_creep and solve_creep_coupled).
+              // No loaded patch here: zeros; status 0 where the creepage-free solution had none,
+              // else converged,lift_off (as solve_creep and solve_creep_coupled).
               const StatusBits bits = uncoupled_slots.occupied(s) ? status::kConverged | status::kLiftOff : 0u;
               out.status(wheel, kCreepPart)[cell] = bits | (bits ? uncoupled_slots.extra[s] : 0u);
               out.status(wheel, kWearPart)[cell] = bits | (bits ? uncoupled_slots.extra[s] : 0u);
@@ -215,8 +216,8 @@ void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geom
                 },
                 &wear);
             const bool creep_finite = store_values(kCreepOutputs, creep, out, wheel, kCreepPart, cell, where);
-            // The patch bits (area_too_small, not_planar, the coupled solve's not_converged) and the
-            // tangential solver's (full_slip, not_converged).
+            // The patch bits (area_too_small, not_planar, the coupled solve's not_converged) and
+            // the tangential solver's (full_slip, not_converged).
             StatusBits bits = creep.status | (patch.status & ~status::kConverged) | slots.extra[s];
             if (bits & status::kNotConverged) bits &= ~status::kConverged;
             out.status(wheel, kCreepPart)[cell] = normal_finite && creep_finite ? bits : non_finite_status(bits);

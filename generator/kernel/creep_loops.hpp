@@ -17,7 +17,7 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
                  const PatchSlots& slots, const ColumnState& state, std::size_t wheel, std::size_t il,
                  std::size_t slot, const creep_map::Scales* scales, ColumnOutput& out);
 
-// With the load coupling (issue 14): per creepage the normal contact is re-solved so that normal
+// With the load coupling: per creepage the normal contact is re-solved so that normal
 // and creep forces together carry the load, starting from `uncoupled`; both slots' cells.
 void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geometry,
                          const WheelNormalResult& uncoupled, const PatchSlots& uncoupled_slots,

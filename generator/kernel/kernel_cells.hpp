@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The contact kernel's cells: its outputs per part (names, units, how each is read from a result),
-// storing one cell (non-finite -> failed), the kernel's data and the creepage of a grid node. Shared
-// by contact_kernel.cpp (the columns) and creep_loops.cpp (the creep and wear loops); not a public
-// header of the sweep.
+// storing one cell (non-finite -> failed), the kernel's data and the creepage of a grid node.
+// Shared by contact_kernel.cpp (the columns) and creep_loops.cpp (the creep and wear loops); not a
+// public header of the sweep.
 #pragma once
 
 #include <fmt/format.h>
@@ -64,7 +64,8 @@ inline const Output<ContactPatch> kNormalOutputs[] = {
 };
 
 // Normal part, format 2.1 with normalised creep coordinates: the saturation scales of the slot's
-// creepage-free contact (kernel/creep_map.hpp), which map the creep part's coordinates to creepages.
+// creepage-free contact (kernel/creep_map.hpp), which map the creep part's coordinates to
+// creepages.
 inline const OutputInfo kCreepScaleOutputs[] = {
     {"creep_scale_xi", "1", "longitudinal creepage scale s_xi = 3 mu N / (G c^2 C11) of the creep part's coordinate"},
     {"creep_scale_eta", "1", "lateral creepage scale s_eta = 3 mu N / (G c^2 C22) of the creep part's coordinate"},
@@ -79,7 +80,7 @@ inline const Output<FastsimResult> kCreepOutputs[] = {
     {"slip_fraction", "1", "slipping share of the contact area", [](const FastsimResult& r) { return r.slip_fraction; }},
 };
 
-// Normal contact of a creep point (creep part, format 1.2): with the load coupling (issue 14) the
+// Normal contact of a creep point (creep part, format 1.2): with the load coupling the
 // normal contact depends on the creepage, because the creep forces carry part of the vertical load.
 inline const Output<ContactPatch> kCreepNormalOutputs[] = {
     {"normal_force", "N", "normal force along the contact normal at this creepage (load carried by normal and creep forces)",

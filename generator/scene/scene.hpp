@@ -34,8 +34,9 @@ struct TangentialSettings {
   int elements_per_strip = 20;    // FASTSIM cells along each strip [-]
   bool spin_per_strip = false;    // spin follows the local contact angle (STRIPES) [-]
   double speed = 20.0;            // rolling speed, for slip velocities and wear [m/s]
-  bool load_coupling = true;      // the creep forces' vertical share in the load balance (issue 14;
-                                  //   tangential/coupled_load.hpp); false: normal from the load alone
+  bool load_coupling = true;      // the creep forces' vertical share in the load balance (the
+                                  //   load coupling, tangential/coupled_load.hpp); false: normal
+                                  //   from the load alone
 };
 
 // The exact half-space model (normal_model = "halfspace", src/halfspace/wheel_rail.hpp).

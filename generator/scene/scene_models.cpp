@@ -24,12 +24,13 @@ constexpr double kSceneCouplingTolerance = 1e-3;
 CoupledLoadOptions coupled_load_options(const Scene& scene) {
   CoupledLoadOptions options;
   options.couple = scene.tangential.load_coupling;
-  // Balance to 1e-3 of the load: N (cos g + (fy/N) sin g) = Q with fy/N nearly independent of N,
-  // so the normal force is within about 0.1 % of the balanced one (a fifth of issue 14's 0.5 % on
-  // the tread, far below FASTSIM's error against CONTACT). The creepage-free start is accepted
-  // under the same rule, i.e. no coupled re-solve where the creep forces' vertical component
-  // |sum fy sin g| is below 1e-3 of the load (tread at small lateral creepage and spin), and most
-  // other points need one normal re-solve fewer than at the library default 1e-4 (docs/scenes.md).
+  // Balance to 1e-3 of the load: N (cos g + (fy/N) sin g) = Q with fy/N nearly independent of N, so
+  // the normal force is within about 0.1 % of the balanced one (a fifth of the load coupling's 0.5
+  // % target on the tread, far below FASTSIM's error against CONTACT). The creepage-free start is
+  // accepted under the same rule, i.e. no coupled re-solve where the creep forces' vertical
+  // component |sum fy sin g| is below 1e-3 of the load (tread at small lateral creepage and spin),
+  // and most other points need one normal re-solve fewer than at the library default 1e-4
+  // (docs/scenes.md).
   options.tolerance = kSceneCouplingTolerance;
   return options;
 }
@@ -37,7 +38,8 @@ CoupledLoadOptions coupled_load_options(const Scene& scene) {
 WearOptions wear_options(const Scene& scene) {
   WearOptions options;
   options.map.hardness = scene.wear.hardness;
-  // The scene gives the divisor of k_dry directly (1 dry, 5.5 natural contamination, 11 lubricated).
+  // The scene gives the divisor of k_dry directly (1 dry, 5.5 natural contamination, 11
+  // lubricated).
   options.map.factor_natural = scene.wear.lubrication_factor;
   options.lubrication = Lubrication::natural;
   validate(options.map);

@@ -107,7 +107,7 @@ WheelsetSample wheelset_sample(int wheelset, const vehicle::ContactSnapshot& sna
       const vehicle::SlotContact& c = snapshot.contacts[w].slot[k];
       if (!c.loaded) continue;
       // The dynamics' normal force at its creepage where the contact model couples the load
-      // (issue 14), so the post-processor's patches carry the same N as the dynamics' ones.
+      // (load coupling), so the post-processor's patches carry the same N as the dynamics' ones.
       const double f_n = snapshot.forces[w][k].normal_force;
       s.vertical_force[w] += (f_n > 0.0 ? f_n : c.normal_force) * std::cos(c.contact_angle);
     }

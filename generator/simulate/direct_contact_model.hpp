@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
-// vehicle::ContactModel evaluating the core at every call: rigid geometry at the equilibrium
-// roll, the scene's normal model under the wheel load, FASTSIM per loaded patch. Slots and outputs
-// are mapped exactly as the table sweep maps them (contact_kernel.hpp: assign_slots for the
-// geometry, assign_patch_slots for the patches, a slot's normal force/area and creep forces the sum
-// of its up to two patches by slot_normal and slot_creep), so at a grid node it returns what the
-// table holds. The reference run of `railtab simulate --direct`. With the scene's load coupling
-// (issue 14) creep() re-solves the normal contact of each wheel so that normal and creep forces
-// together carry the wheel load, each patch at its slot's creepage, and returns the slot's normal
-// force at that creepage in SlotForces::normal_force. The exact half-space model (normal_model =
-// "halfspace") goes through the same slots; its creep forces come from its steady rolling solution
-// (halfspace_contact.hpp), coupled as the table's when every loaded slot has the same creepage,
-// else per patch at its slot's creepage.
+// vehicle::ContactModel evaluating the core at every call: rigid geometry at the equilibrium roll,
+// the scene's normal model under the wheel load, FASTSIM per loaded patch. Slots and outputs are
+// mapped exactly as the table sweep maps them (contact_kernel.hpp: assign_slots for the geometry,
+// assign_patch_slots for the patches, a slot's normal force/area and creep forces the sum of its up
+// to two patches by slot_normal and slot_creep), so at a grid node it returns what the table holds.
+// The reference run of `railtab simulate --direct`. With the scene's load coupling
+// (docs/validation/load-coupling.md) creep() re-solves the normal contact of each wheel so that
+// normal and creep forces together carry the wheel load, each patch at its slot's creepage, and
+// returns the slot's normal force at that creepage in SlotForces::normal_force. The exact
+// half-space model (normal_model = "halfspace") goes through the same slots; its creep forces come
+// from its steady rolling solution (halfspace_contact.hpp), coupled as the table's when every
+// loaded slot has the same creepage, else per patch at its slot's creepage.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Python side of the speed target of issue 16: ns per state of a vectorised Table.query of 1e6
+"""Python side of the query speed target (docs/lookup.md, "From Python"): ns per state of a
+vectorised Table.query of 1e6
 uniformly random states over the table's axes (wheels alternating, every output of every slot),
 the same work as bench/lookup_vectorised_bench.cpp. Prints JSON: the best of `--repeat` runs, in
 process CPU time (as Google Benchmark's CPU column; wall time on a shared machine is noise).

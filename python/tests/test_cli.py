@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The railtab program's hygiene (issue 16 item 7): results on stdout, diagnostics on stderr,
+"""The railtab program's hygiene (docs/reliability.md, "`railtab query` streams"): results on
+stdout, diagnostics on stderr,
 -q/--quiet on every command, exit codes documented in --help, an unwritable output refused
 before any work starts."""
 import subprocess

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Load control in track axes with the creep forces in the balance (issue 14): the vertical wheel
-// load is carried by the normal force AND by the vertical component of the tangential force, so
-// the approach is found such that
+// Load control in track axes with the creep forces in the balance (load coupling): the vertical
+// wheel load is carried by the normal force AND by the vertical component of the tangential force,
+// so the approach is found such that
 //     sum over patches ( N_p cos g_p + fy_p sin g_p ) = Q
 // (forces on the wheel, track z up, g_p the patch's contact angle in the track frame, fy_p the
 // creep force along s = (0, cos g, sin g); docs/conventions.md "Load control in track axes"),
@@ -29,8 +29,8 @@
 namespace railtab {
 
 struct CoupledLoadOptions {
-  bool couple = true;        // false: the normal problem from the vertical load alone (as before
-                             //   issue 14); the creep forces are still computed on it
+  bool couple = true;        // false: the normal problem from the vertical load alone (without
+                             //   the load coupling); the creep forces are still computed on it
   double tolerance = 1e-4;   // relative tolerance on the vertical balance [-]: 8 N at 78.5 kN, far
                              //   below FASTSIM's own error against CONTACT (per cent); each tenfold
                              //   tightening costs about one more normal + FASTSIM solve per point

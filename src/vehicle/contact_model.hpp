@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// What the vehicle model needs from wheel-rail contact, whoever computes it: a contact table through
-// railtab::lookup (the normal case inside a time-stepping loop) or the core's models directly (the
-// reference run, `railtab simulate --direct`). Frames and signs: docs/conventions.md.
+// What the vehicle model needs from wheel-rail contact, whoever computes it: a contact table
+// through railtab::lookup (the normal case inside a time-stepping loop) or the core's models
+// directly (the reference run, `railtab simulate --direct`). Frames and signs: docs/conventions.md.
 #pragma once
 
 #include <cstdint>
@@ -39,7 +39,7 @@ struct SlotForces {
   double fy = 0.0;            // along s [N]
   double mz = 0.0;            // about n [N m]
   double normal_force = 0.0;  // normal force at this creepage when the source couples the load
-                              //   with the creep forces (issue 14) [N]; 0: normal()'s value holds
+                              //   with the creep forces [N]; 0: normal()'s value holds
   std::uint32_t status = 0;   // railtab status bits (e.g. kFullSlip, kOutOfRange)
 };
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The geometry's side of the profile-input reliability checks (issue 19, findings 3 and 7):
+// The geometry's side of the profile-input reliability checks (hostile sizes, wrong units):
 // profiles too large for its tables are refused before any allocation, and a rail file with the
 // cant built in is not canted a second time.
 #include <gtest/gtest.h>

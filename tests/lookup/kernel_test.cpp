@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The query path's internals against brute force (issue 15 speed-ups): the bucket search on
+// The query path's internals against brute force (docs/lookup-speed.md): the bucket search on
 // non-uniform axes finds exactly the cells of the binary search, the per-cell statuses of the
 // query layout equal the fold over the cell's corner nodes, and the AVX2 and SSE2 kernels give
 // the same bytes.

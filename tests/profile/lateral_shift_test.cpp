@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// Wheels measured from the flange back (issue 20): CONTACT's testbank wheel worn_high_mileage.prw
-// has y = 3.9 .. 143.4 mm with y = 0 at the flange back (CONTACT places it with FBPOS = 0) and
-// z = 0 on the tread at y = 70 mm. railtab's wheel frame needs u = 0 on the running circle, so the
-// plausibility check refuses it as given; ProfileReadOptions::lateral_shift (scene
-// profiles.wheel_shift_y) = -0.070 m places it as railtab expects, without editing the file.
+// Wheels measured from the flange back (measured worn profiles): CONTACT's testbank wheel
+// worn_high_mileage.prw has y = 3.9 .. 143.4 mm with y = 0 at the flange back (CONTACT places it
+// with FBPOS = 0) and z = 0 on the tread at y = 70 mm. railtab's wheel frame needs u = 0 on the
+// running circle, so the plausibility check refuses it as given; ProfileReadOptions::lateral_shift
+// (scene profiles.wheel_shift_y) = -0.070 m places it as railtab expects, without editing the file.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -89,7 +89,8 @@ TEST(LateralShift, ContactTestbankWornHighMileageWheel) {
   EXPECT_NEAR(wheel->u_max(), 143.440840e-3 - 0.070, 1e-9);
   // The file's tread crosses z = 0 at y = 70.1 mm: the running circle of railtab's frame.
   EXPECT_LT(std::abs(wheel->eval(0.0).z), 0.01e-3);
-  // Hollow: the tread rises by 1.0 mm between y = 84 mm (z = 0.33 mm up) and 130.5 mm (1.0 mm down).
+  // Hollow: the tread rises by 1.0 mm between y = 84 mm (z = 0.33 mm up) and 130.5 mm (1.0 mm
+  // down).
   EXPECT_GT(wheel->eval(0.014).z, wheel->eval(0.0).z + 0.3e-3);
 }
 

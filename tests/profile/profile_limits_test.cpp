@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// Reliability of the profile input (issue 19, findings 3 and 7): limits checked before anything
-// is allocated, only regular files read, and plausibility checks that refuse a wrong unit, a
-// wrong orientation, a cut file and a rail that would be canted twice. Each test here failed (or
-// crashed, or hung) before these checks existed.
+// Reliability of the profile input (docs/reliability.md: hostile sizes and wrong units): limits
+// checked before anything is allocated, only regular files read, and plausibility checks that
+// refuse a wrong unit, a wrong orientation, a cut file and a rail that would be canted twice. Each
+// test here failed (or crashed, or hung) before these checks existed.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 

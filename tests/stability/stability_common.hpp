@@ -371,12 +371,12 @@ inline std::vector<double> grid(double from, double to, double step) {
   return ys;
 }
 
-// Continuity (first_jump with character_change exemptions) of the total normal force, the
-// lateral force sum N_i sin(gamma_i), the total area and the vertical approach along a sweep.
-// `with_area` false skips the area (Hertz: the area follows the point's curvature, which jumps
-// where the profiles' radii change). `exempt_near_equal` also exempts a step when either sample
-// carries near_equal_minima (the primary point may jump there) or curvature_step (B at a point
-// steps where it crosses a profile radius transition): issue 20's "continuity in y except at
+// Continuity (first_jump with character_change exemptions) of the total normal force, the lateral
+// force sum N_i sin(gamma_i), the total area and the vertical approach along a sweep. `with_area`
+// false skips the area (Hertz: the area follows the point's curvature, which jumps where the
+// profiles' radii change). `exempt_near_equal` also exempts a step when either sample carries
+// near_equal_minima (the primary point may jump there) or curvature_step (B at a point steps where
+// it crosses a profile radius transition): the measured worn profiles' "continuity in y except at
 // flagged jumps"; off by default so that the two-point and transition tests keep checking them.
 // `refine(y)`, when given, solves the sweep's case at any y (a Summary); every suspected step is
 // then confirmed by refinement (refined_jump) before it fails the test.

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// Worn profiles through every normal model (issue 20): the measured worn high rail site_b_hr.prr
-// (CONTACT testbank, overhanging gauge face; tests/data/profiles), a hollow-worn S1002 wheel
-// built here (a 1.5 mm deep, 25 mm wide wear groove on the tread, the shape that gives two
-// near-equal gap minima), and the measured MiniProf wheel Car7216_0001r.whl with the averaged
-// high rail avg_HR.BAN (CONTACT testbank), paired with each other and with the new profiles. Each sweep in y:
-// every result finite and bitwise repeatable, FASTSIM and wear within |F| <= mu N (sweep()), and
-// the forces, approach and area continuous in y except where the patch/point count, the status
-// flags or the contact angle change (expect_continuous).
+// Worn profiles through every normal model (docs/validation/worn-profiles.md): the measured worn
+// high rail site_b_hr.prr (CONTACT testbank, overhanging gauge face; tests/data/profiles), a
+// hollow-worn S1002 wheel built here (a 1.5 mm deep, 25 mm wide wear groove on the tread, the shape
+// that gives two near-equal gap minima), and the measured MiniProf wheel Car7216_0001r.whl with the
+// averaged high rail avg_HR.BAN (CONTACT testbank), paired with each other and with the new
+// profiles. Each sweep in y: every result finite and bitwise repeatable, FASTSIM and wear within
+// |F| <= mu N (sweep()), and the forces, approach and area continuous in y except where the
+// patch/point count, the status flags or the contact angle change (expect_continuous).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -208,10 +208,10 @@ TEST(WornPairs, RefinementCatchesTheCurvatureStepJump) {
   EXPECT_EQ(first_jump(q, flagged, confirm), -1);
 }
 
-// Issue 20, hollow-worn treads: the primary rigid contact point moves continuously in y except
-// where the geometry flags near_equal_minima. A step of the sweep in which the primary point
-// moves more than 1 mm (on the rail, side frame) is a jump; at least one of its two samples must
-// carry the flag (it is set where a second point would become primary within a 0.1 mm shift).
+// Measured worn profiles, hollow-worn treads: the primary rigid contact point moves continuously in
+// y except where the geometry flags near_equal_minima. A step of the sweep in which the primary
+// point moves more than 1 mm (on the rail, side frame) is a jump; at least one of its two samples
+// must carry the flag (it is set where a second point would become primary within a 0.1 mm shift).
 // The sweeps hold 12 such jumps (up to 53 mm: hollow-tread minima and flange takeovers; without the
 // flag, i.e. near_equal_shift = 0, each one fails). The flag must also stay specific: at most a
 // quarter of the samples carry it (42 of 1405 do).

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// End to end against CONTACT (issue 15 acceptance, docs/lookup.md "Accuracy"): a table of the
+// End to end against CONTACT (lookup accuracy target, docs/lookup.md "Accuracy"): a table of the
 // default scene set up as the ../shared/reference CONTACT runs (nu 0.28, roll 0, Fz 78.5 kN),
 // queried through the public lookup API at the creepage states of block C
 // (blockC_sweep_integer_dy.csv), must differ from CONTACT by no more than a direct evaluation of
@@ -7,16 +7,16 @@
 //
 // The table: tables/default.toml with CONTACT's Poisson ratio, roll 0 (no equilibrium roll) and the
 // one load 78.5 kN (a load node of the default scene, so the load axis adds nothing at these
-// states); its model, creepage grids, normalised creep coordinates, knees and located jumps are
-// the default scene's. The y nodes are the midpoints of the default scene's y nodes over the
-// states' range (same spacing, 0.25 mm at the flange, 0.5 mm on the tread): the default grid has a
-// node at every integer millimetre, i.e. at every block C state; mid-way between nodes is where
-// the y interpolation error is largest; a second table puts them a quarter step from a node.
-// The states: CONTACT's creepages and forces mapped as `railtab chart` maps them
-// (charts/speed_accuracy_states.hpp, docs/speed-vs-accuracy.md "Method"); the states with
-// creepage (sets b..e; a_none has no creep force). Metric per state: |F - F_C| / (mu N_C), F the
-// creep-force vector (fx, fy) on the wheel summed over the loaded slots, N_C CONTACT's normal force.
-// Direct evaluation: the contact kernel at the state (accuracy_util.hpp, evaluate_direct).
+// states); its model, creepage grids, normalised creep coordinates, knees and located jumps are the
+// default scene's. The y nodes are the midpoints of the default scene's y nodes over the states'
+// range (same spacing, 0.25 mm at the flange, 0.5 mm on the tread): the default grid has a node at
+// every integer millimetre, i.e. at every block C state; mid-way between nodes is where the y
+// interpolation error is largest; a second table puts them a quarter step from a node. The states:
+// CONTACT's creepages and forces mapped as `railtab chart` maps them
+// (charts/speed_accuracy_states.hpp, docs/speed-vs-accuracy.md "Method"); the states with creepage
+// (sets b..e; a_none has no creep force). Metric per state: |F - F_C| / (mu N_C), F the creep-force
+// vector (fx, fy) on the wheel summed over the loaded slots, N_C CONTACT's normal force. Direct
+// evaluation: the contact kernel at the state (accuracy_util.hpp, evaluate_direct).
 //
 // Skipped (with a message) when ../shared/reference is absent. Run:
 // build/<dir>/tests/test_table_accuracy --gtest_filter='ContactEndToEnd*' (prints the numbers).
@@ -33,7 +33,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kMedianMargin = 0.005;  // of mu N (issue 15 acceptance)
+constexpr double kMedianMargin = 0.005;  // of mu N (lookup accuracy target)
 constexpr double kP90Margin = 0.01;
 
 // The y nodes: y_i + f (y_{i+1} - y_i) over the default scene's nodes y_i (f = 0.5: midpoints),

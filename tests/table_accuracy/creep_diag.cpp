@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// Diagnostic, not a test (issue 15 item 1; docs/lookup.md "Accuracy"): where do the creep-force
-// errors of the default table come from? The states and classification of
-// DefaultSceneRandomOffGrid; the 8000 direct evaluations cached in a file (they do not depend on
-// the table). Prints smooth-cell max/RMS of fx, fy / (mu N) per slot, the normalised force and N
-// errors separately, jump cells within 2 % and their misses by distance and kind of the nearest
-// jump; for the worst states, the error at the state's exact (y, load) (one-point tables: the
-// creepage axes alone) and with one creepage axis refined at a time.
+// Diagnostic, not a test (creep interpolation, docs/validation/creep-interpolation.md;
+// docs/lookup.md "Accuracy"): where do the creep-force errors of the default table come from? The
+// states and classification of DefaultSceneRandomOffGrid; the 8000 direct evaluations cached in a
+// file (they do not depend on the table). Prints smooth-cell max/RMS of fx, fy / (mu N) per slot,
+// the normalised force and N errors separately, jump cells within 2 % and their misses by distance
+// and kind of the nearest jump; for the worst states, the error at the state's exact (y, load)
+// (one-point tables: the creepage axes alone) and with one creepage axis refined at a time.
 //   creep_diag [cache.bin] [nx ne np] [worst]
-// env: DIAG_KNEE="kx ke kp" (scene creep_knee), DIAG_METHOD=1|2 (cubic lookups), DIAG_NO_JUMPS, DIAG_NO_DECOMPOSE, DIAG_SLOT=0|1,
+// env: DIAG_KNEE="kx ke kp" (scene creep_knee), DIAG_METHOD=1|2 (cubic lookups), DIAG_NO_JUMPS,
+// DIAG_NO_DECOMPOSE, DIAG_SLOT=0|1,
 //   DIAG_LINE="y load xi eta phi axis" (direct forces along creepage axis 2 xi, 3 eta, 4 phi),
 //   DIAG_PROFILE="y load nx ne np" (the stored normalised values of one (y, load) node).
 #include <chrono>

@@ -77,9 +77,9 @@ double node_scale(const TableView& view, const Scene& scene, int o, std::size_t 
 
 // Tolerance of the node test: 1e-9 of the scale (the lookup's float64 sums), and where format 2.2
 // stores an output as float32 rounded to 20 significant bits (the creep and wear parts, the creep
-// part's normal force included: table/storage_precision.hpp) 4 x 2^-20 of it: a stored value is within
-// 2^-20 of itself, and a force (F / (mu N) + law) mu N takes the rounding of F / (mu N) (<= 2)
-// and of N (<= 2 x 2^-20: the vertical share and fy / (mu N) in its rebuild).
+// part's normal force included: table/storage_precision.hpp) 4 x 2^-20 of it: a stored value is
+// within 2^-20 of itself, and a force (F / (mu N) + law) mu N takes the rounding of F / (mu N) (<=
+// 2) and of N (<= 2 x 2^-20: the vertical share and fy / (mu N) in its rebuild).
 double node_tolerance(const TableView& view, const Scene& scene, int o, std::size_t s) {
   const bool rounded = view.part_of(o) >= lk::kCreep;
   return (1e-9 + (rounded ? 4.0 * kStoredRounding : 0.0)) * node_scale(view, scene, o, s);
@@ -145,8 +145,8 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
     const Point& p = points[e.state];
     SlotStats& st = stats[o][s];
     if (!st.add(e, p, mu)) return;
-    // Normalised creep part (format 2.1): fx, fy, mz are stored as F / (mu N) minus a law, so
-    // the table's second differences do not bound their error in N: judged against mu N (SlotStats).
+    // Normalised creep part (format 2.1): fx, fy, mz are stored as F / (mu N) minus a law, so the
+    // table's second differences do not bound their error in N: judged against mu N (SlotStats).
     if (view.normalised() && (o == lk::kFx || o == lk::kFy || o == lk::kMz)) return;
     const double tolerance = st.check_tolerance(view, e);
     if (e.error > tolerance) {
@@ -182,10 +182,11 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
                   lk::output_name(static_cast<lk::Output>(o)), s, st.worst.v[kY], st.worst.v[kLoad], st.worst.v[kXi],
                   st.worst.v[kEta], st.worst.v[kPhi], st.worst_lookup, st.worst_direct);
     }
-  // Creep forces on smooth cells against mu N (issue 15): measured 0.0071 / 0.0080 (tread fx, fy) and
-  // 0.0069 / 0.0235 (flange) RMS, flange fx max 0.038, with the vertical share and creep_knee
-  // (docs/lookup.md "Accuracy"); before them the flange fx was 0.021 RMS, 0.19 max. Limits: the
-  // measured values with ~25 % margin (the issue's targets, 0.005 RMS and 0.02 max, are not met).
+  // Creep forces on smooth cells against mu N (lookup accuracy): measured 0.0071 / 0.0080 (tread
+  // fx, fy) and 0.0069 / 0.0235 (flange) RMS, flange fx max 0.038, with the vertical share and
+  // creep_knee (docs/lookup.md "Accuracy"); before them the flange fx was 0.021 RMS, 0.19 max.
+  // Limits: the measured values with ~25 % margin (the issue's targets, 0.005 RMS and 0.02 max, are
+  // not met).
   const double rms_limit[2][2] = {{0.009, 0.010}, {0.009, 0.030}};  // [slot][fx, fy]
   for (std::size_t s = 0; s < kSlots; ++s)
     for (int o : {lk::kFx, lk::kFy}) {
@@ -203,8 +204,8 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
 }
 
 // The creepage part of the error alone: states on (y, load) nodes, random creepages, so only the
-// creep coordinates are interpolated (the y direction, with its contact jumps, is issue 15 item 2).
-// Reported, not asserted.
+// creep coordinates are interpolated (the y direction, with its contact jumps, is
+// docs/validation/contact-jumps.md). Reported, not asserted.
 TEST(TableAccuracy, DefaultSceneCreepageOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);

@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// The fused query of the default table's shape (lookup/src/fast_path.cpp, issue 15 item 4) gives
-// the same bytes as the generic path (RAILTAB_LOOKUP_NO_FAST_PATH=1 at load), for query and
+// The fused query of the default table's shape (lookup/src/fast_path.cpp, docs/lookup-speed.md)
+// gives the same bytes as the generic path (RAILTAB_LOOKUP_NO_FAST_PATH=1 at load), for query and
 // query_slot of every slot, both wheels, at random states in and out of range, on grid nodes,
-// within 0.1 and 0.6 mm of every located jump (cut cells: the fast path has its own fused
-// one-sided query for them, cut_slot) and with non-finite variables; with the AVX2 and the SSE2
-// kernels.
+// within 0.1 and 0.6 mm of every located jump (cut cells: the fast path has its own fused one-sided
+// query for them, cut_slot) and with non-finite variables; with the AVX2 and the SSE2 kernels.
 //
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='FastPath*'
 #include <cmath>

@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// The multilinear lookup against the exact half-space model (issue 13: "its lookup-vs-direct
-// accuracy test as for the other models") at random off-grid states, with the metric of
-// default_scene_accuracy_test.cpp: per output and slot, smooth cells (every corner node and the
-// direct state share one status word) against |lookup - direct| <= kSafety e + kFloor scale
+// The multilinear lookup against the exact half-space model (docs/validation/halfspace.md: "its
+// lookup-vs-direct accuracy test as for the other models") at random off-grid states, with the
+// metric of default_scene_accuracy_test.cpp: per output and slot, smooth cells (every corner node
+// and the direct state share one status word) against |lookup - direct| <= kSafety e + kFloor scale
 // (SlotStats::check_tolerance; e the cell's interpolation error estimate from the table's own
-// second differences), jump cells
-// counted and reported; and the creep forces' error over mu N.
+// second differences), jump cells counted and reported; and the creep forces' error over mu N.
 //
 // Table: tables/default_halfspace.toml reduced so that it generates in about a minute of CPU:
 // y from -3 to 8 mm with the default's steps (0.5 mm on the tread, 0.25 mm from 6 mm where the

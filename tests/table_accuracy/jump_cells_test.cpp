@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// Contact jumps (issue 15 item 2, docs/lookup.md "Contact jumps"): the generator locates every jump
-// along y per wheel and load node (jump_locator.hpp) and the lookup interpolates a cell cut by one
-// from the query's side only. Measured here on the default scene at the random states of
-// default_scene_accuracy_test (same seed): the creep forces of every cell that is not smooth, with
-// the metric of the smooth cells, |F_lookup - F_direct| / (mu N), for the table with its jumps
-// (format 2.1) and the same table without them (the lookup of format 2.0), in two classes: jump
-// cells (a located jump of the slot inside the cell) and status-change cells (classify_point says
-// jump, e.g. two-point contact or a status bit changing, but no located jump cuts the cell). The
-// states beyond 2 % of mu N are listed with their distance from the nearest located jump
-// (RAILTAB_JUMP_MISSES_CSV=<file> writes all of them).
+// Contact jumps (docs/validation/contact-jumps.md, docs/lookup.md "Contact jumps"): the generator
+// locates every jump along y per wheel and load node (jump_locator.hpp) and the lookup interpolates
+// a cell cut by one from the query's side only. Measured here on the default scene at the random
+// states of default_scene_accuracy_test (same seed): the creep forces of every cell that is not
+// smooth, with the metric of the smooth cells, |F_lookup - F_direct| / (mu N), for the table with
+// its jumps (format 2.1) and the same table without them (the lookup of format 2.0), in two
+// classes: jump cells (a located jump of the slot inside the cell) and status-change cells
+// (classify_point says jump, e.g. two-point contact or a status bit changing, but no located jump
+// cuts the cell). The states beyond 2 % of mu N are listed with their distance from the nearest
+// located jump (RAILTAB_JUMP_MISSES_CSV=<file> writes all of them).
 //
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='JumpCells*' (prints the numbers).
 #include <algorithm>
@@ -28,7 +28,7 @@ namespace {
 
 constexpr std::uint64_t kSeed = 20240611;  // the states of DefaultSceneRandomOffGrid
 constexpr std::size_t kPoints = 4000;
-constexpr double kLimit = 0.02;            // of mu N (issue 15 acceptance)
+constexpr double kLimit = 0.02;            // of mu N (contact jumps target)
 
 struct JumpFixture {
   Scene scene;
@@ -171,7 +171,7 @@ std::pair<double, int> slot_error(const lk::Result& r, const WheelValues& direct
 
 // Cells of the creep part measured here (smooth cells are DefaultSceneRandomOffGrid's):
 //   jump: a located jump of the slot lies inside the cell (jump_in_cell): the one-sided lookup's
-//     own case (acceptance of issue 15: >= 99 % within 2 % of mu N);
+//     own case (contact jumps target: >= 99 % within 2 % of mu N);
 //   status change: classify_point calls the cell a jump (statuses differ between corners, two-point
 //     contact, Hertz/strip switch, ...) but no located jump cuts it: the lookup interpolates as in a
 //     smooth cell, so its error is the creepage and y interpolation error, not a jump's.
@@ -179,13 +179,13 @@ enum Category { kJumpInside = 0, kStatusChange = 1, kCategories = 2 };
 constexpr const char* kCategoryNames[kCategories] = {"jump cells (a located jump inside)",
                                                      "status-change cells (no located jump inside)"};
 
-// `creepage_nodes`: xi, eta, phi on random values of the scene's creepage lists; else uniform like y
-// and load (the states of DefaultSceneRandomOffGrid). With normalised creep coordinates (format
+// `creepage_nodes`: xi, eta, phi on random values of the scene's creepage lists; else uniform like
+// y and load (the states of DefaultSceneRandomOffGrid). With normalised creep coordinates (format
 // 2.1, the default scene) the list values are NOT the table's creep nodes (those sit at each slot's
-// own scale), so both variants carry the creepage interpolation error (issue 15 item 1); each miss
-// is therefore re-measured at its cell's y node on its side of the jump, which separates that error
-// from the jump's and y's.
-// Env RAILTAB_JUMP_MISSES_CSV=<file>: every state beyond the limit written there (the print is capped).
+// own scale), so both variants carry the creepage interpolation error
+// (docs/validation/creep-interpolation.md); each miss is therefore re-measured at its cell's y node
+// on its side of the jump, which separates that error from the jump's and y's. Env
+// RAILTAB_JUMP_MISSES_CSV=<file>: every state beyond the limit written there (the print is capped).
 void creep_forces_on_jump_cells(bool creepage_nodes) {
   const JumpFixture& f = fixture();
   const TableView view(f.table);

@@ -19,7 +19,8 @@
 // The lookup holds the 2.2 table's creep and wear records as floats (lookup/src/records.hpp):
 // half their memory, and every answer the same bits as with double records.
 //
-// Run: build/<dir>/tests/test_table_accuracy --gtest_filter='StoragePrecision*' (prints the numbers).
+// Run: build/<dir>/tests/test_table_accuracy --gtest_filter='StoragePrecision*' (prints the
+// numbers).
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -146,7 +147,7 @@ TEST(StoragePrecision, DefaultTableIsSmallerThanTheFloat64One) {
   const Tables& t = tables();
   std::printf("default table file: %ju B with float32 outputs (2.2), %ju B with float64 (2.1)\n", t.bytes[0],
               t.bytes[1]);
-  EXPECT_LE(t.bytes[0], 1700000u) << "issue 15: no larger than 1.7 MB";
+  EXPECT_LE(t.bytes[0], 1700000u) << "table size target: no larger than 1.7 MB";
   EXPECT_LT(t.bytes[0], t.bytes[1] / 2);
 }
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Coupled load control (issue 14): the vertical load carried by normal and creep forces together,
-// its sign against CONTACT's block C, and CONTACT's flange normal forces within 3 %.
+// Coupled load control (load coupling): the vertical load carried by normal and creep forces
+// together, its sign against CONTACT's block C, and CONTACT's flange normal forces within 3 %.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -111,15 +111,15 @@ TEST(CoupledLoad, TreadChangesLittleInFewIterations) {
   EXPECT_LE(s.coupled.iterations, 2);
 }
 
-// Issue 14 acceptance against block C's flange rows (dy >= 7 mm), STRIPES A&B (the default scene's
-// model) and Hertz. Checked: (1) STRIPES A&B within 3 % of CONTACT's normal force; (2) for both
-// models, where the uncoupled normal force is more than 15 % off CONTACT's, the coupling removes
-// at least three quarters of that error. Hertz is +3.9 % at dy = 8 a_none from its rigid-point
-// contact angle, before any coupling: its absolute 3 % is reported (not met on 4 rows), not checked.
-// Not checked, printed: CONTACT's dy = 7 a_none outlier (README) and dy = 7 b_long0.001, where
-// CONTACT's own spin is -0.28 rad/m (the same state as the outlier; mu tan g = 0.66 there makes N
-// three times as sensitive to fy): ours 609 kN (STRIPES) / 773 kN (Hertz) against 411 kN, reported
-// as not met in docs/validation.md.
+// Load coupling acceptance against block C's flange rows (dy >= 7 mm), STRIPES A&B (the default
+// scene's model) and Hertz. Checked: (1) STRIPES A&B within 3 % of CONTACT's normal force; (2) for
+// both models, where the uncoupled normal force is more than 15 % off CONTACT's, the coupling
+// removes at least three quarters of that error. Hertz is +3.9 % at dy = 8 a_none from its
+// rigid-point contact angle, before any coupling: its absolute 3 % is reported (not met on 4 rows),
+// not checked. Not checked, printed: CONTACT's dy = 7 a_none outlier (README) and dy = 7
+// b_long0.001, where CONTACT's own spin is -0.28 rad/m (the same state as the outlier; mu tan g =
+// 0.66 there makes N three times as sensitive to fy): ours 609 kN (STRIPES) / 773 kN (Hertz)
+// against 411 kN, reported as not met in docs/validation.md.
 TEST(CoupledLoad, BlockCFlangeNormalForce) {
   const auto rows = test::read_csv(std::string(RAILTAB_SHARED_DIR) + "/reference/blockC_sweep_integer_dy.csv");
   if (rows.empty()) GTEST_SKIP() << "reference block C not found";
@@ -136,8 +136,9 @@ TEST(CoupledLoad, BlockCFlangeNormalForce) {
       const Solved s = solve(g, num(row, "fz_prescribed_N"), model, c, num(row, "mu"));
       const double ref = num(row, "fn_N");
       const double err = s.normal / ref - 1.0;
-      // Conditioning of the balance N (cos g + (fy/N) sin g) = Q: d ln N / d(fy/N) = -sin g / (cos g + (fy/N)
-      // sin g) and d ln N / dg the same with (-sin g + (fy/N) cos g) on top; printed for ours and CONTACT's.
+      // Conditioning of the balance N (cos g + (fy/N) sin g) = Q: d ln N / d(fy/N) = -sin g / (cos
+      // g + (fy/N) sin g) and d ln N / dg the same with (-sin g + (fy/N) cos g) on top; printed for
+      // ours and CONTACT's.
       double fy = 0.0, angle = 0.0;
       for (std::size_t i = 0; i < s.coupled.normal.patches.size(); ++i) {
         fy += s.coupled.creep[i].fy;
@@ -167,17 +168,17 @@ TEST(CoupledLoad, BlockCFlangeNormalForce) {
   EXPECT_EQ(checked, 36);
 }
 
-// Issue 14's "tread rows unchanged within 0.5 %", block C's tread rows (dy < 7 mm), STRIPES A&B.
-// CONTACT's own normal force is not unchanged there: with the vertical load prescribed, the
-// lateral creep force's vertical component fs sin(angle) carries part of it (dy = 5 e_combined:
-// fn 79,620 -> 77,370 N, -2.8 %; dy = 6 e_combined -6.5 %; fn cos(angle) + fs sin(angle) = fz on
-// every row). Checked: (1) the coupling moves our N by exactly its first-order term
-// dN = -fy tan g (N0 cos g = Q uncoupled; fx has no vertical component), i.e. the right sign,
-// frame, angle and patch, converged; (2) what is left between our N and CONTACT's is the
-// difference of the creep forces' load share, (fs - fy) tan g, plus the creepage-free difference:
-// |N/N_C - 1 - (fs - fy) tan g / N_C| < 0.5 % on every row. Both fail with the coupling off
-// (dN = 0 against -7 %) or its sign flipped. N against CONTACT itself is printed: within 0.5 % on
-// all but dy = 5 c_lat, dy = 6 c_lat and e_combined, where FASTSIM's fy exceeds CONTACT's fs.
+// The load coupling's "tread rows unchanged within 0.5 %", block C's tread rows (dy < 7 mm),
+// STRIPES A&B. CONTACT's own normal force is not unchanged there: with the vertical load
+// prescribed, the lateral creep force's vertical component fs sin(angle) carries part of it (dy = 5
+// e_combined: fn 79,620 -> 77,370 N, -2.8 %; dy = 6 e_combined -6.5 %; fn cos(angle) + fs
+// sin(angle) = fz on every row). Checked: (1) the coupling moves our N by exactly its first-order
+// term dN = -fy tan g (N0 cos g = Q uncoupled; fx has no vertical component), i.e. the right sign,
+// frame, angle and patch, converged; (2) what is left between our N and CONTACT's is the difference
+// of the creep forces' load share, (fs - fy) tan g, plus the creepage-free difference: |N/N_C - 1 -
+// (fs - fy) tan g / N_C| < 0.5 % on every row. Both fail with the coupling off (dN = 0 against -7
+// %) or its sign flipped. N against CONTACT itself is printed: within 0.5 % on all but dy = 5
+// c_lat, dy = 6 c_lat and e_combined, where FASTSIM's fy exceeds CONTACT's fs.
 TEST(CoupledLoad, BlockCTreadNormalForceMovesAsContacts) {
   const auto rows = test::read_csv(std::string(RAILTAB_SHARED_DIR) + "/reference/blockC_sweep_integer_dy.csv");
   if (rows.empty()) GTEST_SKIP() << "reference block C not found";

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The exact half-space model selected as a normal model (issue 13): scene keys, railtab eval and
+// The exact half-space model selected as a normal model: scene keys, railtab eval and
 // the table sweep (generator/kernel/halfspace_contact.hpp). Small grids only: the slow accuracy
 // checks of the model itself are in tests/halfspace.
 #include <gtest/gtest.h>
@@ -130,7 +130,8 @@ TEST(HalfspaceSelectable, JumpConfigurationIsTheContactChains) {
   std::size_t compared = 0;
   // The default exact scene every 0.7 mm at the nominal load (one candidate patch throughout: its
   // S1002/UIC60 contacts lie within the 8 mm that merge into one patch), and the worn pairs' scenes
-  // with the exact model at the first states with two candidate patches (0.05 mm scan, no exact solve).
+  // with the exact model at the first states with two candidate patches (0.05 mm scan, no exact
+  // solve).
   for (const char* file : {"default_halfspace.toml", "worn_rail.toml", "worn_miniprof.toml"}) {
     Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / file);
     scene.normal.model = NormalModel::halfspace;

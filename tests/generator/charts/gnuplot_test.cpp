@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // gnuplot without a shell (generator/charts/gnuplot.hpp): paths quoted for gnuplot, a path with a
-// quote or shell syntax draws its chart and runs nothing (issue 19).
+// quote or shell syntax draws its chart and runs nothing (docs/reliability.md, "Programs railtab
+// starts").
 #include "charts/gnuplot.hpp"
 
 #include <gtest/gtest.h>

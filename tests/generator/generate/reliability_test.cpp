@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Reliability of railtab generate, merge and eval (issue 19): the output is never an input or a
-// non-regular file, table sizes are checked (overflow, --max-points, --max-bytes) before any
-// allocation, and non-finite results are failed, never converged.
+// Reliability of railtab generate, merge and eval (docs/reliability.md): the output is never an
+// input or a non-regular file, table sizes are checked (overflow, --max-points, --max-bytes) before
+// any allocation, and non-finite results are failed, never converged.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 

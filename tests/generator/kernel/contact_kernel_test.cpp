@@ -53,9 +53,10 @@ load = [60e3, 80e3]
   EXPECT_TRUE(geo.find("status")->status[1 * 2 + 0] & status::kConverged);
   EXPECT_NEAR(geo.find("rolling_radius")->values[1 * 2 + 0], 0.46, 0.005);
   // The vertical components of the normal forces of one wheel carry its load. Where two rigid
-  // points share a slot (kTwoPoint) the slot's force is the sum of its patches but the geometry part
-  // holds one point's angle, so there only an upper bound is checked (tests/generator/simulate/
-  // slot_sum_test.cpp checks the balance within the spread of the patch angles).
+  // points share a slot (kTwoPoint) the slot's force is the sum of its patches but the geometry
+  // part holds one point's angle, so there only an upper bound is checked
+  // (tests/generator/simulate/ slot_sum_test.cpp checks the balance within the spread of the patch
+  // angles).
   const TableGroup& nor = *a.table.group("left/normal");
   for (std::size_t iy = 0; iy < 4; ++iy) {
     bool dropped = false;
@@ -77,7 +78,7 @@ load = [60e3, 80e3]
   EXPECT_TRUE(geo.find("status")->status[3 * 2 + 1] & status::kFlangeContact);
 }
 
-// Load coupling (issue 14): the creep part holds the normal contact per creepage. Left wheel in
+// Load coupling: the creep part holds the normal contact per creepage. Left wheel in
 // flange contact (y = +8 mm, Hertz, one patch): N cos g + fy sin g equals the load within the
 // coupling tolerance at every creepage (g of the rigid point = the Hertz patch's angle), N moves
 // by tens of per cent between eta = -0.001 and +0.001, and the normal part keeps the

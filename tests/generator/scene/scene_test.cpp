@@ -278,8 +278,8 @@ TEST(Scene, MiniProfMirrorKeys) {
   EXPECT_NE(m.find("not one of auto, no, yes"), std::string::npos) << m;
 }
 
-// Issue 20: wheels measured from the flange back get profiles.wheel_shift_y; the built-in s1002
-// has its origin on the running circle already, so a shift of it is refused.
+// Measured worn profiles: wheels measured from the flange back get profiles.wheel_shift_y; the
+// built-in s1002 has its origin on the running circle already, so a shift of it is refused.
 TEST(Scene, WheelShiftYAndNearEqualKeys) {
   std::string text = kMinimal;
   text.replace(text.find("rail = \"uic60\"\n"), 15, "rail = \"uic60\"\nwheel_shift_y = 0.0\n");
@@ -295,8 +295,8 @@ TEST(Scene, WheelShiftYAndNearEqualKeys) {
   EXPECT_NE(m.find("wheel profile files only"), std::string::npos) << m;
 }
 
-// Issue 19, finding 3: a device or FIFO given as a scene used to be read without limit
-// (/dev/zero) or to block forever (a FIFO without a writer).
+// Reliability (docs/reliability.md): a device or FIFO given as a scene used to be read without
+// limit (/dev/zero) or to block forever (a FIFO without a writer).
 TEST(Scene, DeviceOrFifoIsRefusedWithoutReading) {
   for (const char* dev : {"/dev/zero", "/dev/urandom"}) {
     if (!std::filesystem::exists(dev)) continue;

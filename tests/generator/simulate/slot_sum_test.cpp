@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // A contact slot holding two patches carries both (contact_kernel.hpp: assign_patch_slots,
-// slot_normal, slot_creep): S1002 on UIC60 1:30, Hertz, left wheel at y = 5 mm, 70 kN: a tread patch
-// (~63 kN, 0.12 rad) and a flange-root patch (~8 kN, 0.30 rad), both below the 0.35 rad flange
-// angle, i.e. both in slot 0. The table, the direct model and the helpers must all give their sum.
+// slot_normal, slot_creep): S1002 on UIC60 1:30, Hertz, left wheel at y = 5 mm, 70 kN: a tread
+// patch (~63 kN, 0.12 rad) and a flange-root patch (~8 kN, 0.30 rad), both below the 0.35 rad
+// flange angle, i.e. both in slot 0. The table, the direct model and the helpers must all give
+// their sum.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -226,7 +227,7 @@ TEST(SlotSum, TableSlotCarriesBothPatchesAndTheLoadBalances) {
             spread + 1e-6 * kLoad);
 
   // Creep at every creepage node: the slot's sum (axes y, load, xi, eta, phi, slot), on the normal
-  // contact of that creepage (load coupling, issue 14: both patches at the node's creepage).
+  // contact of that creepage (load coupling: both patches at the node's creepage).
   const TableGroup& creep = *table.group("left/creep");
   const CreepConditions conditions = creep_conditions(s);
   const FastsimOptions options = fastsim_options(s);
@@ -250,7 +251,8 @@ TEST(SlotSum, TableSlotCarriesBothPatchesAndTheLoadBalances) {
         EXPECT_EQ(creep.find("fx")->values[i], r.fx) << xi << " " << eta << " " << phi;
         EXPECT_EQ(creep.find("fy")->values[i], r.fy);
         EXPECT_EQ(creep.find("mz")->values[i], r.mz);
-        // Two patches in the slot at the coupled approach (at a few creepages the second one lifts off).
+        // Two patches in the slot at the coupled approach (at a few creepages the second one lifts
+        // off).
         EXPECT_EQ(creep.find("status")->status[i] & status::kTwoPoint, slots.extra[0] & status::kTwoPoint);
         two_patch_cells += slots.patch[0][1] >= 0;
       }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Safe output files (generator/table/output_file.hpp): non-regular targets and inputs refused by
 // device and inode, stale temporaries of dead runs removed, live ones kept, SIGTERM sets the
-// interrupt flag (issue 19, items 1 and 8).
+// interrupt flag (docs/reliability.md, "Files railtab writes").
 #include "table/output_file.hpp"
 
 #include <gtest/gtest.h>

@@ -64,7 +64,7 @@ TEST(VlenStrings, LegacyVariableLengthStringsReadExactly) {
 // generator's reader crashed the same way; now: an error naming the problem.
 // The generator's table reader (inspect, merge, generate --resume) refuses a format-1.0 table
 // (HDF5 superblock 0, metadata without checksums) before libhdf5 opens it, with the command
-// that regenerates it (libhdf5 is not safe on corrupt unchecksummed metadata, issue 19 fuzzing).
+// that regenerates it (libhdf5 is not safe on corrupt unchecksummed metadata, found by fuzzing).
 TEST(TableReaderRefusal, Format10TableIsRefusedBeforeOpening) {
   const std::string path = RAILTAB_SOURCE_DIR "/tests/data/corrupt_string_attribute.h5";
   try {
