@@ -16,7 +16,7 @@
 #include "charts/geometry_chart.hpp"
 #include "charts/gnuplot.hpp"
 #include "charts/pressure_chart.hpp"
-#include "charts/speed_accuracy_chart.hpp"
+#include "speed_accuracy/speed_accuracy_chart.hpp"
 #include "charts/stability_chart.hpp"
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"

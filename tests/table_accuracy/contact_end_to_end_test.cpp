@@ -13,7 +13,7 @@
 // every integer millimetre, i.e. at every block C state; mid-way between nodes is where the y
 // interpolation error is largest; a second table puts them a quarter step from a node. The states:
 // CONTACT's creepages and forces mapped as `railtab chart` maps them
-// (charts/speed_accuracy_states.hpp, docs/speed-vs-accuracy.md "Method"); the states with creepage
+// (speed_accuracy/speed_accuracy_states.hpp, docs/speed-vs-accuracy.md "Method"); the states with creepage
 // (sets b..e; a_none has no creep force). Metric per state: |F - F_C| / (mu N_C), F the creep-force
 // vector (fx, fy) on the wheel summed over the loaded slots, N_C CONTACT's normal force. Direct
 // evaluation: the contact kernel at the state (accuracy_util.hpp, evaluate_direct).
@@ -25,7 +25,7 @@
 #include <cstdio>
 
 #include "accuracy_util.hpp"
-#include "charts/speed_accuracy_states.hpp"
+#include "speed_accuracy/speed_accuracy_states.hpp"
 #include "adaptive/jump_locator.hpp"
 
 namespace railtab::accuracy {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// railtab chart's measurement (generator/charts/speed_accuracy*.*) on a tiny state set: CSV columns,
+// railtab chart's measurement (generator/speed_accuracy/speed_accuracy*.*) on a tiny state set: CSV columns,
 // finite numbers, and a non-dominated Pareto front. Seconds, not minutes.
-#include "charts/speed_accuracy.hpp"
+#include "speed_accuracy/speed_accuracy.hpp"
 #include "generator/test_tables.hpp"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // The model and table settings `railtab chart` measures (speed_accuracy.hpp) and their labels.
 #include <fmt/format.h>
 
-#include "charts/speed_accuracy.hpp"
+#include "speed_accuracy/speed_accuracy.hpp"
 
 namespace railtab {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The states of the speed-against-accuracy measurement: CONTACT's block C rows (reference values)
 // or, without the reference file, the same states at the target creepages.
-#include "charts/speed_accuracy_states.hpp"
+#include "speed_accuracy/speed_accuracy_states.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "charts/speed_accuracy.hpp"
+#include "speed_accuracy/speed_accuracy.hpp"
 
 namespace railtab {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "charts/speed_accuracy.hpp"
+#include "speed_accuracy/speed_accuracy.hpp"
 #include "core/check.hpp"
 #include "table/output_file.hpp"
 

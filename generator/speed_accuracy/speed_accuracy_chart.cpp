@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The speed-against-accuracy charts (railtab chart): runs the measurement, writes its CSVs and
 // draws speed_accuracy.png (time against error, Pareto fronts) and table_memory.png.
-#include "charts/speed_accuracy_chart.hpp"
+#include "speed_accuracy/speed_accuracy_chart.hpp"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Speed against accuracy: times and errors of every model setting and of table lookup at the
 // states.
-#include "charts/speed_accuracy.hpp"
+#include "speed_accuracy/speed_accuracy.hpp"
 
 #include <fmt/format.h>
 
@@ -15,7 +15,7 @@
 #include <sstream>
 #include <toml++/toml.h>
 
-#include "charts/speed_accuracy_states.hpp"
+#include "speed_accuracy/speed_accuracy_states.hpp"
 #include "core/check.hpp"
 #include "kernel/contact_kernel.hpp"
 #include "kernel/halfspace_contact.hpp"
