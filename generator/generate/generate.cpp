@@ -32,6 +32,75 @@ bool launched_by_mpi() {
   return false;
 }
 
+namespace {
+
+// Contact jumps along y (format 2.1) into `table`: located, their one-sided values sampled, a
+// shard's own cells only (into kShardJumpGroup).
+void add_contact_jumps(const GenerateOptions& options, const Scene& scene, Table& table, bool sharded) {
+  std::ostream* log = options.log;
+  CellRange cells;
+  if (sharded) {
+    cells.first = std::stoull(*table.attribute("shard_y_begin"));
+    cells.last = std::stoull(*table.attribute("shard_y_end"));
+  }
+  const std::string root = sharded ? kShardJumpGroup : kJumpGroup;
+  // Its own progress lines (the one-sided values cost columns of the kernel: minutes for the
+  // exact model); none with --quiet.
+  ProgressPrinter locating(log ? *log : std::cerr, options.terminal, "locating contact jumps", "tasks");
+  ProgressPrinter sampling(log ? *log : std::cerr, options.terminal, "one-sided jump values", "columns");
+  StageProgress locate_progress, sample_progress;
+  if (log) locate_progress = [&locating](const SweepProgress& p) { locating(p); };
+  if (log) sample_progress = [&sampling](const SweepProgress& p) { sampling(p); };
+  const auto t0 = std::chrono::steady_clock::now();
+  ContactJumps jumps;
+  auto t1 = t0;
+  try {
+    jumps = locate_jumps(scene, {}, options.threads, locate_progress, cells);
+    locating.finish();
+    t1 = std::chrono::steady_clock::now();
+    add_jumps(table, scene, jumps, {}, options.threads, sample_progress, root);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const Error& e) {
+    // The locator and the one-sided values solve states between the grid nodes and stop at the
+    // first failure, where the sweep flags a failed point and goes on: say which stage and file.
+    throw Error(fmt::format("{}: locating the contact jumps along y: {} (keep the grid's y where the "
+                            "wheels stay on their rails)",
+                            options.scene.string(), e.what()));
+  }
+  sampling.finish();
+  const auto t2 = std::chrono::steady_clock::now();
+  if (log) {
+    std::size_t n = 0;
+    for (const auto& wheel : jumps.wheel)
+      for (const auto& list : wheel) n += list.size();
+    *log << fmt::format("located {} contact jump(s) along y ({} evaluations) in {:.2f} s, one-sided values in {:.2f} s\n",
+                        n, jumps.evaluations, std::chrono::duration<double>(t1 - t0).count(),
+                        std::chrono::duration<double>(t2 - t1).count());
+  }
+}
+
+// The closing lines of a run: speed, resumed and failed points, the file written.
+void log_generated(std::ostream& log, const GenerateOptions& options, const SweepSummary& s) {
+  double rate = s.seconds > 0 ? static_cast<double>(s.points_computed) / s.seconds : 0.0;
+  double per_point = s.points_computed > 0 ? s.seconds * s.threads / static_cast<double>(s.points_computed) : 0.0;
+  log << fmt::format("computed {} points (both wheels each) in {:.2f} s with {} thread{}: {:.0f} points/s, "
+                     "{:.3g} ms per point per thread{}\n",
+                     s.points_computed, s.seconds, s.threads, s.threads == 1 ? "" : "s", rate,
+                     1e3 * per_point * s.ranks, s.ranks > 1 ? fmt::format(" (each of {} MPI ranks)", s.ranks) : "");
+  if (s.points_resumed > 0) log << fmt::format("resumed {} points from the checkpoint\n", s.points_resumed);
+  if (s.failures > 0) {
+    log << fmt::format("{} point(s) failed and are flagged failed; first: {}\n", s.failures,
+                       s.first_failure);
+  }
+  log << fmt::format("wrote {} ({:.1f} KiB){}\n", options.output.string(),
+                     static_cast<double>(std::filesystem::file_size(options.output)) / 1024.0,
+                     options.shard_count > 1 ? fmt::format(", shard {}/{}", options.shard_index, options.shard_count)
+                                             : "");
+}
+
+}  // namespace
+
 SweepSummary generate_table(const GenerateOptions& options) {
   // Refused before any work: the output must be a regular file (or new) and not the scene itself;
   // the checkpoint beside it likewise.
@@ -117,71 +186,14 @@ SweepSummary generate_table(const GenerateOptions& options) {
   // `railtab merge` joins them into the single run's kJumpGroup.
   const bool sharded = options.shard_count > 1;
   if (sharded) result.table.set_attribute("shard_jumps", options.make_kernel ? "not located" : "located");
-  if (!options.make_kernel) {
-    CellRange cells;
-    if (sharded) {
-      cells.first = std::stoull(*result.table.attribute("shard_y_begin"));
-      cells.last = std::stoull(*result.table.attribute("shard_y_end"));
-    }
-    const std::string root = sharded ? kShardJumpGroup : kJumpGroup;
-    // Its own progress lines (the one-sided values cost columns of the kernel: minutes for the
-    // exact model); none with --quiet.
-    ProgressPrinter locating(log ? *log : std::cerr, options.terminal, "locating contact jumps", "tasks");
-    ProgressPrinter sampling(log ? *log : std::cerr, options.terminal, "one-sided jump values", "columns");
-    StageProgress locate_progress, sample_progress;
-    if (log) locate_progress = [&locating](const SweepProgress& p) { locating(p); };
-    if (log) sample_progress = [&sampling](const SweepProgress& p) { sampling(p); };
-    const auto t0 = std::chrono::steady_clock::now();
-    ContactJumps jumps;
-    auto t1 = t0;
-    try {
-      jumps = locate_jumps(scene, {}, options.threads, locate_progress, cells);
-      locating.finish();
-      t1 = std::chrono::steady_clock::now();
-      add_jumps(result.table, scene, jumps, {}, options.threads, sample_progress, root);
-    } catch (const Interrupted&) {
-      throw;
-    } catch (const Error& e) {
-      // The locator and the one-sided values solve states between the grid nodes and stop at the
-      // first failure, where the sweep flags a failed point and goes on: say which stage and file.
-      throw Error(fmt::format("{}: locating the contact jumps along y: {} (keep the grid's y where the "
-                              "wheels stay on their rails)",
-                              options.scene.string(), e.what()));
-    }
-    sampling.finish();
-    const auto t2 = std::chrono::steady_clock::now();
-    if (log) {
-      std::size_t n = 0;
-      for (const auto& wheel : jumps.wheel)
-        for (const auto& list : wheel) n += list.size();
-      *log << fmt::format("located {} contact jump(s) along y ({} evaluations) in {:.2f} s, one-sided values in {:.2f} s\n",
-                          n, jumps.evaluations, std::chrono::duration<double>(t1 - t0).count(),
-                          std::chrono::duration<double>(t2 - t1).count());
-    }
-  }
+  if (!options.make_kernel) add_contact_jumps(options, scene, result.table, sharded);
   write_table(result.table, options.output, options.interrupt, inputs);
   if (keep_checkpoint) {
     std::error_code ignored;
     std::filesystem::remove(sweep.checkpoint, ignored);
   }
 
-  if (log) {
-    double rate = s.seconds > 0 ? static_cast<double>(s.points_computed) / s.seconds : 0.0;
-    double per_point = s.points_computed > 0 ? s.seconds * s.threads / static_cast<double>(s.points_computed) : 0.0;
-    *log << fmt::format("computed {} points (both wheels each) in {:.2f} s with {} thread{}: {:.0f} points/s, "
-                        "{:.3g} ms per point per thread{}\n",
-                        s.points_computed, s.seconds, s.threads, s.threads == 1 ? "" : "s", rate,
-                        1e3 * per_point * s.ranks, s.ranks > 1 ? fmt::format(" (each of {} MPI ranks)", s.ranks) : "");
-    if (s.points_resumed > 0) *log << fmt::format("resumed {} points from the checkpoint\n", s.points_resumed);
-    if (s.failures > 0) {
-      *log << fmt::format("{} point(s) failed and are flagged failed; first: {}\n", s.failures,
-                          s.first_failure);
-    }
-    *log << fmt::format("wrote {} ({:.1f} KiB){}\n", options.output.string(),
-                        static_cast<double>(std::filesystem::file_size(options.output)) / 1024.0,
-                        options.shard_count > 1 ? fmt::format(", shard {}/{}", options.shard_index, options.shard_count)
-                                                : "");
-  }
+  if (log) log_generated(*log, options, s);
   return s;
 }
 

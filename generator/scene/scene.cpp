@@ -276,31 +276,14 @@ ProfileSource parse_profile(const Section& s, const std::string& key, const std:
   return p;
 }
 
-}  // namespace
+// What a section's parser reads besides its own section.
+struct SceneInput {
+  const toml::table& root;
+  const std::filesystem::path& base_dir;  // profile files are relative to the scene file
+};
 
-Scene parse_scene(std::string_view toml_text, const std::string& source_name,
-                  const std::filesystem::path& base_dir) {
-  Context ctx{source_name};
-  const toml::table root = scene_toml::parse(toml_text, source_name);
-
-  static const std::vector<std::string> kSections{"scene", "profiles", "track", "wheelset", "geometry",
-                                                  "material", "contact", "wear", "grid",
-                                                  "accuracy"};
-  for (auto&& [key, node] : root) {
-    if (std::find(kSections.begin(), kSections.end(), key.str()) == kSections.end()) {
-      fail(ctx, key.source(), std::string(key.str()),
-           fmt::format("unknown section or key (known sections: {})", join(kSections)));
-    }
-  }
-
-  Scene scene;
-  RAILTAB_CHECK(toml_text.size() <= kMaxSceneTextBytes,
-                "{}: the scene is {} bytes, above the limit of {} (a table stores its scene text, and the lookup "
-                "refuses a text attribute over 1 MiB)",
-                source_name, toml_text.size(), kMaxSceneTextBytes);
-  scene.text = std::string(toml_text);
-
-  Section sc = section(ctx, root, "scene", {"name", "description"});
+void parse_scene_section(const Section& sc, const SceneInput&, Scene& scene) {
+  const Context& ctx = sc.context();
   scene.name = sc.string(sc.required("name"), "name");
   if (scene.name.empty()) fail(ctx, sc.required("name").source(), "scene.name", "must not be empty");
   scene.description = sc.string("description").value_or("");
@@ -308,31 +291,32 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
     fail(ctx, sc.required("description").source(), "scene.description",
          fmt::format("{} bytes, above the limit of {}", scene.description.size(), kMaxDescriptionBytes));
   }
+}
 
-  Section pr = section(ctx, root, "profiles",
-                       {"wheel", "rail", "smoothing", "wheel_mirror_y", "wheel_mirror_z", "rail_mirror_y",
-                        "rail_mirror_z", "wheel_shift_y"});
+void parse_profiles(const Section& pr, const SceneInput& in, Scene& scene) {
   double smoothing = pr.number("smoothing", 0.0, non_negative, ">= 0 [m]");
-  scene.wheel = parse_profile(pr, "wheel", base_dir, smoothing);
-  scene.rail = parse_profile(pr, "rail", base_dir, smoothing);
+  scene.wheel = parse_profile(pr, "wheel", in.base_dir, smoothing);
+  scene.rail = parse_profile(pr, "rail", in.base_dir, smoothing);
   scene.wheel.mirror_y = pr.parse_string("wheel_mirror_y", parse_axis_mirror).value_or(AxisMirror::automatic);
   scene.wheel.mirror_z = pr.parse_string("wheel_mirror_z", parse_axis_mirror).value_or(AxisMirror::automatic);
   scene.rail.mirror_y = pr.parse_string("rail_mirror_y", parse_axis_mirror).value_or(AxisMirror::automatic);
   scene.rail.mirror_z = pr.parse_string("rail_mirror_z", parse_axis_mirror).value_or(AxisMirror::automatic);
   scene.wheel.lateral_shift = pr.number("wheel_shift_y", 0.0);
   if (scene.wheel.lateral_shift != 0.0 && scene.wheel.file.empty()) {
-    fail(ctx, pr.node("wheel_shift_y")->source(), "profiles.wheel_shift_y",
+    fail(pr.context(), pr.node("wheel_shift_y")->source(), "profiles.wheel_shift_y",
          "applies to wheel profile files only (the built-in s1002 has its origin on the running circle)");
   }
+}
 
-  Section tr = section(ctx, root, "track", {"gauge", "gauge_measuring_depth", "rail_inclination"});
+void parse_track(const Section& tr, const SceneInput&, Scene& scene) {
   scene.track.gauge = tr.number("gauge", scene.track.gauge, wheelset_size, "in (0, 10] m (SI: standard gauge is 1.435)");
   scene.track.gauge_measuring_depth =
       tr.number("gauge_measuring_depth", scene.track.gauge_measuring_depth, measuring_depth,
                 "in [0, 0.1] m (SI: 14 mm is 0.014)");
   if (const toml::node* n = tr.node("rail_inclination")) scene.track.rail_inclination = parse_inclination(tr, *n);
+}
 
-  Section ws = section(ctx, root, "wheelset", {"back_to_back", "flange_back_position", "nominal_radius"});
+void parse_wheelset(const Section& ws, const SceneInput&, Scene& scene) {
   scene.wheelset.back_to_back = ws.number("back_to_back", scene.wheelset.back_to_back, wheelset_size,
                                            "in (0, 10] m (SI: 1360 mm is 1.360)");
   scene.wheelset.flange_back_position =
@@ -341,10 +325,9 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   scene.wheelset.nominal_radius =
       ws.number("nominal_radius", scene.wheelset.nominal_radius, wheelset_size,
                 "in (0, 10] m (SI: 460 mm is 0.460)");
+}
 
-  Section ge = section(ctx, root, "geometry", {"search_step", "max_separation", "band_step",
-                                               "band_half_width", "band_max_gap", "flange_angle",
-                                               "near_equal_shift", "near_equal_distance"});
+void parse_geometry(const Section& ge, const SceneInput&, Scene& scene) {
   GeometrySettings& g = scene.geometry;
   g.search_step = ge.number("search_step", g.search_step, positive, "> 0 [m]");
   g.max_separation = ge.number("max_separation", g.max_separation, non_negative, ">= 0 [m]");
@@ -354,16 +337,15 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   g.flange_angle = ge.number("flange_angle", g.flange_angle, positive, "> 0 [rad]");
   g.near_equal_shift = ge.number("near_equal_shift", g.near_equal_shift, non_negative, ">= 0 [m]");
   g.near_equal_distance = ge.number("near_equal_distance", g.near_equal_distance, non_negative, ">= 0 [m]");
+}
 
-  Section ma = section(ctx, root, "material", {"youngs_modulus", "poisson_ratio"});
+void parse_material(const Section& ma, const SceneInput&, Scene& scene) {
   scene.material.youngs_modulus = ma.number("youngs_modulus", scene.material.youngs_modulus, stiffness,
                                                  ">= 1e6 Pa (SI: 210 GPa is 210e9)");
   scene.material.poisson_ratio = ma.number("poisson_ratio", scene.material.poisson_ratio, fraction, "in [0, 0.5)");
+}
 
-  Section co = section(ctx, root, "contact",
-                       {"normal_model", "negative_curvature", "strips", "virtual_penetration", "tolerance",
-                        "max_iterations", "friction", "elements_per_strip", "spin_per_strip", "speed",
-                        "load_coupling", "element_size"});
+void parse_contact(const Section& co, const SceneInput&, Scene& scene) {
   NormalOptions& no = scene.normal;
   if (auto m = co.parse_string("normal_model", parse_normal_model)) no.model = *m;
   if (auto m = co.parse_string("negative_curvature", parse_negative_curvature)) no.negative_curvature = *m;
@@ -381,13 +363,15 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   scene.halfspace.element_size =
       co.number("element_size", scene.halfspace.element_size,
                 [](double v) { return v >= 0.05e-3 && v <= 5e-3; }, "in [0.05e-3, 5e-3] [m]");
+}
 
-  Section we = section(ctx, root, "wear", {"hardness", "lubrication_factor"});
+void parse_wear(const Section& we, const SceneInput&, Scene& scene) {
   scene.wear.hardness = we.number("hardness", scene.wear.hardness, stiffness, ">= 1e6 Pa (SI: 2.75 GPa is 2.75e9)");
   scene.wear.lubrication_factor = we.number("lubrication_factor", scene.wear.lubrication_factor, positive, "> 0");
+}
 
-  Section ac = section(ctx, root, "accuracy",
-                       {"creep_force", "contact_angle", "rolling_radius", "normal_force", "models", "model_tolerance"});
+void parse_accuracy(const Section& ac, const SceneInput& in, Scene& scene) {
+  const Context& ctx = ac.context();
   AccuracyTargets& acc = scene.accuracy;
   acc.enabled = ac.present();
   acc.creep_force = ac.number("creep_force", 0.0, positive, "> 0 (relative to mu N)");
@@ -396,7 +380,7 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   acc.normal_force = ac.number("normal_force", 0.0, positive, "> 0 (relative to N)");
   if (acc.enabled && acc.creep_force == 0.0 && acc.contact_angle == 0.0 && acc.rolling_radius == 0.0 &&
       acc.normal_force == 0.0) {
-    fail(ctx, root.get("accuracy")->source(), "accuracy",
+    fail(ctx, in.root.get("accuracy")->source(), "accuracy",
          "needs at least one target (creep_force, contact_angle, rolling_radius, normal_force)");
   }
 
@@ -405,35 +389,20 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   if (ac.has("model_tolerance") && acc.models.empty()) {
     fail(ctx, ac.node("model_tolerance")->source(), "accuracy.model_tolerance", "needs accuracy.models");
   }
+}
 
-  Section gr = section(ctx, root, "grid", {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll",
-                                          "creep_coordinates", "creep_knee"});
-  SceneGrids& grids = scene.grids;
-  // A grid axis, or an adaptive one ([accuracy] scenes) recorded in scene.accuracy.axes.
-  auto grid_axis = [&](const std::string& key, const toml::node& n) -> std::vector<double> {
-    if (!is_adaptive_range(n)) return parse_axis(gr, key, n);
-    std::vector<double> values;
-    acc.axes.push_back(parse_adaptive_axis(gr, key, n, acc.enabled, values));
-    return values;
-  };
-  grids.y = grid_axis("y", gr.required("y"));
-  grids.load = grid_axis("load", gr.required("load"));
-  for (double load : grids.load) {
-    if (!(load > 0.0)) fail(ctx, gr.node("load")->source(), "grid.load", "loads must be > 0 [N]");
-    if (load < kMinWheelLoad) {
-      fail(ctx, gr.node("load")->source(), "grid.load",
-           fmt::format("a wheel load of {} N is below {} N: loads are in N (SI: 78.5 kN is 78.5e3)", load,
-                       kMinWheelLoad));
-    }
-  }
-  for (double y : grids.y) {
-    if (!(std::abs(y) <= kMaxLateralShift)) {
-      fail(ctx, gr.node("y")->source(), "grid.y",
-           fmt::format("|y| = {} m is beyond {} m, off any rail head: y is in m (SI: 10 mm is 0.010)", std::abs(y),
-                       kMaxLateralShift));
-    }
-  }
-  scene.equilibrium_roll = gr.boolean("equilibrium_roll", false);
+// A grid axis, or an adaptive one ([accuracy] scenes) recorded in scene.accuracy.axes.
+std::vector<double> grid_axis(const Section& gr, const std::string& key, const toml::node& n, Scene& scene) {
+  AccuracyTargets& acc = scene.accuracy;
+  if (!is_adaptive_range(n)) return parse_axis(gr, key, n);
+  std::vector<double> values;
+  acc.axes.push_back(parse_adaptive_axis(gr, key, n, acc.enabled, values));
+  return values;
+}
+
+// grid.creep_coordinates and grid.creep_knee.
+void parse_creep_coordinates(const Section& gr, Scene& scene) {
+  const Context& ctx = gr.context();
   if (const auto coordinates = gr.string("creep_coordinates")) {
     if (*coordinates != "physical" && *coordinates != "normalised")
       fail(ctx, gr.node("creep_coordinates")->source(), "grid.creep_coordinates",
@@ -454,18 +423,14 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
       scene.creep_knee[i] = *v;
     }
   }
-  if (const toml::node* n = gr.node("roll")) {
-    if (scene.equilibrium_roll) {
-      fail(ctx, n->source(), "grid.roll", "cannot be given together with equilibrium_roll = true");
-    }
-    if (is_adaptive_range(*n)) fail(ctx, n->source(), "grid.roll", "roll cannot be adaptive (use a list or equilibrium_roll)");
-    grids.roll = parse_axis(gr, "roll", *n);
-  } else {
-    grids.roll = {0.0};
-  }
+}
+
+// grid.xi, grid.eta, grid.phi: one node 0 when absent, each within physical creepage.
+void parse_creep_axes(const Section& gr, Scene& scene) {
+  SceneGrids& grids = scene.grids;
   auto optional_axis = [&](const char* key) -> std::vector<double> {
     const toml::node* n = gr.node(key);
-    return n ? grid_axis(key, *n) : std::vector<double>{0.0};
+    return n ? grid_axis(gr, key, *n, scene) : std::vector<double>{0.0};
   };
   grids.xi = optional_axis("xi");
   grids.eta = optional_axis("eta");
@@ -475,12 +440,47 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
                                          std::tuple{"phi", &grids.phi, kMaxSpinCreepage}}) {
     for (double v : *axis) {
       if (!(std::abs(v) <= limit)) {
-        fail(ctx, gr.node(key)->source(), std::string("grid.") + key,
+        fail(gr.context(), gr.node(key)->source(), std::string("grid.") + key,
              fmt::format("creepage {} is far beyond physical (|{}| <= {} {}; docs/reliability.md)", v, key, limit,
                          key == std::string("phi") ? "1/m" : ""));
       }
     }
   }
+}
+
+void parse_grid(const Section& gr, const SceneInput& in, Scene& scene) {
+  const Context& ctx = gr.context();
+  SceneGrids& grids = scene.grids;
+  const AccuracyTargets& acc = scene.accuracy;
+  grids.y = grid_axis(gr, "y", gr.required("y"), scene);
+  grids.load = grid_axis(gr, "load", gr.required("load"), scene);
+  for (double load : grids.load) {
+    if (!(load > 0.0)) fail(ctx, gr.node("load")->source(), "grid.load", "loads must be > 0 [N]");
+    if (load < kMinWheelLoad) {
+      fail(ctx, gr.node("load")->source(), "grid.load",
+           fmt::format("a wheel load of {} N is below {} N: loads are in N (SI: 78.5 kN is 78.5e3)", load,
+                       kMinWheelLoad));
+    }
+  }
+  for (double y : grids.y) {
+    if (!(std::abs(y) <= kMaxLateralShift)) {
+      fail(ctx, gr.node("y")->source(), "grid.y",
+           fmt::format("|y| = {} m is beyond {} m, off any rail head: y is in m (SI: 10 mm is 0.010)", std::abs(y),
+                       kMaxLateralShift));
+    }
+  }
+  scene.equilibrium_roll = gr.boolean("equilibrium_roll", false);
+  parse_creep_coordinates(gr, scene);
+  if (const toml::node* n = gr.node("roll")) {
+    if (scene.equilibrium_roll) {
+      fail(ctx, n->source(), "grid.roll", "cannot be given together with equilibrium_roll = true");
+    }
+    if (is_adaptive_range(*n)) fail(ctx, n->source(), "grid.roll", "roll cannot be adaptive (use a list or equilibrium_roll)");
+    grids.roll = parse_axis(gr, "roll", *n);
+  } else {
+    grids.roll = {0.0};
+  }
+  parse_creep_axes(gr, scene);
   if (scene.creep_normalised && acc.enabled) {
     // Adaptive grids compare interpolated and direct creep forces on physical creepage nodes.
     fail(ctx, gr.node("creep_coordinates")->source(), "grid.creep_coordinates",
@@ -493,9 +493,75 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
          "\"normalised\" cannot be combined with normal_model = \"halfspace\" (use \"physical\")");
   }
   if (acc.enabled && acc.axes.empty()) {
-    fail(ctx, root.get("accuracy")->source(), "accuracy",
+    fail(ctx, in.root.get("accuracy")->source(), "accuracy",
          "no grid axis is adaptive: give at least one as {start, stop, max_step, min_step}");
   }
+}
+
+// One section of a scene file: its name, its allowed keys and its parser.
+struct SceneSection {
+  const char* name;
+  std::vector<std::string> keys;
+  void (*parse)(const Section&, const SceneInput&, Scene&);
+};
+
+// The sections in the order they are parsed: contact before accuracy (the model choice starts from
+// the normal model), accuracy before grid (adaptive axes need [accuracy]).
+const std::vector<SceneSection>& scene_sections() {
+  static const std::vector<SceneSection> sections{
+      {"scene", {"name", "description"}, parse_scene_section},
+      {"profiles",
+       {"wheel", "rail", "smoothing", "wheel_mirror_y", "wheel_mirror_z", "rail_mirror_y", "rail_mirror_z",
+        "wheel_shift_y"},
+       parse_profiles},
+      {"track", {"gauge", "gauge_measuring_depth", "rail_inclination"}, parse_track},
+      {"wheelset", {"back_to_back", "flange_back_position", "nominal_radius"}, parse_wheelset},
+      {"geometry",
+       {"search_step", "max_separation", "band_step", "band_half_width", "band_max_gap", "flange_angle",
+        "near_equal_shift", "near_equal_distance"},
+       parse_geometry},
+      {"material", {"youngs_modulus", "poisson_ratio"}, parse_material},
+      {"contact",
+       {"normal_model", "negative_curvature", "strips", "virtual_penetration", "tolerance", "max_iterations",
+        "friction", "elements_per_strip", "spin_per_strip", "speed", "load_coupling", "element_size"},
+       parse_contact},
+      {"wear", {"hardness", "lubrication_factor"}, parse_wear},
+      {"accuracy",
+       {"creep_force", "contact_angle", "rolling_radius", "normal_force", "models", "model_tolerance"},
+       parse_accuracy},
+      {"grid",
+       {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll", "creep_coordinates", "creep_knee"},
+       parse_grid},
+  };
+  return sections;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view toml_text, const std::string& source_name,
+                  const std::filesystem::path& base_dir) {
+  Context ctx{source_name};
+  const toml::table root = scene_toml::parse(toml_text, source_name);
+
+  // The known sections as an unknown one's error lists them (grid before accuracy, as the docs do).
+  static const std::vector<std::string> kSections{"scene", "profiles", "track", "wheelset", "geometry",
+                                                  "material", "contact", "wear", "grid",
+                                                  "accuracy"};
+  for (auto&& [key, node] : root) {
+    if (std::find(kSections.begin(), kSections.end(), key.str()) == kSections.end()) {
+      fail(ctx, key.source(), std::string(key.str()),
+           fmt::format("unknown section or key (known sections: {})", join(kSections)));
+    }
+  }
+
+  Scene scene;
+  RAILTAB_CHECK(toml_text.size() <= kMaxSceneTextBytes,
+                "{}: the scene is {} bytes, above the limit of {} (a table stores its scene text, and the lookup "
+                "refuses a text attribute over 1 MiB)",
+                source_name, toml_text.size(), kMaxSceneTextBytes);
+  scene.text = std::string(toml_text);
+  const SceneInput in{root, base_dir};
+  for (const SceneSection& s : scene_sections()) s.parse(section(ctx, root, s.name, s.keys), in, scene);
   return scene;
 }
 

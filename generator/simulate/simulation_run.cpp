@@ -161,18 +161,8 @@ struct Branch {
   std::vector<double> cumulative;
 };
 
-}  // namespace
-
-double simulation_speed(const SimulationSummary& summary) {
-  double simulated = 0.0, wall = 0.0;
-  for (const RunSummary& r : summary.runs) {
-    simulated += r.simulated_seconds;
-    wall += r.dynamics_wall_seconds;
-  }
-  return wall > 0.0 ? simulated / wall : 0.0;
-}
-
-SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOptions& options) {
+// The wear post-processors of the run (the options' or the scene's), each known and listed once.
+std::vector<std::string> checked_processors(const SimulationScene& sim, const SimulationOptions& options) {
   RAILTAB_CHECK(!options.out.empty(), "simulate: no output directory given");
   RAILTAB_CHECK(options.duration >= 0.0 && std::isfinite(options.duration), "simulate: --duration must be >= 0, got {}",
                 options.duration);
@@ -185,226 +175,226 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
       RAILTAB_CHECK(processors[i] != processors[j], "simulate: wear post-processor '{}' listed twice", processors[i]);
     }
   }
-  const Scene contact = load_scene(sim.contact_scene);
-  // The wheelsets have no roll degree of freedom: their roll is the kinematic one at every y.
-  RAILTAB_CHECK(contact.equilibrium_roll, "{}: the contact scene of a simulation needs [grid] equilibrium_roll = true",
-                sim.contact_scene.string());
+  return processors;
+}
 
-  SimulationSummary summary;
-  summary.name = sim.name;
-  summary.directory = options.out / sim.name;
-  summary.dynamics_model = sim.dynamics_model;
-  fs::create_directories(summary.directory);
-  // summary.json is written last: a previous run's must not sit beside this run's new step files
-  // if this one is interrupted or fails.
-  if (fs::remove(summary.directory / "summary.json")) {
-    log_line(options, fmt::format("{}: removed the previous run's summary.json (rewritten at the end)",
-                                  summary.directory.string()));
+// One dynamics run of a wear step: which step, under which label, where its files go.
+struct StepRun {
+  const SimulationScene& sim;
+  const SimulationOptions& options;
+  const fs::path& directory;  // OUT/<name>
+  std::string label;          // "shared" (step 0) or the post-processor
+  int k = 0;                  // the wear step
+
+  [[noreturn]] void stop(const std::string& where) const {
+    throw Interrupted(fmt::format("{} {} step {}: interrupted {}; the finished steps' files in {} are whole, "
+                                  "summary.json is not written",
+                                  sim.name, label, k, where, directory.string()));
   }
-  const double step_distance = sim.running_distance / sim.wear_steps;
-  std::vector<Branch> branches(processors.size());
-  for (std::size_t p = 0; p < processors.size(); ++p) branches[p].summary.model = processors[p];
+};
 
-  for (int k = 0; k < sim.wear_steps; ++k) {
-    // Step 0: every post-processor starts from the same wheel, so ONE dynamics run feeds them
-    // all. Later steps: each runs on its own worn wheel (its own profile evolution, as seed 001
-    // ran one loop per wear model).
-    std::vector<std::vector<std::size_t>> groups;
-    if (k == 0) {
-      groups.emplace_back();
-      for (std::size_t p = 0; p < processors.size(); ++p) groups.back().push_back(p);
-    } else {
-      for (std::size_t p = 0; p < processors.size(); ++p) groups.push_back({p});
-    }
-    for (const std::vector<std::size_t>& group : groups) {
-      const std::string label = k == 0 ? "shared" : processors[group.front()];
-      const auto stop = [&](const std::string& where) {
-        throw Interrupted(fmt::format("{} {} step {}: interrupted {}; the finished steps' files in {} are whole, "
-                                      "summary.json is not written",
-                                      sim.name, label, k, where, summary.directory.string()));
-      };
-      if (options.interrupt && options.interrupt->load()) stop("before the step");
-      const fs::path dir = summary.directory / label / fmt::format("step{}", k);
-      fs::create_directories(dir);
-      const std::string name = fmt::format("{}-{}-step{}", sim.name, label, k);
-      const fs::path scene_file = dir / "scene.toml";
-      write_file(scene_file,
-                 step_scene_text(sim, contact, sim.dynamics_model, branches[group.front()].worn_wheel, dir, name));
-      const Scene scene = load_scene(scene_file);
+// The contact model of the dynamics: the step's table (generated here) or, with --direct, the
+// core at every call.
+struct StepContact {
+  std::unique_ptr<vehicle::ContactModel> model;
+  const LookupContactModel* lookup = nullptr;
+  const DirectContactModel* direct = nullptr;
+  double generate_seconds = 0.0;
+};
 
-      std::unique_ptr<vehicle::ContactModel> contact_model;
-      const LookupContactModel* lookup = nullptr;
-      const DirectContactModel* direct = nullptr;
-      double generate_seconds = 0.0;
-      if (options.direct) {
-        auto d = std::make_unique<DirectContactModel>(scene);
-        direct = d.get();
-        contact_model = std::move(d);
-      } else {
-        GenerateOptions g;
-        g.scene = scene_file;
-        g.output = dir / "table.h5";
-        g.threads = options.threads;
-        g.interrupt = options.interrupt;
-        const auto tg = Clock::now();
-        SweepSummary s;
-        try {
-          s = generate_table(g);
-        } catch (const Interrupted&) {  // its message offers --resume, which simulate has not
-          stop(fmt::format("in the table generation ({} not written)", g.output.string()));
-        }
-        generate_seconds = seconds_since(tg);
-        log_line(options, fmt::format("{} {} step {}: {} table {} ({} points, {} failures) in {:.1f} s", sim.name, label,
-                                      k, sim.dynamics_model, g.output.string(), s.points_total, s.failures,
-                                      generate_seconds));
-        auto l = std::make_unique<LookupContactModel>(lookup::Table::load(g.output.string()));
-        lookup = l.get();
-        contact_model = std::move(l);
-      }
+StepContact step_contact(const StepRun& run, const Scene& scene, const fs::path& scene_file, const fs::path& dir) {
+  StepContact c;
+  if (run.options.direct) {
+    auto d = std::make_unique<DirectContactModel>(scene);
+    c.direct = d.get();
+    c.model = std::move(d);
+    return c;
+  }
+  GenerateOptions g;
+  g.scene = scene_file;
+  g.output = dir / "table.h5";
+  g.threads = run.options.threads;
+  g.interrupt = run.options.interrupt;
+  const auto tg = Clock::now();
+  SweepSummary s;
+  try {
+    s = generate_table(g);
+  } catch (const Interrupted&) {  // its message offers --resume, which simulate has not
+    run.stop(fmt::format("in the table generation ({} not written)", g.output.string()));
+  }
+  c.generate_seconds = seconds_since(tg);
+  log_line(run.options, fmt::format("{} {} step {}: {} table {} ({} points, {} failures) in {:.1f} s", run.sim.name,
+                                    run.label, run.k, run.sim.dynamics_model, g.output.string(), s.points_total,
+                                    s.failures, c.generate_seconds));
+  auto l = std::make_unique<LookupContactModel>(lookup::Table::load(g.output.string()));
+  c.lookup = l.get();
+  c.model = std::move(l);
+  return c;
+}
 
-      std::vector<std::string> names;
-      for (std::size_t p : group) names.push_back(processors[p]);
-      WearPostProcessing wear(scene, names, sim.positions, WearGrid{}, sim.halfspace_sample_every);
-      RunSummary run;
-      try {
-        run = run_bogie(sim, *contact_model, lookup, direct, scene.tangential.friction, options.duration,
-                        dir / "trajectory.csv", wear, options.interrupt);
-      } catch (const Interrupted& e) {
-        stop(fmt::format("in the dynamics ({})", e.what()));
-      }
-      run.label = label;
-      log_line(options,
-               fmt::format("{} {} step {}: {:.1f} s simulated ({:.0f} m) in {:.2f} s wall: {:.1f} simulated s per wall "
-                           "s; max |y| {:.2f} / {:.2f} mm (leading / trailing); out of range {} of {} queries; "
-                           "{} wear samples per wheelset in {:.1f} s",
-                           sim.name, label, k, run.simulated_seconds, run.distance, run.dynamics_wall_seconds,
-                           run.dynamics_wall_seconds > 0 ? run.simulated_seconds / run.dynamics_wall_seconds : 0.0,
-                           run.max_abs_y[0] * 1e3, run.max_abs_y[1] * 1e3, run.out_of_range, run.queries,
-                           run.wear_samples, run.wear_wall_seconds));
-      if (run.stable_time_step_estimate > 0.0 && sim.time_step > run.stable_time_step_estimate) {
-        log_line(options, fmt::format("warning: time_step {} s exceeds the stable RK4 step estimate {:.3e} s",
-                                      sim.time_step, run.stable_time_step_estimate));
-      }
-      if (run.out_of_range > 0 || run.invalid_input > 0) {
-        log_line(options, fmt::format("warning: {} table queries out of range, {} invalid (see summary.json "
-                                      "outside_axis): widen the contact scene's grid",
-                                      run.out_of_range, run.invalid_input));
-      }
-      summary.runs.push_back(run);
+// The bogie over the route with the step's contact model, the wear post-processors fed on the way.
+RunSummary run_dynamics(const StepRun& step, const Scene& scene, const StepContact& contact, const fs::path& dir,
+                        WearPostProcessing& wear) {
+  const SimulationScene& sim = step.sim;
+  const SimulationOptions& options = step.options;
+  RunSummary run;
+  try {
+    run = run_bogie(sim, *contact.model, contact.lookup, contact.direct, scene.tangential.friction, options.duration,
+                    dir / "trajectory.csv", wear, options.interrupt);
+  } catch (const Interrupted& e) {
+    step.stop(fmt::format("in the dynamics ({})", e.what()));
+  }
+  run.label = step.label;
+  log_line(options,
+           fmt::format("{} {} step {}: {:.1f} s simulated ({:.0f} m) in {:.2f} s wall: {:.1f} simulated s per wall "
+                       "s; max |y| {:.2f} / {:.2f} mm (leading / trailing); out of range {} of {} queries; "
+                       "{} wear samples per wheelset in {:.1f} s",
+                       sim.name, step.label, step.k, run.simulated_seconds, run.distance, run.dynamics_wall_seconds,
+                       run.dynamics_wall_seconds > 0 ? run.simulated_seconds / run.dynamics_wall_seconds : 0.0,
+                       run.max_abs_y[0] * 1e3, run.max_abs_y[1] * 1e3, run.out_of_range, run.queries,
+                       run.wear_samples, run.wear_wall_seconds));
+  if (run.stable_time_step_estimate > 0.0 && sim.time_step > run.stable_time_step_estimate) {
+    log_line(options, fmt::format("warning: time_step {} s exceeds the stable RK4 step estimate {:.3e} s",
+                                  sim.time_step, run.stable_time_step_estimate));
+  }
+  if (run.out_of_range > 0 || run.invalid_input > 0) {
+    log_line(options, fmt::format("warning: {} table queries out of range, {} invalid (see summary.json "
+                                  "outside_axis): widen the contact scene's grid",
+                                  run.out_of_range, run.invalid_input));
+  }
+  return run;
+}
 
-      for (std::size_t j = 0; j < group.size(); ++j) {
-        Branch& branch = branches[group[j]];
-        const std::string& processor = processors[group[j]];
-        StepSummary step;
-        step.step = k;
-        step.generate_seconds = generate_seconds;
-        step.runs.push_back(run);
-        // The route stands for the step's running distance: wear scales with distance. Equal
-        // left and right curves and forward-backward symmetry: one wheel profile is the mean of
-        // both wheels and all counted wheelsets.
-        const std::vector<double>& u = wear.accumulator(j, 0).u();
-        const double weight = 1.0 / (static_cast<double>(sim.positions.size()) * vehicle::kWheels);
-        const auto mean_depth = [&](double distance) {  // the accumulators' mean at `distance`
-          std::vector<double> m(u.size(), 0.0);
-          for (std::size_t i = 0; i < sim.positions.size(); ++i) {
-            const WearAccumulator& acc = wear.accumulator(j, i);
-            if (acc.distance() <= 0.0) continue;
-            for (int w = 0; w < vehicle::kWheels; ++w) {
-              const std::vector<double>& d = acc.depth(w);
-              for (std::size_t b = 0; b < u.size(); ++b) m[b] += weight * d[b] * (distance / acc.distance());
-            }
-          }
-          return m;
-        };
-        // The profile update is the smoothed mean depth (write_worn_profile). With a depth limit
-        // the step ends where its largest value reaches the limit: the wear is linear in the
-        // distance at fixed states, so the distance scales by limit / peak.
-        const std::vector<double> nominal = smooth_depth(u, mean_depth(step_distance), sim.profile_smoothing);
-        const double nominal_peak = *std::max_element(nominal.begin(), nominal.end());
-        step.running_distance = step_distance;
-        step.profile_peak_depth = nominal_peak;
-        if (sim.step_depth_limit > 0.0 && nominal_peak > sim.step_depth_limit) {
-          step.running_distance = step_distance * (sim.step_depth_limit / nominal_peak);
-          step.profile_peak_depth = sim.step_depth_limit;
-          step.depth_limited = true;
-        }
-        // A profile update deeper than this is no wear step of a wheel: the linear scaling of the
-        // route's wear to the step's distance has left the physics (running_distance 1e300 gave
-        // a worn profile 1e290 mm deep, written with exit 0).
-        RAILTAB_CHECK(step.profile_peak_depth <= kMaxProfileUpdateDepth,
-                      "{}: {} step {}: the profile update would wear {:.4g} mm deep over {:.4g} km "
-                      "(simulation.running_distance / wear_steps), beyond {} mm for one step: raise wear_steps, "
-                      "lower running_distance or set step_depth_limit",
-                      sim.path.empty() ? sim.name : sim.path.string(), processor, k, step.profile_peak_depth * 1e3,
-                      step.running_distance / 1e3, kMaxProfileUpdateDepth * 1e3);
-        std::vector<std::array<std::vector<double>, vehicle::kWheels>> depth;
-        std::vector<double> mean(u.size(), 0.0);
-        for (std::size_t i = 0; i < sim.positions.size(); ++i) {
-          WearAccumulator& acc = wear.accumulator(j, i);
-          if (acc.distance() > 0.0) acc.scale(step.running_distance / acc.distance());
-          step.wear_failures += acc.failures();
-          step.wear_not_converged += acc.not_converged();
-          step.wear_status |= acc.status_seen();
-          step.wear_clipped_area += acc.clipped_area(0) + acc.clipped_area(1);
-          depth.push_back({acc.depth(0), acc.depth(1)});
-          for (const auto& d : depth.back()) {
-            for (std::size_t b = 0; b < u.size(); ++b) mean[b] += weight * d[b];
-          }
-        }
-        std::vector<double>& cumulative = branch.cumulative;
-        if (cumulative.empty()) cumulative.assign(u.size(), 0.0);
-        for (std::size_t b = 0; b < u.size(); ++b) cumulative[b] += mean[b];
-        step.worn_area = integrate(u, mean);
-        step.cumulative_worn_area = integrate(u, cumulative);
+// One post-processor's wear of a step, scaled to the step's running distance: each counted
+// wheelset's left and right depth, and their mean (one wheel profile).
+struct StepWear {
+  std::vector<std::array<std::vector<double>, vehicle::kWheels>> depth;
+  std::vector<double> mean;
+};
 
-        const fs::path wear_dir = summary.directory / processor / fmt::format("step{}", k);
-        fs::create_directories(wear_dir);
-        std::ostringstream csv;
-        csv << "u_m";
-        for (const std::string& position : sim.positions) {
-          csv << ",depth_left_" << position << "_m,depth_right_" << position << "_m";
-        }
-        csv << ",depth_mean_m,depth_cumulative_m\n";
-        for (std::size_t b = 0; b < u.size(); ++b) {
-          csv << fmt::format("{:.6f}", u[b]);
-          for (const auto& d : depth) csv << fmt::format(",{:.6e},{:.6e}", d[0][b], d[1][b]);
-          csv << fmt::format(",{:.6e},{:.6e}\n", mean[b], cumulative[b]);
-        }
-        write_file(wear_dir / "wear.csv", csv.str());
-        write_file(wear_dir / "worn_area.csv",
-                   fmt::format("step,running_distance_m,worn_area_m2,worn_area_mm2,cumulative_worn_area_mm2\n"
-                               "{},{},{:.6e},{:.6f},{:.6f}\n",
-                               k, step.running_distance, step.worn_area, step.worn_area * 1e6,
-                               step.cumulative_worn_area * 1e6));
-
-        // The next step runs on this post-processor's worn wheel (smoothed).
-        const fs::path next = summary.directory / processor / fmt::format("step{}", k + 1) / "wheel_worn.txt";
-        fs::create_directories(next.parent_path());
-        write_worn_profile(*wheel_profile(scene), u, mean, sim.profile_smoothing, next);
-        branch.worn_wheel = next;
-        branch.summary.running_distance += step.running_distance;
-        log_line(options, fmt::format("{} {} step {}: worn area {:.4f} mm2 over {:.0f} km{} (cumulative {:.4f} mm2 "
-                                      "after {:.0f} km); profile update peak {:.1f} um",
-                                      sim.name, processor, k, step.worn_area * 1e6, step.running_distance / 1e3,
-                                      step.depth_limited ? " (depth-limited)" : "", step.cumulative_worn_area * 1e6,
-                                      branch.summary.running_distance / 1e3, step.profile_peak_depth * 1e6));
-        branch.summary.step_cumulative_depth.push_back(cumulative);
-        branch.summary.steps.push_back(std::move(step));
-        branch.summary.u = u;
+// Scales post-processor j's accumulators to the step's running distance (shortened by the depth
+// limit) and fills the step's distance, peak depth and wear counts.
+StepWear scale_wear(const SimulationScene& sim, WearPostProcessing& wear, std::size_t j, const std::string& processor,
+                    int k, double step_distance, StepSummary& step) {
+  // The route stands for the step's running distance: wear scales with distance. Equal
+  // left and right curves and forward-backward symmetry: one wheel profile is the mean of
+  // both wheels and all counted wheelsets.
+  const std::vector<double>& u = wear.accumulator(j, 0).u();
+  const double weight = 1.0 / (static_cast<double>(sim.positions.size()) * vehicle::kWheels);
+  const auto mean_depth = [&](double distance) {  // the accumulators' mean at `distance`
+    std::vector<double> m(u.size(), 0.0);
+    for (std::size_t i = 0; i < sim.positions.size(); ++i) {
+      const WearAccumulator& acc = wear.accumulator(j, i);
+      if (acc.distance() <= 0.0) continue;
+      for (int w = 0; w < vehicle::kWheels; ++w) {
+        const std::vector<double>& d = acc.depth(w);
+        for (std::size_t b = 0; b < u.size(); ++b) m[b] += weight * d[b] * (distance / acc.distance());
       }
     }
+    return m;
+  };
+  // The profile update is the smoothed mean depth (write_worn_profile). With a depth limit
+  // the step ends where its largest value reaches the limit: the wear is linear in the
+  // distance at fixed states, so the distance scales by limit / peak.
+  const std::vector<double> nominal = smooth_depth(u, mean_depth(step_distance), sim.profile_smoothing);
+  const double nominal_peak = *std::max_element(nominal.begin(), nominal.end());
+  step.running_distance = step_distance;
+  step.profile_peak_depth = nominal_peak;
+  if (sim.step_depth_limit > 0.0 && nominal_peak > sim.step_depth_limit) {
+    step.running_distance = step_distance * (sim.step_depth_limit / nominal_peak);
+    step.profile_peak_depth = sim.step_depth_limit;
+    step.depth_limited = true;
   }
-
-  std::vector<WearSeries> final_series;
-  for (Branch& branch : branches) {
-    ModelSummary& ms = branch.summary;
-    ms.cumulative_depth = branch.cumulative;
-    locate_wear(ms);
-    final_series.push_back({ms.model, ms.u, ms.cumulative_depth, is_stripes(ms.model)});
-    summary.models.push_back(std::move(ms));
+  // A profile update deeper than this is no wear step of a wheel: the linear scaling of the
+  // route's wear to the step's distance has left the physics (running_distance 1e300 gave
+  // a worn profile 1e290 mm deep, written with exit 0).
+  RAILTAB_CHECK(step.profile_peak_depth <= kMaxProfileUpdateDepth,
+                "{}: {} step {}: the profile update would wear {:.4g} mm deep over {:.4g} km "
+                "(simulation.running_distance / wear_steps), beyond {} mm for one step: raise wear_steps, "
+                "lower running_distance or set step_depth_limit",
+                sim.path.empty() ? sim.name : sim.path.string(), processor, k, step.profile_peak_depth * 1e3,
+                step.running_distance / 1e3, kMaxProfileUpdateDepth * 1e3);
+  StepWear result;
+  result.mean.assign(u.size(), 0.0);
+  for (std::size_t i = 0; i < sim.positions.size(); ++i) {
+    WearAccumulator& acc = wear.accumulator(j, i);
+    if (acc.distance() > 0.0) acc.scale(step.running_distance / acc.distance());
+    step.wear_failures += acc.failures();
+    step.wear_not_converged += acc.not_converged();
+    step.wear_status |= acc.status_seen();
+    step.wear_clipped_area += acc.clipped_area(0) + acc.clipped_area(1);
+    result.depth.push_back({acc.depth(0), acc.depth(1)});
+    for (const auto& d : result.depth.back()) {
+      for (std::size_t b = 0; b < u.size(); ++b) result.mean[b] += weight * d[b];
+    }
   }
+  return result;
+}
 
-  // summary.json and the chart of the cumulative radial wear (seed 001 Figs. 11-13).
+// wear.csv (depth per wheel and position, mean, cumulative) and worn_area.csv of one step.
+void write_wear_csv(const SimulationScene& sim, const fs::path& wear_dir, const std::vector<double>& u,
+                    const StepWear& w, const std::vector<double>& cumulative, const StepSummary& step) {
+  std::ostringstream csv;
+  csv << "u_m";
+  for (const std::string& position : sim.positions) {
+    csv << ",depth_left_" << position << "_m,depth_right_" << position << "_m";
+  }
+  csv << ",depth_mean_m,depth_cumulative_m\n";
+  for (std::size_t b = 0; b < u.size(); ++b) {
+    csv << fmt::format("{:.6f}", u[b]);
+    for (const auto& d : w.depth) csv << fmt::format(",{:.6e},{:.6e}", d[0][b], d[1][b]);
+    csv << fmt::format(",{:.6e},{:.6e}\n", w.mean[b], cumulative[b]);
+  }
+  write_file(wear_dir / "wear.csv", csv.str());
+  write_file(wear_dir / "worn_area.csv",
+             fmt::format("step,running_distance_m,worn_area_m2,worn_area_mm2,cumulative_worn_area_mm2\n"
+                         "{},{},{:.6e},{:.6f},{:.6f}\n",
+                         step.step, step.running_distance, step.worn_area, step.worn_area * 1e6,
+                         step.cumulative_worn_area * 1e6));
+}
+
+// Post-processor j of a step's group: its wear scaled to the step, the CSVs, and the worn wheel
+// (smoothed) that its next step runs on.
+void wear_step(const StepRun& run, const Scene& scene, WearPostProcessing& wear, std::size_t j,
+               const std::string& processor, Branch& branch, const RunSummary& dynamics, double generate_seconds,
+               double step_distance) {
+  const SimulationScene& sim = run.sim;
+  const int k = run.k;
+  StepSummary step;
+  step.step = k;
+  step.generate_seconds = generate_seconds;
+  step.runs.push_back(dynamics);
+  const std::vector<double>& u = wear.accumulator(j, 0).u();
+  const StepWear w = scale_wear(sim, wear, j, processor, k, step_distance, step);
+  std::vector<double>& cumulative = branch.cumulative;
+  if (cumulative.empty()) cumulative.assign(u.size(), 0.0);
+  for (std::size_t b = 0; b < u.size(); ++b) cumulative[b] += w.mean[b];
+  step.worn_area = integrate(u, w.mean);
+  step.cumulative_worn_area = integrate(u, cumulative);
+
+  const fs::path wear_dir = run.directory / processor / fmt::format("step{}", k);
+  fs::create_directories(wear_dir);
+  write_wear_csv(sim, wear_dir, u, w, cumulative, step);
+
+  // The next step runs on this post-processor's worn wheel (smoothed).
+  const fs::path next = run.directory / processor / fmt::format("step{}", k + 1) / "wheel_worn.txt";
+  fs::create_directories(next.parent_path());
+  write_worn_profile(*wheel_profile(scene), u, w.mean, sim.profile_smoothing, next);
+  branch.worn_wheel = next;
+  branch.summary.running_distance += step.running_distance;
+  log_line(run.options, fmt::format("{} {} step {}: worn area {:.4f} mm2 over {:.0f} km{} (cumulative {:.4f} mm2 "
+                                    "after {:.0f} km); profile update peak {:.1f} um",
+                                    sim.name, processor, k, step.worn_area * 1e6, step.running_distance / 1e3,
+                                    step.depth_limited ? " (depth-limited)" : "", step.cumulative_worn_area * 1e6,
+                                    branch.summary.running_distance / 1e3, step.profile_peak_depth * 1e6));
+  branch.summary.step_cumulative_depth.push_back(cumulative);
+  branch.summary.steps.push_back(std::move(step));
+  branch.summary.u = u;
+}
+
+// summary.json: the scene, every dynamics run and every post-processor's steps and wear location.
+nlohmann::json summary_json(const SimulationScene& sim, const SimulationOptions& options,
+                            const SimulationSummary& summary) {
   nlohmann::json j;
   j["scene"] = sim.name;
   j["contact_scene"] = sim.contact_scene.generic_string();
@@ -453,7 +443,13 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
     jm["peak_depth_u_m"] = m.peak_u;
     j["post_processors"].push_back(jm);
   }
-  write_file(summary.directory / "summary.json", j.dump(2) + "\n");
+  return j;
+}
+
+// The chart of the cumulative radial wear (seed 001 Figs. 11-13) and its evolution: every
+// post-processor after each wear step. A chart that fails is a warning: the CSVs are written.
+void draw_charts(const SimulationScene& sim, const SimulationOptions& options, const SimulationSummary& summary,
+                 const std::vector<WearSeries>& final_series, double step_distance) {
   try {
     draw_wear_chart(final_series, summary.directory / "wear.png",
                     sim.step_depth_limit > 0.0
@@ -461,7 +457,6 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
                                       sim.wear_steps, sim.dynamics_model)
                         : fmt::format("{}: radial wear after {:.0f} km ({} dynamics)", sim.name,
                                       sim.running_distance / 1e3, sim.dynamics_model));
-    // The evolution: every post-processor after each wear step.
     for (int k = 0; k + 1 < sim.wear_steps; ++k) {
       std::vector<WearSeries> series;
       for (const ModelSummary& m : summary.models) {
@@ -475,6 +470,86 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
   } catch (const Error& e) {
     log_line(options, fmt::format("warning: no chart: {}", e.what()));  // the CSVs are written
   }
+}
+
+}  // namespace
+
+double simulation_speed(const SimulationSummary& summary) {
+  double simulated = 0.0, wall = 0.0;
+  for (const RunSummary& r : summary.runs) {
+    simulated += r.simulated_seconds;
+    wall += r.dynamics_wall_seconds;
+  }
+  return wall > 0.0 ? simulated / wall : 0.0;
+}
+
+SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOptions& options) {
+  const std::vector<std::string> processors = checked_processors(sim, options);
+  const Scene contact = load_scene(sim.contact_scene);
+  // The wheelsets have no roll degree of freedom: their roll is the kinematic one at every y.
+  RAILTAB_CHECK(contact.equilibrium_roll, "{}: the contact scene of a simulation needs [grid] equilibrium_roll = true",
+                sim.contact_scene.string());
+
+  SimulationSummary summary;
+  summary.name = sim.name;
+  summary.directory = options.out / sim.name;
+  summary.dynamics_model = sim.dynamics_model;
+  fs::create_directories(summary.directory);
+  // summary.json is written last: a previous run's must not sit beside this run's new step files
+  // if this one is interrupted or fails.
+  if (fs::remove(summary.directory / "summary.json")) {
+    log_line(options, fmt::format("{}: removed the previous run's summary.json (rewritten at the end)",
+                                  summary.directory.string()));
+  }
+  const double step_distance = sim.running_distance / sim.wear_steps;
+  std::vector<Branch> branches(processors.size());
+  for (std::size_t p = 0; p < processors.size(); ++p) branches[p].summary.model = processors[p];
+
+  for (int k = 0; k < sim.wear_steps; ++k) {
+    // Step 0: every post-processor starts from the same wheel, so ONE dynamics run feeds them
+    // all. Later steps: each runs on its own worn wheel (its own profile evolution, as seed 001
+    // ran one loop per wear model).
+    std::vector<std::vector<std::size_t>> groups;
+    if (k == 0) {
+      groups.emplace_back();
+      for (std::size_t p = 0; p < processors.size(); ++p) groups.back().push_back(p);
+    } else {
+      for (std::size_t p = 0; p < processors.size(); ++p) groups.push_back({p});
+    }
+    for (const std::vector<std::size_t>& group : groups) {
+      const StepRun step{sim, options, summary.directory, k == 0 ? "shared" : processors[group.front()], k};
+      if (options.interrupt && options.interrupt->load()) step.stop("before the step");
+      const fs::path dir = summary.directory / step.label / fmt::format("step{}", k);
+      fs::create_directories(dir);
+      const std::string name = fmt::format("{}-{}-step{}", sim.name, step.label, k);
+      const fs::path scene_file = dir / "scene.toml";
+      write_file(scene_file,
+                 step_scene_text(sim, contact, sim.dynamics_model, branches[group.front()].worn_wheel, dir, name));
+      const Scene scene = load_scene(scene_file);
+      const StepContact contact_model = step_contact(step, scene, scene_file, dir);
+
+      std::vector<std::string> names;
+      for (std::size_t p : group) names.push_back(processors[p]);
+      WearPostProcessing wear(scene, names, sim.positions, WearGrid{}, sim.halfspace_sample_every);
+      const RunSummary run = run_dynamics(step, scene, contact_model, dir, wear);
+      summary.runs.push_back(run);
+      for (std::size_t j = 0; j < group.size(); ++j) {
+        wear_step(step, scene, wear, j, processors[group[j]], branches[group[j]], run, contact_model.generate_seconds,
+                  step_distance);
+      }
+    }
+  }
+
+  std::vector<WearSeries> final_series;
+  for (Branch& branch : branches) {
+    ModelSummary& ms = branch.summary;
+    ms.cumulative_depth = branch.cumulative;
+    locate_wear(ms);
+    final_series.push_back({ms.model, ms.u, ms.cumulative_depth, is_stripes(ms.model)});
+    summary.models.push_back(std::move(ms));
+  }
+  write_file(summary.directory / "summary.json", summary_json(sim, options, summary).dump(2) + "\n");
+  draw_charts(sim, options, summary, final_series, step_distance);
   return summary;
 }
 

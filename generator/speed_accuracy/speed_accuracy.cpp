@@ -288,6 +288,301 @@ bool contact_reference_applies(const Scene& scene) {
          scene.rail.file.empty() && scene.track.rail_inclination == 1.0 / 40.0;
 }
 
+namespace {
+
+// One measurement's shared state: the scene, the options, the chain every setting starts from,
+// the evaluation workspaces and the sink that keeps the timed work observable.
+struct Measurement {
+  const Scene& scene;
+  const SpeedAccuracyOptions& opt;
+  SpeedAccuracyResult& res;
+  const ContactGeometrySolver& solver;
+  Chain base;
+  double load = 0.0;
+  double friction = 0.0;
+  bool have_ref = false;
+  FastsimWorkspace ws;
+  WearDistribution dist;
+  double sink = 0.0;
+
+  std::size_t ns() const { return res.states.size(); }
+};
+
+// The chain of the scene the models run on (no roll, CONTACT's material when comparing with CONTACT).
+Chain base_chain(const Scene& mscene, const ContactGeometrySolver& solver) {
+  Chain base;
+  base.solver = &solver;
+  base.material = mscene.material;
+  base.normal = mscene.normal;
+  base.fastsim = fastsim_options(mscene);
+  base.creep = creep_conditions(mscene);
+  base.wear = wear_options(mscene);
+  base.coupling = coupled_load_options(mscene);
+  base.halfspace = halfspace_options(mscene);
+  return base;
+}
+
+// Without CONTACT's results: the reference forces of every state from the exact half-space model
+// (default) or a fine fast-model setting.
+void fallback_reference(Measurement& m) {
+  const SpeedAccuracyOptions& opt = m.opt;
+  SpeedAccuracyResult& res = m.res;
+  const char* no_contact_reason = contact_reference_applies(m.scene)
+                                      ? "no CONTACT reference found"
+                                      : "CONTACT's reference is S1002 on UIC60 at 1:40, not this scene's pair";
+  Chain c = m.base;
+  c.normal.model = opt.fallback_reference.model;
+  c.normal.strips = opt.fallback_reference.strips;
+  c.fastsim.elements_per_strip = opt.fallback_reference.elements;
+  for (SaState& s : res.states) {
+    const SaOutcome o = evaluate(c, s, m.ws, m.dist, m.sink);
+    s.ref_fx = o.fx;
+    s.ref_fy = o.fy;
+    s.ref_area = o.area;
+    s.ref_pmax = o.pmax;
+    s.ref_angle = o.angle;
+  }
+  res.exact_reference = opt.fallback_reference.model == NormalModel::halfspace;
+  res.reference = res.exact_reference
+                      ? fmt::format("exact half-space model (railtab, {:g} mm elements; {})",
+                                    m.base.halfspace.element_size * 1e3, no_contact_reason)
+                      : fmt::format("finest STRIPES ({}; {})", opt.fallback_reference.label(), no_contact_reason);
+}
+
+// The geometry step alone per state (reported beside every model row) [us].
+std::vector<double> geometry_times(Measurement& m) {
+  const std::vector<SaState>& states = m.res.states;
+  std::vector<double> tgeo(m.ns());
+  for (std::size_t i = 0; i < m.ns(); ++i) {
+    std::vector<double> t;
+    for (int r = 0; r <= m.opt.repeats; ++r) {
+      const Clock::time_point t0 = Clock::now();
+      const WheelContactGeometry g = m.solver.solve_wheel(Side::right, WheelsetState{states[i].y, 0.0});
+      const double dt = us_since(t0);
+      m.sink += g.points.empty() ? 0.0 : g.points.front().rolling_radius;
+      if (r > 0) t.push_back(dt);
+    }
+    tgeo[i] = median(t);
+  }
+  return tgeo;
+}
+
+// One model setting: the full chain per state, 1 warm-up + repeats, median per state; one row.
+void measure_model(Measurement& m, const SaModelSetting& setting, const std::vector<double>& tgeo) {
+  const SpeedAccuracyOptions& opt = m.opt;
+  const std::vector<SaState>& states = m.res.states;
+  const std::size_t ns = m.ns();
+  Chain c = m.base;
+  c.normal.model = setting.model;
+  if (setting.strips > 0) c.normal.strips = setting.strips;
+  c.fastsim.elements_per_strip = setting.elements;
+  SaRow row;
+  row.label = setting.label();
+  row.kind = "model";
+  row.family = to_string(setting.model);
+  row.strips = setting.model == NormalModel::hertz ? 0 : setting.strips;
+  row.elements = setting.elements;
+  row.time_geometry_us = median(tgeo);
+  std::vector<SaOutcome> outs(ns);
+  std::vector<double> times(ns);
+  const int repeats = setting.model == NormalModel::halfspace ? std::min(opt.repeats, opt.exact_repeats) : opt.repeats;
+  for (std::size_t i = 0; i < ns; ++i) {
+    try {
+      outs[i] = evaluate(c, states[i], m.ws, m.dist, m.sink);  // warm-up, and the result
+      std::vector<double> t;
+      for (int r = 0; r < repeats; ++r) {
+        const Clock::time_point t0 = Clock::now();
+        const SaOutcome o = evaluate(c, states[i], m.ws, m.dist, m.sink);
+        t.push_back(us_since(t0));
+        m.sink += o.fx;
+      }
+      times[i] = median(t);
+    } catch (const std::exception&) {
+      outs[i] = SaOutcome{};
+      times[i] = kNaN;
+    }
+  }
+  summarise_times(row, states, times);
+  std::vector<double> tc(ns);
+  for (std::size_t i = 0; i < ns; ++i) tc[i] = times[i] - tgeo[i];
+  row.time_contact_us = median(tc);
+  std::vector<double> e;
+  summarise_errors(row, states, outs, e);
+  const std::size_t r = m.res.rows.size();
+  m.res.rows.push_back(row);
+  for (std::size_t i = 0; i < ns; ++i) m.res.per_state.push_back({r, i, outs[i], times[i], e[i]});
+}
+
+// The span of the states, which a table's grid must cover.
+struct StateSpan {
+  double xlo = 0, xhi = 0, elo = 0, ehi = 0, plo = 0, phi_hi = 0, ylo = 1, yhi = -1;
+};
+
+StateSpan state_span(const std::vector<SaState>& states) {
+  StateSpan r;
+  for (const SaState& s : states) {
+    r.xlo = std::min(r.xlo, s.xi), r.xhi = std::max(r.xhi, s.xi);
+    r.elo = std::min(r.elo, s.eta), r.ehi = std::max(r.ehi, s.eta);
+    r.plo = std::min(r.plo, s.phi), r.phi_hi = std::max(r.phi_hi, s.phi);
+    r.ylo = std::min(r.ylo, s.y), r.yhi = std::max(r.yhi, s.y);
+  }
+  return r;
+}
+
+// The grids of a table setting around the states.
+Grids table_grids(const Scene& scene, const SaTableSetting& ts, const StateSpan& span) {
+  Grids g;
+  // Nodes shifted by 0.63 mm against the integer-mm states, so that no state sits on a node
+  // (there the lookup would show only the creepage interpolation).
+  const double h = ts.y_step;
+  const double y0 = span.ylo - 0.63e-3 - h * std::floor(0.63e-3 / h) - h;
+  for (double y = y0; y < span.yhi + h; y += h) g.y.push_back(std::round(y * 1e9) * 1e-9);
+  if (ts.fine_creep) {
+    g.xi = covering(range(-0.004, 0.001, 0.0005), span.xlo, span.xhi);
+    g.eta = covering(range(-0.001, 0.003, 0.0005), span.elo, span.ehi);
+    g.phi = covering(range(-0.05, 0.15, 0.025), span.plo, span.phi_hi);
+  } else {
+    g.xi = covering(scene.grids.xi, span.xlo, span.xhi);
+    g.eta = covering(scene.grids.eta, span.elo, span.ehi);
+    g.phi = covering(scene.grids.phi, span.plo, span.phi_hi);
+  }
+  return g;
+}
+
+// Per-state lookup times (for the tread/flange split): 32 queries per sample, median of 15 [us].
+std::vector<double> lookup_state_times(Measurement& m, const lk::Table& table, const std::vector<lk::State>& qs) {
+  lk::Result r;
+  std::vector<double> times(m.ns());
+  for (std::size_t i = 0; i < m.ns(); ++i) {
+    std::vector<double> t;
+    for (int p = 0; p < 15; ++p) {
+      const Clock::time_point t0 = Clock::now();
+      for (int k = 0; k < 32; ++k) {
+        table.query(lk::Wheel::kRight, qs[i], r);
+        m.sink += r.contact[1].value[lk::kFy];
+      }
+      t.push_back(us_since(t0) / 32.0);
+    }
+    times[i] = median(t);
+  }
+  return times;
+}
+
+// One table file read with one lookup method, queried at the states: one row. `own` is the table's
+// own model setting evaluated directly (separates interpolation from model error).
+void measure_lookup(Measurement& m, const SaTableSetting& ts, const std::filesystem::path& file, lk::Method method,
+                    const std::vector<SaOutcome>& own) {
+  const std::vector<SaState>& states = m.res.states;
+  const std::size_t ns = m.ns();
+  const lk::Table table = lk::Table::load(file.string(), lk::LoadOptions{method});
+  std::vector<lk::State> qs(ns);
+  std::vector<SaOutcome> outs(ns);
+  for (std::size_t i = 0; i < ns; ++i) {
+    lk::State q = table.default_state();
+    q.y = states[i].y;
+    q.roll = 0.0;
+    q.load = m.load;
+    q.xi = states[i].xi;
+    q.eta = states[i].eta;
+    q.phi = states[i].phi;
+    qs[i] = q;
+    outs[i] = from_lookup(table.query(lk::Wheel::kRight, q));
+  }
+  // Timing: passes over all states, median pass time / states (warm-up pass first).
+  lk::Result r;
+  std::vector<double> pass;
+  for (int p = 0; p <= m.opt.lookup_passes; ++p) {
+    const Clock::time_point t0 = Clock::now();
+    for (std::size_t i = 0; i < ns; ++i) {
+      table.query(lk::Wheel::kRight, qs[i], r);
+      m.sink += r.contact[0].value[lk::kFx];
+    }
+    if (p > 0) pass.push_back(us_since(t0) / static_cast<double>(ns));
+  }
+  const std::vector<double> times = lookup_state_times(m, table, qs);
+  SaRow row;
+  const bool linear = method == lk::Method::kLinear;
+  row.label = ts.label() + (linear ? "" : " cubic");
+  row.kind = "lookup";
+  row.family = std::string(linear ? "lookup-linear" : "lookup-cubic") + (ts.exact ? "-exact" : "");
+  row.table_y_step = ts.y_step;
+  row.table_creep_grid = ts.fine_creep ? "fine" : "scene";
+  summarise_times(row, states, times);
+  row.time_us = median(pass);
+  row.file_bytes = std::filesystem::file_size(file);
+  row.memory_bytes = table.memory_bytes();
+  std::vector<double> e;
+  summarise_errors(row, states, outs, e);
+  std::vector<double> ei;
+  for (std::size_t i = 0; i < ns; ++i) {
+    if (!states[i].creep || !own[i].ok) continue;
+    SaState d = states[i];
+    d.ref_fx = own[i].fx;
+    d.ref_fy = own[i].fy;
+    ei.push_back(outs[i].ok ? force_error(outs[i], d) : kNaN);
+  }
+  row.err_interp = median(ei);
+  row.err_interp_p90 = percentile(ei, 0.9);
+  const std::size_t ri = m.res.rows.size();
+  m.res.rows.push_back(row);
+  for (std::size_t i = 0; i < ns; ++i) m.res.per_state.push_back({ri, i, outs[i], times[i], e[i]});
+}
+
+// Tables: generated in-process with the contact kernel, written under work_dir, loaded by the
+// lookup library and queried at the same states.
+void measure_tables(Measurement& m) {
+  const SpeedAccuracyOptions& opt = m.opt;
+  const std::vector<SaState>& states = m.res.states;
+  const std::size_t ns = m.ns();
+  RAILTAB_CHECK(!opt.work_dir.empty(), "speed-accuracy: tables need a work directory");
+  std::filesystem::create_directories(opt.work_dir);
+  const StateSpan span = state_span(states);
+  const std::vector<SaTableSetting> tables = opt.tables.empty() ? default_table_settings() : opt.tables;
+  // The tables' own model setting evaluated directly: separates interpolation from model error
+  // (the scene's model, and the exact model for the exact tables).
+  std::vector<SaOutcome> direct(ns), direct_exact;
+  for (std::size_t i = 0; i < ns; ++i) direct[i] = evaluate(m.base, states[i], m.ws, m.dist, m.sink);
+  for (const SaTableSetting& ts : tables) {
+    if (ts.exact && direct_exact.empty()) {
+      Chain c = m.base;
+      c.normal.model = NormalModel::halfspace;
+      for (std::size_t i = 0; i < ns; ++i) direct_exact.push_back(evaluate(c, states[i], m.ws, m.dist, m.sink));
+    }
+    const std::vector<SaOutcome>& own = ts.exact ? direct_exact : direct;
+    const Grids g = table_grids(m.scene, ts, span);
+    const Scene tscene = derive_scene(m.scene, m.load, m.friction, m.have_ref, &g, ts.exact ? "halfspace" : nullptr);
+    SweepOptions so;
+    so.threads = opt.table_threads;
+    const SweepResult sr = run_sweep(tscene, make_contact_kernel(tscene), so);
+    const std::filesystem::path file = opt.work_dir / fmt::format("speed_accuracy_y{:g}mm{}{}.h5", ts.y_step * 1e3,
+                                                                 ts.fine_creep ? "_fine" : "", ts.exact ? "_exact" : "");
+    write_table(sr.table, file);
+    std::vector<lk::Method> methods{lk::Method::kLinear};
+    if (opt.cubic) methods.push_back(lk::Method::kCubic);
+    for (lk::Method method : methods) measure_lookup(m, ts, file, method, own);
+    if (!opt.keep_tables) std::filesystem::remove(file);
+  }
+}
+
+// The Pareto fronts of time against error: over all states, tread states, flange states.
+void mark_pareto_fronts(std::vector<SaRow>& rows) {
+  std::vector<double> t_all, e_all, t_tr, e_tr, t_fl, e_fl;
+  for (const SaRow& r : rows) {
+    t_all.push_back(r.time_us), e_all.push_back(r.err_force);
+    t_tr.push_back(r.time_tread_us), e_tr.push_back(r.err_force_tread);
+    t_fl.push_back(r.time_flange_us), e_fl.push_back(r.err_force_flange);
+  }
+  const std::vector<bool> pa = pareto_front(t_all, e_all), pt = pareto_front(t_tr, e_tr),
+                          pf = pareto_front(t_fl, e_fl);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i].pareto_all = pa[i];
+    rows[i].pareto_tread = pt[i];
+    rows[i].pareto_flange = pf[i];
+  }
+}
+
+}  // namespace
+
 SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccuracyOptions& opt) {
   const Clock::time_point start = Clock::now();
   SpeedAccuracyResult res;
@@ -306,248 +601,24 @@ SpeedAccuracyResult measure_speed_accuracy(const Scene& scene, const SpeedAccura
   // The scene the models run on: no roll, CONTACT's material when comparing with CONTACT.
   const Scene mscene = derive_scene(scene, load, friction, have_ref, nullptr);
   const ContactGeometrySolver solver = make_geometry_solver(mscene);
-  Chain base;
-  base.solver = &solver;
-  base.material = mscene.material;
-  base.normal = mscene.normal;
-  base.fastsim = fastsim_options(mscene);
-  base.creep = creep_conditions(mscene);
-  base.wear = wear_options(mscene);
-  base.coupling = coupled_load_options(mscene);
-  base.halfspace = halfspace_options(mscene);
+  Measurement m{scene, opt, res, solver, base_chain(mscene, solver), load, friction, have_ref, {}, {}, 0.0};
   res.setup = fmt::format(
       "right wheel, roll 0, Fz {:g} kN, mu {:g}, E {:g} GPa, nu {:g}, spin {}, negative curvature {}, load coupling {}",
       load * 1e-3, friction, mscene.material.youngs_modulus * 1e-9, mscene.material.poisson_ratio,
       mscene.tangential.spin_per_strip ? "per strip" : "patch-constant", to_string(mscene.normal.negative_curvature),
       mscene.tangential.load_coupling ? "on" : "off");
 
-  FastsimWorkspace ws;
-  WearDistribution dist;
-  double sink = 0.0;
-  const std::size_t ns = res.states.size();
-
   if (!have_ref) {
-    const char* no_contact_reason = contact_reference_applies(scene)
-                                        ? "no CONTACT reference found"
-                                        : "CONTACT's reference is S1002 on UIC60 at 1:40, not this scene's pair";
-    // Fallback reference: the exact half-space model (default), or a fine fast-model setting.
-    Chain c = base;
-    c.normal.model = opt.fallback_reference.model;
-    c.normal.strips = opt.fallback_reference.strips;
-    c.fastsim.elements_per_strip = opt.fallback_reference.elements;
-    for (SaState& s : res.states) {
-      const SaOutcome o = evaluate(c, s, ws, dist, sink);
-      s.ref_fx = o.fx;
-      s.ref_fy = o.fy;
-      s.ref_area = o.area;
-      s.ref_pmax = o.pmax;
-      s.ref_angle = o.angle;
-    }
-    res.exact_reference = opt.fallback_reference.model == NormalModel::halfspace;
-    res.reference = res.exact_reference
-                        ? fmt::format("exact half-space model (railtab, {:g} mm elements; {})",
-                                      base.halfspace.element_size * 1e3, no_contact_reason)
-                        : fmt::format("finest STRIPES ({}; {})", opt.fallback_reference.label(), no_contact_reason);
+    fallback_reference(m);
   } else {
     res.reference = "CONTACT half-space (block C, ../shared/reference)";
   }
-  const std::vector<SaState>& states = res.states;
-
-  // Geometry step alone (reported beside every model row).
-  std::vector<double> tgeo(ns);
-  for (std::size_t i = 0; i < ns; ++i) {
-    std::vector<double> t;
-    for (int r = 0; r <= opt.repeats; ++r) {
-      const Clock::time_point t0 = Clock::now();
-      const WheelContactGeometry g = solver.solve_wheel(Side::right, WheelsetState{states[i].y, 0.0});
-      const double dt = us_since(t0);
-      sink += g.points.empty() ? 0.0 : g.points.front().rolling_radius;
-      if (r > 0) t.push_back(dt);
-    }
-    tgeo[i] = median(t);
-  }
-  const double time_geometry = median(tgeo);
-
-  // Models: the full chain per state, 1 warm-up + repeats, median per state.
+  const std::vector<double> tgeo = geometry_times(m);
   const std::vector<SaModelSetting> models = opt.models.empty() ? default_model_settings() : opt.models;
-  for (const SaModelSetting& m : models) {
-    Chain c = base;
-    c.normal.model = m.model;
-    if (m.strips > 0) c.normal.strips = m.strips;
-    c.fastsim.elements_per_strip = m.elements;
-    SaRow row;
-    row.label = m.label();
-    row.kind = "model";
-    row.family = to_string(m.model);
-    row.strips = m.model == NormalModel::hertz ? 0 : m.strips;
-    row.elements = m.elements;
-    row.time_geometry_us = time_geometry;
-    std::vector<SaOutcome> outs(ns);
-    std::vector<double> times(ns);
-    const int repeats = m.model == NormalModel::halfspace ? std::min(opt.repeats, opt.exact_repeats) : opt.repeats;
-    for (std::size_t i = 0; i < ns; ++i) {
-      try {
-        outs[i] = evaluate(c, states[i], ws, dist, sink);  // warm-up, and the result
-        std::vector<double> t;
-        for (int r = 0; r < repeats; ++r) {
-          const Clock::time_point t0 = Clock::now();
-          const SaOutcome o = evaluate(c, states[i], ws, dist, sink);
-          t.push_back(us_since(t0));
-          sink += o.fx;
-        }
-        times[i] = median(t);
-      } catch (const std::exception&) {
-        outs[i] = SaOutcome{};
-        times[i] = kNaN;
-      }
-    }
-    summarise_times(row, states, times);
-    std::vector<double> tc(ns);
-    for (std::size_t i = 0; i < ns; ++i) tc[i] = times[i] - tgeo[i];
-    row.time_contact_us = median(tc);
-    std::vector<double> e;
-    summarise_errors(row, states, outs, e);
-    const std::size_t r = res.rows.size();
-    res.rows.push_back(row);
-    for (std::size_t i = 0; i < ns; ++i) res.per_state.push_back({r, i, outs[i], times[i], e[i]});
-  }
-
-  // Tables: generated in-process with the contact kernel, written under work_dir, loaded by the
-  // lookup library and queried at the same states.
-  if (!opt.no_tables) {
-    RAILTAB_CHECK(!opt.work_dir.empty(), "speed-accuracy: tables need a work directory");
-    std::filesystem::create_directories(opt.work_dir);
-    double xlo = 0, xhi = 0, elo = 0, ehi = 0, plo = 0, phi_hi = 0, ylo = 1, yhi = -1;
-    for (const SaState& s : states) {
-      xlo = std::min(xlo, s.xi), xhi = std::max(xhi, s.xi);
-      elo = std::min(elo, s.eta), ehi = std::max(ehi, s.eta);
-      plo = std::min(plo, s.phi), phi_hi = std::max(phi_hi, s.phi);
-      ylo = std::min(ylo, s.y), yhi = std::max(yhi, s.y);
-    }
-    const std::vector<SaTableSetting> tables = opt.tables.empty() ? default_table_settings() : opt.tables;
-    // The tables' own model setting evaluated directly: separates interpolation from model error
-    // (the scene's model, and the exact model for the exact tables).
-    std::vector<SaOutcome> direct(ns), direct_exact;
-    for (std::size_t i = 0; i < ns; ++i) direct[i] = evaluate(base, states[i], ws, dist, sink);
-    for (const SaTableSetting& ts : tables) {
-      if (ts.exact && direct_exact.empty()) {
-        Chain c = base;
-        c.normal.model = NormalModel::halfspace;
-        for (std::size_t i = 0; i < ns; ++i) direct_exact.push_back(evaluate(c, states[i], ws, dist, sink));
-      }
-      const std::vector<SaOutcome>& own = ts.exact ? direct_exact : direct;
-      Grids g;
-      // Nodes shifted by 0.63 mm against the integer-mm states, so that no state sits on a node
-      // (there the lookup would show only the creepage interpolation).
-      const double h = ts.y_step;
-      const double y0 = ylo - 0.63e-3 - h * std::floor(0.63e-3 / h) - h;
-      for (double y = y0; y < yhi + h; y += h) g.y.push_back(std::round(y * 1e9) * 1e-9);
-      if (ts.fine_creep) {
-        g.xi = covering(range(-0.004, 0.001, 0.0005), xlo, xhi);
-        g.eta = covering(range(-0.001, 0.003, 0.0005), elo, ehi);
-        g.phi = covering(range(-0.05, 0.15, 0.025), plo, phi_hi);
-      } else {
-        g.xi = covering(scene.grids.xi, xlo, xhi);
-        g.eta = covering(scene.grids.eta, elo, ehi);
-        g.phi = covering(scene.grids.phi, plo, phi_hi);
-      }
-      const Scene tscene = derive_scene(scene, load, friction, have_ref, &g, ts.exact ? "halfspace" : nullptr);
-      SweepOptions so;
-      so.threads = opt.table_threads;
-      const SweepResult sr = run_sweep(tscene, make_contact_kernel(tscene), so);
-      const std::filesystem::path file = opt.work_dir / fmt::format("speed_accuracy_y{:g}mm{}{}.h5", h * 1e3,
-                                                                   ts.fine_creep ? "_fine" : "", ts.exact ? "_exact" : "");
-      write_table(sr.table, file);
-      const std::uintmax_t file_bytes = std::filesystem::file_size(file);
-      std::vector<lk::Method> methods{lk::Method::kLinear};
-      if (opt.cubic) methods.push_back(lk::Method::kCubic);
-      for (lk::Method method : methods) {
-        const lk::Table table = lk::Table::load(file.string(), lk::LoadOptions{method});
-        std::vector<lk::State> qs(ns);
-        std::vector<SaOutcome> outs(ns);
-        for (std::size_t i = 0; i < ns; ++i) {
-          lk::State q = table.default_state();
-          q.y = states[i].y;
-          q.roll = 0.0;
-          q.load = load;
-          q.xi = states[i].xi;
-          q.eta = states[i].eta;
-          q.phi = states[i].phi;
-          qs[i] = q;
-          outs[i] = from_lookup(table.query(lk::Wheel::kRight, q));
-        }
-        // Timing: passes over all states, median pass time / states (warm-up pass first).
-        lk::Result r;
-        std::vector<double> pass;
-        std::vector<std::vector<double>> per(ns);
-        for (int p = 0; p <= opt.lookup_passes; ++p) {
-          const Clock::time_point t0 = Clock::now();
-          for (std::size_t i = 0; i < ns; ++i) {
-            table.query(lk::Wheel::kRight, qs[i], r);
-            sink += r.contact[0].value[lk::kFx];
-          }
-          if (p > 0) pass.push_back(us_since(t0) / static_cast<double>(ns));
-        }
-        // Per-state times (for the tread/flange split): 32 queries per sample.
-        std::vector<double> times(ns);
-        for (std::size_t i = 0; i < ns; ++i) {
-          std::vector<double> t;
-          for (int p = 0; p < 15; ++p) {
-            const Clock::time_point t0 = Clock::now();
-            for (int k = 0; k < 32; ++k) {
-              table.query(lk::Wheel::kRight, qs[i], r);
-              sink += r.contact[1].value[lk::kFy];
-            }
-            t.push_back(us_since(t0) / 32.0);
-          }
-          times[i] = median(t);
-        }
-        SaRow row;
-        const bool linear = method == lk::Method::kLinear;
-        row.label = ts.label() + (linear ? "" : " cubic");
-        row.kind = "lookup";
-        row.family = std::string(linear ? "lookup-linear" : "lookup-cubic") + (ts.exact ? "-exact" : "");
-        row.table_y_step = h;
-        row.table_creep_grid = ts.fine_creep ? "fine" : "scene";
-        summarise_times(row, states, times);
-        row.time_us = median(pass);
-        row.file_bytes = file_bytes;
-        row.memory_bytes = table.memory_bytes();
-        std::vector<double> e;
-        summarise_errors(row, states, outs, e);
-        std::vector<double> ei;
-        for (std::size_t i = 0; i < ns; ++i) {
-          if (!states[i].creep || !own[i].ok) continue;
-          SaState d = states[i];
-          d.ref_fx = own[i].fx;
-          d.ref_fy = own[i].fy;
-          ei.push_back(outs[i].ok ? force_error(outs[i], d) : kNaN);
-        }
-        row.err_interp = median(ei);
-        row.err_interp_p90 = percentile(ei, 0.9);
-        const std::size_t ri = res.rows.size();
-        res.rows.push_back(row);
-        for (std::size_t i = 0; i < ns; ++i) res.per_state.push_back({ri, i, outs[i], times[i], e[i]});
-      }
-      if (!opt.keep_tables) std::filesystem::remove(file);
-    }
-  }
-
-  // Pareto fronts.
-  std::vector<double> t_all, e_all, t_tr, e_tr, t_fl, e_fl;
-  for (const SaRow& r : res.rows) {
-    t_all.push_back(r.time_us), e_all.push_back(r.err_force);
-    t_tr.push_back(r.time_tread_us), e_tr.push_back(r.err_force_tread);
-    t_fl.push_back(r.time_flange_us), e_fl.push_back(r.err_force_flange);
-  }
-  const std::vector<bool> pa = pareto_front(t_all, e_all), pt = pareto_front(t_tr, e_tr),
-                          pf = pareto_front(t_fl, e_fl);
-  for (std::size_t i = 0; i < res.rows.size(); ++i) {
-    res.rows[i].pareto_all = pa[i];
-    res.rows[i].pareto_tread = pt[i];
-    res.rows[i].pareto_flange = pf[i];
-  }
-  if (sink == 12345.678) res.reference += " ";  // keeps the timed work observable
+  for (const SaModelSetting& setting : models) measure_model(m, setting, tgeo);
+  if (!opt.no_tables) measure_tables(m);
+  mark_pareto_fronts(res.rows);
+  if (m.sink == 12345.678) res.reference += " ";  // keeps the timed work observable
   res.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return res;
 }
