@@ -61,15 +61,20 @@ class QueryResult(dict):
 class Table:
     """A wheel-rail contact table (docs/table-format.md), loaded once, queried vectorised."""
 
-    def __init__(self, native):
-        self._t = native
+    def __init__(self, path, method="linear"):
+        """Loads a table file, as Table.load(path, method) does."""
+        if not isinstance(method, str):
+            raise TypeError(f"method must be 'linear', 'cubic' or 'monotone-cubic', got {type(method).__name__} "
+                            f"{method!r}"[:200])
+        self._t = _railtab.Table.load(checked_path("path", path), method)
 
     @classmethod
     def load(cls, path, method="linear"):
         """Loads a table file. method: 'linear' (default), 'cubic' or 'monotone-cubic'.
 
-        Raises OSError naming the file and the problem (missing, corrupt, unknown version)."""
-        return cls(_railtab.Table.load(checked_path("path", path), method))
+        Raises OSError naming the file and the problem (missing, not a regular file, corrupt,
+        unknown version), TypeError when path is not a file name."""
+        return cls(path, method)
 
     path = property(lambda self: self._t.path)
     method = property(lambda self: self._t.method)
