@@ -143,7 +143,13 @@ void run_gnuplot(const std::filesystem::path& script_path, const std::string& sc
   RAILTAB_CHECK(problem.empty(), "gnuplot script {} refused: {}", script_path.string(), problem);
   write_text_file(script_path, with_output(script, png));
   OutputFile image(png);
-  const GnuplotRun run = spawn_gnuplot(with_output(script, image.temporary()), script_path);
+  GnuplotRun run = spawn_gnuplot(with_output(script, image.temporary()), script_path);
+  // gnuplot names the file it was given, the temporary, which is gone when the message is read:
+  // its messages name the chart asked for.
+  const std::string temporary = image.temporary().string();
+  for (std::size_t at = run.messages.find(temporary); at != std::string::npos;
+       at = run.messages.find(temporary, at + png.string().size()))
+    run.messages.replace(at, temporary.size(), png.string());
   RAILTAB_CHECK(WIFEXITED(run.status) && WEXITSTATUS(run.status) == 0, "gnuplot failed on {} (wait status {}): {}",
                 script_path.string(), run.status, last_message(run.messages));
   image.commit();

@@ -15,4 +15,5 @@ void add_merge_command(CLI::App& app);     // merge_command.cpp: join shards int
 void add_chart_commands(CLI::App& app);    // chart_command.cpp: PNG charts from CSV
 void add_conicity_command(CLI::App& app);  // conicity_command.cpp: equivalent conicity (EN 15302)
 void add_simulate_command(CLI::App& app);  // simulate_command.cpp: bogie run with wear
+void add_export_command(CLI::App& app);    // export_command.cpp: a table's creep forces as CSV
 }  // namespace railtab

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   railtab::add_chart_commands(app);
   railtab::add_conicity_command(app);
   railtab::add_simulate_command(app);
+  railtab::add_export_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -19,8 +19,9 @@ class Option;
 
 namespace railtab {
 
-// --threads N: 0 (all cores) up to 1024. A bigger oneTBB arena is never faster (oneTBB runs at
-// most max(256, 4 x cores) workers) and one of 1e5 slots crashed inside oneTBB's allocator.
+// --threads N: 0 (all cores) up to 1024; the sweep runs on at most the cores (effective_threads,
+// engine/parallel_for.hpp). The bound keeps a typo away from oneTBB: an arena of 1e5 slots crashed
+// inside its allocator.
 inline constexpr int kMaxThreads = 1024;
 inline constexpr NumberRule kThreadsRule{0, kMaxThreads, true, ""};
 // --max-points, --max-bytes: a positive count below 2^63.

@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 #else
+#include <algorithm>
+
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/info.h>
 #include <oneapi/tbb/parallel_for.h>
@@ -54,7 +56,13 @@ void parallel_for_index(int threads, std::size_t n, const std::function<void(std
 
 #else
 
-int effective_threads(int threads) { return threads > 0 ? threads : tbb::info::default_concurrency(); }
+// Capped at the cores oneTBB may use: more threads than that gain nothing, and oneTBB answers a
+// wider arena with a "TBB Warning: The number of workers is currently limited" on stderr that
+// `-q` could not silence (the result is the same for any thread count).
+int effective_threads(int threads) {
+  const int cores = tbb::info::default_concurrency();
+  return threads > 0 ? std::min(threads, cores) : cores;
+}
 
 void parallel_for_index(int threads, std::size_t n, const std::function<void(std::size_t)>& body) {
   tbb::task_arena arena(effective_threads(threads));  // caps the threads of this call only

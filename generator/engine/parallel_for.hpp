@@ -9,7 +9,8 @@
 
 namespace railtab {
 
-// The thread count `threads` means: > 0 that many, otherwise every core.
+// The thread count `threads` means: > 0 that many (with oneTBB at most the cores it may use),
+// otherwise every core.
 int effective_threads(int threads);
 
 // Runs body(i) for i = 0 .. n-1, each index once, in any order and on any of `threads` threads;

@@ -8,12 +8,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <thread>
 
 #include "core/number_input.hpp"
 #include "adaptive/adaptive_grid.hpp"
 #include "kernel/contact_kernel.hpp"
 #include "adaptive/jump_locator.hpp"
+#include "engine/parallel_for.hpp"
 #include "engine/progress.hpp"
 #include "adaptive/column_costs.hpp"
 #include "engine/shard_split.hpp"
@@ -136,9 +136,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
   const std::uint64_t bytes = table_bytes(scene, kernel, y_end - y_begin);
   check_table_size(scene, points, bytes, options.max_points, options.max_bytes, kernel.point_cost);
   if (log) {
-    const unsigned cores = std::thread::hardware_concurrency();
-    *log << describe_table_size(points, bytes, options.threads > 0 ? options.threads : static_cast<int>(cores ? cores : 1),
-                                kernel.point_cost);
+    *log << describe_table_size(points, bytes, effective_threads(options.threads), kernel.point_cost);
   }
 
   ProgressPrinter printer(log ? *log : std::cerr, options.terminal);

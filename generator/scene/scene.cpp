@@ -48,7 +48,9 @@ bool fraction(double v) { return v >= 0.0 && v < 0.5; }
 bool wheelset_size(double v) { return v > 0.0 && v <= 10.0; }          // gauge, back to back, radius [m]
 bool measuring_depth(double v) { return v >= 0.0 && v <= 0.1; }        // [m]
 bool within_a_metre(double v) { return std::abs(v) <= 1.0; }           // profile positions [m]
-bool stiffness(double v) { return v >= 1e6; }                          // moduli, hardness [Pa]
+// Moduli and hardness [Pa]: steel is 210e9 and 2.75e9; the upper bound is 50 x diamond's modulus,
+// far below where the models' forces and the table's float32 outputs overflow (1e300 did).
+bool stiffness(double v) { return v >= 1e6 && v <= 1e13; }
 
 // "1:40" -> 0.025; a number is the tangent itself.
 double parse_inclination(const Section& s, const toml::node& n) {
@@ -341,7 +343,7 @@ void parse_geometry(const Section& ge, const SceneInput&, Scene& scene) {
 
 void parse_material(const Section& ma, const SceneInput&, Scene& scene) {
   scene.material.youngs_modulus = ma.number("youngs_modulus", scene.material.youngs_modulus, stiffness,
-                                                 ">= 1e6 Pa (SI: 210 GPa is 210e9)");
+                                                 "in [1e6, 1e13] Pa (SI: 210 GPa is 210e9)");
   scene.material.poisson_ratio = ma.number("poisson_ratio", scene.material.poisson_ratio, fraction, "in [0, 0.5)");
 }
 
@@ -366,7 +368,7 @@ void parse_contact(const Section& co, const SceneInput&, Scene& scene) {
 }
 
 void parse_wear(const Section& we, const SceneInput&, Scene& scene) {
-  scene.wear.hardness = we.number("hardness", scene.wear.hardness, stiffness, ">= 1e6 Pa (SI: 2.75 GPa is 2.75e9)");
+  scene.wear.hardness = we.number("hardness", scene.wear.hardness, stiffness, "in [1e6, 1e13] Pa (SI: 2.75 GPa is 2.75e9)");
   scene.wear.lubrication_factor = we.number("lubrication_factor", scene.wear.lubrication_factor, positive, "> 0");
 }
 

@@ -95,6 +95,22 @@ Table merge_shards(const std::vector<Table>& shards, const std::vector<std::stri
     RAILTAB_CHECK(id.y_begin == expected_begin && id.y_end > id.y_begin && id.y_total == ids[order[0]].y_total,
                   "merge: {}: y range [{}, {}) does not continue the previous shards", name, id.y_begin, id.y_end);
     expected_begin = id.y_end;
+    // The y values themselves continue the previous shards: otherwise the merged axis would not
+    // be increasing and only the written table's check would say so, naming the output.
+    const TableAxis* y = t.axis("y");
+    RAILTAB_CHECK(y && y->values.size() == id.y_end - id.y_begin, "merge: {}: holds {} y values, its y range [{}, {}) needs {}",
+                  name, y ? y->values.size() : 0, id.y_begin, id.y_end, id.y_end - id.y_begin);
+    for (std::size_t i = 1; i < y->values.size(); ++i)
+      RAILTAB_CHECK(y->values[i] > y->values[i - 1], "merge: {}: its y values are not increasing: y = {} m after {} m",
+                    name, y->values[i], y->values[i - 1]);
+    if (k > 0) {
+      const std::string& before = names[order[k - 1]];
+      const double last = shards[order[k - 1]].axis("y")->values.back();
+      RAILTAB_CHECK(y->values.front() > last,
+                    "merge: {}: its y values do not continue the previous shards: its first y = {} m is not above "
+                    "y = {} m, the last of {}",
+                    name, y->values.front(), last, before);
+    }
     // Shards written before the shards carried their jumps would merge into a table without them
     // (different answers near a jump): refused.
     RAILTAB_CHECK(t.attribute("shard_jumps"),

@@ -225,7 +225,7 @@ void write_all(int fd, std::string_view bytes, const fs::path& file) {
 
 void write_text_file(const fs::path& target, std::string_view text, const std::vector<fs::path>& inputs) {
   OutputFile file(target, inputs);
-  write_all(file.descriptor(), text, file.temporary());
+  write_all(file.descriptor(), text, target);
   file.commit();
 }
 

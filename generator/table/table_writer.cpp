@@ -115,8 +115,11 @@ void validate(const Table& table, const std::string& file) {
 
 class Writer {
  public:
-  Writer(const Table& table, std::string file, const std::atomic<bool>* cancel)
-      : table_(table), file_(std::move(file)), cancel_(cancel), float32_(table_stores_float32(table)) {}
+  // Creates `created` (the output's temporary); every message names `file`, the output the user
+  // asked for: the temporary is gone by the time the message is read.
+  Writer(const Table& table, std::string created, std::string file, const std::atomic<bool>* cancel)
+      : table_(table), created_(std::move(created)), file_(std::move(file)), cancel_(cancel),
+        float32_(table_stores_float32(table)) {}
 
   void write() {
     h5::Id fcpl(h5::check_id(H5Pcreate(H5P_FILE_CREATE), file_, "file creation properties"), H5Pclose);
@@ -127,7 +130,7 @@ class Writer {
     // metadata block (superblock, object headers with their attributes, chunk indexes).
     h5::Id fapl(h5::check_id(H5Pcreate(H5P_FILE_ACCESS), file_, "file access properties"), H5Pclose);
     check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_LATEST), "file format version");
-    hid_t raw = H5Fcreate(file_.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
+    hid_t raw = H5Fcreate(created_.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
     h5::Id file(h5::check_id(raw, file_, "create file"), H5Fclose);
     {
       for (const auto& [name, value] : table_.attributes) write_root_attribute(file, name, value);
@@ -405,6 +408,7 @@ class Writer {
   }
 
   const Table& table_;
+  std::string created_;  // the file H5Fcreate makes (the temporary)
   std::string file_;
   const std::atomic<bool>* cancel_;
   bool float32_;                                // format >= 2.2: creep and wear outputs as float32
@@ -422,7 +426,7 @@ void write_table(const Table& table, const std::filesystem::path& target, const 
   h5::silence_errors();
   validate(table, target.string());
   OutputFile file(target, inputs);  // removes its temporary unless committed
-  Writer(table, file.temporary().string(), cancel).write();
+  Writer(table, file.temporary().string(), target.string(), cancel).write();
   // A shard of a single y node is no table the lookup can load (an axis needs 2 nodes): merge
   // checks its values, and the lookup the merged table.
   const TableAxis* y = table.axis("y");

@@ -144,6 +144,23 @@ typedef struct railtab_lookup_derivatives {
   double d[RAILTAB_LOOKUP_MAX_SLOTS][RAILTAB_LOOKUP_NUM_OUTPUTS][RAILTAB_LOOKUP_NUM_VARS];
 } railtab_lookup_derivatives;
 
+/* Forces of the rail on one wheel in track axes (x forward, y left, z up), from one query result
+ * (railtab::lookup::TrackForces; docs/conventions.md, "Track-frame forces and Y/Q"). Per loaded
+ * slot (normal force > 0), with g its contact angle: lateral = -N sin g + fy cos g, vertical =
+ * N cos g + fy sin g; a loaded slot without its rigid point (rolling radius 0) takes the other
+ * slot's angle. y_force (Y) and q_force (Q) are the wheel's forces ON ITS RAIL: Y + towards that
+ * rail's field side (flange contact: Y > 0 on either wheel), Q + down. */
+typedef struct railtab_lookup_track_forces {
+  double lateral[RAILTAB_LOOKUP_MAX_SLOTS];       /* [N] per slot, on the wheel along track y */
+  double vertical[RAILTAB_LOOKUP_MAX_SLOTS];      /* [N] per slot, on the wheel along track z */
+  double contact_angle[RAILTAB_LOOKUP_MAX_SLOTS]; /* [rad] per slot: the angle rotated with */
+  double wheel_lateral;                           /* [N] sum over the slots */
+  double wheel_vertical;                          /* [N] sum over the slots */
+  double y_force;                                 /* [N] Y = -sigma wheel_lateral (sigma +1 left, -1 right) */
+  double q_force;                                 /* [N] Q = wheel_vertical */
+  double y_over_q;                                /* [1] Y / Q; 0 when Q <= 0 */
+} railtab_lookup_track_forces;
+
 typedef struct railtab_lookup_table railtab_lookup_table; /* opaque */
 
 /* Loads `path` with `method`; on success *table is a handle to close with
@@ -173,6 +190,11 @@ RAILTAB_LOOKUP_API int railtab_lookup_query_slot(const railtab_lookup_table* tab
 RAILTAB_LOOKUP_API int railtab_lookup_query_derivatives(const railtab_lookup_table* table, int wheel,
                                      const railtab_lookup_state* state, railtab_lookup_result* result,
                                      railtab_lookup_derivatives* derivatives);
+
+/* Track-frame forces and Y/Q of `wheel` from `result` (a railtab_lookup_query of that wheel):
+ * railtab::lookup::track_forces. RAILTAB_LOOKUP_ERROR_ARGUMENT for a null pointer or a bad wheel. */
+RAILTAB_LOOKUP_API int railtab_lookup_compute_track_forces(int wheel, const railtab_lookup_result* result,
+                                        railtab_lookup_track_forces* forces);
 
 /* n states at once (e.g. both wheels of every wheelset): results[k] for wheels[k], states[k].
  * `results` must hold n results. */

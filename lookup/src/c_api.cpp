@@ -57,6 +57,10 @@ static_assert(RAILTAB_LOOKUP_NUM_STATUS_BITS == lk::status::kNumBits);
 static_assert(RAILTAB_LOOKUP_WEAR == lk::kWear && RAILTAB_LOOKUP_NUM_PARTS == lk::kNumParts);
 
 static_assert(sizeof(railtab_lookup_derivatives) == sizeof(lk::Derivatives));
+static_assert(sizeof(railtab_lookup_track_forces) == sizeof(lk::TrackForces));
+static_assert(offsetof(railtab_lookup_track_forces, contact_angle) == offsetof(lk::TrackForces, contact_angle));
+static_assert(offsetof(railtab_lookup_track_forces, wheel_lateral) == offsetof(lk::TrackForces, wheel_lateral));
+static_assert(offsetof(railtab_lookup_track_forces, y_over_q) == offsetof(lk::TrackForces, y_over_q));
 static_assert(int{RAILTAB_LOOKUP_NUM_VARS} == int{lk::kNumVariables});
 static_assert(int{RAILTAB_LOOKUP_VAR_PHI} == int{lk::kPhi} && int{RAILTAB_LOOKUP_VAR_LOAD} == int{lk::kLoad});
 
@@ -140,6 +144,18 @@ int railtab_lookup_query_derivatives(const railtab_lookup_table* table, int whee
   table->table.query_derivatives(static_cast<lk::Wheel>(wheel), to_state(*state), r, d);
   store(r, result);
   std::memcpy(derivatives, &d, sizeof(*derivatives));
+  return RAILTAB_LOOKUP_OK;
+}
+
+int railtab_lookup_compute_track_forces(int wheel, const railtab_lookup_result* result,
+                                        railtab_lookup_track_forces* forces) {
+  if (!result || !forces) return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_compute_track_forces: null argument");
+  if (wheel != RAILTAB_LOOKUP_LEFT && wheel != RAILTAB_LOOKUP_RIGHT)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_compute_track_forces: wheel must be 0 or 1");
+  lk::Result r;
+  std::memcpy(static_cast<void*>(&r), result, sizeof(r));  // the same layout (static_asserts above)
+  const lk::TrackForces f = lk::track_forces(static_cast<lk::Wheel>(wheel), r);
+  std::memcpy(forces, &f, sizeof(*forces));
   return RAILTAB_LOOKUP_OK;
 }
 

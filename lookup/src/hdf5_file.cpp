@@ -2,6 +2,10 @@
 // Read-only HDF5 access for the loader (hdf5_file.hpp): every failure a LoadError naming the file.
 #include "hdf5_file.hpp"
 
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <system_error>
@@ -50,6 +54,16 @@ std::optional<std::size_t> checked_product(const std::vector<hsize_t>& dims) {
   return n;
 }
 
+// What a path that is not a regular file names, for the refusal.
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
 }  // namespace
 
 Hid& Hid::operator=(Hid&& o) noexcept {
@@ -74,8 +88,16 @@ Hdf5ErrorsSilenced::Hdf5ErrorsSilenced() {
 Hdf5ErrorsSilenced::~Hdf5ErrorsSilenced() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
 
 Hdf5File::Hdf5File(const std::string& path) : path_(path) {
+  // Only a regular file is opened: the raw superblock read and HDF5's open of a FIFO would wait
+  // for a writer forever, and opening a device can have effects (a tape rewinds). stat follows
+  // links (a link to a table is a table) and opens nothing.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    const int err = errno;
+    fail(err == ENOENT ? "no such file" : std::string("cannot read it: ") + std::strerror(err));
+  }
+  if (!S_ISREG(st.st_mode)) fail(std::string("it is ") + file_kind(st.st_mode) + ", not a regular file: refused");
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail("no such file (or not a regular file)");
   file_size_ = std::filesystem::file_size(path, ec);
   if (ec) fail("cannot read its size: " + ec.message());
   if (const std::string problem = detail::unchecksummed_metadata_problem(path); !problem.empty())

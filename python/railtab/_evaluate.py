@@ -14,13 +14,15 @@ class Scene:
     """A scene file (docs/scenes.md) loaded once: profiles, track, models. evaluate() takes one of
     these or a path (then the scene is loaded on every call)."""
 
-    def __init__(self, native):
-        self._s = native
+    def __init__(self, path):
+        """Loads a scene file, as Scene.load(path) does."""
+        self._s = _railtab.Scene.load(checked_path("path", path))
 
     @classmethod
     def load(cls, path):
-        """Raises railtab.Error (a ValueError) naming the file and the problem."""
-        return cls(_railtab.Scene.load(checked_path("path", path)))
+        """Raises railtab.Error (a ValueError) naming the file and the problem, TypeError when
+        path is not a file name."""
+        return cls(path)
 
     name = property(lambda self: self._s.name)
     path = property(lambda self: self._s.path)

@@ -22,8 +22,13 @@ def checked_number(name, value, lo, hi, whole=False, unit=""):
 
 
 def checked_path(name, path):
-    """os.fspath(path), refused when it holds a NUL: C and HDF5 would read it cut at the NUL."""
-    p = os.fspath(path)
+    """os.fspath(path), refused when it holds a NUL: C and HDF5 would read it cut at the NUL. Not a
+    file name (None, a number, an open file) is a TypeError naming the argument."""
+    try:
+        p = os.fspath(path)
+    except TypeError:
+        raise TypeError(f"{name} must be a file name (str, bytes or os.PathLike), got {type(path).__name__} "
+                        f"{path!r}"[:200]) from None
     if ("\0" if isinstance(p, str) else b"\0") in p:
         raise ValueError(f"{name}: {p!r} contains a NUL character: not a file name"[:300])
     return p

@@ -11,6 +11,10 @@ from ._units import AXIS_UNITS, OUTPUT_UNITS
 _STATE = ("y", "roll", "load", "xi", "eta", "phi")
 _CREEPAGES = ("xi", "eta", "phi")  # default 0 (pure rolling) when tabulated and not given
 _WHEELS = {"left": 0, "right": 1}
+# track_forces=True: names and units of the per-slot and per-state arrays, in the binding's order.
+_TRACK_SLOT = (("track_lateral_force", "N"), ("track_vertical_force", "N"), ("track_contact_angle", "rad"))
+_TRACK_WHEEL = (("wheel_lateral_force", "N"), ("wheel_vertical_force", "N"), ("y_force", "N"), ("q_force", "N"),
+                ("y_over_q", "1"))
 
 
 def _wheel_codes(wheel):
@@ -57,15 +61,20 @@ class QueryResult(dict):
 class Table:
     """A wheel-rail contact table (docs/table-format.md), loaded once, queried vectorised."""
 
-    def __init__(self, native):
-        self._t = native
+    def __init__(self, path, method="linear"):
+        """Loads a table file, as Table.load(path, method) does."""
+        if not isinstance(method, str):
+            raise TypeError(f"method must be 'linear', 'cubic' or 'monotone-cubic', got {type(method).__name__} "
+                            f"{method!r}"[:200])
+        self._t = _railtab.Table.load(checked_path("path", path), method)
 
     @classmethod
     def load(cls, path, method="linear"):
         """Loads a table file. method: 'linear' (default), 'cubic' or 'monotone-cubic'.
 
-        Raises OSError naming the file and the problem (missing, corrupt, unknown version)."""
-        return cls(_railtab.Table.load(checked_path("path", path), method))
+        Raises OSError naming the file and the problem (missing, not a regular file, corrupt,
+        unknown version), TypeError when path is not a file name."""
+        return cls(path, method)
 
     path = property(lambda self: self._t.path)
     method = property(lambda self: self._t.method)
@@ -87,7 +96,7 @@ class Table:
         return f"<railtab.Table {self.path!r} scene={self.scene_name!r} axes: {axes}>"
 
     def query(self, wheel, y=None, roll=None, load=None, xi=None, eta=None, phi=None, *, slot=None,
-              derivatives=False, as_xarray=None):
+              derivatives=False, track_forces=False, as_xarray=None):
         """Interpolates the table at many states at once.
 
         wheel: 'left', 'right' (or 0, 1, or an array of them). y [m], roll [rad], load [N],
@@ -109,6 +118,14 @@ class Table:
         derivative of the interpolant 'd_<output>_d_<axis>' (e.g. d_fx_d_xi [N], d_fy_d_y [N/m]),
         same dims as the output, units output unit per axis unit; 0 where the axis was clamped to
         the table's range. Methods 'linear' and 'cubic' (ValueError for 'monotone-cubic').
+
+        track_forces=True (every slot: not with slot=...) adds the forces of the rail on the wheel in
+        track axes (docs/conventions.md, "Track-frame forces and Y/Q"; the C++ lookup's track_forces):
+        per slot 'track_lateral_force' (along track y, + left) and 'track_vertical_force' (along track
+        z, + up) [N] and 'track_contact_angle' [rad], the angle each slot was rotated with; per state
+        'wheel_lateral_force', 'wheel_vertical_force' [N] (sums over the slots), 'y_force' (Y, the
+        wheel's lateral force on its rail, + towards that rail's field side), 'q_force' (Q, its
+        vertical force on the rail, + down) [N] and 'y_over_q' [1] (0 where Q <= 0).
 
         Raises TypeError for a missing tabulated variable or a complex value, ValueError for
         shapes that do not broadcast (naming each argument's shape), an unknown wheel or slot.
@@ -136,9 +153,9 @@ class Table:
                                 {"wheel": codes.shape, **{k: values[k].shape for k in _STATE if given[k] is not None}})
         n = int(np.prod(shape, dtype=np.int64))
         slot_arg = -1 if slot is None else int(checked_number("slot", slot, 0, self.n_slots - 1, whole=True))
-        raw, part_status, status, deriv = self._t._query_arrays(
+        raw, part_status, status, deriv, track = self._t._query_arrays(
             n, _flat(codes, shape, n), *(_flat(values[k], shape, n) for k in _STATE), slot_arg,
-            bool(derivatives))
+            bool(derivatives), bool(track_forces))
         slots = raw.shape[1]
         raw = raw.reshape(shape + (slots, raw.shape[2]))
         part_status = part_status.reshape(shape + (slots, part_status.shape[2]))
@@ -165,6 +182,18 @@ class Table:
                         out[key] = deriv[..., k, v]
                         out.units[key] = _per(OUTPUT_UNITS[name], AXIS_UNITS[axis])
                         out.dims[key] = state_dims + ("slot",)
+        if track is not None:
+            per_slot, per_wheel = track
+            per_slot = per_slot.reshape(shape + (slots, 3))
+            per_wheel = per_wheel.reshape(shape + (5,))
+            for k, (name, unit) in enumerate(_TRACK_SLOT):
+                out[name] = per_slot[..., k]
+                out.units[name] = unit
+                out.dims[name] = state_dims + ("slot",)
+            for k, (name, unit) in enumerate(_TRACK_WHEEL):
+                out[name] = per_wheel[..., k]
+                out.units[name] = unit
+                out.dims[name] = state_dims
         out["status"] = status
         out.dims["status"] = state_dims + ("slot",)
         out["part_status"] = part_status

@@ -70,10 +70,12 @@ py::array_t<T> uninitialised(std::vector<py::ssize_t> shape) {
 // slot only (Table::query_slot, about half the cost). Returns (values [n, slots, outputs],
 // part_status [n, slots, parts], status [n, slots], derivatives) with slots = n_slots or 1;
 // `derivatives`: None, or with want_derivatives (Table::query_derivatives) d output / d variable
-// [n, slots, outputs, variables] (variables y, roll, load, xi, eta, phi).
+// [n, slots, outputs, variables] (variables y, roll, load, xi, eta, phi); `track`: None, or with
+// want_track_forces (every slot only; lk::track_forces) the pair (per slot [n, slots, 3]: lateral,
+// vertical [N], contact angle [rad]; per wheel [n, 5]: wheel_lateral, wheel_vertical, Y, Q [N], Y/Q).
 py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel, const Doubles& y,
                        const Doubles& roll, const Doubles& load, const Doubles& xi, const Doubles& eta,
-                       const Doubles& phi, int slot, bool want_derivatives) {
+                       const Doubles& phi, int slot, bool want_derivatives, bool want_track_forces) {
   if (n < 0) throw py::value_error("n must be >= 0");
   if (wheel.ndim() != 1 || (wheel.shape(0) != n && wheel.shape(0) != 1)) {
     throw py::value_error("wheel: expected 1 or " + std::to_string(n) + " values");
@@ -92,7 +94,19 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
   if (want_derivatives && !table.derivatives_supported())
     throw py::value_error("derivatives=True needs a table loaded with method 'linear' or 'cubic', not '" +
                           std::string(method_name(table.method())) + "' (its limited slopes are not differentiated)");
+  if (want_track_forces && slot >= 0)
+    throw py::value_error("track_forces=True sums the forces of every slot: leave slot out");
   const py::ssize_t slots = slot < 0 ? table.n_slots() : 1;
+  py::object track_array = py::none();
+  double* tv = nullptr;
+  double* tw = nullptr;
+  if (want_track_forces) {
+    auto per_slot = uninitialised<double>({n, slots, 3});
+    auto per_wheel = uninitialised<double>({n, 5});
+    tv = per_slot.mutable_data();
+    tw = per_wheel.mutable_data();
+    track_array = py::make_tuple(per_slot, per_wheel);
+  }
   constexpr py::ssize_t kVars = lk::kNumVariables;
   py::object derivative_array = py::none();
   double* dv = nullptr;
@@ -135,6 +149,19 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
       } else {
         table.query_slot(w, s, slot, c);
       }
+      if (tv) {  // slot < 0 here: `r` holds every slot
+        const lk::TrackForces f = lk::track_forces(w, r);
+        for (py::ssize_t j = 0; j < slots; ++j) {
+          *tv++ = f.lateral[j];
+          *tv++ = f.vertical[j];
+          *tv++ = f.contact_angle[j];
+        }
+        *tw++ = f.wheel_lateral;
+        *tw++ = f.wheel_vertical;
+        *tw++ = f.y_force;
+        *tw++ = f.q_force;
+        *tw++ = f.y_over_q;
+      }
       for (py::ssize_t j = 0; j < slots; ++j) {
         std::copy_n(contacts[j].value, lk::kNumOutputs, v);
         std::copy_n(contacts[j].part_status, lk::kNumParts, ps);
@@ -144,7 +171,7 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
       }
     }
   }
-  return py::make_tuple(values, part_status, status, derivative_array);
+  return py::make_tuple(values, part_status, status, derivative_array, track_array);
 }
 
 }  // namespace
@@ -193,7 +220,8 @@ void bind_table(py::module_& m) {
       .def_property_readonly("scene_name", &lk::Table::scene_name)
       .def_property_readonly("memory_bytes", &lk::Table::memory_bytes)
       .def("_query_arrays", &query_arrays, py::arg("n"), py::arg("wheel"), py::arg("y"), py::arg("roll"), py::arg("load"),
-           py::arg("xi"), py::arg("eta"), py::arg("phi"), py::arg("slot"), py::arg("derivatives") = false);
+           py::arg("xi"), py::arg("eta"), py::arg("phi"), py::arg("slot"), py::arg("derivatives") = false,
+           py::arg("track_forces") = false);
 
   py::list outputs;
   for (int o = 0; o < lk::kNumOutputs; ++o) {

@@ -10,7 +10,7 @@ import pytest
 from conftest import SOURCE_DIR
 
 COMMANDS = ["eval", "generate", "inspect", "query", "merge", "chart-geometry", "chart-pressure", "chart-stability",
-            "chart", "simulate", "conicity"]
+            "chart", "simulate", "conicity", "export"]
 SCENE = str(SOURCE_DIR / "tables" / "default.toml")
 
 
@@ -78,6 +78,7 @@ def test_unwritable_output_refused_before_work(railtab_program, args):
     ["conicity", "--scene", "MISSING", "--out", "OUT"],
     ["conicity", "--table", "MISSING", "--out", "OUT"],
     ["conicity", "--scene", SCENE, "--compare", "MISSING", "--out", "OUT"],
+    ["export", "MISSING", "--csv", "-o", "OUT"],
 ])
 def test_missing_input_is_error_1_naming_it_with_nothing_written(railtab_program, tmp_path, args):
     # README: an unreadable file is an error (1), not a usage error (2): generate, merge and simulate

@@ -89,7 +89,8 @@ def test_threads_at_the_bound_is_accepted(railtab_program, tmp_path):
     (tmp_path / "s.toml").write_text(scene)
     r = run(railtab_program, "generate", str(tmp_path / "s.toml"), "-o", str(tmp_path / "s.h5"), "--threads", "1024",
             "-q")
-    assert r.returncode == 0, r.stderr
+    # Capped at the cores: oneTBB's "number of workers is currently limited" warning never comes.
+    assert r.returncode == 0 and r.stderr == "", r.stderr
     r = run(railtab_program, "generate", str(tmp_path / "s.toml"), "-o", str(tmp_path / "t.h5"), "--threads", "1025")
     assert r.returncode == 2 and "--threads: must be a whole number in [0, 1024], got 1025" in r.stderr
 

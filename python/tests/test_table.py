@@ -1,10 +1,12 @@
 # SPDX-License-Identifier: Apache-2.0
 """railtab.Table: loading, vectorised queries against the fixture's known values, units, status."""
+import os
+
 import numpy as np
 import pytest
 
 import railtab
-from conftest import fixture_value
+from conftest import SOURCE_DIR, fixture_value
 
 # Output index within its part (table_fixture.hpp numbers outputs per part).
 FX = ("creep", 2, 0)  # (part name, part index, output index in part)
@@ -35,6 +37,41 @@ def test_load_errors_name_the_file(tmp_path, fixture_table):
         railtab.Table.load(tmp_path)           # a directory
     with pytest.raises(ValueError, match="method"):
         railtab.Table.load(bad, method="spline")
+
+
+def test_constructor_loads_a_path_and_refuses_anything_else(tmp_path, fixture_table):
+    # Table(path) is Table.load(path): the same table, the same errors naming the input.
+    t = railtab.Table(fixture_table)
+    assert t.path == str(fixture_table) and list(t.axes) == ["y", "xi", "eta", "phi"]
+    assert railtab.Table(str(fixture_table), method="cubic").method == "cubic"
+    with pytest.raises(OSError, match=r"x\.h5.*no such file"):
+        railtab.Table(tmp_path / "x.h5")
+    with pytest.raises(OSError, match=r"it is a directory, not a regular file"):
+        railtab.Table(tmp_path)
+    fifo = tmp_path / "fifo.h5"
+    os.mkfifo(fifo)
+    with pytest.raises(OSError, match=r"fifo\.h5.*it is a FIFO, not a regular file"):
+        railtab.Table(fifo)                    # at once: nothing opens it
+    with pytest.raises(OSError, match=r"/dev/null.*it is a character device"):
+        railtab.Table("/dev/null")
+    for wrong in (None, 42, 1.5, ["x.h5"], open(fixture_table, "rb")):
+        with pytest.raises(TypeError, match=r"^path must be a file name \(str, bytes or os\.PathLike\), got"):
+            railtab.Table(wrong)
+        with pytest.raises(TypeError, match=r"^path must be a file name"):
+            railtab.Table.load(wrong)
+    with pytest.raises(TypeError, match=r"^method must be 'linear', 'cubic' or 'monotone-cubic', got int 3"):
+        railtab.Table(fixture_table, 3)
+    with pytest.raises(TypeError):
+        railtab.Table()                        # Python's own: missing argument 'path'
+
+
+def test_scene_constructor_loads_a_path_and_refuses_anything_else(tmp_path):
+    scene = railtab.Scene(SOURCE_DIR / "tables" / "default.toml")
+    assert scene.name == railtab.Scene.load(SOURCE_DIR / "tables" / "default.toml").name
+    with pytest.raises(railtab.Error, match=r"nothing\.toml"):
+        railtab.Scene(tmp_path / "nothing.toml")
+    with pytest.raises(TypeError, match=r"^path must be a file name"):
+        railtab.Scene(7)
 
 
 def test_vectorised_query_reproduces_the_fixture(fixture_table):

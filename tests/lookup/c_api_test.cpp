@@ -76,6 +76,38 @@ TEST(CApi, QueriesMatchTheCppApi) {
 
 // Roll following the equilibrium is not an input: a C caller that sets one gets the answer at the
 // equilibrium flagged RAILTAB_LOOKUP_OUT_OF_RANGE (query bits and every slot), never silently.
+TEST(CApi, TrackForcesMatchTheCppApi) {
+  testing::TempFile file("capi_track");
+  testing::write_fixture(file.path, testing::default_scene_spec());
+  railtab_lookup_table* t = nullptr;
+  ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK)
+      << railtab_lookup_last_error();
+  const Table cpp = Table::load(file.path);
+  railtab_lookup_state s;
+  ASSERT_EQ(railtab_lookup_default_state(t, &s), RAILTAB_LOOKUP_OK);
+  int loaded = 0;
+  for (int wheel : {RAILTAB_LOOKUP_LEFT, RAILTAB_LOOKUP_RIGHT}) {
+    for (double y : {-0.0031, 0.0007, 0.0023}) {
+      s.y = y, s.xi = 0.0011, s.eta = -0.0015, s.phi = 0.2;
+      railtab_lookup_result r;
+      ASSERT_EQ(railtab_lookup_query(t, wheel, &s, &r), RAILTAB_LOOKUP_OK);
+      railtab_lookup_track_forces c;
+      ASSERT_EQ(railtab_lookup_compute_track_forces(wheel, &r, &c), RAILTAB_LOOKUP_OK);
+      const TrackForces expect =
+          track_forces(static_cast<Wheel>(wheel), cpp.query(static_cast<Wheel>(wheel), State{s.y, s.roll, s.load, s.xi, s.eta, s.phi}));
+      EXPECT_EQ(std::memcmp(&c, &expect, sizeof c), 0) << wheel << " " << y;
+      loaded += expect.q_force != 0.0;
+    }
+  }
+  EXPECT_GT(loaded, 0);  // the comparison saw loaded slots, not only zeros
+  railtab_lookup_result r{};
+  railtab_lookup_track_forces c;
+  EXPECT_EQ(railtab_lookup_compute_track_forces(RAILTAB_LOOKUP_LEFT, nullptr, &c), RAILTAB_LOOKUP_ERROR_ARGUMENT);
+  EXPECT_EQ(railtab_lookup_compute_track_forces(2, &r, &c), RAILTAB_LOOKUP_ERROR_ARGUMENT);
+  EXPECT_NE(std::string(railtab_lookup_last_error()).find("wheel"), std::string::npos);
+  railtab_lookup_close(t);
+}
+
 TEST(CApi, RollOnAnEquilibriumRollTableIsFlagged) {
   testing::TempFile file("capi_roll");
   testing::FixtureSpec spec = testing::default_scene_spec();

@@ -3,6 +3,8 @@
 // and the problem, before anything large is allocated; nothing reaches the query path.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -152,6 +154,41 @@ TEST(HostileTable, MalformedVersionsAreRefused) {
     const std::string msg = load_error(file.path);
     EXPECT_NE(msg.find("is not of the form MAJOR.MINOR"), std::string::npos) << v << ": " << msg;
   }
+}
+
+// A table path that is a FIFO, a character device or a directory is refused at once, before
+// anything opens it (a FIFO without a writer would block the first read forever), naming the path
+// and what it is. alarm() turns a blocking load into a failed (killed) test instead of a hang.
+TEST(TableInputFile, FifoIsRefusedWithoutBlocking) {
+  TempFile fifo("fifo");
+  ASSERT_EQ(::mkfifo(fifo.path.c_str(), 0600), 0);
+  ::alarm(20);
+  const std::string msg = load_error(fifo.path);
+  ::alarm(0);
+  EXPECT_NE(msg.find("'" + fifo.path + "': it is a FIFO, not a regular file: refused"), std::string::npos) << msg;
+}
+
+TEST(TableInputFile, DeviceAndDirectoryAreRefusedNamingWhatTheyAre) {
+  const std::string device = load_error("/dev/null");
+  EXPECT_NE(device.find("'/dev/null': it is a character device, not a regular file: refused"), std::string::npos)
+      << device;
+  TempFile dir("dir");
+  ASSERT_EQ(::mkdir(dir.path.c_str(), 0700), 0);
+  const std::string directory = load_error(dir.path);
+  EXPECT_NE(directory.find("'" + dir.path + "': it is a directory, not a regular file: refused"), std::string::npos)
+      << directory;
+  // A missing file is "no such file", not a guess between missing and irregular.
+  const std::string missing = load_error(dir.path + "/none.h5");
+  EXPECT_NE(missing.find("none.h5': no such file"), std::string::npos) << missing;
+}
+
+// A symbolic link to a table is a table: the check follows links.
+TEST(TableInputFile, SymbolicLinkToATableLoads) {
+  TempFile table("target");
+  testing::write_fixture(table.path, small_spec());
+  TempFile link("link");
+  ASSERT_EQ(::symlink(table.path.c_str(), link.path.c_str()), 0);
+  EXPECT_NO_THROW(Table::load(link.path));
 }
 
 // Byte offset in the file of the first chunk of `dataset` (every fixture dataset is chunked).

@@ -152,6 +152,32 @@ struct Derivatives {
   double d[kMaxSlots][kNumOutputs][kNumVariables] = {};  // [slot][Output][Variable]
 };
 
+// Forces of the rail on one wheel in track axes (x forward, y left, z up; docs/conventions.md,
+// "Track-frame forces and Y/Q"), from one query result: the table stores each slot's normal force N
+// along the contact normal n = (0, -sin g, cos g) and its creep force fy along s = (0, cos g, sin g),
+// g the slot's contact angle in the track frame; fx is along track x already. Per loaded slot
+// (normal force > 0): lateral = -N sin g + fy cos g, vertical = N cos g + fy sin g. A loaded slot
+// whose rigid point sits in the other slot (rolling radius 0: a hand-over, docs/lookup.md "Low
+// confidence") is rotated with the other slot's angle, as the loop of docs/lookup.md does.
+struct TrackForces {
+  double lateral[kMaxSlots] = {};        // [N] per slot: on the wheel along track y (+ left)
+  double vertical[kMaxSlots] = {};       // [N] per slot: on the wheel along track z (+ up)
+  double contact_angle[kMaxSlots] = {};  // [rad] per slot: the angle g rotated with (0: empty slot)
+  double wheel_lateral = 0.0;            // [N] sum of lateral over the slots
+  double wheel_vertical = 0.0;           // [N] sum of vertical over the slots
+  // Y and Q of the derailment criteria, forces of the wheel ON ITS RAIL: Y lateral, + towards that
+  // rail's field side (outward: + y for the left rail, - y for the right), so flange contact gives
+  // Y > 0 on either wheel: y_force = -sigma wheel_lateral, sigma = +1 left, -1 right. Q vertical,
+  // + down: q_force = wheel_vertical.
+  double y_force = 0.0;                  // [N] Y
+  double q_force = 0.0;                  // [N] Q
+  double y_over_q = 0.0;                 // [1] Y / Q; 0 when Q <= 0 (no loaded slot, invalid input)
+};
+
+// Track-frame forces and Y/Q of `wheel` from `result` (a query of that wheel). Never throws; a bad
+// wheel gives all zeros.
+RAILTAB_LOOKUP_API TrackForces track_forces(Wheel wheel, const Result& result) noexcept;
+
 // One item of a batch query (e.g. both wheels of every wheelset).
 struct Query {
   Wheel wheel = Wheel::kLeft;  // which wheel-rail pair

@@ -157,6 +157,50 @@ TEST(Merge, RefusesShardsWithoutTheirJumps) {
   }
 }
 
+// y values of one shard's axis (the shards are edited in memory, as a tampered file reads).
+std::vector<double>& y_values(Table& t) {
+  for (TableAxis& a : t.axes)
+    if (a.name == "y") return a.values;
+  throw Error("no y axis");
+}
+
+std::string merge_message(const std::vector<Table>& t, const std::vector<std::string>& n) {
+  try {
+    merge_shards(t, n);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(merged)";
+}
+
+// A shard whose y values do not continue the previous shards, or are not increasing, is named
+// with the y values at fault, before anything is joined (the merged table's own check would blame
+// the output).
+TEST(Merge, ShardWhoseYDoesNotContinueIsNamedWithItsValues) {
+  Shards two(2);
+  const double last_of_first = y_values(two.tables[0]).back();
+  std::vector<Table> shifted = two.tables;
+  for (double& y : y_values(shifted[1])) y -= 0.004;  // its first y now below the first shard's last
+  const double first_of_second = y_values(shifted[1]).front();
+  ASSERT_LE(first_of_second, last_of_first);
+  const std::string m = merge_message(shifted, two.names);
+  EXPECT_NE(m.find("merge: " + two.names[1] + ": its y values do not continue the previous shards"),
+            std::string::npos) << m;
+  EXPECT_NE(m.find(fmt::format("first y = {} m is not above y = {} m, the last of {}", first_of_second,
+                               last_of_first, two.names[0])),
+            std::string::npos) << m;
+
+  std::vector<Table> swapped = two.tables;
+  std::vector<double>& y = y_values(swapped[0]);
+  ASSERT_GE(y.size(), 2u);
+  std::swap(y[0], y[1]);
+  const std::string n = merge_message(swapped, two.names);
+  EXPECT_NE(n.find(fmt::format("merge: {}: its y values are not increasing: y = {} m after {} m", two.names[0], y[1],
+                               y[0])),
+            std::string::npos) << n;
+  EXPECT_EQ(merge_message(two.tables, two.names), "(merged)");
+}
+
 TEST(Merge, RejectsIncompleteOrForeignShards) {
   Shards three(3);
   auto message = [](const std::vector<Table>& t, const std::vector<std::string>& n) -> std::string {

@@ -196,6 +196,21 @@ TEST(Scene, ValuesInTheWrongUnitAreRefused) {
   EXPECT_EQ(error_of(head + "y = [-0.05, 0.05]\nload = [5e3, 250e3]\n"), "");
 }
 
+// Young's modulus and hardness above 1e13 Pa (1e300 overflowed the table's float32 outputs after
+// the whole sweep, and the error named the temporary file) are refused at the scene, naming the key
+// and the range; the bounds themselves are accepted.
+TEST(Scene, MaterialConstantsOutsideTheirRangeAreRefused) {
+  const std::string m = kMinimal;
+  expect_errors({
+      {"modulus 1e300", m + "[material]\nyoungs_modulus = 1e300\n", "material.youngs_modulus", "in [1e6, 1e13] Pa"},
+      {"modulus 2e13", m + "[material]\nyoungs_modulus = 2e13\n", "material.youngs_modulus", "got 20000000000000"},
+      {"hardness 1e300", m + "[wear]\nhardness = 1e300\n", "wear.hardness", "in [1e6, 1e13] Pa"},
+      {"hardness below", m + "[wear]\nhardness = 9e5\n", "wear.hardness", "in [1e6, 1e13] Pa"},
+  });
+  EXPECT_EQ(error_of(m + "[material]\nyoungs_modulus = 1e13\n[wear]\nhardness = 1e6\n"), "");
+  EXPECT_EQ(error_of(m + "[material]\nyoungs_modulus = 1e6\n[wear]\nhardness = 1e13\n"), "");
+}
+
 // Grids the lookup could not interpolate (tests/data/hostile/scene_y_subnormal.toml: y nodes
 // 5e-324 apart) and scene texts too large for the table's scene attribute are refused up front,
 // naming the file and the key, before any table is computed.

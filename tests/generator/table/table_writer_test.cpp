@@ -173,6 +173,31 @@ TEST(TableWriter, TableTheLookupRefusesIsNotWritten) {
   EXPECT_NE(std::string(lookup_refusal_text(nan, dir / "nan.h5")).find("non-finite"), std::string::npos);
 }
 
+// An error found while the file is written (a value beyond float32's range in a float32 output,
+// as a Young's modulus of 1e300 once made) names the output asked for, never its temporary, and
+// leaves nothing behind.
+TEST(TableWriter, ErrorsNameTheTargetNotTheTemporary) {
+  testing::TempDir dir("writer_names_target");
+  const std::filesystem::path target = dir / "t.h5";
+  Table t = small_table();
+  t.set_attribute("format_version", "2.2");  // creep and wear outputs stored as float32
+  TableGroup wear = t.groups[0];
+  wear.path = "left/wear";
+  ASSERT_FALSE(wear.datasets[0].is_status);
+  wear.datasets[0].values[1] = 1e300;
+  t.groups.push_back(wear);
+  try {
+    write_table(t, target);
+    ADD_FAILURE() << "a value beyond float32 was written";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind(target.string() + ": ", 0), 0u) << m;
+    EXPECT_NE(m.find("exceeds the float32 range"), std::string::npos) << m;
+    EXPECT_EQ(m.find(".tmp"), std::string::npos) << "names the temporary: " << m;
+  }
+  EXPECT_TRUE(dir.files().empty());
+}
+
 TEST(TableWriter, CancelRemovesTemporaryAndKeepsOldTarget) {
   testing::TempDir dir("writer_cancel");
   std::filesystem::path target = dir / "t.h5";
