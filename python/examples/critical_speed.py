@@ -15,7 +15,7 @@ Linear part (docs/critical-speed.md):
 - suspension, masses and geometry from the [vehicle] of a `railtab simulate` scene, so that the
   linear numbers and the simulated onset belong to the same vehicle.
 Three linear critical speeds: Wickens' classical formula of a single wheelset held to a rigid frame
-by lateral and yaw springs, stiff creep (Wickens 1965; Wickens 2003, ch. 3),
+by lateral and yaw springs, stiff creep (Wickens 1965; Wickens 2003),
     V_c^2 = (r0 e0 / lambda_e) (k_psi + e0^2 k_y) / (I + m e0^2);
 the same wheelset with finite creep coefficients (the Routh-Hurwitz condition of its 4th-order
 characteristic polynomial, closed form); and the bogie of `railtab simulate` linearised
