@@ -9,7 +9,8 @@
 // else the default scene generated here with the generator API (~3 s on 2 cores, the same bytes
 // as `railtab generate tables/default.toml`). Fixture* benchmarks: the synthetic 4-D table with
 // uniform axes (tests/lookup/table_fixture.hpp), for comparison with earlier numbers.
-// Targets (issue 15): linear one slot random <= 80 ns, both slots <= 140 ns, cubic <= 10x linear.
+// Floor* benchmarks: a plain multilinear kernel over the same table's axes (class Floor below) at
+// the same states, the yardstick of the lookup's speed: report lookup / floor from one run.
 //   ./lookup_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // CPU time is the benchmark thread's CPU time (Google Benchmark's default).
 #include <benchmark/benchmark.h>
@@ -241,6 +242,100 @@ void run_slot_jumps(benchmark::State& bench, bool near) {
   bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
 }
 
+// The floor (a plain multilinear kernel the lookup is measured against): the default table's own
+// axes and node vectors (t.axes(): y, load, xi, eta, phi), one record of 8 doubles per node (made-up
+// values), one grid per (wheel, slot); per query and slot a binary search on every axis
+// (std::upper_bound), the 2^D corner records gathered, then reduced one axis at a time (last axis
+// first, 2^D -> 2^(D-1) -> .. -> 1). No statuses, no scales, no jumps: what interpolating the same
+// grid costs with nothing else. The states are the lookup benchmarks' own (coherent_queries,
+// random_queries), so lookup / floor is a fair ratio when both run in one process.
+class Floor {
+ public:
+  static constexpr int kOut = 8;
+  explicit Floor(const Table& t) {
+    for (const lk::AxisInfo& a : t.axes()) {
+      axes_.push_back(a.nodes);
+      var_.push_back(a.name);
+    }
+    std::size_t nodes = 1;
+    for (const auto& a : axes_) nodes *= a.size();
+    stride_.assign(axes_.size(), 0);
+    std::size_t st = kOut;
+    for (std::size_t k = axes_.size(); k-- > 0;) {
+      stride_[k] = st;
+      st *= axes_[k].size();
+    }
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (auto& wheel : grid_)
+      for (auto& slot : wheel) {
+        slot.resize(nodes * kOut);
+        for (double& x : slot) x = u(rng);
+      }
+  }
+
+  // One slot of one wheel: the 8 outputs at `state`.
+  void query_slot(Wheel wheel, const lk::State& state, int slot, double* out) const noexcept {
+    const int n = static_cast<int>(axes_.size());
+    double t[8];
+    std::size_t base = 0;
+    for (int k = 0; k < n; ++k) {
+      const std::vector<double>& x = axes_[static_cast<std::size_t>(k)];
+      const double v = std::min(std::max(value(state, k), x.front()), x.back());
+      const std::size_t i =
+          static_cast<std::size_t>(std::upper_bound(x.data() + 1, x.data() + x.size() - 1, v) - x.data()) - 1;
+      t[k] = (v - x[i]) / (x[i + 1] - x[i]);
+      base += i * stride_[static_cast<std::size_t>(k)];
+    }
+    const double* g = grid_[static_cast<int>(wheel)][slot].data() + base;
+    double c[32][kOut];  // 2^n corners, corner bit k = dimension n - 1 - k
+    const int corners = 1 << n;
+    for (int m = 0; m < corners; ++m) {
+      std::size_t off = 0;
+      for (int k = 0; k < n; ++k)
+        if (m >> (n - 1 - k) & 1) off += stride_[static_cast<std::size_t>(k)];
+      for (int o = 0; o < kOut; ++o) c[m][o] = g[off + o];
+    }
+    for (int k = n - 1, half = corners / 2; k >= 0; --k, half /= 2)
+      for (int m = 0; m < half; ++m)
+        for (int o = 0; o < kOut; ++o) c[m][o] = c[2 * m][o] + t[k] * (c[2 * m + 1][o] - c[2 * m][o]);
+    for (int o = 0; o < kOut; ++o) out[o] = c[0][o];
+  }
+
+  int dims() const noexcept { return static_cast<int>(axes_.size()); }
+
+ private:
+  double value(const lk::State& s, int k) const noexcept {
+    const std::string& name = var_[static_cast<std::size_t>(k)];
+    return name == "y" ? s.y : name == "roll" ? s.roll : name == "load" ? s.load
+         : name == "xi" ? s.xi : name == "eta" ? s.eta : s.phi;
+  }
+  std::vector<std::vector<double>> axes_;
+  std::vector<std::string> var_;
+  std::vector<std::size_t> stride_;     // doubles between neighbouring nodes per axis
+  std::vector<double> grid_[2][2];      // [wheel][slot], nodes in C order x 8 doubles
+};
+
+// `slots` slots per query (1: the tread, as run_slot; 2: both, as run_full).
+void run_floor(benchmark::State& bench, bool coherent, int slots) {
+  const Table& t = table(Source::kDefaultScene, Method::kLinear);
+  static const Floor floor(t);
+  if (floor.dims() > 5) {
+    bench.SkipWithError("the floor handles at most 5 axes");
+    return;
+  }
+  const auto q = coherent ? coherent_queries(t, 1 << 14) : random_queries(t, 1 << 14);
+  double out[2][Floor::kOut];
+  std::size_t k = 0;
+  for (auto _ : bench) {
+    const Query& item = q[k];
+    for (int s = 0; s < slots; ++s) floor.query_slot(item.wheel, item.state, s, out[s]);
+    benchmark::DoNotOptimize(out);
+    k = (k + 1) & (q.size() - 1);
+  }
+  bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
+}
+
 constexpr Source kDefault = Source::kDefaultScene;
 void BM_LookupSlotLinearRandomAwayFromJumps(benchmark::State& s) { run_slot_jumps(s, false); }
 void BM_LookupSlotLinearRandomNearJumps(benchmark::State& s) { run_slot_jumps(s, true); }
@@ -254,6 +349,10 @@ void BM_LookupDerivativesCubicRandom(benchmark::State& s) { run_derivatives(s, M
 void BM_LookupSlotCubicRandom(benchmark::State& s) { run_slot(s, kDefault, Method::kCubic, false); }
 void BM_LookupCubicRandom(benchmark::State& s) { run_full(s, kDefault, Method::kCubic, false); }
 void BM_LookupCubicCoherent(benchmark::State& s) { run_full(s, kDefault, Method::kCubic, true); }
+void BM_FloorSlotRandom(benchmark::State& s) { run_floor(s, false, 1); }
+void BM_FloorSlotCoherent(benchmark::State& s) { run_floor(s, true, 1); }
+void BM_FloorRandom(benchmark::State& s) { run_floor(s, false, 2); }
+void BM_FloorCoherent(benchmark::State& s) { run_floor(s, true, 2); }
 void BM_LookupMonotoneCubicRandom(benchmark::State& s) {
   run_full(s, kDefault, Method::kMonotoneCubic, false);
 }
@@ -281,6 +380,10 @@ void BM_FixtureLinearRandom(benchmark::State& s) {
   run_full(s, Source::kFixture, Method::kLinear, false);
 }
 
+BENCHMARK(BM_FloorSlotRandom);
+BENCHMARK(BM_FloorSlotCoherent);
+BENCHMARK(BM_FloorRandom);
+BENCHMARK(BM_FloorCoherent);
 BENCHMARK(BM_LookupSlotLinearRandom);
 BENCHMARK(BM_LookupSlotLinearCoherent);
 BENCHMARK(BM_LookupSlotLinearRandomAwayFromJumps);

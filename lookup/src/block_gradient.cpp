@@ -5,17 +5,19 @@
 #include <algorithm>
 #include <cstring>
 
+#include "interpolate.hpp"  // use_avx2
+
 namespace railtab::lookup::detail {
 
 namespace {
 
-// multilinear_gradient for N dimensions, the values in chunks of kLanes (the corner loops unroll,
-// the lane loops vectorise).
-constexpr int kLanes = 8;
-
-template <int N, class T>
-void multilinear_gradient_n(RecordPtr p, const std::size_t* stride, const double* t, int n_values, double* value,
-                            double (*out_dt)[kMaxDims]) noexcept {
+// multilinear_gradient for N dimensions, the values in chunks of L lanes (the corner loops unroll,
+// the lane loops vectorise). L is the block's value count rounded up (2, 3, 4, 6 or 8: no lanes
+// computed for nothing); more than 8 values go in chunks of 8.
+template <int N, int L, class T>
+__attribute__((always_inline)) inline void multilinear_gradient_n(RecordPtr p, const std::size_t* stride,
+                                                                  const double* t, int n_values, double* value,
+                                                                  double (*out_dt)[kMaxDims]) noexcept {
   // Corner c holds the upper node along dimension dim where bit (N - 1 - dim) of c is set, so the
   // two corners of a pair (2e, 2e + 1) differ in the last dimension. The cell is reduced one
   // dimension at a time, last first: a pair's value is the lerp of its two, its derivative along
@@ -29,11 +31,11 @@ void multilinear_gradient_n(RecordPtr p, const std::size_t* stride, const double
       if ((c >> (N - 1 - dim)) & 1) o += stride[dim];
     off[c] = o;
   }
-  for (int k0 = 0; k0 < n_values; k0 += kLanes) {
-    const int lanes = std::min(kLanes, n_values - k0);
-    double v[kCorners][kLanes], g[kCorners][N > 0 ? N : 1][kLanes];
+  for (int k0 = 0; k0 < n_values; k0 += L) {
+    const int lanes = std::min(L, n_values - k0);
+    double v[kCorners][L], g[kCorners][N > 0 ? N : 1][L];
     for (int c = 0; c < kCorners; ++c)
-      for (int k = 0; k < kLanes; ++k) v[c][k] = k < lanes ? record_value<T>(p + off[c], k0 + k) : 0.0;
+      for (int k = 0; k < L; ++k) v[c][k] = k < lanes ? record_value<T>(p + off[c], k0 + k) : 0.0;
     int m = kCorners;
 #pragma GCC unroll 8
     for (int dim = N - 1; dim >= 0; --dim) {
@@ -42,8 +44,8 @@ void multilinear_gradient_n(RecordPtr p, const std::size_t* stride, const double
       for (int e = 0; e < m; ++e) {
         const int lo = 2 * e, hi = 2 * e + 1;
         for (int r = dim + 1; r < N; ++r)
-          for (int k = 0; k < kLanes; ++k) g[e][r][k] = u * g[lo][r][k] + tt * g[hi][r][k];
-        for (int k = 0; k < kLanes; ++k) {
+          for (int k = 0; k < L; ++k) g[e][r][k] = u * g[lo][r][k] + tt * g[hi][r][k];
+        for (int k = 0; k < L; ++k) {
           g[e][dim][k] = v[hi][k] - v[lo][k];
           v[e][k] = u * v[lo][k] + tt * v[hi][k];
         }
@@ -56,19 +58,47 @@ void multilinear_gradient_n(RecordPtr p, const std::size_t* stride, const double
   }
 }
 
+// The kernel for one (N, L, T), compiled for SSE2 and for AVX2 (the same operations in the same
+// order, no fused multiply-add: the same bits either way).
+template <int N, int L, class T>
+void gradient_sse2(RecordPtr p, const std::size_t* stride, const double* t, int n_values, double* value,
+                   double (*out_dt)[kMaxDims]) noexcept {
+  multilinear_gradient_n<N, L, T>(p, stride, t, n_values, value, out_dt);
+}
+template <int N, int L, class T>
+__attribute__((target("avx2"))) void gradient_avx2(RecordPtr p, const std::size_t* stride, const double* t,
+                                                   int n_values, double* value, double (*out_dt)[kMaxDims]) noexcept {
+  multilinear_gradient_n<N, L, T>(p, stride, t, n_values, value, out_dt);
+}
+
+template <int N, class T>
+void gradient_dims(RecordPtr p, const std::size_t* stride, const double* t, int n_values, double* value,
+                   double (*out_dt)[kMaxDims]) noexcept {
+  static const bool avx2 = use_avx2();
+#define RAILTAB_GRADIENT_LANES(L)                                                         \
+  return avx2 ? gradient_avx2<N, L, T>(p, stride, t, n_values, value, out_dt)             \
+              : gradient_sse2<N, L, T>(p, stride, t, n_values, value, out_dt)
+  if (n_values <= 2) RAILTAB_GRADIENT_LANES(2);
+  if (n_values <= 3) RAILTAB_GRADIENT_LANES(3);
+  if (n_values <= 4) RAILTAB_GRADIENT_LANES(4);
+  if (n_values <= 6) RAILTAB_GRADIENT_LANES(6);
+  RAILTAB_GRADIENT_LANES(8);
+#undef RAILTAB_GRADIENT_LANES
+}
+
 }  // namespace
 
 template <class T>
 void multilinear_gradient(RecordPtr p, int n, const std::size_t* stride, const double* t, int n_values,
                           double* value, double (*out_dt)[kMaxDims]) noexcept {
   switch (n) {
-    case 0: multilinear_gradient_n<0, T>(p, stride, t, n_values, value, out_dt); break;
-    case 1: multilinear_gradient_n<1, T>(p, stride, t, n_values, value, out_dt); break;
-    case 2: multilinear_gradient_n<2, T>(p, stride, t, n_values, value, out_dt); break;
-    case 3: multilinear_gradient_n<3, T>(p, stride, t, n_values, value, out_dt); break;
-    case 4: multilinear_gradient_n<4, T>(p, stride, t, n_values, value, out_dt); break;
-    case 5: multilinear_gradient_n<5, T>(p, stride, t, n_values, value, out_dt); break;
-    default: multilinear_gradient_n<kMaxDims, T>(p, stride, t, n_values, value, out_dt); break;
+    case 0: gradient_dims<0, T>(p, stride, t, n_values, value, out_dt); break;
+    case 1: gradient_dims<1, T>(p, stride, t, n_values, value, out_dt); break;
+    case 2: gradient_dims<2, T>(p, stride, t, n_values, value, out_dt); break;
+    case 3: gradient_dims<3, T>(p, stride, t, n_values, value, out_dt); break;
+    case 4: gradient_dims<4, T>(p, stride, t, n_values, value, out_dt); break;
+    case 5: gradient_dims<5, T>(p, stride, t, n_values, value, out_dt); break;
+    default: gradient_dims<kMaxDims, T>(p, stride, t, n_values, value, out_dt); break;
   }
 }
 template void multilinear_gradient<double>(RecordPtr, int, const std::size_t*, const double*, int, double*,
@@ -152,48 +182,96 @@ StencilWeights cubic_stencil(const Axis& axis, const AxisLoc& l) noexcept {
   return s;
 }
 
+// The cubic cell's value and gradient sums for N dimensions, the values in chunks of L lanes (as
+// multilinear_gradient_n): the outer dimensions 0 .. N-2 by a mixed-radix counter, the last
+// (unit-stride) one inside, every record read once.
+template <int N, int L, class T>
+__attribute__((always_inline)) inline void cubic_sum_n(const std::size_t* stride, const StencilWeights* sw,
+                                                       RecordPtr p, int n_values, double* out_value,
+                                                       double (*out_dt)[kMaxDims]) noexcept {
+  constexpr int kLast = N - 1;
+  const StencilWeights& in = sw[kLast];
+  for (int k0 = 0; k0 < n_values; k0 += L) {
+    const int lanes = std::min(L, n_values - k0);
+    double value[L] = {}, dt[N][L] = {};
+    int idx[N > 1 ? N - 1 : 1] = {};
+    for (;;) {
+      std::size_t off = 0;
+      double weight = 1.0, dweight[N > 1 ? N - 1 : 1];
+      for (int dim = 0; dim < kLast; ++dim) {
+        off += static_cast<std::size_t>(idx[dim]) * stride[dim];
+        dweight[dim] = 1.0;
+      }
+      for (int dim = 0; dim < kLast; ++dim) {
+        for (int e = 0; e < kLast; ++e) dweight[e] *= e == dim ? sw[dim].dw[idx[dim]] : sw[dim].w[idx[dim]];
+        weight *= sw[dim].w[idx[dim]];
+      }
+      // The inner axis: its value and derivative sums per value.
+      double a[L] = {}, da[L] = {};
+      RecordPtr r = p + off;
+      for (int j = 0; j < in.count; ++j, r += stride[kLast]) {
+        const double wj = in.w[j], dwj = in.dw[j];
+        for (int k = 0; k < L; ++k) {
+          const double f = k < lanes ? record_value<T>(r, k0 + k) : 0.0;
+          a[k] += wj * f;
+          da[k] += dwj * f;
+        }
+      }
+      for (int k = 0; k < L; ++k) {
+        value[k] += weight * a[k];
+        dt[kLast][k] += weight * da[k];
+        for (int dim = 0; dim < kLast; ++dim) dt[dim][k] += dweight[dim] * a[k];
+      }
+      int dim = kLast - 1;
+      while (dim >= 0 && ++idx[dim] == sw[dim].count) idx[dim--] = 0;
+      if (dim < 0) break;
+    }
+    for (int k = 0; k < lanes; ++k) {
+      out_value[k0 + k] = value[k];
+      for (int dim = 0; dim < N; ++dim) out_dt[k0 + k][dim] = dt[dim][k];
+    }
+  }
+}
+
+template <int N, int L, class T>
+void cubic_sse2(const std::size_t* stride, const StencilWeights* sw, RecordPtr p, int n_values, double* value,
+                double (*dt)[kMaxDims]) noexcept {
+  cubic_sum_n<N, L, T>(stride, sw, p, n_values, value, dt);
+}
+template <int N, int L, class T>
+__attribute__((target("avx2"))) void cubic_avx2(const std::size_t* stride, const StencilWeights* sw, RecordPtr p,
+                                                int n_values, double* value, double (*dt)[kMaxDims]) noexcept {
+  cubic_sum_n<N, L, T>(stride, sw, p, n_values, value, dt);
+}
+
+template <int N, class T>
+void cubic_dims(const std::size_t* stride, const StencilWeights* sw, RecordPtr p, int n_values, double* value,
+                double (*dt)[kMaxDims]) noexcept {
+  static const bool avx2 = use_avx2();
+#define RAILTAB_CUBIC_LANES(L)                                                                          \
+  return avx2 ? cubic_avx2<N, L, T>(stride, sw, p, n_values, value, dt)                                 \
+              : cubic_sse2<N, L, T>(stride, sw, p, n_values, value, dt)
+  if (n_values <= 2) RAILTAB_CUBIC_LANES(2);
+  if (n_values <= 3) RAILTAB_CUBIC_LANES(3);
+  if (n_values <= 4) RAILTAB_CUBIC_LANES(4);
+  if (n_values <= 6) RAILTAB_CUBIC_LANES(6);
+  RAILTAB_CUBIC_LANES(8);
+#undef RAILTAB_CUBIC_LANES
+}
+
 template <class T>
 void cubic_sum(const Block& b, const StencilWeights* sw, RecordPtr p, BlockGradient& g) noexcept {
-  const int n = b.n_dims, nv = b.n_values, last = n - 1;
-  double value[kMaxSlotValues] = {}, dt[kMaxSlotValues][kMaxDims] = {};
-  // Outer dimensions 0 .. n-2 by a mixed-radix counter; the last (unit-stride) one inside.
-  int idx[kMaxDims] = {};
-  const StencilWeights& in = sw[last];
-  for (;;) {
-    std::size_t off = 0;
-    double weight = 1.0, dweight[kMaxDims];
-    for (int dim = 0; dim < last; ++dim) {
-      off += static_cast<std::size_t>(idx[dim]) * b.stride[dim];
-      dweight[dim] = 1.0;
-    }
-    for (int dim = 0; dim < last; ++dim) {
-      for (int e = 0; e < last; ++e) dweight[e] *= e == dim ? sw[dim].dw[idx[dim]] : sw[dim].w[idx[dim]];
-      weight *= sw[dim].w[idx[dim]];
-    }
-    // The inner axis: its value and derivative sums per value, each record read once.
-    double a[kMaxSlotValues] = {}, da[kMaxSlotValues] = {};
-    RecordPtr r = p + off;
-    for (int j = 0; j < in.count; ++j, r += b.stride[last]) {
-      const double wj = in.w[j], dwj = in.dw[j];
-      for (int k = 0; k < nv; ++k) {
-        const double f = record_value<T>(r, k);
-        a[k] += wj * f;
-        da[k] += dwj * f;
-      }
-    }
-    for (int k = 0; k < nv; ++k) {
-      value[k] += weight * a[k];
-      dt[k][last] += weight * da[k];
-      for (int dim = 0; dim < last; ++dim) dt[k][dim] += dweight[dim] * a[k];
-    }
-    int dim = last - 1;
-    while (dim >= 0 && ++idx[dim] == sw[dim].count) idx[dim--] = 0;
-    if (dim < 0) break;
+  double dt[kMaxSlotValues][kMaxDims];
+  switch (b.n_dims) {
+    case 1: cubic_dims<1, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
+    case 2: cubic_dims<2, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
+    case 3: cubic_dims<3, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
+    case 4: cubic_dims<4, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
+    case 5: cubic_dims<5, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
+    default: cubic_dims<kMaxDims, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
   }
-  for (int k = 0; k < nv; ++k) {
-    g.value[k] = value[k];
-    for (int dim = 0; dim < n; ++dim) g.d[k][b.var[dim]] = dt[k][dim];
-  }
+  for (int k = 0; k < b.n_values; ++k)
+    for (int dim = 0; dim < b.n_dims; ++dim) g.d[k][b.var[dim]] = dt[k][dim];
 }
 
 }  // namespace

@@ -9,11 +9,11 @@
 All quantities are SI (m, N, Pa, rad, s); frames and signs as in docs/conventions.md.
 """
 from ._evaluate import Scene, evaluate
-from ._railtab import Error
+from ._railtab import Error, kalker_coefficients
 from ._profile import Profile, write_simpack
 from ._status import STATUS_FLAGS, decode_status, has_flag, status_names
 from ._table import QueryResult, Table
 from ._units import AXIS_UNITS, OUTPUT_UNITS
 
 __all__ = ["AXIS_UNITS", "Error", "OUTPUT_UNITS", "Profile", "QueryResult", "STATUS_FLAGS", "Scene",
-           "Table", "decode_status", "evaluate", "has_flag", "status_names", "write_simpack"]
+           "Table", "decode_status", "evaluate", "has_flag", "kalker_coefficients", "status_names", "write_simpack"]

@@ -11,6 +11,7 @@
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='Derivatives*' (prints the numbers).
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 
 #include "accuracy_util.hpp"
@@ -181,6 +182,41 @@ void check_jumps(const lk::Table& t, const char* name) {
 
 TEST(Derivatives, LinearBesideAJumpIsOneSided) { check_jumps(*tables().linear, "linear"); }
 TEST(Derivatives, CubicBesideAJumpIsOneSided) { check_jumps(*tables().cubic, "cubic"); }
+
+// The values query_derivatives returns are query()'s, to the byte: at random states and beside
+// every located jump (cut cells), both wheels, linear and cubic.
+void check_same_bytes(const lk::Table& t) {
+  const Tables& x = tables();
+  std::vector<lk::State> states;
+  for (const Point& p : random_states(x.scene, 2000, 7)) states.push_back(to_state(t, p));
+  for (int w = 0; w < 2; ++w)
+    for (std::size_t l = 0; l < x.scene.grids.load.size(); ++l)
+      for (const ContactJump& jump : x.jumps.wheel[w][l])
+        for (double side : {-1.0, 1.0}) {
+          lk::State s = t.default_state();
+          s.load = x.scene.grids.load[l];
+          s.xi = 4e-4, s.eta = -3e-4, s.phi = 0.02;
+          s.y = jump.y + side * 3e-5;
+          states.push_back(s);
+        }
+  lk::Result r, plain;
+  lk::Derivatives d;
+  int nonzero = 0;
+  for (const lk::State& s : states)
+    for (int w = 0; w < 2; ++w) {
+      const lk::Wheel wheel = static_cast<lk::Wheel>(w);
+      std::memset(static_cast<void*>(&r), 0xA5, sizeof r);  // the same bytes where neither call writes
+      std::memset(static_cast<void*>(&plain), 0xA5, sizeof plain);
+      ASSERT_TRUE(t.query_derivatives(wheel, s, r, d));
+      t.query(wheel, s, plain);
+      ASSERT_EQ(std::memcmp(&r, &plain, sizeof r), 0) << "wheel " << w << " y " << s.y << " load " << s.load;
+      nonzero += plain.contact[0].value[lk::kFy] != 0.0;
+    }
+  EXPECT_GT(nonzero, static_cast<int>(states.size()));  // real states, forces on most
+}
+
+TEST(Derivatives, LinearValuesAreTheQuerysBytesOnTheDefaultTable) { check_same_bytes(*tables().linear); }
+TEST(Derivatives, CubicValuesAreTheQuerysBytesOnTheDefaultTable) { check_same_bytes(*tables().cubic); }
 
 }  // namespace
 }  // namespace railtab::accuracy::derivatives_test
