@@ -191,18 +191,18 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
     EvaluatedWheel& wheel = out.wheels[w];
     wheel.side = e.geometry->side;
     wheel.vertical_approach = e.normal.vertical_approach;
-    wheel.vertical_load = e.normal.vertical_load;
+    wheel.carried_load = e.normal.carried_load;
     if (e.coupled) {
       // The load balance in track axes: vertical_load_normal + vertical_load_tangential = load.
       wheel.coupled = true;
-      wheel.vertical_load = e.normal_vertical + e.tangential_vertical;
+      wheel.carried_load = e.normal_vertical + e.tangential_vertical;
       wheel.vertical_load_normal = e.normal_vertical;
       wheel.vertical_load_tangential = e.tangential_vertical;
       wheel.coupling_status = e.coupling_status;
       wheel.coupling_iterations = e.coupling_iterations;
     }
     StatusBits wheel_bits = e.geometry->status | e.normal.status | (e.coupled ? e.coupling_status : 0u);
-    if (!all_finite({e.normal.vertical_approach, e.normal.vertical_load, e.normal_vertical, e.tangential_vertical})) {
+    if (!all_finite({e.normal.vertical_approach, e.normal.carried_load, e.normal_vertical, e.tangential_vertical})) {
       wheel_bits = non_finite_status(wheel_bits);
     }
     const StatusBits solver_bits = e.normal.status & (status::kConverged | status::kNotConverged);

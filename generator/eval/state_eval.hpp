@@ -46,7 +46,7 @@ struct EvaluatedPoint {
 struct EvaluatedWheel {
   Side side = Side::left;
   double vertical_approach = 0.0;  // [m]
-  double vertical_load = 0.0;      // carried load [N]; with load coupling the sum of the next two
+  double carried_load = 0.0;       // carried load [N]; with load coupling the sum of the next two
   bool coupled = false;            // with a creepage: the coupled load control ran
   double vertical_load_normal = 0.0;      // sum N cos g [N] (coupled only)
   double vertical_load_tangential = 0.0;  // sum fy sin g [N] (coupled only)

@@ -63,7 +63,7 @@ nlohmann::json state_json(const StateEvaluation& e) {
     nlohmann::json wj;
     wj["side"] = to_string(w.side);
     wj["vertical_approach"] = w.vertical_approach;
-    wj["vertical_load"] = w.vertical_load;
+    wj["vertical_load"] = w.carried_load;
     if (w.coupled) {
       // The load balance in track axes: vertical_load_normal + vertical_load_tangential = load.
       wj["vertical_load_normal"] = w.vertical_load_normal;

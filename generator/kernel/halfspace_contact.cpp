@@ -88,7 +88,7 @@ WheelNormalResult to_normal_result(const halfspace::WheelHalfspaceResult& result
       p.point_index = static_cast<int>(i);
   }
   r.vertical_approach = result.vertical_approach;
-  r.vertical_load = result.vertical_load;
+  r.carried_load = result.carried_load;
   r.status = result.status;
   if (r.patches.size() > 1) r.status |= status::kTwoPoint;
   if (r.patches.empty()) r.status |= status::kLiftOff;
@@ -160,7 +160,7 @@ void solve_halfspace_tangential_per_patch(halfspace::WheelHalfspaceResult& resul
 }
 
 halfspace::WheelHalfspaceResult solve_halfspace_rolling_per_patch(
-    const WheelContactGeometry& geometry, double vertical_load, const HalfspacePatchCreepage& creepage_of, double mu,
+    const WheelContactGeometry& geometry, double load, const HalfspacePatchCreepage& creepage_of, double mu,
     const Material& material, const halfspace::HalfspaceOptions& options, bool couple,
     halfspace::Workspace& workspace) {
   auto vertical_part = [](const halfspace::WheelHalfspaceResult& res) {
@@ -171,7 +171,7 @@ halfspace::WheelHalfspaceResult solve_halfspace_rolling_per_patch(
   halfspace::WheelHalfspaceResult r;
   auto round = [&](double tz) {  // normal for F_z - tz, then tangential; returns the new tz
     halfspace::WheelHalfspaceResult next =
-        halfspace::solve_halfspace_for_load(geometry, std::max(0.0, vertical_load - tz), material, options, workspace);
+        halfspace::solve_halfspace_for_load(geometry, std::max(0.0, load - tz), material, options, workspace);
     if (next.patches.size() == r.patches.size())  // warm start of the tractions from the previous round
       for (std::size_t k = 0; k < next.patches.size(); ++k)
         if (next.patches[k].grid.nx == r.patches[k].grid.nx && next.patches[k].grid.ny == r.patches[k].grid.ny)
@@ -181,8 +181,8 @@ halfspace::WheelHalfspaceResult solve_halfspace_rolling_per_patch(
     return vertical_part(r);
   };
   // The fixed point on the vertical load lives once, in src/halfspace (solve_halfspace_rolling's).
-  if (!halfspace::solve_vertical_load_fixed_point(vertical_load, round,
-                                                  [&] { return !couple || r.patches.empty(); }))
+  if (!halfspace::solve_load_fixed_point(load, round,
+                                      [&] { return !couple || r.patches.empty(); }))
     halfspace::mark_not_converged(r);
   return r;
 }

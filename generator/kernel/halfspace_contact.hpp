@@ -52,7 +52,7 @@ WearResult halfspace_wear(const halfspace::HalfspacePatch& patch, double speed, 
 // With `couple` false: the normal contact from the load alone, then the tangential problems.
 using HalfspacePatchCreepage = std::function<Creepage(std::size_t, const halfspace::HalfspacePatch&)>;
 halfspace::WheelHalfspaceResult solve_halfspace_rolling_per_patch(
-    const WheelContactGeometry& geometry, double vertical_load, const HalfspacePatchCreepage& creepage_of, double mu,
+    const WheelContactGeometry& geometry, double load, const HalfspacePatchCreepage& creepage_of, double mu,
     const Material& material, const halfspace::HalfspaceOptions& options, bool couple,
     halfspace::Workspace& workspace);
 

@@ -109,7 +109,7 @@ WheelsetSample wheelset_sample(int wheelset, const vehicle::ContactSnapshot& sna
       // The dynamics' normal force at its creepage where the contact model couples the load
       // (load coupling), so the post-processor's patches carry the same N as the dynamics' ones.
       const double f_n = snapshot.forces[w][k].normal_force;
-      s.vertical_force[w] += (f_n > 0.0 ? f_n : c.normal_force) * std::cos(c.contact_angle);
+      s.load[w] += (f_n > 0.0 ? f_n : c.normal_force) * std::cos(c.contact_angle);
     }
   }
   s.motion = snapshot.motion;
@@ -147,7 +147,7 @@ void WearPostProcessing::sample(const WheelsetSample& sample) {
   const long n = seen_[static_cast<std::size_t>(sample.wheelset)]++;
   for (std::size_t p = 0; p < post_processors_.size(); ++p) {
     if (n % every_[p] != 0) continue;  // a sampled post-processor: this sample stands for `every` of them
-    accumulator(p, position).sample(sample.y_relative, sample.vertical_force, sample.motion,
+    accumulator(p, position).sample(sample.y_relative, sample.load, sample.motion,
                                     sample.distance * every_[p]);
   }
   wall_seconds_ += seconds_since(t0);

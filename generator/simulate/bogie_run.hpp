@@ -28,7 +28,9 @@ class DirectContactModel;
 struct WheelsetSample {
   int wheelset = 0;                          // 0 leading, 1 trailing wheelset of the bogie
   double y_relative = 0.0;                   // lateral displacement relative to the rails [m]
-  double vertical_force[vehicle::kWheels] = {};  // the dynamics' contact force, sum of N cos(g) (N at the creepage with the load coupling)
+  // Wheel load the dynamics' contacts carry [N]: sum of N cos(g) (N at the creepage with the load
+  // coupling).
+  double load[vehicle::kWheels] = {};
                                              // over the wheel's slots [N]
   vehicle::WheelsetMotion motion;            // incl. the balanced spin speed
   double distance = 0.0;                     // rolled distance the sample stands for [m]

@@ -93,13 +93,13 @@ StatusBits HalfspaceWheelWear::patch_wear(const WheelContactGeometry& geometry, 
   return hp.status;
 }
 
-StatusBits HalfspaceWheelWear::wheel_wear(const WheelContactGeometry& geometry, int wheel, double vertical_force,
+StatusBits HalfspaceWheelWear::wheel_wear(const WheelContactGeometry& geometry, int wheel, double load,
                                           const vehicle::WheelsetMotion& motion,
                                           std::vector<StripWear>& strips) {
   strips.clear();
-  result_ = halfspace::solve_halfspace_for_load(geometry, vertical_force, material_, options_, workspace_);
+  result_ = halfspace::solve_halfspace_for_load(geometry, load, material_, options_, workspace_);
   RAILTAB_CHECK(!(result_.status & status::kInvalidInput),
-                "half-space wear: the normal problem rejected its input (vertical force {} N)", vertical_force);
+                "half-space wear: the normal problem rejected its input (vertical force {} N)", load);
   StatusBits bits = result_.status;
   for (std::size_t k = 0; k < result_.patches.size(); ++k) {
     const halfspace::HalfspacePatch& hp = result_.patches[k];
@@ -118,14 +118,14 @@ StatusBits HalfspaceWheelWear::wheel_wear(const WheelContactGeometry& geometry, 
   return bits;
 }
 
-StatusBits HalfspaceWheelWear::wheel_wear_at(const WheelContactGeometry& geometry, double vertical_force,
+StatusBits HalfspaceWheelWear::wheel_wear_at(const WheelContactGeometry& geometry, double load,
                                              const Creepage& creepage, double speed,
                                              std::vector<StripWear>& strips) {
   RAILTAB_CHECK(std::isfinite(speed) && speed > 0.0, "half-space wear: speed must be > 0 m/s, got {}", speed);
   strips.clear();
-  result_ = halfspace::solve_halfspace_for_load(geometry, vertical_force, material_, options_, workspace_);
+  result_ = halfspace::solve_halfspace_for_load(geometry, load, material_, options_, workspace_);
   RAILTAB_CHECK(!(result_.status & status::kInvalidInput),
-                "half-space wear: the normal problem rejected its input (vertical force {} N)", vertical_force);
+                "half-space wear: the normal problem rejected its input (vertical force {} N)", load);
   StatusBits bits = result_.status;
   for (std::size_t k = 0; k < result_.patches.size(); ++k) {
     if (!(result_.patches[k].normal.normal_force > 0.0)) continue;

@@ -31,13 +31,13 @@ class HalfspaceWheelWear final : public WheelWear {
  public:
   explicit HalfspaceWheelWear(const Scene& scene);
 
-  StatusBits wheel_wear(const WheelContactGeometry& geometry, int wheel, double vertical_force,
+  StatusBits wheel_wear(const WheelContactGeometry& geometry, int wheel, double load,
                         const vehicle::WheelsetMotion& motion,
                         std::vector<StripWear>& strips) override;
 
   // The same with one prescribed creepage for every patch (contact frame, wheel minus rail) at
   // rolling speed `speed` [m/s]: for single-patch comparisons and tests.
-  StatusBits wheel_wear_at(const WheelContactGeometry& geometry, double vertical_force,
+  StatusBits wheel_wear_at(const WheelContactGeometry& geometry, double load,
                            const Creepage& creepage, double speed, std::vector<StripWear>& strips);
 
   // The solution of the last call (patches with pressure, traction, slip).

@@ -24,13 +24,13 @@ class FastsimWheelWear final : public WheelWear {
     normal_.model = model;
   }
 
-  StatusBits wheel_wear(const WheelContactGeometry& geometry, int wheel, double vertical_force,
+  StatusBits wheel_wear(const WheelContactGeometry& geometry, int wheel, double load,
                         const vehicle::WheelsetMotion& motion,
                         std::vector<StripWear>& strips) override {
     strips.clear();
     // The KTH map depends on the slip velocity V |s|: the simulation's speed, not the scene's.
     conditions_.speed = motion.speed;
-    solve_normal_for_load(geometry, vertical_force, material_, normal_, normal_result_);
+    solve_normal_for_load(geometry, load, material_, normal_, normal_result_);
     StatusBits bits = normal_result_.status;
     for (const ContactPatch& patch : normal_result_.patches) {
       if (!(patch.normal_force > 0.0)) continue;

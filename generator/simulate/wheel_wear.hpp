@@ -26,12 +26,12 @@ class WheelWear {
   virtual ~WheelWear() = default;
 
   // Strips of wheel `wheel` (0 left, 1 right) into `strips` (cleared first): the normal problem
-  // at `vertical_force` [N] (the interpenetration adapted so that the patches carry the
+  // at `load` [N] (the interpenetration adapted so that the patches carry the
   // dynamics' force), each patch's creepages from `motion` (vehicle::creepage with the patch's
   // own angle, radius and position), the tangential problem and Archard/KTH wear. Returns the
   // status bits of every solve. Throws railtab::Error when a solve fails.
   virtual StatusBits wheel_wear(const WheelContactGeometry& geometry, int wheel,
-                                double vertical_force, const vehicle::WheelsetMotion& motion,
+                                double load, const vehicle::WheelsetMotion& motion,
                                 std::vector<StripWear>& strips) = 0;
 };
 

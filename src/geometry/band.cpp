@@ -106,7 +106,7 @@ bool build_band(const PlacedRail& rail, const Profile& wheel, const WheelPose& p
       b.wheel_u = e.y;
       b.q = rp.p.q;
       b.z = rp.p.z;
-      b.contact_angle = rp.angle;
+      b.contact_angle_side = rp.angle;
       b.gap = gap;
       b.rolling_radius = pose.r0 - e.z;
       b.curvature_wheel = curvature_numerator(e) / (slope_term * std::sqrt(slope_term));  // convex: > 0

@@ -74,8 +74,8 @@ struct BandSample {
   double wheel_u;          // wheel-profile coordinate of the facing wheel point [m]
   double q;                // rail point, side frame lateral [m]
   double z;                // rail point, side frame vertical [m]
-  double contact_angle;    // angle of the rail normal from vertical, side frame, + when the
-                           // normal leans towards the track centre (flange side) [rad]
+  double contact_angle_side;  // angle of the rail normal from vertical, side frame, + when the
+                              // normal leans towards the track centre (flange side) [rad]
   double gap;              // distance rail -> wheel along the rail normal (>= 0 outside overlap) [m]
   double rolling_radius;   // wheel radius at the facing wheel point [m]
   double curvature_wheel;  // lateral curvature of the wheel surface, + convex (bulging to rail) [1/m]

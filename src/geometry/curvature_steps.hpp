@@ -27,7 +27,7 @@ inline double rail_step_fraction(const WheelContactGeometry& g, int j) {
   if (j < 0 || j + 1 >= nb) return std::numeric_limits<double>::quiet_NaN();
   const double k0 = g.band[j].curvature_rail, k1 = g.band[j + 1].curvature_rail;
   if (!curvature_differs(k0, k1)) return std::numeric_limits<double>::quiet_NaN();
-  const double kbar = -(g.band[j + 1].contact_angle - g.band[j].contact_angle) / g.band_step;
+  const double kbar = -(g.band[j + 1].contact_angle_side - g.band[j].contact_angle_side) / g.band_step;
   const double f = (kbar - k1) / (k0 - k1);
   return std::isfinite(f) ? std::clamp(f, 0.0, 1.0) : 0.5;
 }

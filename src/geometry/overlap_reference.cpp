@@ -28,7 +28,7 @@ struct BandPoint {
 BandPoint lerp(const BandSample& a, const BandSample& b, double t) {
   auto mix = [t](double x, double y) { return x + t * (y - x); };
   return {mix(a.s, b.s),         mix(a.rail_u, b.rail_u), mix(a.wheel_u, b.wheel_u),
-          mix(a.q, b.q),         mix(a.z, b.z),           mix(a.contact_angle, b.contact_angle),
+          mix(a.q, b.q),         mix(a.z, b.z),           mix(a.contact_angle_side, b.contact_angle_side),
           mix(a.gap, b.gap),     mix(a.rolling_radius, b.rolling_radius)};
 }
 
@@ -94,7 +94,7 @@ std::vector<OverlapReference> overlap_references(const WheelContactGeometry& geo
   const Weighting w = options.weighting == OverlapWeighting::squared
                           ? Weighting{2.5, 16.0 / 15.0 * sqrt_2r}
                           : Weighting{1.5, 4.0 / 3.0 * sqrt_2r};
-  auto overlap = [&](std::size_t i) { return dz * std::cos(band[i].contact_angle) - band[i].gap; };
+  auto overlap = [&](std::size_t i) { return dz * std::cos(band[i].contact_angle_side) - band[i].gap; };
 
   // 1. One entry per run of positive overlap: weighted q and angle, weight, extent.
   std::size_t i = 0;
@@ -114,12 +114,12 @@ std::vector<OverlapReference> overlap_references(const WheelContactGeometry& geo
     for (std::size_t j = a; j < b; ++j) {  // trapezoids between samples inside the run
       const BandSample& p = band[j];
       const BandSample& r = band[j + 1];
-      const double w0 = w.per_s(overlap(j), p.contact_angle);
-      const double w1 = w.per_s(overlap(j + 1), r.contact_angle);
+      const double w0 = w.per_s(overlap(j), p.contact_angle_side);
+      const double w1 = w.per_s(overlap(j + 1), r.contact_angle_side);
       const double half = 0.5 * (r.s - p.s);
       sum_w += half * (w0 + w1);
       sum_wq += half * (w0 * p.q + w1 * r.q);
-      sum_wa += half * (w0 * p.contact_angle + w1 * r.contact_angle);
+      sum_wa += half * (w0 * p.contact_angle_side + w1 * r.contact_angle_side);
     }
     // Cell between the last overlapping sample k and its neighbour m outside the run: the
     // overlap falls linearly to zero at length L from k, the weight as (1 - x/L)^e, so the cell
@@ -129,11 +129,11 @@ std::vector<OverlapReference> overlap_references(const WheelContactGeometry& geo
       const double dm = overlap(m);
       const double h = band[m].s - band[k].s;  // signed
       const double len = h * dk / (dk - dm);
-      const double part = w.per_s(dk, band[k].contact_angle) * std::abs(len) / (w.exponent + 1.0);
+      const double part = w.per_s(dk, band[k].contact_angle_side) * std::abs(len) / (w.exponent + 1.0);
       const double t = len / (w.exponent + 2.0) / h;
       sum_w += part;
       sum_wq += part * (band[k].q + t * (band[m].q - band[k].q));
-      sum_wa += part * (band[k].contact_angle + t * (band[m].contact_angle - band[k].contact_angle));
+      sum_wa += part * (band[k].contact_angle_side + t * (band[m].contact_angle_side - band[k].contact_angle_side));
       return band[k].s + len;
     };
     OverlapReference ref{};
@@ -155,7 +155,7 @@ std::vector<OverlapReference> overlap_references(const WheelContactGeometry& geo
       ref.contact_angle_side = sum_wa / sum_w;
     } else {  // a lone sample at the band end: nothing to integrate
       ref.q = band[a].q;
-      ref.contact_angle_side = band[a].contact_angle;
+      ref.contact_angle_side = band[a].contact_angle_side;
     }
     ref.total_weight = sum_w;
     ref.max_overlap = d_max;

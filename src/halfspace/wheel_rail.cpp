@@ -41,9 +41,9 @@ std::vector<PlaneSample> plane_samples(const WheelContactGeometry& g, double s_r
     if (b.s < s_lo || b.s > s_hi) continue;
     PlaneSample p;
     p.y = sigma * ((b.q - q_ref) * tq + (b.z - z_ref) * tz);
-    p.h = b.gap / std::cos(b.contact_angle - g_ref);
-    p.A = std::cos(b.contact_angle - g.wheel_roll) / (2.0 * b.rolling_radius);
-    p.angle = b.contact_angle;
+    p.h = b.gap / std::cos(b.contact_angle_side - g_ref);
+    p.A = std::cos(b.contact_angle_side - g.wheel_roll) / (2.0 * b.rolling_radius);
+    p.angle = b.contact_angle_side;
     p.x = 0.0;
     if (yawed) {  // the strip's gap is smallest on the wheel's silhouette, curved by Euler's k_x
       p.A = 0.5 * b.curvature_rolling;
@@ -274,25 +274,25 @@ void reference_x(const WheelContactGeometry& g, double s, HalfspacePatch& hp) {
   hp.x_wheel = (1 - f) * g.band[k0].x_wheel + f * g.band[k0 + 1].x_wheel;
 }
 
-WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double vertical_load,
+WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double load,
                                     const Material& material, const HalfspaceOptions& o,
                                     Workspace& ws, const WheelHalfspaceResult* previous,
                                     std::vector<std::vector<PlaneSample>>* samples_out = nullptr);
 
 }  // namespace
 
-WheelNormalResult candidate_patches(const WheelContactGeometry& geometry, double vertical_load,
+WheelNormalResult candidate_patches(const WheelContactGeometry& geometry, double load,
                                     const Material& material) {
   NormalOptions no;
   no.model = NormalModel::stripes_ab;
   no.combine_patches = true;
-  return solve_normal_for_load(geometry, vertical_load, material, no);
+  return solve_normal_for_load(geometry, load, material, no);
 }
 
 WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,
-                                              double vertical_load, const Material& material,
+                                              double load, const Material& material,
                                               const HalfspaceOptions& o, Workspace& ws) {
-  return solve_for_load(geometry, vertical_load, material, o, ws, nullptr);
+  return solve_for_load(geometry, load, material, o, ws, nullptr);
 }
 
 namespace {
@@ -317,18 +317,18 @@ void finish_patches(WheelHalfspaceResult& r, const std::vector<std::vector<Plane
 
 // previous: a result of the same geometry whose pressures start the solve where the grids match.
 // samples_out: the band samples of each patch in its plane (for resolve_on_kept_grid).
-WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double vertical_load,
+WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double load,
                                     const Material& material, const HalfspaceOptions& o,
                                     Workspace& ws, const WheelHalfspaceResult* previous,
                                     std::vector<std::vector<PlaneSample>>* samples_out) {
-  RAILTAB_CHECK(std::isfinite(vertical_load) && vertical_load >= 0.0,
-                "halfspace: vertical load must be finite and >= 0, got {}", vertical_load);
+  RAILTAB_CHECK(std::isfinite(load) && load >= 0.0,
+                "halfspace: vertical load must be finite and >= 0, got {}", load);
   RAILTAB_CHECK(o.element_size > 0.0 && std::isfinite(o.element_size),
                 "halfspace: element_size must be > 0, got {}", o.element_size);
   WheelHalfspaceResult r;
-  const WheelNormalResult first = candidate_patches(geometry, vertical_load, material);
+  const WheelNormalResult first = candidate_patches(geometry, load, material);
   r.vertical_approach = first.vertical_approach;
-  if (first.patches.empty() || vertical_load == 0.0) {
+  if (first.patches.empty() || load == 0.0) {
     r.status = status::kLiftOff | (first.status & status::kInvalidInput);
     return r;
   }
@@ -365,7 +365,7 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
         if (single_load && hp.normal.pressure.empty())
           hertz_like_start(hp.gap, dz * c, hp.normal.pressure);
         if (single_load)
-          solve_normal_for_force(hp.grid, hp.gap, vertical_load / c, material, o.normal, ws,
+          solve_normal_for_force(hp.grid, hp.gap, load / c, material, o.normal, ws,
                                  hp.normal);
         else
           solve_normal_for_approach(hp.grid, hp.gap, dz * c, material, o.normal, ws, hp.normal);
@@ -386,12 +386,12 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
   } else {  // secant on the common vertical approach
     double d0 = first.vertical_approach, d1 = 1.02 * first.vertical_approach;
     solve_all(d0, false);
-    double f0 = load_of() - vertical_load;
+    double f0 = load_of() - load;
     solve_all(d1, false);
-    double f1 = load_of() - vertical_load;
+    double f1 = load_of() - load;
     bool ok = false;
     for (int it = 0; it < 30; ++it) {
-      if (std::abs(f1) <= o.load_tolerance * vertical_load) {
+      if (std::abs(f1) <= o.load_tolerance * load) {
         ok = true;
         break;
       }
@@ -401,12 +401,12 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
       f0 = f1;
       d1 = d2;
       solve_all(d1, false);
-      f1 = load_of() - vertical_load;
+      f1 = load_of() - load;
     }
     r.vertical_approach = d1;
     if (!ok) solver = status::kNotConverged;
   }
-  r.vertical_load = load_of();
+  r.carried_load = load_of();
   finish_patches(r, samples, o, solver);
   if (samples_out != nullptr) *samples_out = std::move(samples);
   return r;
@@ -425,22 +425,22 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
 constexpr double kKeepGridLoadChange = 0.1;
 bool resolve_on_kept_grid(WheelHalfspaceResult& r,
                           const std::vector<std::vector<PlaneSample>>& samples,
-                          double vertical_load, const Material& material,
+                          double load, const Material& material,
                           const HalfspaceOptions& o, Workspace& ws) {
-  if (r.patches.size() != 1 || samples.size() != 1 || !(vertical_load > 0.0)) return false;
+  if (r.patches.size() != 1 || samples.size() != 1 || !(load > 0.0)) return false;
   const HalfspacePatch& old = r.patches[0];
   if (!(old.normal.status & status::kConverged) || (old.normal.status & status::kAreaTooSmall) ||
       (old.status & status::kFlangeContact))
     return false;
-  if (std::abs(vertical_load - r.vertical_load) > kKeepGridLoadChange * r.vertical_load)
+  if (std::abs(load - r.carried_load) > kKeepGridLoadChange * r.carried_load)
     return false;
   HalfspacePatch hp = old;  // reference, grid, gap; the pressure is the warm start
   const double c = std::cos(hp.contact_angle_side);
-  solve_normal_for_force(hp.grid, hp.gap, vertical_load / c, material, o.normal, ws, hp.normal);
+  solve_normal_for_force(hp.grid, hp.gap, load / c, material, o.normal, ws, hp.normal);
   if (hp.normal.status & (status::kAreaTooSmall | status::kInvalidInput)) return false;
   r.patches[0] = std::move(hp);
   r.vertical_approach = r.patches[0].normal.approach / c;
-  r.vertical_load = r.patches[0].normal.normal_force * c;
+  r.carried_load = r.patches[0].normal.normal_force * c;
   finish_patches(r, samples, o, status::kConverged);
   return true;
 }
@@ -463,7 +463,7 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& c,
 }
 
 WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
-                                             double vertical_load, const Creepage& creepage,
+                                             double load, const Creepage& creepage,
                                              double mu, const Material& material,
                                              const HalfspaceOptions& o, Workspace& ws) {
   WheelHalfspaceResult r;
@@ -487,13 +487,13 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
   std::vector<std::vector<PlaneSample>> samples;  // of the round that built the grids
   auto round = [&](double tz) {
     const HalfspaceOptions& oo = r.patches.empty() ? first_round : o;
-    const double load = std::max(0.0, vertical_load - tz);
+    const double normal_load = std::max(0.0, load - tz);  // the normal part's share
     // A later round: on the previous grid when it still fits (tractions warm-started there).
-    if (!r.patches.empty() && resolve_on_kept_grid(r, samples, load, material, oo, ws)) {
+    if (!r.patches.empty() && resolve_on_kept_grid(r, samples, normal_load, material, oo, ws)) {
       solve_halfspace_tangential(r, creepage, mu, material, oo, ws);
       return tangential_vertical(r);
     }
-    WheelHalfspaceResult next = solve_for_load(geometry, load, material, oo, ws,
+    WheelHalfspaceResult next = solve_for_load(geometry, normal_load, material, oo, ws,
                                                r.patches.empty() ? nullptr : &r, &samples);
     if (next.patches.size() == r.patches.size())  // warm start from the previous round
       for (size_t k = 0; k < next.patches.size(); ++k)
@@ -504,23 +504,23 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
     r = std::move(next);
     return tangential_vertical(r);
   };
-  if (!solve_vertical_load_fixed_point(vertical_load, round, [&r] { return r.patches.empty(); })) mark_not_converged(r);
+  if (!solve_load_fixed_point(load, round, [&r] { return r.patches.empty(); })) mark_not_converged(r);
   return r;
 }
 
-bool solve_vertical_load_fixed_point(double vertical_load, const std::function<double(double)>& round,
-                                     const std::function<bool()>& stop_after_first) {
+bool solve_load_fixed_point(double load, const std::function<double(double)>& round,
+                            const std::function<bool()>& stop_after_first) {
   double t0 = 0.0, g0 = round(t0) - t0;  // fixed point tz = T(tz): root of g = T(tz) - tz
   if (stop_after_first()) return true;
   double t1 = t0 + g0, g1 = round(t1) - t1;
-  bool ok = std::abs(g1) <= 1e-4 * vertical_load;
+  bool ok = std::abs(g1) <= 1e-4 * load;
   for (int it = 0; it < 18 && !ok; ++it) {
     const double t2 = g1 != g0 ? t1 - g1 * (t1 - t0) / (g1 - g0) : t1 + g1;
     t0 = t1;
     g0 = g1;
     t1 = t2;
     g1 = round(t1) - t1;
-    ok = std::abs(g1) <= 1e-4 * vertical_load;
+    ok = std::abs(g1) <= 1e-4 * load;
   }
   return ok;
 }

@@ -78,22 +78,22 @@ struct HalfspacePatch {
 struct WheelHalfspaceResult {
   std::vector<HalfspacePatch> patches;  // ascending band_s, as the normal layer's
   double vertical_approach = 0.0;       // [m]
-  double vertical_load = 0.0;           // sum N_k cos(g_k) [N]
+  double carried_load = 0.0;            // sum N_k cos(g_k) [N]
   StatusBits status = 0;                // union of the patch flags; kLiftOff when none
 };
 
 // The patches the exact model solves (the first step of solve_halfspace_for_load): the normal
-// layer's STRIPES A&B with CONTACT's patch combination at `vertical_load`. The exact result has
+// layer's STRIPES A&B with CONTACT's patch combination at `load`. The exact result has
 // exactly these patches, in this order, with their reference points (band_s, contact_angle,
 // rolling_radius, wheel_u, rail_u); with one patch its normal force is the load's share
 // F_z / cos(g) > 0, so the patch configuration of a one-patch state is known without the exact
 // solve (the contact-jump locator uses this).
-WheelNormalResult candidate_patches(const WheelContactGeometry& geometry, double vertical_load,
+WheelNormalResult candidate_patches(const WheelContactGeometry& geometry, double load,
                                     const Material& material);
 
 // Normal problem for a prescribed vertical wheel load [N].
 WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,
-                                              double vertical_load, const Material& material,
+                                              double load, const Material& material,
                                               const HalfspaceOptions& options,
                                               Workspace& workspace);
 
@@ -113,7 +113,7 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
 // within 1e-4 F_z). Each round warm-starts the tangential solve from the previous one; the
 // first, which only estimates fy sin g, stops at a looser tangential tolerance (1e-3).
 WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
-                                             double vertical_load, const Creepage& creepage,
+                                             double load, const Creepage& creepage,
                                              double mu, const Material& material,
                                              const HalfspaceOptions& options,
                                              Workspace& workspace);
@@ -125,8 +125,8 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
 // within 1e-4 F_z). The first round is always made; `stop_after_first()`, asked after it, ends the
 // iteration there (an uncoupled solve, or no patch), which counts as converged. Returns false when
 // the rounds ran out: the caller marks its result with mark_not_converged.
-bool solve_vertical_load_fixed_point(double vertical_load, const std::function<double(double)>& round,
-                                     const std::function<bool()>& stop_after_first);
+bool solve_load_fixed_point(double load, const std::function<double(double)>& round,
+                            const std::function<bool()>& stop_after_first);
 
 // kNotConverged instead of kConverged on the result and each of its patches.
 void mark_not_converged(WheelHalfspaceResult& result);

@@ -17,22 +17,22 @@
 
 namespace railtab {
 
-WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
+WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, double load,
                                         const Material& material, const NormalOptions& options) {
   WheelNormalResult r;
-  solve_normal_for_load(geometry, vertical_load, material, options, r);
+  solve_normal_for_load(geometry, load, material, options, r);
   return r;
 }
 
-void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
+void solve_normal_for_load(const WheelContactGeometry& geometry, double load,
                            const Material& material, const NormalOptions& options,
                            WheelNormalResult& r) {
   detail::check_options(options);
-  if (!std::isfinite(vertical_load)) {
+  if (!std::isfinite(load)) {
     r = detail::lift_off(geometry, status::kInvalidInput);
     return;
   }
-  if (geometry.points.empty() || vertical_load <= 0.0) {
+  if (geometry.points.empty() || load <= 0.0) {
     r = detail::lift_off(geometry, status::kConverged);
     return;
   }
@@ -53,13 +53,13 @@ void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical
       const detail::PointContext& pk = w.points[k];
       const double AB = pk.A0 + pk.B0;
       const double c =
-          std::cbrt(3.0 * vertical_load / pk.cos_ref / (4.0 * material.contact_modulus() * AB));
+          std::cbrt(3.0 * load / pk.cos_ref / (4.0 * material.contact_modulus() * AB));
       const double dz = pk.h + pk.hz.r * AB * c * c / pk.cos_ref;
       bool single = dz > pk.h;
       for (std::size_t i = 0; i < w.points.size(); ++i)
         single = single && (static_cast<int>(i) == k || dz <= w.points[i].h);
       if (single && detail::fill_single_hertz(geometry, material, options, w, dz, r) &&
-          std::abs(r.vertical_load - vertical_load) <= 2.0 * options.tolerance * vertical_load) {
+          std::abs(r.carried_load - load) <= 2.0 * options.tolerance * load) {
         r.iterations = 1;  // one evaluation, no iteration
         r.status |= status::kConverged;
         return;
@@ -70,14 +70,14 @@ void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical
   // Load control in the variable W^(2/3): nearly linear in delta_z (Hertz: W ~ delta^(3/2)), so
   // Brent's inverse interpolation converges in a few steps; W is monotone in delta_z, which keeps
   // the bracket valid.
-  const double target = std::cbrt(vertical_load * vertical_load);
+  const double target = std::cbrt(load * load);
   int evaluations = 0;
   double h_min = std::numeric_limits<double>::infinity();
   for (const auto& p : w.points) h_min = std::min(h_min, p.h);
   double x_last[2] = {h_min, h_min}, f_last[2] = {-target, -target};  // the two latest evaluations
   auto f = [&](double dz) {
     ++evaluations;
-    const double W = detail::vertical_load(geometry, material, options, w, dz);
+    const double W = detail::carried_load(geometry, material, options, w, dz);
     const double fx = std::cbrt(W * W) - target;
     x_last[0] = x_last[1];
     f_last[0] = f_last[1];
@@ -90,7 +90,7 @@ void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical
   double delta_n = 1e-4;
   if (p0.hertz_valid) {
     const double A = p0.A0, B = p0.B0;
-    const double c = std::cbrt(3.0 * vertical_load / p0.cos_ref /
+    const double c = std::cbrt(3.0 * load / p0.cos_ref /
                                (4.0 * material.contact_modulus() * (A + B)));
     delta_n = p0.hz.r * (A + B) * c * c;
   }
@@ -135,7 +135,7 @@ void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical
   }
   detail::fill(geometry, material, options, w, x, r);
   auto within = [&](double factor) {
-    return std::abs(r.vertical_load - vertical_load) <= factor * options.tolerance * vertical_load;
+    return std::abs(r.carried_load - load) <= factor * options.tolerance * load;
   };
   if (x != root.x && !within(1.0)) {
     root = brent_root(f, lo, hi, flo, fhi, x_tol, f_tol, options.max_iterations);

@@ -153,7 +153,7 @@ inline void grow_ranges(int* lo, int* hi, int j0, int j1, Fn&& fn) {
 void extend_cos(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0, int j1) {
   double* c = w.cos_angle.data();
   const BandSample* band = g.band.data();
-  grow(&p.cos_lo, &p.cos_hi, j0, j1, [&](int j) { c[j] = band_cos(band[j].contact_angle); });
+  grow(&p.cos_lo, &p.cos_hi, j0, j1, [&](int j) { c[j] = band_cos(band[j].contact_angle_side); });
 }
 
 void extend_samples(const WheelContactGeometry& g, PointContext& p, Workspace& w, int j0, int j1,
@@ -389,7 +389,7 @@ Strip band_strip(const WheelContactGeometry& g, const PointContext& p, double s,
     st.wheel_u = lerp(a.wheel_u, b.wheel_u);
     st.rail_u = lerp(a.rail_u, b.rail_u);
     st.rolling_radius = lerp(a.rolling_radius, b.rolling_radius);
-    st.contact_angle = own_angle ? outward_sign(g.side) * lerp(a.contact_angle, b.contact_angle)
+    st.contact_angle = own_angle ? outward_sign(g.side) * lerp(a.contact_angle_side, b.contact_angle_side)
                                  : cp.contact_angle;
   } else {
     st.wheel_u = cp.wheel_u + (s - cp.band_s);

@@ -337,7 +337,7 @@ inline double band_position(const WheelContactGeometry& g, double s) {
 void prepare(const WheelContactGeometry& g, const Material& m, const NormalOptions& o, Workspace& w);
 PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                    PointContext& p, Workspace& w, double dz, ContactPatch* out);
-double vertical_load(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+double carried_load(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                      Workspace& w, double dz);
 void check_options(const NormalOptions& o);
 WheelNormalResult lift_off(const WheelContactGeometry& g, StatusBits extra);

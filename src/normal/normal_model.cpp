@@ -276,7 +276,7 @@ PatchSums evaluate(const WheelContactGeometry& g, const Material& m, const Norma
   return sums;
 }
 
-double vertical_load(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
+double carried_load(const WheelContactGeometry& g, const Material& m, const NormalOptions& o,
                      Workspace& w, double dz) {
   run_weights(g, w, dz);
   double total = 0.0;

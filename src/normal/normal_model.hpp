@@ -149,19 +149,19 @@ struct WheelNormalResult {
   std::vector<ContactPatch> patches;  // loaded patches (overlap runs), ascending band_s
   std::vector<int> point_patch;       // per geometry point: index into patches, -1 when unloaded
   double vertical_approach = 0.0;     // rigid vertical approach of the wheel [m]
-  double vertical_load = 0.0;         // sum of patch normal forces projected on track z [N]
+  double carried_load = 0.0;          // sum of patch normal forces projected on track z [N]
   int iterations = 0;                 // load-control iterations
   StatusBits status = 0;              // union of the patch flags plus solver flags; kTwoPoint
                                       //   when more than one patch is loaded, kLiftOff when none
 };
 
 // Load control: the vertical wheel load (track z) is prescribed [N].
-WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
+WheelNormalResult solve_normal_for_load(const WheelContactGeometry& geometry, double load,
                                         const Material& material, const NormalOptions& options);
 
 // The same, writing into `out` and reusing the capacity of its vectors (table sweeps: no
 // allocation per solve on the Hertz fast path). Same numbers as the overload above.
-void solve_normal_for_load(const WheelContactGeometry& geometry, double vertical_load,
+void solve_normal_for_load(const WheelContactGeometry& geometry, double load,
                            const Material& material, const NormalOptions& options,
                            WheelNormalResult& out);
 

@@ -36,7 +36,7 @@ bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed
   double* d = ws.v.data();      // rigid normal overlap per sample (scratch)
   double* c = ws.cosb.data();   // cos of the sample's angle (scratch)
   auto eval = [&](int i) {
-    c[i] = band_cos(band[i].contact_angle);
+    c[i] = band_cos(band[i].contact_angle_side);
     d[i] = dz * c[i] - band[i].gap;
     return d[i];
   };
@@ -45,7 +45,7 @@ bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed
   // exact overlap is evaluated only where it fails (near the ends of the run).
   auto inside = [&](int i) {
     const BandSample& bs = band[i];
-    if (dz * (1.0 - 0.5 * bs.contact_angle * bs.contact_angle) - bs.gap > 0.0) return true;
+    if (dz * (1.0 - 0.5 * bs.contact_angle_side * bs.contact_angle_side) - bs.gap > 0.0) return true;
     return bs.gap < dz && eval(i) > 0.0;
   };
   int a = seed, b = seed;
@@ -77,12 +77,12 @@ bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed
       const BandSample& p = band[j];
       sum_w += wt[j];
       sum_wq += wt[j] * p.q;
-      sum_wa += wt[j] * p.contact_angle;
+      sum_wa += wt[j] * p.contact_angle_side;
     }
     const double ends[2] = {wt[a], wt[b]};
     sum_w -= 0.5 * (ends[0] + ends[1]);
     sum_wq -= 0.5 * (ends[0] * band[a].q + ends[1] * band[b].q);
-    sum_wa -= 0.5 * (ends[0] * band[a].contact_angle + ends[1] * band[b].contact_angle);
+    sum_wa -= 0.5 * (ends[0] * band[a].contact_angle_side + ends[1] * band[b].contact_angle_side);
     const double step = g.band_step;
     sum_w *= step;
     sum_wq *= step;
@@ -97,7 +97,7 @@ bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed
     const double t = len / (e + 2.0) / h;
     sum_w += part;
     sum_wq += part * (band[k].q + t * (band[m].q - band[k].q));
-    sum_wa += part * (band[k].contact_angle + t * (band[m].contact_angle - band[k].contact_angle));
+    sum_wa += part * (band[k].contact_angle_side + t * (band[m].contact_angle_side - band[k].contact_angle_side));
     return band[k].s + len;
   };
   RunReference& r = *out;
@@ -117,7 +117,7 @@ bool rigid_run(const WheelContactGeometry& g, Workspace& ws, double dz, int seed
     r.clipped = true;
   }
   double q = band[a].q;
-  r.angle_side = band[a].contact_angle;
+  r.angle_side = band[a].contact_angle_side;
   if (sum_w > 0.0) {
     q = sum_wq / sum_w;
     r.angle_side = sum_wa / sum_w;
@@ -228,7 +228,7 @@ bool fill_single_hertz(const WheelContactGeometry& g, const Material& m, const N
   const PatchSums sums = evaluate(g, m, o, w.points[k], w, dz, &patch);
   if (!(sums.normal > 0.0)) return false;
   r.vertical_approach = dz;
-  r.vertical_load = sums.vertical;
+  r.carried_load = sums.vertical;
   r.iterations = 0;
   r.status = 0;
   for (const PointContext& p : w.points) r.status |= p.flags;  // as the unloaded parts report
@@ -253,7 +253,7 @@ WheelNormalResult fill_general(const WheelContactGeometry& g, const Material& m,
   std::vector<int> loaded_points;
   for (int i = 0; i < np; ++i) {
     const PatchSums s = evaluate(g, m, o, w.points[i], w, dz, &parts[i]);
-    r.vertical_load += s.vertical;
+    r.carried_load += s.vertical;
     if (s.normal > 0.0) loaded_points.push_back(i);
     r.status |= parts[i].status & ~status::kLiftOff;
   }

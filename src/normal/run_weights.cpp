@@ -42,7 +42,7 @@ void run_weights(const WheelContactGeometry& g, Workspace& w, double dz) {
     };
     auto saddle_overlap = [&](int k) {  // between order[k] and order[k + 1]
       const BandSample& b = g.band[w.saddle[k]];
-      return dz * band_cos(b.contact_angle) - b.gap;
+      return dz * band_cos(b.contact_angle_side) - b.gap;
     };
     auto joinable = [&](int k) {
       const PointContext& p = w.points[w.order[k]];
@@ -88,7 +88,7 @@ void run_weights(const WheelContactGeometry& g, Workspace& w, double dz) {
     };
     auto saddle_overlap = [&](int k) {
       const BandSample& b = g.band[w.saddle[k]];
-      return dz * band_cos(b.contact_angle) - b.gap;
+      return dz * band_cos(b.contact_angle_side) - b.gap;
     };
     int k1 = k0;
     if (joinable(k0))

@@ -44,7 +44,7 @@ double balance_variable(double vertical, double load) {
 
 }  // namespace
 
-void solve_coupled_load(const WheelContactGeometry& geometry, double vertical_load,
+void solve_coupled_load(const WheelContactGeometry& geometry, double load,
                         const WheelNormalResult& uncoupled, const Material& material,
                         const NormalOptions& normal_options, const TangentialSolver& tangential,
                         const CoupledLoadOptions& options, CoupledLoadResult& out) {
@@ -52,28 +52,28 @@ void solve_coupled_load(const WheelContactGeometry& geometry, double vertical_lo
   out.iterations = 0;
   auto evaluate_forces = [&]() {
     tangential(out.normal, out.creep);
-    out.normal_vertical = out.normal.vertical_load;
+    out.normal_vertical = out.normal.carried_load;
     out.tangential_vertical = tangential_vertical_force(out.normal, out.creep);
     return out.normal_vertical + out.tangential_vertical;
   };
   double v1 = evaluate_forces();
   out.status = status::kConverged;
-  const bool loaded = std::isfinite(vertical_load) && vertical_load > 0.0 &&
+  const bool loaded = std::isfinite(load) && load > 0.0 &&
                       !out.normal.patches.empty() && out.normal.vertical_approach > 0.0;
   if (!options.couple || !loaded) return;
-  const double f_tol = options.tolerance * vertical_load;
-  if (std::abs(v1 - vertical_load) <= f_tol) return;
+  const double f_tol = options.tolerance * load;
+  if (std::abs(v1 - load) <= f_tol) return;
 
   double h_min = std::numeric_limits<double>::infinity();
   for (const ContactPoint& p : geometry.points) h_min = std::min(h_min, std::max(p.separation, 0.0));
   if (!std::isfinite(h_min)) h_min = 0.0;
 
   double x1 = out.normal.vertical_approach;
-  double g1 = balance_variable(v1, vertical_load);
+  double g1 = balance_variable(v1, load);
   // Second point: the normal load the balance asks for if the creep forces' share scales with the
   // normal load (as near saturation: Wn (1 + T0/Wn0) = Q), reached as Hertz would (delta ~ W^(2/3)).
   const double share = out.tangential_vertical / std::max(out.normal_vertical, 1e-300);
-  const double wanted = vertical_load / std::max(1.0 + share, 0.05);
+  const double wanted = load / std::max(1.0 + share, 0.05);
   const double ratio = std::clamp(wanted / std::max(out.normal_vertical, 1e-300), 0.05, 20.0);
   double x0 = x1, g0 = g1;
   double next = h_min + (x1 - h_min) * std::cbrt(ratio * ratio);
@@ -87,8 +87,8 @@ void solve_coupled_load(const WheelContactGeometry& geometry, double vertical_lo
     solve_normal_for_approach(geometry, x1, material, normal_options, out.normal);
     ++out.iterations;
     v1 = evaluate_forces();
-    if (std::abs(v1 - vertical_load) <= f_tol) return;
-    g1 = balance_variable(v1, vertical_load);
+    if (std::abs(v1 - load) <= f_tol) return;
+    g1 = balance_variable(v1, load);
     (g1 < 0.0 ? lo : hi) = g1 < 0.0 ? std::max(lo, x1) : std::min(hi, x1);
     next = x1 - g1 * (x1 - x0) / (g1 - g0);
     if (!std::isfinite(next) || !(next > lo) || !(next < hi)) {

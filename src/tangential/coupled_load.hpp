@@ -65,12 +65,12 @@ struct CoupledLoadResult {
 double tangential_vertical_force(const WheelNormalResult& normal,
                                  const std::vector<FastsimResult>& creep);
 
-// Coupled load control. `uncoupled` is solve_normal_for_load(geometry, vertical_load, ...) (the
+// Coupled load control. `uncoupled` is solve_normal_for_load(geometry, load, ...) (the
 // start, reused by tables across creepages). With options.couple false the result is `uncoupled`
 // with its creep forces. Lift-off or a vertical load <= 0: the uncoupled result, kConverged.
 // When the balance has no solution within the iteration limit (e.g. mu tan g >= 1 on a flange
 // flank, Nadal's limit) the best iterate is kept with kNotConverged.
-void solve_coupled_load(const WheelContactGeometry& geometry, double vertical_load,
+void solve_coupled_load(const WheelContactGeometry& geometry, double load,
                         const WheelNormalResult& uncoupled, const Material& material,
                         const NormalOptions& normal_options, const TangentialSolver& tangential,
                         const CoupledLoadOptions& options, CoupledLoadResult& out);

@@ -38,11 +38,11 @@ TEST(Band, ConeOnCircleClosedForm) {
       EXPECT_NEAR(b.gap, 0.0, 1e-12);
       EXPECT_NEAR(b.rail_u, g.points[0].rail_u, 1e-9);
       EXPECT_NEAR(b.wheel_u, g.points[0].wheel_u, 1e-9);
-      EXPECT_NEAR(b.contact_angle, g.points[0].contact_angle_side, 1e-9);
+      EXPECT_NEAR(b.contact_angle_side, g.points[0].contact_angle_side, 1e-9);
       EXPECT_NEAR(b.rolling_radius, g.points[0].rolling_radius, 1e-9);
     }
     // Contact angle of the crown normal: the primary's angle minus s/R (s grows outward).
-    EXPECT_NEAR(b.contact_angle, g.points[0].contact_angle_side - b.s / radius, 1e-9);
+    EXPECT_NEAR(b.contact_angle_side, g.points[0].contact_angle_side - b.s / radius, 1e-9);
   }
   EXPECT_TRUE(has_zero);
   // The band stops where the gap passes band_max_gap (before the half width).

@@ -36,7 +36,7 @@ WheelContactGeometry make_band(const std::function<double(double)>& gap,
     b.wheel_u = 3.0 * s;
     b.q = s;
     b.z = 0.0;
-    b.contact_angle = angle(s);
+    b.contact_angle_side = angle(s);
     b.gap = gap(s);
     b.rolling_radius = kR0 + 0.1 * s;
     g.band.push_back(b);

@@ -37,7 +37,7 @@ TEST(HalfspaceWheelRail, VerticalLoadIsCarried) {
   ASSERT_EQ(r.patches.size(), 1u);
   EXPECT_TRUE(r.status & status::kConverged) << status::describe(r.status);
   EXPECT_FALSE(r.status & status::kAreaTooSmall);
-  EXPECT_NEAR(r.vertical_load / 78.5e3, 1.0, 1e-9);
+  EXPECT_NEAR(r.carried_load / 78.5e3, 1.0, 1e-9);
   const auto& p = r.patches[0];
   EXPECT_NEAR(p.normal.normal_force * std::cos(p.contact_angle_side), 78.5e3, 1e-6 * 78.5e3);
   EXPECT_GT(p.normal.area, 50e-6);  // a tread patch of 78.5 kN: 100-200 mm2

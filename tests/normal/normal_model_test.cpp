@@ -60,7 +60,7 @@ TEST(NormalModel, LoadSweepMonotoneAndSmooth) {
       for (double W = 1e3; W <= 150e3 + 1; W += 1e3) {
         const WheelNormalResult r = solve_normal_for_load(g, W, steel, opts(m));
         ASSERT_TRUE(r.status & status::kConverged) << W << " " << status::describe(r.status);
-        EXPECT_NEAR(r.vertical_load / W, 1.0, 2e-8);
+        EXPECT_NEAR(r.carried_load / W, 1.0, 2e-8);
         EXPECT_LE(r.iterations, 30);
         dz.push_back(r.vertical_approach);
       }
@@ -72,7 +72,7 @@ TEST(NormalModel, LoadSweepMonotoneAndSmooth) {
       }
       // Approach control inverts load control.
       const WheelNormalResult a = solve_normal_for_approach(g, dz[77], steel, opts(m));
-      EXPECT_NEAR(a.vertical_load / 78e3, 1.0, 1e-7);
+      EXPECT_NEAR(a.carried_load / 78e3, 1.0, 1e-7);
     }
   }
 }
@@ -288,7 +288,7 @@ TEST(NormalModel, SeparatedPointLoadsOnlyBeyondItsSeparation) {
     const auto heavy = solve_normal_for_load(g, 150e3, steel, opts(m));
     ASSERT_EQ(heavy.patches.size(), 2u);
     EXPECT_GT(heavy.patches[heavy.point_patch[1]].normal_force, 0.0);
-    EXPECT_NEAR(heavy.vertical_load / 150e3, 1.0, 1e-7);
+    EXPECT_NEAR(heavy.carried_load / 150e3, 1.0, 1e-7);
   }
 }
 

@@ -54,7 +54,7 @@ TEST(Stripes, ACorrectionReproducesHertzOnTable1Cases) {
     ASSERT_EQ(r.patches.size(), 1u);
     const ContactPatch& p = r.patches[0];
     EXPECT_EQ(p.pressure_shape, StripPressure::parabolic);
-    EXPECT_NEAR(r.vertical_load / 78e3, 1.0, 1e-7);
+    EXPECT_NEAR(r.carried_load / 78e3, 1.0, 1e-7);
     const Extent e = extent(p);
     std::printf("[measured] stripes-a %s B = %.4f 1/m: length %+.2f %% width %+.2f %% area %+.2f %% "
                 "peak/(4/3 p0) %+.2f %% approach %+.2f %%\n",
@@ -126,7 +126,7 @@ TEST(Stripes, NegativeCurvatureShiftAndClip) {
         EXPECT_TRUE(std::isfinite(s.x_lead) && std::isfinite(s.pressure_peak));
         EXPECT_TRUE(std::isfinite(s.ellipse_b) && s.ellipse_b >= 0.0);
       }
-      EXPECT_NEAR(r.vertical_load / 80e3, 1.0, 1e-6);
+      EXPECT_NEAR(r.carried_load / 80e3, 1.0, 1e-6);
     }
   }
 }

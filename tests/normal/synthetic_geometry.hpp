@@ -50,9 +50,9 @@ inline WheelContactGeometry make_band(const BandSpec& spec) {
     b.rail_u = s;
     b.wheel_u = s;
     b.q = 0.75 + s;
-    b.contact_angle = spec.angle_fn ? spec.angle_fn(s) : spec.angle;
+    b.contact_angle_side = spec.angle_fn ? spec.angle_fn(s) : spec.angle;
     b.gap = spec.gap(s);
-    b.rolling_radius = std::cos(b.contact_angle) / (2.0 * spec.A);
+    b.rolling_radius = std::cos(b.contact_angle_side) / (2.0 * spec.A);
     const double B = spec.B_local(s);
     b.curvature_wheel = B;  // B = (k_w + k_r)/2
     b.curvature_rail = B;

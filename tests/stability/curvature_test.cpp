@@ -43,7 +43,7 @@ TEST(Concave, HertzFallsBackWhenBIsNotPositive) {
       const WheelNormalResult r = solve_normal_for_load(g, kLoad, Material{}, options_for(v));
       EXPECT_EQ(normal_violation(g, r), "") << v.label << " B0 " << B0;
       EXPECT_TRUE(r.status & status::kConverged) << v.label << " B0 " << B0;
-      EXPECT_NEAR(r.vertical_load, kLoad, 1e-6 * kLoad) << v.label;
+      EXPECT_NEAR(r.carried_load, kLoad, 1e-6 * kLoad) << v.label;
       EXPECT_TRUE(r.status & status::kNonHertzian) << v.label << " B0 " << B0;
       if (v.model == NormalModel::hertz) {
         EXPECT_TRUE(r.status & status::kFallbackModel) << "B0 " << B0;

@@ -21,12 +21,12 @@ TEST(LiftOff, ZeroTinyAndSmallLoads) {
           if (load == 0.0) {
             EXPECT_TRUE(r.status & status::kLiftOff) << where;
             EXPECT_TRUE(r.patches.empty()) << where;
-            EXPECT_EQ(r.vertical_load, 0.0) << where;
+            EXPECT_EQ(r.carried_load, 0.0) << where;
             continue;
           }
           EXPECT_TRUE(r.status & status::kConverged) << where;
           EXPECT_FALSE(r.status & status::kLiftOff) << where;
-          EXPECT_NEAR(r.vertical_load, load, 1e-6 * load) << where;
+          EXPECT_NEAR(r.carried_load, load, 1e-6 * load) << where;
           // A tiny load touches the primary point only: the second contact stays unloaded.
           ASSERT_EQ(r.patches.size(), 1u) << where;
           if (g.points.size() > 1) {
@@ -52,7 +52,7 @@ TEST(LiftOff, NegativeApproachLiftsOff) {
         EXPECT_EQ(normal_violation(g, r), "") << v.label;
         EXPECT_TRUE(r.status & status::kLiftOff) << v.label << " dz " << dz;
         EXPECT_TRUE(r.patches.empty()) << v.label;
-        EXPECT_EQ(r.vertical_load, 0.0) << v.label;
+        EXPECT_EQ(r.carried_load, 0.0) << v.label;
         for (int k : r.point_patch) EXPECT_EQ(k, -1);
       }
       // A positive approach below the second point's separation loads only the first.

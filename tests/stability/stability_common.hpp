@@ -73,7 +73,7 @@ inline bool finite(double x) { return std::isfinite(x); }
 // pairing structure is consistent. Returns a description of the first violation ("" when none).
 inline std::string normal_violation(const WheelContactGeometry& g, const WheelNormalResult& r) {
   if (!finite(r.vertical_approach)) return "vertical_approach not finite";
-  if (!finite(r.vertical_load) || r.vertical_load < 0.0) return "vertical_load bad";
+  if (!finite(r.carried_load) || r.carried_load < 0.0) return "carried_load bad";
   if (r.point_patch.size() != g.points.size()) return "point_patch size";
   for (int k : r.point_patch)
     if (k < -1 || k >= static_cast<int>(r.patches.size())) return "point_patch index";
@@ -105,7 +105,7 @@ inline bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a)
 inline bool bitwise_equal(const WheelNormalResult& a, const WheelNormalResult& b) {
   if (a.status != b.status || a.iterations != b.iterations || a.point_patch != b.point_patch ||
       a.patches.size() != b.patches.size() || !same_bits(a.vertical_approach, b.vertical_approach) ||
-      !same_bits(a.vertical_load, b.vertical_load))
+      !same_bits(a.carried_load, b.carried_load))
     return false;
   for (std::size_t i = 0; i < a.patches.size(); ++i) {
     const ContactPatch& p = a.patches[i];

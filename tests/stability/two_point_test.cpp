@@ -114,7 +114,7 @@ TEST(TwoPoint, TwoPatchesShareTheLoad) {
       EXPECT_TRUE(r.status & status::kTwoPoint) << v.label;
       EXPECT_TRUE(r.status & status::kConverged) << v.label;
       for (const ContactPatch& p : r.patches) EXPECT_GT(p.normal_force, 0.0) << v.label;
-      EXPECT_NEAR(r.vertical_load, kLoad, 2.0 * NormalOptions{}.tolerance * kLoad) << v.label;
+      EXPECT_NEAR(r.carried_load, kLoad, 2.0 * NormalOptions{}.tolerance * kLoad) << v.label;
       EXPECT_GT(sigma * r.patches[0].contact_angle, sigma * r.patches[1].contact_angle) << v.label;
       EXPECT_NE(r.point_patch[0], r.point_patch[1]) << v.label;
     }

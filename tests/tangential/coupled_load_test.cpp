@@ -58,7 +58,7 @@ Solved solve(const WheelContactGeometry& g, double load, NormalModel model, cons
                      fastsim_tangential(g, [&](std::size_t, const ContactPatch&) { return creepage; }, conditions,
                                         material, fastsim, ws),
                      options, s.coupled);
-  s.balance = s.coupled.normal.vertical_load;
+  s.balance = s.coupled.normal.carried_load;
   for (std::size_t i = 0; i < s.coupled.normal.patches.size(); ++i) {
     const ContactPatch& p = s.coupled.normal.patches[i];
     s.normal += p.normal_force;

@@ -162,7 +162,7 @@ TEST(HalfspaceWear, SampledHalfspaceSeesEveryKthSampleWithKTimesItsDistance) {
   WheelsetSample sample;
   sample.wheelset = 0;
   sample.y_relative = 0.001;
-  sample.vertical_force[0] = sample.vertical_force[1] = 78e3;
+  sample.load[0] = sample.load[1] = 78e3;
   sample.motion = tangent_motion();
   sample.distance = 2.9;
   for (int i = 0; i < 7; ++i) wear.sample(sample);

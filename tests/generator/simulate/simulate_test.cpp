@@ -339,7 +339,7 @@ TEST_F(SimulateTest, WearPostProcessorsSeeTheSameWheelsetStates) {
       SCOPED_TRACE(testing::Message() << sim.wear_post_processors[p] << " " << sim.positions[i]);
       WearAccumulator replay(contact_scene, sim.wear_post_processors[p]);
       for (const WheelsetSample& s : recorded) {
-        if (s.wheelset == static_cast<int>(i)) replay.sample(s.y_relative, s.vertical_force, s.motion, s.distance);
+        if (s.wheelset == static_cast<int>(i)) replay.sample(s.y_relative, s.load, s.motion, s.distance);
       }
       const WearAccumulator& live = wear.accumulator(p, i);
       EXPECT_EQ(live.samples(), replay.samples());
@@ -352,7 +352,7 @@ TEST_F(SimulateTest, WearPostProcessorsSeeTheSameWheelsetStates) {
   // The samples carry the dynamics' vertical contact force, close to the static 40 kN per wheel
   // (the curve transfers some of it to the outer wheel).
   for (const WheelsetSample& s : recorded) {
-    EXPECT_NEAR(s.vertical_force[0] + s.vertical_force[1], 2 * 40.0e3, 0.02 * 80.0e3);
+    EXPECT_NEAR(s.load[0] + s.load[1], 2 * 40.0e3, 0.02 * 80.0e3);
   }
 }
 
