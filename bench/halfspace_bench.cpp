@@ -2,7 +2,7 @@
 // The exact half-space model on the central S1002/UIC60 case (y = 0, no roll, 78.5 kN vertical,
 // E = 210 GPa, nu = 0.28, elements 0.3 mm): one wheel's normal problem, and normal plus steady
 // rolling at one creepage (block C e_combined: xi 0.003, eta 0.002, phi 0.1 rad/m, mu 0.3).
-// Goal (issue 13): median <= 20 ms for normal + tangential. The workspace (FFT plans, kernel
+// Goal (exact model speed): median <= 20 ms for normal + tangential. The workspace (FFT plans, kernel
 // spectra) is kept between iterations as in a table sweep; no warm start of the solution.
 // Arguments: element size in micrometres. BM_BlockC/*: every case of CONTACT's block C (below).
 #include <benchmark/benchmark.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The C++ side of the Python module's speed target (issue 16: a vectorised query of 1e6 states
+// The C++ side of the Python module's speed target (a vectorised query of 1e6 states
 // from Python at no more than 2x the C++ cost). One iteration = 1e6 uniformly random states over
 // the table's axes (wheels alternating), every output of every slot, through the batch API in
 // chunks of 1024 (a reused result buffer, as a C++ caller would); the time of one iteration in ms

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Issue 14 acceptance numbers from two `railtab chart` runs (docs/validation.md, flange load).
+"""Load coupling acceptance numbers from two `railtab chart` runs (docs/validation.md, flange load).
 
 Usage: flange_load_metrics.py BEFORE/speed_accuracy_states.csv AFTER/speed_accuracy_states.csv
 BEFORE is the chart of a scene with `load_coupling = false` in [contact], AFTER the same scene

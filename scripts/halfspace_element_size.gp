@@ -26,5 +26,5 @@ set logscale y
 set yrange [1:500]
 set key top right
 plot f using 1:8 with linespoints title "before (928f1a7)", \
-     f using 1:9 with linespoints title "after (issue 13 speed work)"
+     f using 1:9 with linespoints title "after (exact model speed-up)"
 unset multiplot

@@ -6,7 +6,7 @@ Reads the Google Benchmark JSON of
     build/release/bench/halfspace_bench --benchmark_filter=BM_BlockC --benchmark_format=json
 (a file name as the only argument) and prints the number of cases, our median CPU and wall
 time per case, and the medians over the cases of CONTACT's wall_s (the counter contact_wall_s)
-divided by our CPU time and by our wall time (docs/validation/halfspace.md, issue 13).
+divided by our CPU time and by our wall time (docs/validation/halfspace.md, the exact model's speed).
 """
 import json
 import statistics

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # Lookup against direct evaluation of the exact half-space model on the FULL default exact table
-# (tables/default_halfspace.toml), with the metric of tests/table_accuracy (issue 13). The test
+# (tables/default_halfspace.toml), with the metric of tests/table_accuracy (exact-model tables). The test
 # suite runs the same check on a reduced table; this one needs the generated default table
 # (about 20 min CPU, docs/validation.md "Exact half-space model") and about 400 direct exact
 # evaluations of both wheels (a few min CPU).

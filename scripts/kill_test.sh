@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Kill test (issue 19, docs/reliability.md): sends SIGKILL and SIGTERM to a real `railtab generate`
+# Kill test (reliability, docs/reliability.md): sends SIGKILL and SIGTERM to a real `railtab generate`
 # at several points of its run and checks what is left: no table or a complete one (identical
 # datasets to an uninterrupted run), no temporary after SIGTERM, and `--resume` finishing to
 # identical datasets (h5diff) with no temporary and no checkpoint left.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Sanitizer runs (issue 19, docs/reliability.md). Both are CI stages (.ci/run); any report fails.
+# Sanitizer runs (reliability, docs/reliability.md). Both are CI stages (.ci/run); any report fails.
 #   asan: build/asan (clang 14, ASan + UBSan, scripts/asan_build.sh) of all of src/ (profiles,
 #         geometry, normal, tangential, wear, half-space, vehicle), the scene and table readers
 #         and the lookup, and their unit tests (the list below; HalfspaceReference.* and
