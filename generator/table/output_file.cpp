@@ -28,15 +28,6 @@ fs::path directory_of(const fs::path& target) {
   return dir.empty() ? fs::path(".") : dir;
 }
 
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 // Takes the write lock of the open file description `fd` without waiting. Open-file-description
 // locks are used because HDF5 takes flock() locks of its own on the same file (the two kinds do
 // not interact on Linux) and because closing another descriptor of the file does not drop them.
@@ -76,7 +67,7 @@ void refuse_links_and_special_files(const fs::path& target, const struct stat& l
   RAILTAB_CHECK(!S_ISLNK(link.st_mode), "{}: refusing to write: it is a symbolic link; railtab writes only regular "
                 "files of their own (give the file it points to, or another path)", target.string());
   RAILTAB_CHECK(S_ISREG(link.st_mode), "{}: refusing to write: it is {}, railtab writes only regular files",
-                target.string(), kind_of(link.st_mode));
+                target.string(), file_kind(link.st_mode));
   RAILTAB_CHECK(link.st_nlink == 1, "{}: refusing to write: the file has {} names (hard links), and another name "
                 "may be someone's input; remove this name first or choose another path",
                 target.string(), static_cast<unsigned long long>(link.st_nlink));

@@ -29,7 +29,9 @@ Registry& registry() {
   return r;
 }
 
-const char* kind_of(mode_t mode) {
+}  // namespace
+
+const char* file_kind(unsigned mode) {
   if (S_ISDIR(mode)) return "a directory";
   if (S_ISCHR(mode)) return "a character device";
   if (S_ISBLK(mode)) return "a block device";
@@ -37,8 +39,6 @@ const char* kind_of(mode_t mode) {
   if (S_ISSOCK(mode)) return "a socket";
   return "not a regular file";
 }
-
-}  // namespace
 
 void track_input_files(bool on) {
   Registry& r = registry();
@@ -64,7 +64,7 @@ std::string input_file_path(FileIdentity id) {
 // Throws unless `st` is a regular file's.
 void require_regular(const struct stat& st, const std::string& path, std::string_view what) {
   RAILTAB_CHECK(S_ISREG(st.st_mode), "{} {}: it is {}, not a regular file: refused", what, path,
-                kind_of(st.st_mode));
+                file_kind(st.st_mode));
 }
 
 int open_input_file(const std::string& path, std::string_view what) {

@@ -27,6 +27,10 @@ void note_input_file(const std::string& path, FileIdentity id);
 // The path under which this run read the file `id`; empty when it read no such file.
 std::string input_file_path(FileIdentity id);
 
+// What a path that is not a regular file is ("a directory", "a FIFO", ...), from its stat
+// st_mode, for the messages that refuse it. The lookup keeps its own copy: it may not depend on src/.
+const char* file_kind(unsigned mode);
+
 // Opens `path` for reading without waiting (a FIFO without a writer must not hang the run) and
 // refuses anything but a regular file: throws railtab::Error naming `what` and the path. Records
 // the file as an input and returns its descriptor, back in blocking mode; the caller closes it.
