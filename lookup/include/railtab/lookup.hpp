@@ -228,7 +228,7 @@ RAILTAB_LOOKUP_API const char* output_units(Output output);
 RAILTAB_LOOKUP_API const char* state_units(const std::string& variable);
 RAILTAB_LOOKUP_API std::string slot_name(int slot);
 
-// Version of this library ("0.1.0"), and the newest table format it reads and writes ("2.2").
+// Version of this library ("0.1.0"), and the newest table format it reads and writes ("2.3").
 RAILTAB_LOOKUP_API const char* library_version() noexcept;
 RAILTAB_LOOKUP_API const char* supported_format_version() noexcept;
 
