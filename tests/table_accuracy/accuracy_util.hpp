@@ -318,23 +318,27 @@ class TableView {
   void normal_from_share(std::size_t w) {
     PartGrid& pc = grid_[w][lk::kCreep];
     const PartGrid& pg = grid_[w][lk::kGeometry];
-    if (pc.vars != std::vector<int>{kY, kLoad, kXi, kEta, kPhi} || pg.vars != std::vector<int>{kY})
+    // The load axis may be fixed (a table of one load): then it is not among the creep part's axes.
+    const bool load_axis = pc.vars == std::vector<int>{kY, kLoad, kXi, kEta, kPhi};
+    if ((!load_axis && pc.vars != std::vector<int>{kY, kXi, kEta, kPhi}) || pg.vars != std::vector<int>{kY})
       throw std::runtime_error("vertical share: unexpected creep or geometry axes");
+    const std::size_t first_creep = load_axis ? 2 : 1, axes = first_creep + 3;
     const std::vector<double>& share = *pc.values[lk::kNormalForce];
     const std::vector<double>& fy = *pc.values[lk::kFy];
     const std::vector<double>& angle = *pg.values[lk::kContactAngle];
     std::vector<double>& n = n_creep_[w];
     n.resize(share.size());
-    const std::size_t nl = pc.nodes[1]->size();
+    const std::size_t nl = load_axis ? pc.nodes[1]->size() : 1;
     for (std::size_t i = 0; i < share.size(); ++i) {
-      std::size_t idx[5];
-      for (std::size_t a = 0; a < 5; ++a) idx[a] = (i / pc.stride[a]) % pc.nodes[a]->size();
+      std::size_t idx[5] = {};
+      for (std::size_t a = 0; a < axes; ++a) idx[a] = (i / pc.stride[a]) % pc.nodes[a]->size();
       const std::size_t s = i % kSlots;
-      const std::size_t normal_node = (idx[0] * nl + idx[1]) * kSlots + s;
+      const std::size_t normal_node = (idx[0] * nl + (load_axis ? idx[1] : 0)) * kSlots + s;
       double x[3];
       for (int k = 0; k < 3; ++k) {
         const double scale = (*scale_values_[w][k])[normal_node];
-        const double v = (*pc.nodes[2 + static_cast<std::size_t>(k)])[idx[2 + k]];
+        const std::size_t a = first_creep + static_cast<std::size_t>(k);
+        const double v = (*pc.nodes[a])[idx[a]];
         x[k] = creep_map::physical(v, lo_[k], hi_[k], scale * knee_[k]) / scale;
       }
       const double ry = fy[i] + creep_map::law(x[0], x[1], x[2])[1];

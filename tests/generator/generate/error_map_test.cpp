@@ -256,5 +256,73 @@ TEST(ErrorMap, FormatTwoPointTwoTableWithoutAMapStillLoads) {
   EXPECT_EQ(a.contact[0].value[lk::kFy], b.contact[0].value[lk::kFy]);
 }
 
+// Report (not a check; run with --gtest_also_run_disabled_tests): the default table's errors at
+// the error map's own kind of states, more of them, tread and flange apart: median / p90 / max of
+// the creep force error |(dfx, dfy)| / (mu N) in %, the normal force in %, the contact angle in
+// mrad; the table (public lookup) against its model at 48 states per band (both wheels), and the
+// model against the exact half-space model at 4 states per band (left wheel).
+TEST(ErrorMap, DISABLED_DefaultTableFigures) {
+  testing::TempDir dir("error_map_default");
+  GenerateOptions o;
+  o.scene = std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml";
+  o.output = dir / "default.h5";
+  o.threads = 2;
+  generate_table(o);
+  Scene scene = load_scene(o.scene);
+  const lk::Table table = lk::Table::load(o.output.string());
+  std::vector<double> y;
+  for (const lk::AxisInfo& a : table.axes())
+    if (a.name == "y") y = a.nodes;
+  const std::vector<ErrorSample> samples = error_samples(scene, y, 48, 1'000'000);
+  const ContactGeometrySolver geometry = make_geometry_solver(scene);
+  // [comparison][slot][quantity: creep, normal force, angle] -> errors
+  std::vector<double> e[2][2][3];
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const ErrorSample& s = samples[i];
+    const SampleValues model = model_at(scene, geometry, s, scene.normal.model);
+    lk::State state = table.default_state();
+    state.y = s.y;
+    state.load = s.load;
+    state.xi = s.creepage[0];
+    state.eta = s.creepage[1];
+    state.phi = s.creepage[2];
+    SampleValues tab;
+    for (int w = 0; w < 2; ++w) {
+      const lk::Result q = table.query(static_cast<lk::Wheel>(w), state);
+      for (int slot = 0; slot < 2; ++slot) {
+        const double* v = q.contact[slot].value;
+        tab[w][slot] = {v[lk::kFx], v[lk::kFy], v[lk::kMz], v[lk::kNormalForce], v[lk::kArea], v[lk::kContactAngle]};
+      }
+    }
+    const bool exact = i % 48 < 4;
+    SampleValues ex;
+    if (exact) ex = model_at(scene, geometry, s, NormalModel::halfspace, 1u);
+    for (int c = 0; c < 2; ++c)
+      for (int w = 0; w < (c == 0 ? 2 : 1); ++w)
+        for (int slot = 0; slot < 2; ++slot) {
+          if (c == 1 && !exact) continue;
+          const std::vector<double> err = c == 0 ? slot_errors(tab[w][slot], model[w][slot], 0.3, s.load)
+                                                 : slot_errors(model[w][slot], ex[w][slot], 0.3, s.load);
+          if (err.empty()) continue;
+          e[c][slot][0].push_back(std::hypot(err[0], err[1]));
+          e[c][slot][1].push_back(err[3]);
+          if (!std::isnan(err[4])) e[c][slot][2].push_back(1e3 * err[4]);
+        }
+  }
+  auto pct = [](std::vector<double> v, double p) {
+    if (v.empty()) return std::nan("");
+    std::sort(v.begin(), v.end());
+    return v[static_cast<std::size_t>(std::min<double>(v.size() - 1, std::floor(p * static_cast<double>(v.size() - 1) + 0.5)))];
+  };
+  const char* comparison[2] = {"table vs model", "model vs exact"};
+  const char* quantity[3] = {"creep force [% of mu N]", "normal force [%]", "contact angle [mrad]"};
+  for (int c = 0; c < 2; ++c)
+    for (int slot = 0; slot < 2; ++slot)
+      for (int q = 0; q < 3; ++q)
+        std::printf("%-15s %-7s %-24s n %4zu  median %7.3f  p90 %7.3f  max %7.3f\n", comparison[c],
+                    slot == 0 ? "tread" : "flange", quantity[q], e[c][slot][q].size(), pct(e[c][slot][q], 0.5),
+                    pct(e[c][slot][q], 0.9), pct(e[c][slot][q], 1.0));
+}
+
 }  // namespace
 }  // namespace railtab
