@@ -20,9 +20,10 @@ namespace railtab {
 // also reads format 1.0 and 1.1.
 inline constexpr int kTableFormatMajor = 2;
 // 2.1: normalised creep coordinates, located contact jumps (/jumps); 2.2: creep and wear outputs
-// stored as float32 rounded to 20 significant bits (table/storage_precision.hpp).
-inline constexpr int kTableFormatMinor = 2;
-inline constexpr const char* kTableFormatVersion = "2.2";
+// stored as float32 rounded to 20 significant bits (table/storage_precision.hpp); 2.3: additive
+// datasets only (the normal part's linear creep coefficients, creep_coefficient_*).
+inline constexpr int kTableFormatMinor = 3;
+inline constexpr const char* kTableFormatVersion = "2.3";
 
 // The group of the contact jumps along y (format 2.1, docs/table-format.md) and the one a shard
 // carries instead: the jumps of its y cells, which `railtab merge` joins into kJumpGroup.

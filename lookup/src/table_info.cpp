@@ -61,7 +61,7 @@ std::string slot_name(int slot) {
 }
 
 const char* library_version() noexcept { return RAILTAB_LOOKUP_VERSION; }
-const char* supported_format_version() noexcept { return "2.2"; }
+const char* supported_format_version() noexcept { return "2.3"; }
 
 bool Table::checksums_verified() const { return data_->checksums_verified; }
 

@@ -63,7 +63,7 @@ def test_xarray_opens_every_group_with_coordinates_and_units(default_table, engi
 
 def test_typed_attributes_and_status_flags(default_table):
     with h5py.File(default_table) as f:
-        assert text(f.attrs["format_version"]) == "2.2"
+        assert text(f.attrs["format_version"]) == "2.3"
         assert "fixed_axes" not in f.attrs and "models" not in f.attrs   # no JSON strings
         models = f["models"].attrs
         assert text(models["normal"]) == "stripes-ab" and models["strips"] == 50
@@ -159,7 +159,7 @@ def test_inspect_json_describes_the_file(railtab_program, default_table):
     out = subprocess.run([railtab_program, "inspect", str(default_table), "--json"], check=True,
                          capture_output=True, text=True)
     j = json.loads(out.stdout)
-    assert j["attributes"]["format_version"] == "2.2"
+    assert j["attributes"]["format_version"] == "2.3"
     assert j["checksums_verified"] is True                             # format 2 always carries them
     assert j["attributes"]["models"]["normal"] == "stripes-ab"        # an object, not JSON text
     assert j["attributes"]["fixed_axes"] == {"roll": "equilibrium"}

@@ -26,7 +26,7 @@ TEST(Sweep, LayoutFollowsTheFormat) {
   Scene scene = parse_scene(testing::kSyntheticScene, "s.toml");
   SweepResult r = run(scene, 1);
   const Table& t = r.table;
-  EXPECT_EQ(*t.attribute("format_version"), "2.2");
+  EXPECT_EQ(*t.attribute("format_version"), "2.3");
   EXPECT_EQ(*t.attribute("scene"), scene.text);
   EXPECT_EQ(*t.attribute("scene_name"), "synthetic");
   EXPECT_EQ(*t.attribute("fixed_axes"), R"({"eta":0.0})");
