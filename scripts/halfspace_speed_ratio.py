@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Median speed ratio of the half-space model against CONTACT on block C.
 
-Reads the Google Benchmark JSON of
+Reads the Google Benchmark JSON of (after `cmake --build --preset release --target halfspace_bench`)
     build/release/bench/halfspace_bench --benchmark_filter=BM_BlockC --benchmark_format=json
 (a file name as the only argument) and prints the number of cases, our median CPU and wall
 time per case, and the medians over the cases of CONTACT's wall_s (the counter contact_wall_s)

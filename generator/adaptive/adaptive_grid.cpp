@@ -233,12 +233,20 @@ nlohmann::json AdaptiveGridSummary::targets_json(const Scene& scene) const {
 nlohmann::json AdaptiveGridSummary::achieved_json() const {
   nlohmann::json axes_json = nlohmann::json::array();
   double worst = 0.0;
+  std::size_t unmet = 0;
   for (const AxisRefinement& r : axes) {
     axes_json.push_back(r.to_json());
     worst = std::max(worst, r.worst_error);
+    unmet += r.unmet;
   }
-  nlohmann::json out = {{"worst_midpoint_error", worst}, {"units", "fraction of the target (<= 1: met)"},
-                        {"axes", axes_json}, {"seconds", seconds}};
+  // worst_midpoint_error covers the smooth intervals only: the target is met when that is <= 1 AND
+  // no interval is unmet (an unmet interval is above target at min_step, kept out of the worst).
+  nlohmann::json out = {{"worst_midpoint_error", worst},
+                        {"units", "fraction of the target, smooth intervals only (unmet intervals excluded)"},
+                        {"unmet", unmet},
+                        {"met", worst <= 1.0 && unmet == 0},
+                        {"axes", axes_json},
+                        {"seconds", seconds}};
   if (!model_choice.is_null()) out["model_choice"] = model_choice;
   return out;
 }

@@ -135,7 +135,7 @@ nlohmann::json AxisRefinement::to_json() const {
   }
   return {{"axis", axis},         {"nodes", nodes.size()},         {"min_step", smallest},
           {"max_step", largest},  {"worst_midpoint_error", worst_error}, {"worst_at", worst_error_at},
-          {"jumps", jumps},       {"unmet", unmet}, {"unmet_worst_error", unresolved_error},                {"evaluations", evaluations}};
+          {"jumps", jumps},       {"unmet", unmet}, {"unmet_worst_error", unresolved_error}, {"met", met()}, {"evaluations", evaluations}};
 }
 
 AxisRefinement refine_axis(const AxisSampler& sampler, const AdaptiveAxisSpec& spec, int max_passes) {

@@ -40,7 +40,9 @@ struct AxisRefinement {
   std::vector<double> discontinuities;  // midpoints of the jump and unmet intervals [axis units]
   std::size_t evaluations = 0;      // sampler positions evaluated [-]
   int passes = 0;                   // refinement + coarsening passes [-]
-  nlohmann::json to_json() const;   // nodes count, steps, errors, counts
+  // The target is met: every smooth interval within it (worst_error <= 1) and no unmet interval.
+  bool met() const { return worst_error <= 1.0 && unmet == 0; }
+  nlohmann::json to_json() const;   // nodes count, steps, errors, counts, met
 };
 
 // Refine [spec.start, spec.stop]: start uniform at <= max_step; insert the midpoint of every interval

@@ -9,6 +9,7 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/commands.hpp"
+#include "generate/error_map.hpp"
 #include "table/merge.hpp"
 
 namespace railtab {
@@ -23,7 +24,8 @@ void add_merge_command(CLI::App& app) {
   auto quiet = add_quiet_flag(cmd);
   cmd->callback([output, inputs, quiet] {
     // The output is checked (check_output_path) by merge_table_files before any shard is read.
-    const std::size_t y_values = merge_table_files(*inputs, *output);
+    // Shards carry no error map (it needs the whole table): computed here on the merged one.
+    const std::size_t y_values = merge_table_files(*inputs, *output, error_map_merge_finish());
     diagnostics(*quiet) << fmt::format("merged {} shards into {} ({} y values)\n", inputs->size(), *output, y_values);
   });
 }

@@ -16,6 +16,7 @@
 #include "engine/parallel_for.hpp"
 #include "engine/progress.hpp"
 #include "adaptive/column_costs.hpp"
+#include "generate/error_map.hpp"
 #include "engine/shard_split.hpp"
 #include "engine/table_size.hpp"
 #include "table/interrupt.hpp"
@@ -120,8 +121,9 @@ SweepSummary generate_table(const GenerateOptions& options) {
   if (options.log && scene.accuracy.enabled) {
     for (const AxisRefinement& r : adaptive.axes) {
       *options.log << fmt::format("adaptive {}: {} nodes, worst midpoint error {:.2f} of target, {} jump(s), "
-                                  "{} unmet, {} evaluations\n",
-                                  r.axis, r.nodes.size(), r.worst_error, r.jumps, r.unmet, r.evaluations);
+                                  "{} unmet, {} evaluations: target {}\n",
+                                  r.axis, r.nodes.size(), r.worst_error, r.jumps, r.unmet, r.evaluations,
+                                  r.met() ? "met" : "NOT met");
     }
     *options.log << fmt::format("adaptive grids placed in {:.2f} s\n", adaptive.seconds);
   }
@@ -185,6 +187,29 @@ SweepSummary generate_table(const GenerateOptions& options) {
   const bool sharded = options.shard_count > 1;
   if (sharded) result.table.set_attribute("shard_jumps", options.make_kernel ? "not located" : "located");
   if (!options.make_kernel) add_contact_jumps(options, scene, result.table, sharded);
+  // The error map reads the written table through the lookup: written once to a stage file beside
+  // the output, measured, then written with the map. A shard has no full table: `railtab merge`
+  // computes the map on the merged one (the same function, so the same bytes).
+  if (!options.make_kernel && !sharded) {
+    const std::filesystem::path stage = options.output.string() + ".errmap-stage";
+    check_output_path(stage, inputs);
+    write_table(result.table, stage, options.interrupt, inputs);
+    try {
+      ErrorMap map = compute_error_map(scene, stage, options.threads);
+      if (log) {
+        *log << fmt::format("error map: {} states against the model, {} against the exact model, in {:.2f} s "
+                            "(exact model {:.2f} s)\n",
+                            map.model_states, map.exact_states, map.seconds, map.exact_seconds);
+      }
+      add_error_map(result.table, std::move(map));
+    } catch (...) {
+      std::error_code ignored;
+      std::filesystem::remove(stage, ignored);
+      throw;
+    }
+    std::error_code ignored;
+    std::filesystem::remove(stage, ignored);
+  }
   write_table(result.table, options.output, options.interrupt, inputs);
   if (keep_checkpoint) {
     std::error_code ignored;

@@ -408,7 +408,9 @@ PointCost contact_point_cost(const Scene& scene) {
   return scene.normal.model == NormalModel::halfspace ? kExactPointCost : kFastPointCost;
 }
 
-SweepKernel make_contact_kernel(const Scene& scene) {
+SweepKernel make_contact_kernel(const Scene& scene) { return make_contact_kernel(scene, make_geometry_solver(scene)); }
+
+SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver& geometry) {
   const FastsimOptions fastsim = fastsim_options(scene);
   const CreepConditions creep = creep_conditions(scene);
   const WearOptions wear = wear_options(scene);
@@ -424,7 +426,7 @@ SweepKernel make_contact_kernel(const Scene& scene) {
       model_by_y.push_back(accuracy.models[i]);
     }
   }
-  auto data = std::make_shared<const KernelData>(KernelData{make_geometry_solver(scene), scene.grids, scene.material,
+  auto data = std::make_shared<const KernelData>(KernelData{geometry, scene.grids, scene.material,
                                                             scene.normal, scene.tangential, creep, fastsim, wear,
                                                             coupled_load_options(scene), halfspace_options(scene),
                                                             model_by_y, scene.creep_normalised, scene.creep_knee});

@@ -92,5 +92,9 @@ PointCost contact_point_cost(const Scene& scene);
 // With normalised creep coordinates (format 2.1) the kernel brings the normalised xi, eta, phi
 // axes and the root attribute creep_map (kernel/creep_map.hpp) to the sweep.
 SweepKernel make_contact_kernel(const Scene& scene);
+// The same with the scene's geometry solver made once by the caller (make_geometry_solver(scene)):
+// for callers that build many one-state kernels of one scene (the error map), where making the
+// solver costs about 3 times solving the state.
+SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver& geometry);
 
 }  // namespace railtab

@@ -171,7 +171,8 @@ Table merge_shards(const std::vector<Table>& shards, const std::vector<std::stri
   return merged;
 }
 
-std::size_t merge_table_files(const std::vector<std::string>& inputs, const std::string& output) {
+std::size_t merge_table_files(const std::vector<std::string>& inputs, const std::string& output,
+                              const MergeFinish& finish) {
   std::vector<std::filesystem::path> input_paths(inputs.begin(), inputs.end());
   check_output_path(output, input_paths);  // before reading: an input is never overwritten
   std::vector<Table> shards;
@@ -183,8 +184,24 @@ std::size_t merge_table_files(const std::vector<std::string>& inputs, const std:
     RAILTAB_CHECK(where.empty(), "merge: {}: dataset {} holds a non-finite value (the generator never writes one: "
                   "the shard was altered or damaged); generate this shard again", path, where);
   }
+  const std::string* kernel = shards.front().attribute("shard_jumps");
+  const bool contact_kernel = kernel && *kernel == "located";
   Table merged = merge_shards(shards, inputs);
   shards.clear();  // the shards' memory before writing
+  if (finish && contact_kernel) {
+    const std::filesystem::path stage = output + ".merge-stage";
+    check_output_path(stage, input_paths);
+    write_table(merged, stage, nullptr, input_paths);
+    try {
+      finish(merged, stage);
+    } catch (...) {
+      std::error_code ignored;
+      std::filesystem::remove(stage, ignored);
+      throw;
+    }
+    std::error_code ignored;
+    std::filesystem::remove(stage, ignored);
+  }
   write_table(merged, output, nullptr, input_paths);
   return merged.axis("y") ? merged.axis("y")->values.size() : 1;
 }

@@ -2,6 +2,8 @@
 // Joining the shards of a table (railtab generate --shard I/N) into the table a single run writes.
 #pragma once
 
+#include <filesystem>
+#include <functional>
 #include <vector>
 
 #include "table/table.hpp"
@@ -14,8 +16,14 @@ namespace railtab {
 // single run's byte for byte. Throws railtab::Error naming the offending shard (by `names`).
 Table merge_shards(const std::vector<Table>& shards, const std::vector<std::string>& names);
 
-// railtab merge: reads the shard files, merges them and writes `output`. Returns the merged table's
-// number of y values.
-std::size_t merge_table_files(const std::vector<std::string>& inputs, const std::string& output);
+// What completes a merged table of the contact kernel before it is written (the error map, which
+// reads the merged table through the lookup: `written` is the merged table in a stage file).
+using MergeFinish = std::function<void(Table& merged, const std::filesystem::path& written)>;
+
+// railtab merge: reads the shard files, merges them and writes `output`; shards of the contact
+// kernel (shard_jumps "located") go through `finish` first. Returns the merged table's number of
+// y values.
+std::size_t merge_table_files(const std::vector<std::string>& inputs, const std::string& output,
+                              const MergeFinish& finish = {});
 
 }  // namespace railtab

@@ -21,7 +21,8 @@ namespace railtab {
 inline constexpr int kTableFormatMajor = 2;
 // 2.1: normalised creep coordinates, located contact jumps (/jumps); 2.2: creep and wear outputs
 // stored as float32 rounded to 20 significant bits (table/storage_precision.hpp); 2.3: additive
-// datasets only (the normal part's linear creep coefficients, creep_coefficient_*).
+// groups and datasets only (the error map, /error_map; the normal part's linear creep
+// coefficients, creep_coefficient_*), a 2.2 reader reads a 2.3 table.
 inline constexpr int kTableFormatMinor = 3;
 inline constexpr const char* kTableFormatVersion = "2.3";
 
@@ -29,6 +30,8 @@ inline constexpr const char* kTableFormatVersion = "2.3";
 // carries instead: the jumps of its y cells, which `railtab merge` joins into kJumpGroup.
 inline constexpr const char* kJumpGroup = "jumps";
 inline constexpr const char* kShardJumpGroup = "shard_jumps";
+// The group of the error map (format 2.3, generator/generate/error_map.hpp).
+inline constexpr const char* kErrorMapGroup = "error_map";
 
 struct TableAxis {
   std::string name;          // "y", "roll", "load", "xi", "eta", "phi", "slot"

@@ -76,9 +76,9 @@ constexpr const char* kAttributeOrder[] = {"format_version", "railtab_version", 
                                           "accuracy_targets", "accuracy_achieved"};
 constexpr const char* kCoordinateNames[] = {"y", "roll", "load", "xi", "eta", "phi", "slot"};
 
-// Dimensions without a coordinate (the jump list and its side), and uint32 datasets: status bits
+// Dimensions without a coordinate (the jump list and its side, the error map's y bands), and uint32 datasets: status bits
 // and the jump kinds (<wheel>_kind).
-bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side"; }
+bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side" || name == "band"; }
 bool is_uint32_dataset(const std::string& name) {
   return name == "status" || (name.size() > 5 && name.compare(name.size() - 5, 5, "_kind") == 0);
 }
@@ -178,7 +178,7 @@ class Reader {
         table.groups.push_back(std::move(group));
       }
     }
-    for (const char* root : {kJumpGroup, kShardJumpGroup}) {
+    for (const char* root : {kJumpGroup, kShardJumpGroup, kErrorMapGroup}) {
       if (H5Lexists(file, root, H5P_DEFAULT) > 0) read_tree(table, file, root);
     }
     return table;

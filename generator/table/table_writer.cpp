@@ -71,8 +71,9 @@ std::string join_axes(const std::vector<std::string>& axes) {
   return out;
 }
 
-// Dimensions that are not axes: list indices without a coordinate (jump list and side of /jumps).
-bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side"; }
+// Dimensions that are not axes: list indices without a coordinate (jump list and side of /jumps,
+// the y bands of /error_map).
+bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side" || name == "band"; }
 
 // The float32 image of a float64 output (format 2.2, table/storage_precision.hpp). A finite value
 // beyond float32's range is an error, never an infinity in the file.

@@ -80,6 +80,20 @@ TEST(QuerySlot, AbsentPartsOddSlotCountAndNonUniformAxes) {
   for (const Query& q : wide_queries(t, 500, 5)) expect_slots_match(t, q, "parts 0, 2");
 }
 
+TEST(QuerySlot, MonotoneCubicVectorLanesEqualTheScalarOnes) {
+  // Seven values per slot: alone, a slot's last value goes through the scalar limiter; with
+  // three slots, it shares a vector pair with the next slot's first value. Equal bytes say the
+  // vector limiter computes exactly what the scalar one does.
+  testing::FixtureSpec spec = testing::default_scene_spec();
+  spec.parts = {0, 2, 3};  // 2 geometry + 4 creep + 1 wear values
+  spec.n_slots = 3;
+  TempFile file("slot_monotone");
+  testing::write_fixture(file.path, spec);
+  const Table t = Table::load(file.path, {Method::kMonotoneCubic});
+  ASSERT_EQ(t.n_slots(), 3);
+  for (const Query& q : wide_queries(t, 300, 9)) expect_slots_match(t, q, "parts 0, 2, 3");
+}
+
 TEST(QuerySlot, InvalidInputBadSlotAndBadWheel) {
   TempFile file("slot_bad");
   testing::write_fixture(file.path, testing::default_scene_spec());

@@ -87,6 +87,32 @@ TEST(AdaptiveGrid, JumpIsRefinedToMinStepAndCounted) {
   EXPECT_LT(r.nodes.size(), 40u);  // linear neighbours coarsened again
 }
 
+// A step inside one regime (no status change) stays above target at min_step: an unmet interval,
+// kept out of worst_midpoint_error. The result must then say "not met", per axis and overall,
+// although the worst smooth-interval error is <= 1.
+TEST(AdaptiveGrid, UnmetIntervalIsNeverReportedMet) {
+  const double step = 0.3141;
+  auto f = [=](double x) { return x < step ? 0.0 : 1.0 + x; };
+  AxisRefinement r = refine_axis(synthetic(f, [](double) { return 0u; }, 1e-3), {"t", 0.0, 1.0, 0.25, 1.0 / 1024});
+  ASSERT_GE(r.unmet, 1u);
+  ASSERT_LE(r.worst_error, 1.0);  // what alone read as "met" before
+  EXPECT_FALSE(r.met());
+  EXPECT_FALSE(r.to_json()["met"].get<bool>());
+  AdaptiveGridSummary s;
+  s.axes.push_back(r);
+  nlohmann::json achieved = s.achieved_json();
+  EXPECT_LE(achieved["worst_midpoint_error"].get<double>(), 1.0);
+  EXPECT_EQ(achieved["unmet"].get<std::size_t>(), r.unmet);
+  EXPECT_FALSE(achieved["met"].get<bool>());
+  // The same function without the step is met everywhere.
+  AxisRefinement smooth = refine_axis(synthetic([](double x) { return 1.0 + x; }, [](double) { return 0u; }, 1e-3),
+                                      {"t", 0.0, 1.0, 0.25, 1.0 / 1024});
+  AdaptiveGridSummary ok;
+  ok.axes.push_back(smooth);
+  EXPECT_TRUE(smooth.met());
+  EXPECT_TRUE(ok.achieved_json()["met"].get<bool>());
+}
+
 // ---------------------------------------------------------------------------------------------
 // Scene syntax
 

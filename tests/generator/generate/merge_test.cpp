@@ -13,6 +13,7 @@
 #include "core/check.hpp"
 #include "generator/synthetic_kernel.hpp"
 #include "generator/test_tables.hpp"
+#include "generate/error_map.hpp"
 #include "generate/generate.hpp"
 #include "table/table_io.hpp"
 
@@ -103,11 +104,13 @@ TEST(Merge, MergedTableCarriesTheJumpsAndAnswersOfASingleRun) {
   std::vector<std::string> shards;
   for (int i = 1; i <= 3; ++i) shards.push_back(generate(fmt::format("s{}.h5", i), i, 3));
   const std::string merged_path = (dir / "merged.h5").string();
-  merge_table_files({shards[2], shards[0], shards[1]}, merged_path);
+  merge_table_files({shards[2], shards[0], shards[1]}, merged_path, error_map_merge_finish());
 
   const Table single = read_table(single_path), merged = read_table(merged_path);
   ASSERT_TRUE(single.group(kJumpGroup)) << "the scene must have contact jumps for this test to mean anything";
   ASSERT_TRUE(merged.group(kJumpGroup)) << "the merged table lost the jumps";
+  ASSERT_TRUE(single.group(kErrorMapGroup) && merged.group(kErrorMapGroup)) << "no error map";
+  EXPECT_EQ(*single.attribute("error_map_sampling"), *merged.attribute("error_map_sampling"));
   testing::expect_same_datasets(single, merged);  // the jump lists and one-sided values included
 
   // The lookup's answers near every located jump (both sides, within the bisection tolerance and
