@@ -94,6 +94,45 @@ void BM_HalfspaceNormalTangentialPartialSlip(benchmark::State& state) {
 }
 BENCHMARK(BM_HalfspaceNormalTangentialPartialSlip)->Arg(300)->Unit(benchmark::kMillisecond);
 
+// A table column's creepages (the default scene's 7 x 5 x 3 grid, in the sweep's snake order),
+// coupled solves at 78.5 kN on the right wheel at y = 0 (tread) or y = -7 mm (flange contact),
+// argument 0 / 7: cold (each solve from scratch, as railtab eval) against warm (each started from
+// the previous one, halfspace::RollingState, as the table sweep). Time per column of 105 solves;
+// counter solves_per_s.
+void creepage_column(benchmark::State& state, bool warm) {
+  railtab::ProfilePtr w = railtab::make_s1002_profile();
+  railtab::ProfilePtr r = railtab::make_uic60_profile();
+  const railtab::ContactGeometrySolver solver(w, r, w, r, railtab::TrackGeometry{}, railtab::WheelsetGeometry{});
+  const auto g = solver.solve_wheel(railtab::Side::right, {-1e-3 * static_cast<double>(state.range(0)), 0.0});
+  railtab::Material m;
+  m.poisson_ratio = 0.28;
+  const railtab::halfspace::HalfspaceOptions opt;
+  railtab::halfspace::Workspace ws;
+  const std::vector<double> xi{-0.004, -0.002, -0.001, 0.0, 0.001, 0.002, 0.004}, eta{-0.004, -0.001, 0.0, 0.001, 0.004},
+      phi{-0.3, 0.0, 0.3};
+  std::vector<railtab::Creepage> chain;  // the snake order of the sweep (creep_loops.cpp, creepage_chain)
+  for (std::size_t ix = 0; ix < xi.size(); ++ix)
+    for (std::size_t a = 0; a < eta.size(); ++a)
+      for (std::size_t b = 0; b < phi.size(); ++b) {
+        const std::size_t ie = ix % 2 == 0 ? a : eta.size() - 1 - a;
+        const std::size_t ip = (ix * eta.size() + a) % 2 == 0 ? b : phi.size() - 1 - b;
+        chain.push_back({xi[ix], eta[ie], phi[ip]});
+      }
+  for (auto _ : state) {
+    railtab::halfspace::RollingState rolling;
+    for (const railtab::Creepage& c : chain) {
+      auto res = railtab::halfspace::solve_halfspace_rolling(g, 78.5e3, c, 0.3, m, opt, ws, warm ? &rolling : nullptr);
+      benchmark::DoNotOptimize(res.patches.data());
+    }
+  }
+  state.counters["solves_per_s"] =
+      benchmark::Counter(static_cast<double>(chain.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+void BM_CreepageColumnCold(benchmark::State& state) { creepage_column(state, false); }
+void BM_CreepageColumnWarm(benchmark::State& state) { creepage_column(state, true); }
+BENCHMARK(BM_CreepageColumnCold)->Arg(0)->Arg(7)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_CreepageColumnWarm)->Arg(0)->Arg(7)->Unit(benchmark::kMillisecond)->Iterations(2);
+
 // Every case of ../shared/reference/blockC_sweep_integer_dy.csv (when present): normal +
 // tangential at CONTACT's creepages (coupled through the vertical load, solve_halfspace_rolling;
 // rows without creepage: normal only), 0.3 mm as CONTACT's grid there. Counter contact_wall_s is

@@ -21,11 +21,12 @@ function(railtab_module name)
   add_library(railtab::${name} ALIAS railtab_${name})
 endfunction()
 
-# railtab_test(DIR LIBS lib... [LABELS label...])
+# railtab_test(DIR LIBS lib... [LABELS label...] [ONE_PROCESS name suite...])
 # tests/DIR/*_test.cpp -> one executable test_DIR, registered with CTest (label = DIR). A "/" in
-# DIR becomes "_" in the names: tests/generator/engine -> test_generator_engine.
+# DIR becomes "_" in the names: tests/generator/engine -> test_generator_engine. ONE_PROCESS:
+# railtab_gtest_tests below.
 function(railtab_test dir)
-  cmake_parse_arguments(ARG "" "" "LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "LIBS;LABELS;ONE_PROCESS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/*_test.cpp)
   if(NOT sources)
     return()
@@ -39,8 +40,29 @@ function(railtab_test dir)
   target_compile_definitions(test_${dir} PRIVATE
     RAILTAB_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     RAILTAB_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared")
-  gtest_discover_tests(test_${dir} PROPERTIES LABELS "${dir};${ARG_LABELS}"
-                       DISCOVERY_TIMEOUT 60)
+  railtab_gtest_tests(test_${dir} LABELS ${dir} ${ARG_LABELS} ONE_PROCESS ${ARG_ONE_PROCESS})
+endfunction()
+
+# railtab_gtest_tests(TARGET LABELS label... [ONE_PROCESS name suite...])
+# Registers the GoogleTest program TARGET with CTest: one CTest test per GoogleTest test (each its
+# own process), except the ONE_PROCESS suites, which run together as the one CTest test NAME
+# (TARGET --gtest_filter=suite.*:...). Those suites share a fixture that is costly to compute and
+# computed once per process (a generated table): in one process it is computed once, not once per
+# test. Their assertions are the same; the output names each GoogleTest test that fails, and
+# `ctest -R NAME` (or TARGET --gtest_filter=...) runs them. COST: CTest starts the group first
+# (it is one of the longest tests), so it does not finish alone at the end of a parallel run.
+function(railtab_gtest_tests target)
+  cmake_parse_arguments(ARG "" "" "LABELS;ONE_PROCESS" ${ARGN})
+  set(exclude "")
+  if(ARG_ONE_PROCESS)
+    list(POP_FRONT ARG_ONE_PROCESS name)
+    list(TRANSFORM ARG_ONE_PROCESS APPEND ".*")
+    list(JOIN ARG_ONE_PROCESS ":" suites)
+    add_test(NAME ${name} COMMAND ${target} --gtest_filter=${suites})
+    set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABELS}" COST 1000)
+    set(exclude TEST_FILTER "-${suites}")
+  endif()
+  gtest_discover_tests(${target} ${exclude} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 60)
 endfunction()
 
 # railtab_unity(TARGET): compiles the target's files in unity batches (RAILTAB_UNITY_BUILD, ON by

@@ -46,6 +46,7 @@ struct QueryOptions {
   std::string wheel = "both";     // left, right or both
   std::string method = "linear";  // interpolation method
   bool json = false;
+  bool error_estimate = false;    // also the table's stored error map where each slot lands
 };
 
 // SI units of the outputs, in lookup::Output order (docs/table-format.md; the table file's
@@ -126,6 +127,31 @@ nlohmann::ordered_json coefficients_json(const double (&k)[3][3]) {
   return j;
 }
 
+// The stored error map's region (y band x slot) holding y (format 2.3; null before): RMS and max
+// of each quantity and the sample count, per comparison.
+nlohmann::ordered_json error_estimate_json(const lk::Table& table, double y, int slot) {
+  lk::ErrorEstimate e;
+  if (!table.error_estimate(y, slot, e)) return nullptr;
+  static constexpr const char* kNames[lk::kErrorQuantities] = {"fx", "fy", "mz", "normal_force", "contact_angle"};
+  auto stats = [](const lk::ErrorStats& s) {
+    nlohmann::ordered_json j;
+    j["samples"] = s.samples;
+    for (int q = 0; q < lk::kErrorQuantities; ++q) {  // NaN (no sample) prints as null
+      j[fmt::format("{}_rms", kNames[q])] = s.rms[q];
+      j[fmt::format("{}_max", kNames[q])] = s.max[q];
+    }
+    return j;
+  };
+  nlohmann::ordered_json j;
+  j["y_band"] = {e.y_band_start, e.y_band_end};
+  j["units"] = {{"fx", "% of mu N"}, {"fy", "% of mu N"}, {"mz", "% of mu N c"}, {"normal_force", "%"},
+                {"contact_angle", "rad"}};
+  j["table_vs_model"] = stats(e.table_vs_model);
+  if (e.exact_measured) j["model_vs_exact"] = stats(e.model_vs_exact);
+  else j["model_vs_exact"] = e.same_model ? nlohmann::ordered_json("same model") : nlohmann::ordered_json(nullptr);
+  return j;
+}
+
 // Text: the header once, then one block per query.
 void print_text_header(const nlohmann::ordered_json& head) {
   std::cout << fmt::format("table {} (scene {}, format {}), {} interpolation\n", head["table"].get<std::string>(),
@@ -154,6 +180,27 @@ void print_text_query(const nlohmann::ordered_json& units, const nlohmann::order
   std::cout << fmt::format("  {:<16} {:>8}", "status", "");
   for (const auto& c : contacts) std::cout << fmt::format(" {:>14}", c["status"].get<std::string>());
   std::cout << "\n";
+  if (!contacts.empty() && contacts[0].contains("error_estimate")) {
+    std::cout << "  stored error map, max in the region (fx, fy % of mu N; normal force %):\n";
+    for (const char* comparison : {"table_vs_model", "model_vs_exact"}) {
+      std::cout << fmt::format("  {:<25}", comparison);
+      for (const auto& c : contacts) {
+        const auto& e = c["error_estimate"];
+        const auto* s = e.is_object() && e[comparison].is_object() ? &e[comparison] : nullptr;
+        auto num = [&](const char* k) {
+          const bool known = (*s)[k].is_number() && !std::isnan((*s)[k].get<double>());
+          return known ? fmt::format("{:.2g}", (*s)[k].get<double>()) : std::string("-");
+        };
+        std::string cell = !e.is_object()                  ? "none"
+                           : e[comparison].is_string()     ? e[comparison].get<std::string>()
+                           : !s                            ? "-"
+                                                           : fmt::format("{}/{}/{}", num("fx_max"), num("fy_max"),
+                                                                         num("normal_force_max"));
+        std::cout << fmt::format(" {:>14}", cell);
+      }
+      std::cout << "\n";
+    }
+  }
   if (!contacts.empty() && contacts[0].contains("derivatives")) {
     std::cout << "  partial derivatives (output units per axis unit):\n";
     for (const auto& [name, unit] : units.items())
@@ -285,6 +332,7 @@ void run_query(const QueryOptions& opt) {
           q["contacts"].back()["creep_coefficients"] = coefficients_json(k.k[slot]);
           q["contacts"].back()["creep_coefficient_status"] = status::describe(k.status[slot]);
         }
+        if (opt.error_estimate) q["contacts"].back()["error_estimate"] = error_estimate_json(table, s.y, slot);
       }
       if (json) json->add(q);
       else print_text_query(head["units"], q);
@@ -347,6 +395,9 @@ void add_query_command(CLI::App& app) {
       ->check(CLI::IsMember({"linear", "cubic", "monotone-cubic"}))
       ->capture_default_str();
   cmd->add_flag("--json", opt->json, "Print JSON (stable keys, SI units) instead of text");
+  cmd->add_flag("--error-estimate", opt->error_estimate,
+                "Also the table's stored error map (format 2.3) in the region (y band x slot) of each contact: "
+                "the table against its model and the model against the exact one, RMS and max");
   add_quiet_flag(cmd);  // query prints results only; accepted for uniformity
   cmd->callback([opt] {
     if (opt->y.empty() && opt->states.empty()) throw CLI::RequiredError("--y or --states");  // exit 2

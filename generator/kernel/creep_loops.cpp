@@ -156,84 +156,121 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
 // (one creepage for all, as solve_creep_coupled), both slots' creep and wear cells of load il.
 // With the load coupling (scene load_coupling, the same meaning as for the fast models: the creep
 // forces carry their share of the vertical load) solve_halfspace_rolling re-solves the normal
-// contact per creepage, from cold (the same call as railtab eval, so a node is reproduced exactly;
-// a warm start from the previous creepage through the public calls was measured slower: 82 s
-// against 70 s CPU on 3 columns of the default grid), and the creep part's normal outputs are
-// written. Without it the tangential problem runs on `uncoupled` (the load's normal solution),
-// each creepage warm-started from the previous one of the sweep; the creepage order is fixed and
-// a column is computed by one thread, so the bytes do not depend on the thread count.
+// contact per creepage, each solve warm-started from the previous creepage of creepage_chain
+// (halfspace::RollingState: its grid, pressure and load split), and the creep part's
+// normal outputs are written. A node is then the cold solve of railtab eval to within the
+// solvers' tolerances, not to the byte. With normalised coordinates (`scales`) one chain per
+// occupied slot at that slot's creepages, as solve_creep_coupled. Without the coupling the tangential problem runs on
+// `uncoupled` (the load's normal solution), each creepage warm-started from the previous one.
+// The creepage order is fixed and a column is computed by one thread, so the bytes do not depend
+// on the thread count.
 void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geometry,
                            const halfspace::WheelHalfspaceResult& uncoupled, const PatchSlots& uncoupled_slots,
-                           const ColumnState& state, std::size_t wheel, std::size_t il, ColumnOutput& out) {
+                           const ColumnState& state, std::size_t wheel, std::size_t il,
+                           const creep_map::Scales* scales, ColumnOutput& out) {
   halfspace::Workspace& workspace = thread_halfspace_workspace();
   thread_local std::vector<double> depth;
   thread_local WearDistribution distribution;  // unused by the exact model's wear (SlotWear needs one)
   const double load = k.grids.load[il];
   const double mu = k.creep.friction;
   const double flange_angle = k.solver.settings().flange_angle;
-  halfspace::WheelHalfspaceResult result = uncoupled;  // holds the warm start without the coupling
-  std::size_t c = il * k.creepages();
-  for (double xi : k.grids.xi) {
-    for (double eta : k.grids.eta) {
-      for (double phi : k.grids.phi) {
-        const std::size_t cells = c++ * kSlots;
-        const Creepage creepage{xi, eta, phi};
-        try {
-          if (k.coupling.couple) {
-            result = halfspace::solve_halfspace_rolling(geometry, load, creepage, mu, k.material, k.halfspace, workspace);
-          } else {
-            halfspace::solve_halfspace_tangential(result, creepage, mu, k.material, k.halfspace, workspace);
-          }
-          const WheelNormalResult normal = to_normal_result(result, geometry);
-          const PatchSlots slots =
-              k.coupling.couple ? assign_patch_slots(normal, geometry.side, flange_angle) : uncoupled_slots;
-          for (std::size_t s = 0; s < kSlots; ++s) {
-            const std::size_t cell = cells + s;
-            const ContactPatch patch = slots.occupied(s) ? slot_normal(normal, slots, s) : ContactPatch{};
-            if (!(patch.normal_force > 0.0)) {
-              // No loaded patch here: zeros; status 0 where the creepage-free solution had none,
-              // else converged,lift_off (as solve_creep and solve_creep_coupled).
-              const StatusBits bits = uncoupled_slots.occupied(s) ? status::kConverged | status::kLiftOff : 0u;
-              out.status(wheel, kCreepPart)[cell] = bits | (bits ? uncoupled_slots.extra[s] : 0u);
-              out.status(wheel, kWearPart)[cell] = bits | (bits ? uncoupled_slots.extra[s] : 0u);
-              continue;
-            }
-            auto where = [&] {
-              return fmt::format("half-space creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
-                                 to_string(geometry.side), state.y, load, xi, eta, phi);
-            };
-            bool normal_finite = true;
-            if (k.coupling.couple)
-              normal_finite = store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where,
-                                           std::size(kCreepOutputs));
-            SlotWear wear{k.wear, distribution, {}};
-            const FastsimResult creep = sum_slot_creep(
-                normal, slots, s,
-                [&](std::size_t ip, WearResult* worn) {
-                  const halfspace::HalfspacePatch& hp = result.patches[ip];
-                  if (worn) *worn = halfspace_wear(hp, k.creep.speed, k.wear, depth);
-                  return to_creep_result(hp);
-                },
-                &wear);
-            const bool creep_finite = store_values(kCreepOutputs, creep, out, wheel, kCreepPart, cell, where);
-            // The patch bits (area_too_small, not_planar, the coupled solve's not_converged) and
-            // the tangential solver's (full_slip, not_converged).
-            StatusBits bits = creep.status | (patch.status & ~status::kConverged) | slots.extra[s];
-            if (bits & status::kNotConverged) bits &= ~status::kConverged;
-            out.status(wheel, kCreepPart)[cell] = normal_finite && creep_finite ? bits : non_finite_status(bits);
-            store(kWearOutputs, wear.result, wear.result.status | slots.extra[s], out, wheel, kWearPart, cell, where);
-          }
-        } catch (const std::exception& e) {
-          out.failure(fmt::format("half-space creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
-                                  to_string(geometry.side), state.y, load, xi, eta, phi, e.what()));
-          for (std::size_t s = 0; s < kSlots; ++s) {
-            out.status(wheel, kCreepPart)[cells + s] = failure_status(state);
-            out.status(wheel, kWearPart)[cells + s] = failure_status(state);
-          }
+  // Normalised coordinates: each slot's node is its own creepage (its own scales), so one chain of
+  // solves per occupied slot, keeping that slot's outputs (as solve_creep_coupled); the creep
+  // part's normal_force is then the slot's vertical load share (creep_map::vertical_share).
+  const bool per_slot = scales != nullptr;
+  double slot_angle[kSlots] = {};
+  if (per_slot) {
+    const SlotAssignment points = assign_slots(geometry);
+    for (std::size_t s = 0; s < kSlots; ++s)
+      if (points.point[s] >= 0) slot_angle[s] = geometry.points[static_cast<std::size_t>(points.point[s])].contact_angle;
+  }
+  const std::size_t ne = k.grids.eta.size(), np = k.grids.phi.size();
+  for (std::size_t pass = 0; pass < (per_slot ? kSlots : 1); ++pass) {
+    if (per_slot && !uncoupled_slots.occupied(pass)) continue;  // status 0, zeros: no contact
+    halfspace::WheelHalfspaceResult result = uncoupled;  // holds the warm start without the coupling
+    halfspace::RollingState chain;  // the coupled solves' warm start: the previous creepage's end
+    for (const std::size_t node : creepage_chain(k.grids.xi.size(), ne, np)) {
+      const std::size_t ix = node / (ne * np), ie = node / np % ne, iphi = node % np;
+      const std::size_t cells = (il * k.creepages() + node) * kSlots;
+      const Creepage creepage = node_creepage(k, ix, ie, iphi, per_slot ? &scales[pass] : nullptr);
+      const double xi = creepage.xi, eta = creepage.eta, phi = creepage.phi;
+      const std::size_t s_begin = per_slot ? pass : 0, s_end = per_slot ? pass + 1 : kSlots;
+      try {
+        if (k.coupling.couple) {
+          result = halfspace::solve_halfspace_rolling(geometry, load, creepage, mu, k.material, k.halfspace, workspace,
+                                                      &chain);
+        } else {
+          halfspace::solve_halfspace_tangential(result, creepage, mu, k.material, k.halfspace, workspace);
         }
+        const WheelNormalResult normal = to_normal_result(result, geometry);
+        const PatchSlots slots =
+            k.coupling.couple ? assign_patch_slots(normal, geometry.side, flange_angle) : uncoupled_slots;
+        for (std::size_t s = s_begin; s < s_end; ++s) {
+          const std::size_t cell = cells + s;
+          ContactPatch patch = slots.occupied(s) ? slot_normal(normal, slots, s) : ContactPatch{};
+          if (!(patch.normal_force > 0.0)) {
+            // No loaded patch here: zeros; status 0 where the creepage-free solution had none,
+            // else converged,lift_off (as solve_creep and solve_creep_coupled).
+            const StatusBits bits = uncoupled_slots.occupied(s) ? status::kConverged | status::kLiftOff : 0u;
+            out.status(wheel, kCreepPart)[cell] = bits | (bits ? uncoupled_slots.extra[s] : 0u);
+            out.status(wheel, kWearPart)[cell] = bits | (bits ? uncoupled_slots.extra[s] : 0u);
+            continue;
+          }
+          auto where = [&] {
+            return fmt::format("half-space creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
+                               to_string(geometry.side), state.y, load, xi, eta, phi);
+          };
+          SlotWear wear{k.wear, distribution, {}};
+          FastsimResult creep = sum_slot_creep(
+              normal, slots, s,
+              [&](std::size_t ip, WearResult* worn) {
+                const halfspace::HalfspacePatch& hp = result.patches[ip];
+                if (worn) *worn = halfspace_wear(hp, k.creep.speed, k.wear, depth);
+                return to_creep_result(hp);
+              },
+              &wear);
+          if (per_slot) {
+            const double n = patch.normal_force;
+            patch.normal_force = creep_map::vertical_share(n, creep.fy, slot_angle[s]);
+            creep = normalised_forces(creep, creepage, n, mu, scales[s]);
+          }
+          bool normal_finite = true;
+          if (k.coupling.couple)
+            normal_finite = store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where,
+                                         std::size(kCreepOutputs));
+          const bool creep_finite = store_values(kCreepOutputs, creep, out, wheel, kCreepPart, cell, where);
+          // The patch bits (area_too_small, not_planar, the coupled solve's not_converged) and
+          // the tangential solver's (full_slip, not_converged).
+          StatusBits bits = creep.status | (patch.status & ~status::kConverged) | slots.extra[s];
+          if (bits & status::kNotConverged) bits &= ~status::kConverged;
+          out.status(wheel, kCreepPart)[cell] = normal_finite && creep_finite ? bits : non_finite_status(bits);
+          store(kWearOutputs, wear.result, wear.result.status | slots.extra[s], out, wheel, kWearPart, cell, where);
+        }
+      } catch (const std::exception& e) {
+        out.failure(fmt::format("half-space creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {}): {}",
+                                to_string(geometry.side), state.y, load, xi, eta, phi, e.what()));
+        for (std::size_t s = s_begin; s < s_end; ++s) {
+          out.status(wheel, kCreepPart)[cells + s] = failure_status(state);
+          out.status(wheel, kWearPart)[cells + s] = failure_status(state);
+        }
+        chain.clear();  // the next creepage starts cold
       }
     }
   }
+}
+
+std::vector<std::size_t> creepage_chain(std::size_t nxi, std::size_t neta, std::size_t nphi) {
+  std::vector<std::size_t> order;
+  order.reserve(nxi * neta * nphi);
+  for (std::size_t ix = 0; ix < nxi; ++ix)
+    for (std::size_t a = 0; a < neta; ++a) {
+      const std::size_t ie = ix % 2 == 0 ? a : neta - 1 - a;  // back along eta on odd xi rows
+      for (std::size_t b = 0; b < nphi; ++b) {
+        const std::size_t ip = (ix * neta + a) % 2 == 0 ? b : nphi - 1 - b;  // and along phi
+        order.push_back((ix * neta + ie) * nphi + ip);
+      }
+    }
+  return order;
 }
 
 }  // namespace railtab::kernel

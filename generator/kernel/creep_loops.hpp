@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "halfspace/wheel_rail.hpp"
 #include "kernel/kernel_cells.hpp"
@@ -24,9 +25,15 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
                          const ColumnState& state, std::size_t wheel, std::size_t il,
                          const creep_map::Scales* scales, ColumnOutput& out);
 
-// The exact half-space model's steady rolling solution per creepage (physical coordinates only).
+// The order in which the exact model's creepages are solved, each warm-started from the one
+// before: node indices (ix * neta + ie) * nphi + ip of the creep grid in a snake (boustrophedon)
+// order, so that consecutive nodes differ in one creepage by one grid step.
+std::vector<std::size_t> creepage_chain(std::size_t nxi, std::size_t neta, std::size_t nphi);
+
+// The exact half-space model's steady rolling solution per creepage; `scales` as for solve_creep.
 void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geometry,
                            const halfspace::WheelHalfspaceResult& uncoupled, const PatchSlots& uncoupled_slots,
-                           const ColumnState& state, std::size_t wheel, std::size_t il, ColumnOutput& out);
+                           const ColumnState& state, std::size_t wheel, std::size_t il,
+                           const creep_map::Scales* scales, ColumnOutput& out);
 
 }  // namespace railtab::kernel

@@ -12,7 +12,8 @@
 // area), so the normalised creepages xi' = xi / s_xi (Kalker's xi' = G c^2 C11 xi / (3 mu N)),
 // eta', psi' are ~1 where the creep force saturates. The sweep (contact_kernel.cpp,
 // slot_scales) replaces G c^2 C11 etc. by the model's own linear creep coefficients (FASTSIM's
-// slopes, the same for a Hertz patch), which line up with the bend of strip patches too. Each axis maps its scene range [lo, hi]:
+// slopes, the same for a Hertz patch; for the exact half-space model its own steady rolling
+// solution in full adhesion, exact_slot_scales), which line up with the bend of strip patches too. Each axis maps its scene range [lo, hi]:
 //   m(x) = x / (1 + |x|),  v = -1 + 2 (m(q / s) - m(lo / s)) / (m(hi / s) - m(lo / s)),
 // so v = -1 and 1 are the scene's physical limits at every node (out of range means what it
 // meant before) and the nodes, uniform in v, are dense where the force bends (|xi'| < 1) and

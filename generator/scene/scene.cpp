@@ -488,12 +488,6 @@ void parse_grid(const Section& gr, const SceneInput& in, Scene& scene) {
     fail(ctx, gr.node("creep_coordinates")->source(), "grid.creep_coordinates",
          "\"normalised\" cannot be combined with an [accuracy] section (adaptive grids are physical)");
   }
-  if (scene.creep_normalised && scene.normal.model == NormalModel::halfspace) {
-    // The normalised coordinates' scales are FASTSIM's linear creep slopes (creep_map.hpp); the
-    // exact model's sweep runs on physical creepages.
-    fail(ctx, gr.node("creep_coordinates")->source(), "grid.creep_coordinates",
-         "\"normalised\" cannot be combined with normal_model = \"halfspace\" (use \"physical\")");
-  }
   if (acc.enabled && acc.axes.empty()) {
     fail(ctx, in.root.get("accuracy")->source(), "accuracy",
          "no grid axis is adaptive: give at least one as {start, stop, max_step, min_step}");

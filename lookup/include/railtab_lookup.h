@@ -252,6 +252,36 @@ typedef struct railtab_lookup_table_info {
 
 RAILTAB_LOOKUP_API int railtab_lookup_info(const railtab_lookup_table* table, railtab_lookup_table_info* info);
 
+/* ---- Error estimate (format 2.3, group /error_map; docs/lookup.md "Error estimate"). ----
+ * The measured errors of the region (y band x slot) holding y: RMS and maximum over the region's
+ * samples, indexed RAILTAB_LOOKUP_ERR_*: fx, fy [% of mu N], mz [% of mu N c, c = sqrt(area/pi)],
+ * normal force [% of N], contact angle [rad]; NaN where the region has no sample. */
+#define RAILTAB_LOOKUP_ERR_FX 0
+#define RAILTAB_LOOKUP_ERR_FY 1
+#define RAILTAB_LOOKUP_ERR_MZ 2
+#define RAILTAB_LOOKUP_ERR_NORMAL_FORCE 3
+#define RAILTAB_LOOKUP_ERR_CONTACT_ANGLE 4
+#define RAILTAB_LOOKUP_NUM_ERR 5
+typedef struct railtab_lookup_error_stats {
+  double samples;                       /* wheel-state pairs with the slot loaded (0: none) */
+  double rms[RAILTAB_LOOKUP_NUM_ERR];
+  double max[RAILTAB_LOOKUP_NUM_ERR];
+} railtab_lookup_error_stats;
+typedef struct railtab_lookup_error_estimate {
+  int available;       /* 1: the table has an error map and y lies in one of its bands */
+  int exact_measured;  /* 1: model_vs_exact holds the model against the exact half-space model */
+  int same_model;      /* 1: the table's model is the exact one (nothing to compare; not a zero) */
+  int reserved;
+  double y_band_start, y_band_end;              /* [m] the band holding y */
+  railtab_lookup_error_stats table_vs_model;    /* the table (linear lookup) against its model */
+  railtab_lookup_error_stats model_vs_exact;    /* the model against the exact model */
+} railtab_lookup_error_estimate;
+/* Fills `estimate` (available 0 when the table has no error map or y is NaN or outside its
+ * bands: still RAILTAB_LOOKUP_OK). RAILTAB_LOOKUP_ERROR_ARGUMENT for a null pointer or a slot
+ * outside 0 .. n_slots-1. */
+RAILTAB_LOOKUP_API int railtab_lookup_error_estimate_at(const railtab_lookup_table* table, double y, int slot,
+                                                     railtab_lookup_error_estimate* estimate);
+
 /* Tabulated axis `index` (file order): name ("y", "roll", "load", "xi", "eta", "phi"), units
  * (the file's attribute, "" if absent), node count and nodes (strictly increasing, SI). Any of
  * the output pointers may be NULL. RAILTAB_LOOKUP_ERROR_RANGE for an index outside the axes. */

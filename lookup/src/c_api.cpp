@@ -23,6 +23,11 @@ namespace lk = railtab::lookup;
 
 // The C structs mirror the C++ ones field by field so results are copied with one memcpy.
 static_assert(sizeof(railtab_lookup_state) == sizeof(lk::State));
+static_assert(sizeof(railtab_lookup_error_estimate) == sizeof(lk::ErrorEstimate));
+static_assert(offsetof(railtab_lookup_error_estimate, y_band_start) == offsetof(lk::ErrorEstimate, y_band_start));
+static_assert(offsetof(railtab_lookup_error_estimate, model_vs_exact) == offsetof(lk::ErrorEstimate, model_vs_exact));
+static_assert(RAILTAB_LOOKUP_NUM_ERR == lk::kErrorQuantities && RAILTAB_LOOKUP_ERR_FY == lk::kErrorFy &&
+              RAILTAB_LOOKUP_ERR_CONTACT_ANGLE == lk::kErrorContactAngle);
 static_assert(offsetof(railtab_lookup_state, phi) == offsetof(lk::State, phi));
 static_assert(sizeof(railtab_lookup_contact) == sizeof(lk::Contact));
 static_assert(offsetof(railtab_lookup_contact, part_status) == offsetof(lk::Contact, part_status));
@@ -196,6 +201,17 @@ int railtab_lookup_query_slot(const railtab_lookup_table* table, int wheel,
   lk::Contact c;
   table->table.query_slot(static_cast<lk::Wheel>(wheel), to_state(*state), slot, c);
   std::memcpy(contact, &c, sizeof(*contact));
+  return RAILTAB_LOOKUP_OK;
+}
+
+int railtab_lookup_error_estimate_at(const railtab_lookup_table* table, double y, int slot,
+                                  railtab_lookup_error_estimate* estimate) {
+  if (!table || !estimate) return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_error_estimate_at: null argument");
+  if (slot < 0 || slot >= table->table.n_slots())
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_error_estimate_at: slot outside 0 .. n_slots-1");
+  lk::ErrorEstimate e;
+  table->table.error_estimate(y, slot, e);
+  std::memcpy(static_cast<void*>(estimate), &e, sizeof(*estimate));
   return RAILTAB_LOOKUP_OK;
 }
 

@@ -128,6 +128,15 @@ struct TableData {
   JumpWheel jumps[2];                 // per wheel (jump_side.hpp)
   FastPath fast;                      // the fused query when the table has its shape (fast_path.hpp)
   CreepCoefficientData coefficients;  // format 2.3 linear creep coefficients (creep_coefficients.hpp)
+  // Format 2.3's error map (/error_map): band edges and per (band, slot) the two comparisons.
+  struct ErrorMap {
+    bool present = false, exact = false, same_model = false;
+    std::vector<double> band_start, band_end;                // [m]
+    std::vector<ErrorStats> table_vs_model, model_vs_exact;  // [band * n_slots + slot]
+  } error_map;
 };
+
+// Reads /error_map when present (error_map.cpp); a table without one loads as before.
+void read_error_map(const Hdf5File& f, TableData& d);
 
 }  // namespace railtab::lookup::detail

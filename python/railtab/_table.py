@@ -90,6 +90,18 @@ class Table:
     scene_name = property(lambda self: self._t.scene_name)
     memory_bytes = property(lambda self: self._t.memory_bytes)
     has_creep_coefficients = property(lambda self: self._t.has_creep_coefficients)  # format 2.3 tables
+    has_error_map = property(lambda self: self._t.has_error_map, doc="the table carries an error map (2.3)")
+
+    def error_estimate(self, y, slot):
+        """The table's stored error map where a query at lateral displacement y [m] lands in `slot`
+        (0 tread, 1 flange): {"y_band": (start, end) [m], "table_vs_model": {...},
+        "model_vs_exact": {...} | "same model" | None}, each comparison with "samples" and
+        "<q>_rms" / "<q>_max" for q in fx, fy (% of mu N), mz (% of mu N c), normal_force (%),
+        contact_angle (rad); NaN where the region has no sample. None when the table has no map
+        (format before 2.3) or y is outside it."""
+        if slot not in range(self.n_slots):
+            raise ValueError(f"slot must be 0 .. {self.n_slots - 1}, got {slot!r}")
+        return self._t.error_estimate(float(y), int(slot))
 
     def outputs(self):
         """Names of the outputs this table holds, in file order."""

@@ -242,6 +242,33 @@ void bind_table(py::module_& m) {
       .def_property_readonly("scene_name", &lk::Table::scene_name)
       .def_property_readonly("memory_bytes", &lk::Table::memory_bytes)
       .def_property_readonly("has_creep_coefficients", &lk::Table::has_creep_coefficients)
+      .def_property_readonly("has_error_map", &lk::Table::has_error_map)
+      .def(
+          "error_estimate",
+          // The stored error map's region holding y (format 2.3), as a dict; None without one.
+          [](const lk::Table& t, double y, int slot) -> py::object {
+            lk::ErrorEstimate e;
+            if (!t.error_estimate(y, slot, e)) return py::none();
+            static constexpr const char* kNames[lk::kErrorQuantities] = {"fx", "fy", "mz", "normal_force",
+                                                                         "contact_angle"};
+            auto stats = [](const lk::ErrorStats& s) {
+              py::dict d;
+              d["samples"] = s.samples;
+              for (int q = 0; q < lk::kErrorQuantities; ++q) {
+                d[py::str(std::string(kNames[q]) + "_rms")] = s.rms[q];
+                d[py::str(std::string(kNames[q]) + "_max")] = s.max[q];
+              }
+              return d;
+            };
+            py::dict out;
+            out["y_band"] = py::make_tuple(e.y_band_start, e.y_band_end);
+            out["table_vs_model"] = stats(e.table_vs_model);
+            out["model_vs_exact"] = e.exact_measured ? py::object(stats(e.model_vs_exact))
+                                    : e.same_model  ? py::object(py::str("same model"))
+                                                    : py::object(py::none());
+            return out;
+          },
+          py::arg("y"), py::arg("slot"))
       .def("_query_arrays", &query_arrays, py::arg("n"), py::arg("wheel"), py::arg("y"), py::arg("roll"), py::arg("load"),
            py::arg("xi"), py::arg("eta"), py::arg("phi"), py::arg("slot"), py::arg("derivatives") = false,
            py::arg("track_forces") = false, py::arg("creep_coefficients") = false);

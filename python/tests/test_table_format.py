@@ -171,3 +171,32 @@ def test_inspect_json_describes_the_file(railtab_program, default_table):
         assert status["shape"] == list(bits.shape)
         assert status["status_counts"]["no_contact"] == int((bits == 0).sum())
         assert status["status_counts"]["converged"] == int((bits & 1).astype(bool).sum())
+
+
+def test_error_map_is_stored_and_served(default_table, fixture_table):
+    """The default table's error map (format 2.3): every dataset has units, the lookup serves the
+    stored region of a query, and a table without a map (the format-2.0 fixture) gives None."""
+    import railtab
+    with h5py.File(default_table) as f:
+        sampling = json.loads(text(f.attrs["error_map_sampling"]))
+        assert sampling["model_vs_exact"] == "halfspace"
+        g = f["error_map"]
+        start, end = g["y_band_start"][()], g["y_band_end"][()]
+        for comparison in ("table_vs_model", "model_vs_exact"):
+            for name, d in g[comparison].items():
+                if name in ("band", "slot"):
+                    continue
+                assert text(d.attrs["units"]) in ("% of mu N", "% of mu N c", "%", "rad", "1"), name
+        fy_max = g["table_vs_model/fy_max"][()]
+        samples = g["table_vs_model/samples"][()]
+    t = railtab.Table(default_table)
+    assert t.has_error_map
+    b = len(start) // 2
+    e = t.error_estimate(0.5 * (start[b] + end[b]), 0)
+    assert e["y_band"] == (start[b], end[b])
+    assert e["table_vs_model"]["samples"] == samples[b, 0] > 0
+    assert e["table_vs_model"]["fy_max"] == fy_max[b, 0]
+    assert isinstance(e["model_vs_exact"], dict)
+    assert t.error_estimate(end[-1] + 0.01, 0) is None
+    old = railtab.Table(fixture_table)
+    assert not old.has_error_map and old.error_estimate(0.0, 0) is None

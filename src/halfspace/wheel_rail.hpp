@@ -34,6 +34,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "core/material.hpp"
@@ -112,11 +113,29 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
 // the secant method on the tangential vertical part (at most 20 rounds; kNotConverged if not
 // within 1e-4 F_z). Each round warm-starts the tangential solve from the previous one; the
 // first, which only estimates fy sin g, stops at a looser tangential tolerance (1e-3).
+//
+// Warm start along a creepage line (the table sweep): with `state`, a solve continues from the end
+// of the previous solve of the same geometry and load at a neighbouring creepage, if `state` holds
+// one: the fixed point starts from the load split of that solve's last normal problem, whose grid
+// and pressure it keeps, so the first round's normal problem is already solved and the later ones
+// start from a near pressure (the grids kept or placed again by the rules of the later rounds of a
+// cold solve); the tangential problem starts from zero traction and the first round runs at the
+// looser tolerances, as in a cold solve. The result is the same fixed point to within the
+// tolerances (1e-4 F_z on the load balance, the solvers' own), not the same bytes as a cold solve;
+// it depends only on the chain of creepages, so a fixed order gives fixed bytes. On return `state`
+// holds this solve's end (cleared when it did not converge). An empty `state` (or a null pointer)
+// solves from cold.
+struct PlaneSamples;  // the band samples of each patch in its plane (wheel_rail.cpp)
+struct RollingState {
+  WheelHalfspaceResult result;                  // the last solve (no patches: none yet)
+  std::shared_ptr<const PlaneSamples> samples;  // its patches' band samples
+  void clear() { *this = RollingState{}; }
+};
 WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
                                              double load, const Creepage& creepage,
                                              double mu, const Material& material,
                                              const HalfspaceOptions& options,
-                                             Workspace& workspace);
+                                             Workspace& workspace, RollingState* state = nullptr);
 
 // The vertical-load fixed point of solve_halfspace_rolling, for callers that solve their own rounds
 // (the generator's per-patch creepages): `round(tz)` solves the normal problem for F_z - tz and the
@@ -125,8 +144,9 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
 // within 1e-4 F_z). The first round is always made; `stop_after_first()`, asked after it, ends the
 // iteration there (an uncoupled solve, or no patch), which counts as converged. Returns false when
 // the rounds ran out: the caller marks its result with mark_not_converged.
+// `start`: the first tz (a warm start's guess).
 bool solve_load_fixed_point(double load, const std::function<double(double)>& round,
-                            const std::function<bool()>& stop_after_first);
+                            const std::function<bool()>& stop_after_first, double start = 0.0);
 
 // kNotConverged instead of kConverged on the result and each of its patches.
 void mark_not_converged(WheelHalfspaceResult& result);

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "core/check.hpp"
 #include "geometry/contact_geometry.hpp"
@@ -92,6 +94,51 @@ TEST(HalfspaceWheelRail, WearOnlyWhereSlipping) {
     EXPECT_GT(section, last) << xi;
     last = section;
   }
+}
+
+// The table sweep's warm start (RollingState): a chain of creepages, each solve started from the
+// previous one's normal solution, reaches the cold solve's fixed point to within the coupled
+// solve's tolerance: both meet the load balance to 1e-4 F_z, so their tangential vertical parts
+// (and with them N cos g) differ by at most 2e-4 F_z, and the creep forces by that change of N
+// times mu, plus the tangential solver's own tolerance. Tread (y = 2 mm) and flange contact
+// (y = 7 mm: the left wheel's flange, the right wheel's tread), spin of both signs.
+TEST(HalfspaceWheelRail, WarmChainIsTheColdFixedPoint) {
+  halfspace::Workspace ws;
+  const Material m = steel();
+  const double fz = 78.5e3;
+  int warm_solves = 0, flange = 0;
+  for (const auto& [side, y] : {std::pair{Side::left, 0.002}, std::pair{Side::left, 0.007}, std::pair{Side::right, 0.007}}) {
+    const auto g = solver().solve_wheel(side, {y, 0.0});
+    halfspace::RollingState chain;
+    for (const double xi : {-0.002, 0.001})
+      for (const double eta : {-0.001, 0.002})
+        for (const double phi : {-0.3, 0.0, 0.3}) {
+          const Creepage c{xi, eta, phi};
+          const bool warm = !chain.result.patches.empty();
+          const auto w = halfspace::solve_halfspace_rolling(g, fz, c, 0.3, m, {}, ws, &chain);
+          const auto cold = halfspace::solve_halfspace_rolling(g, fz, c, 0.3, m, {}, ws);
+          const std::string where = std::string(to_string(side)) + " y " + std::to_string(y) + " creepage " +
+                                    std::to_string(xi) + " " + std::to_string(eta) + " " + std::to_string(phi);
+          ASSERT_TRUE(w.status & status::kConverged) << where << status::describe(w.status);
+          ASSERT_TRUE(cold.status & status::kConverged) << where;
+          ASSERT_EQ(w.patches.size(), cold.patches.size()) << where;
+          ASSERT_FALSE(chain.result.patches.empty()) << "a converged solve continues the chain";
+          warm_solves += warm;
+          for (std::size_t k = 0; k < w.patches.size(); ++k) {
+            const auto& a = w.patches[k];
+            const auto& b = cold.patches[k];
+            const double n = b.normal.normal_force, mun = 0.3 * n;
+            flange += (b.status & status::kFlangeContact) != 0;
+            EXPECT_NEAR(a.normal.normal_force * std::cos(a.contact_angle), n * std::cos(b.contact_angle), 2e-4 * fz)
+                << where;
+            EXPECT_NEAR(a.tangential.fx, b.tangential.fx, 2e-4 * fz * 0.3 + 1e-4 * mun) << where;
+            EXPECT_NEAR(a.tangential.fy, b.tangential.fy, 2e-4 * fz * 0.3 + 1e-4 * mun) << where;
+            EXPECT_NEAR(a.tangential.mz, b.tangential.mz, (2e-4 * fz * 0.3 + 1e-4 * mun) * 0.01) << where;
+          }
+        }
+  }
+  EXPECT_EQ(warm_solves, 3 * 11);  // all but the first of each chain started warm
+  EXPECT_GT(flange, 0);            // the flange's chain (grid placed again each round) was compared
 }
 
 TEST(HalfspaceWheelRail, BadLoadThrowsNamingIt) {

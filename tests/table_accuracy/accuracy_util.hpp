@@ -17,15 +17,18 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "railtab/lookup.hpp"
+#include "adaptive/jump_locator.hpp"
 #include "scene/scene.hpp"
 #include "kernel/contact_kernel.hpp"
 #include "kernel/creep_map.hpp"
@@ -195,6 +198,61 @@ inline std::filesystem::path temp_table_path(const std::string& name) {
          ("railtab_table_accuracy_" + std::to_string(::getpid()) + "_" + name + ".h5");
 }
 
+// The default scene (tables/default.toml), its swept table (without jumps) and its located jumps,
+// computed once per process. The test files that measure the default table start from it (each
+// adds the jumps to its own copy, as `railtab generate` does), and CTest runs their suites in one
+// process (tests/table_accuracy/CMakeLists.txt): the sweep and the jump search are deterministic,
+// so every test sees the table it would compute itself, generated once instead of once per test.
+struct DefaultSweep {
+  Scene scene;
+  Table table;                  // the sweep's table, no /jumps (format 2.0 layout of the jumps)
+  ContactJumps jumps;           // locate_jumps(scene)
+  double sweep_seconds = 0.0;   // run_sweep
+  double locate_seconds = 0.0;  // locate_jumps
+};
+
+inline const DefaultSweep& default_sweep() {
+  static const DefaultSweep d = [] {
+    DefaultSweep x;
+    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+    auto t0 = std::chrono::steady_clock::now();
+    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
+    x.sweep_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    x.table = std::move(r.table);
+    t0 = std::chrono::steady_clock::now();
+    x.jumps = locate_jumps(x.scene);
+    x.locate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return x;
+  }();
+  return d;
+}
+
+// The random off-grid states of the default scene's accuracy measurements (DefaultSceneRandomOffGrid
+// and the jump cells' CreepForcesOnJumpCells measure the same states) and their direct evaluation,
+// computed once per process like default_sweep().
+inline constexpr std::uint64_t kDefaultStatesSeed = 20240611;
+inline constexpr std::size_t kDefaultStates = 4000;  // random states, both wheels each
+
+struct DefaultDirect {
+  std::vector<Point> points;   // random_states(default scene, kDefaultStates, kDefaultStatesSeed)
+  std::vector<Direct> direct;  // evaluate_direct at each
+  double seconds = 0.0;        // evaluate_direct
+};
+
+inline const DefaultDirect& default_direct() {
+  static const DefaultDirect d = [] {
+    DefaultDirect x;
+    const Scene& scene = default_sweep().scene;
+    x.points = random_states(scene, kDefaultStates, kDefaultStatesSeed);
+    const auto t0 = std::chrono::steady_clock::now();
+    x.direct = evaluate_direct(scene, x.points);
+    x.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return x;
+  }();
+  return d;
+}
+
 // The generator's in-memory table seen per (wheel, part): node values and statuses, cell lookup,
 // and second differences along each axis (the curvature estimate of the tolerances).
 class TableView {
@@ -260,23 +318,27 @@ class TableView {
   void normal_from_share(std::size_t w) {
     PartGrid& pc = grid_[w][lk::kCreep];
     const PartGrid& pg = grid_[w][lk::kGeometry];
-    if (pc.vars != std::vector<int>{kY, kLoad, kXi, kEta, kPhi} || pg.vars != std::vector<int>{kY})
+    // The load axis may be fixed (a table of one load): then it is not among the creep part's axes.
+    const bool load_axis = pc.vars == std::vector<int>{kY, kLoad, kXi, kEta, kPhi};
+    if ((!load_axis && pc.vars != std::vector<int>{kY, kXi, kEta, kPhi}) || pg.vars != std::vector<int>{kY})
       throw std::runtime_error("vertical share: unexpected creep or geometry axes");
+    const std::size_t first_creep = load_axis ? 2 : 1, axes = first_creep + 3;
     const std::vector<double>& share = *pc.values[lk::kNormalForce];
     const std::vector<double>& fy = *pc.values[lk::kFy];
     const std::vector<double>& angle = *pg.values[lk::kContactAngle];
     std::vector<double>& n = n_creep_[w];
     n.resize(share.size());
-    const std::size_t nl = pc.nodes[1]->size();
+    const std::size_t nl = load_axis ? pc.nodes[1]->size() : 1;
     for (std::size_t i = 0; i < share.size(); ++i) {
-      std::size_t idx[5];
-      for (std::size_t a = 0; a < 5; ++a) idx[a] = (i / pc.stride[a]) % pc.nodes[a]->size();
+      std::size_t idx[5] = {};
+      for (std::size_t a = 0; a < axes; ++a) idx[a] = (i / pc.stride[a]) % pc.nodes[a]->size();
       const std::size_t s = i % kSlots;
-      const std::size_t normal_node = (idx[0] * nl + idx[1]) * kSlots + s;
+      const std::size_t normal_node = (idx[0] * nl + (load_axis ? idx[1] : 0)) * kSlots + s;
       double x[3];
       for (int k = 0; k < 3; ++k) {
         const double scale = (*scale_values_[w][k])[normal_node];
-        const double v = (*pc.nodes[2 + static_cast<std::size_t>(k)])[idx[2 + k]];
+        const std::size_t a = first_creep + static_cast<std::size_t>(k);
+        const double v = (*pc.nodes[a])[idx[a]];
         x[k] = creep_map::physical(v, lo_[k], hi_[k], scale * knee_[k]) / scale;
       }
       const double ry = fy[i] + creep_map::law(x[0], x[1], x[2])[1];

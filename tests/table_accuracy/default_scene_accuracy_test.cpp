@@ -21,7 +21,6 @@
 // Jump cells (status or slot occupancy differs between corners, two_point, a Hertz/strip patch
 // switch, or the part underneath jumps; see classify_point) are counted and their max error
 // reported, not asserted: the lookup carries jumps by slot and status, it does not smooth them.
-#include <chrono>
 #include <cstdio>
 #include <optional>
 
@@ -32,8 +31,7 @@
 namespace railtab::accuracy {
 namespace {
 
-constexpr std::uint64_t kSeed = 20240611;
-constexpr std::size_t kPoints = 4000;  // random states, both wheels each
+constexpr std::uint64_t kSeed = kDefaultStatesSeed;  // 20240611: the states of default_direct()
 
 struct Fixture {
   Scene scene;
@@ -45,15 +43,13 @@ struct Fixture {
 const Fixture& fixture() {
   static const Fixture f = [] {
     Fixture x;
-    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
-    const auto t0 = std::chrono::steady_clock::now();
-    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
-    x.generate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
-    x.table = std::move(r.table);
+    const DefaultSweep& d = default_sweep();
+    x.scene = d.scene;
+    x.generate_seconds = d.sweep_seconds;
+    x.table = d.table;
     const std::filesystem::path path = temp_table_path("default");
     Table with_jumps = x.table;  // as `railtab generate` writes it (format 2.1, located jumps)
-    add_jumps(with_jumps, x.scene, locate_jumps(x.scene));
+    add_jumps(with_jumps, x.scene, d.jumps);
     write_for_lookup(with_jumps, path);
     x.lookup.emplace(lk::Table::load(path.string()));
     std::filesystem::remove(path);
@@ -132,10 +128,10 @@ TEST(TableAccuracy, DirectEvaluationReproducesTheNodes) {
 TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);
-  const std::vector<Point> points = random_states(f.scene, kPoints, kSeed);
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<Direct> direct = evaluate_direct(f.scene, points);
-  const double direct_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const DefaultDirect& dd = default_direct();  // random_states(f.scene, 4000, kSeed), evaluated once per process
+  const std::vector<Point>& points = dd.points;
+  const std::vector<Direct>& direct = dd.direct;
+  const double direct_seconds = dd.seconds;
   const double mu = f.scene.tangential.friction;
 
   SlotStats stats[lk::kNumOutputs][kSlots];

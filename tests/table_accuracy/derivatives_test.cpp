@@ -29,13 +29,13 @@ struct Tables {
 const Tables& tables() {
   static const Tables t = [] {
     Tables x;
-    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
-    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
-    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
-    x.jumps = locate_jumps(x.scene);
-    add_jumps(r.table, x.scene, x.jumps);  // as railtab generate (format 2.1)
+    const DefaultSweep& d = default_sweep();
+    x.scene = d.scene;
+    x.jumps = d.jumps;
+    Table table = d.table;
+    add_jumps(table, x.scene, x.jumps);  // as railtab generate (format 2.1)
     const std::filesystem::path path = temp_table_path("derivatives");
-    write_for_lookup(r.table, path);
+    write_for_lookup(table, path);
     x.linear.emplace(lk::Table::load(path.string()));
     x.cubic.emplace(lk::Table::load(path.string(), {lk::Method::kCubic}));
     std::filesystem::remove(path);

@@ -27,16 +27,16 @@ struct Tables {
 const Tables& tables() {
   static const Tables t = [] {
     Tables x;
-    const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
-    SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
-    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
-    const ContactJumps jumps = locate_jumps(scene);
-    add_jumps(r.table, scene, jumps);  // as railtab generate (format 2.1)
+    const DefaultSweep& d = default_sweep();
+    const Scene& scene = d.scene;
+    const ContactJumps& jumps = d.jumps;
+    Table with_jumps = d.table;
+    add_jumps(with_jumps, scene, jumps);  // as railtab generate (format 2.1)
     for (const auto& wheel : jumps.wheel)
       for (const auto& list : wheel)
         for (const ContactJump& j : list) x.jump_y.push_back(j.y);
     const std::filesystem::path path = temp_table_path("fast_path");
-    write_for_lookup(r.table, path);
+    write_for_lookup(with_jumps, path);
     auto load = [&](bool generic, bool sse2) {
       if (generic) ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);
       if (sse2) ::setenv("RAILTAB_LOOKUP_NO_AVX2", "1", 1);

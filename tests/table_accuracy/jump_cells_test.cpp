@@ -26,8 +26,8 @@
 namespace railtab::accuracy::jump_cells_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
-constexpr std::uint64_t kSeed = 20240611;  // the states of DefaultSceneRandomOffGrid
-constexpr std::size_t kPoints = 4000;
+constexpr std::uint64_t kSeed = kDefaultStatesSeed;  // the states of DefaultSceneRandomOffGrid
+constexpr std::size_t kPoints = kDefaultStates;
 constexpr double kLimit = 0.02;            // of mu N (contact jumps target)
 
 struct JumpFixture {
@@ -43,18 +43,17 @@ struct JumpFixture {
 const JumpFixture& fixture() {
   static const JumpFixture f = [] {
     JumpFixture x;
-    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
-    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
-    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
-    x.table = std::move(r.table);
+    const DefaultSweep& d = default_sweep();
+    x.scene = d.scene;
+    x.table = d.table;
     const std::filesystem::path plain = temp_table_path("jumps_plain"), jumps = temp_table_path("jumps");
     write_for_lookup(x.table, plain);
     x.without_jumps.emplace(lk::Table::load(plain.string()));
     const auto t0 = std::chrono::steady_clock::now();
-    x.jumps = locate_jumps(x.scene);
+    x.jumps = d.jumps;
     Table with = x.table;
     add_jumps(with, x.scene, x.jumps);
-    x.locate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    x.locate_seconds = d.locate_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     write_for_lookup(with, jumps);
     x.with_table = with;
     x.with_jumps.emplace(lk::Table::load(jumps.string()));
@@ -202,7 +201,15 @@ void creep_forces_on_jump_cells(bool creepage_nodes) {
         p.v[k] = g[std::min(g.size() - 1, static_cast<std::size_t>(u))];
       }
     }
-  const std::vector<Direct> direct = evaluate_direct(f.scene, points);
+  // All uniform: the states of default_direct() (the same draws), whose direct evaluation is made
+  // once per process; checked to be the same states bit for bit.
+  if (!creepage_nodes) {
+    const std::vector<Point>& shared = default_direct().points;
+    ASSERT_EQ(shared.size(), points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      ASSERT_EQ(std::memcmp(shared[i].v, points[i].v, sizeof points[i].v), 0) << "state " << i;
+  }
+  const std::vector<Direct> direct = creepage_nodes ? evaluate_direct(f.scene, points) : default_direct().direct;
   const double mu = f.scene.tangential.friction;
 
   JumpStats stats[2][kCategories][kSlots];  // [0 without jumps, 1 with][category][slot]

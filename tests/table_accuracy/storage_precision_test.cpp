@@ -50,16 +50,16 @@ struct Tables {
 const Tables& tables() {
   static const Tables t = [] {
     Tables x;
-    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
-    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
-    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
-    add_jumps(r.table, x.scene, locate_jumps(x.scene));
-    if (!table_stores_float32(r.table)) throw std::runtime_error("the sweep's table is not format 2.2");
-    Table doubles = r.table;
+    const DefaultSweep& d = default_sweep();
+    x.scene = d.scene;
+    Table table = d.table;
+    add_jumps(table, x.scene, d.jumps);
+    if (!table_stores_float32(table)) throw std::runtime_error("the sweep's table is not format 2.2");
+    Table doubles = table;
     doubles.set_attribute("format_version", "2.1");  // the layout before 2.2: float64 outputs
     for (int k = 0; k < 2; ++k) {
       const std::filesystem::path path = temp_table_path(k == 0 ? "float32" : "float64");
-      write_for_lookup(k == 0 ? r.table : doubles, path);
+      write_for_lookup(k == 0 ? table : doubles, path);
       x.bytes[k] = std::filesystem::file_size(path);
       for (int m = 0; m < 2; ++m) {
         lk::LoadOptions options;

@@ -243,6 +243,27 @@ RAILTAB_LOOKUP_API const char* output_units(Output output);
 RAILTAB_LOOKUP_API const char* state_units(const std::string& variable);
 RAILTAB_LOOKUP_API std::string slot_name(int slot);
 
+// The table's measured error where a query lands (format 2.3, group /error_map; docs/lookup.md
+// "Error estimate"): the region (y band x slot) holding y, with the RMS and maximum errors of its
+// samples. Quantities in the order fx, fy [% of mu N], mz [% of mu N c, c = sqrt(area / pi)],
+// normal force [% of N], contact angle [rad]; NaN where the region has no sample.
+inline constexpr int kErrorQuantities = 5;
+enum ErrorQuantity : int { kErrorFx = 0, kErrorFy = 1, kErrorMz = 2, kErrorNormalForce = 3, kErrorContactAngle = 4 };
+struct ErrorStats {
+  double samples = 0.0;             // wheel-state pairs with the slot loaded (0: none)
+  double rms[kErrorQuantities] = {};
+  double max[kErrorQuantities] = {};
+};
+struct ErrorEstimate {
+  int available = 0;        // 1: the table has an error map and y lies in one of its bands
+  int exact_measured = 0;   // 1: model_vs_exact holds the model against the exact half-space model
+  int same_model = 0;       // 1: the table's model is the exact one (nothing to compare; not a zero)
+  int reserved = 0;         // explicit padding (same layout as the C struct)
+  double y_band_start = 0.0, y_band_end = 0.0;  // [m] the band holding y
+  ErrorStats table_vs_model;  // the table (linear lookup) against its own model
+  ErrorStats model_vs_exact;  // the model against the exact model (exact_measured)
+};
+
 // Version of this library ("0.1.0"), and the newest table format it reads and writes ("2.3").
 RAILTAB_LOOKUP_API const char* library_version() noexcept;
 RAILTAB_LOOKUP_API const char* supported_format_version() noexcept;
@@ -286,6 +307,11 @@ class RAILTAB_LOOKUP_API Table {
   // invalid states are flagged as by query(). Never throws, allocates nothing.
   bool query_creep_coefficients(Wheel wheel, const State& state, CreepCoefficients& out) const noexcept;
   bool has_creep_coefficients() const noexcept;
+  // The stored error map at (y, slot) (ErrorEstimate): false, and `estimate` with available 0,
+  // when the table has no error map (before format 2.3), y is NaN or outside its bands, or the
+  // slot is outside 0 .. n_slots()-1. Never throws, allocates nothing.
+  bool error_estimate(double y, int slot, ErrorEstimate& estimate) const noexcept;
+  bool has_error_map() const noexcept;
 
   // Batch: results[k] = query(queries[k]). Returns false, and touches nothing, when
   // results.size() < queries.size() (a short buffer is an error, not a silent truncation);

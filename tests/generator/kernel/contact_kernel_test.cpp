@@ -5,11 +5,17 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "core/check.hpp"
 #include "generator/test_tables.hpp"
+#include "kernel/creep_map.hpp"
 #include "kernel/finite_status.hpp"
+#include "kernel/halfspace_contact.hpp"
+#include "halfspace/patch_linear_creep.hpp"
 
 namespace railtab::contact_kernel_test {  // own namespace: unity builds compile several test files as one
 namespace {
@@ -203,6 +209,106 @@ TEST(NonFinite, FailedColumnKeepsPositiveCreepScales) {
     }
   }
   EXPECT_GT(scales, 0u);
+}
+
+// The exact model in normalised creep coordinates: each slot's scales are those of the exact
+// model's own linear creep coefficients (patch_linear_creep on the creepage-free exact solution:
+// s_xi = 3 mu N / k_xx, s_eta = 3 mu N / k_yy, s_phi = mu N / k_y,phi), each node's stored
+// normalised forces are the cold exact solve at that node's physical creepage (to the coupled
+// solve's tolerance: the sweep's solves are warm-started along the creepage chain), the creep
+// part's normal_force is the vertical share, and 1 and 2 threads give the same bytes. Tread
+// (y = 0) and flange contact (y = 7 mm, left wheel), element size 0.6 mm to keep it quick.
+TEST(ContactSweep, ExactNormalisedNodesAreTheExactModel) {
+  const Scene scene = parse_scene(R"(
+[scene]
+name = "exact_normalised"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[contact]
+normal_model = "halfspace"
+element_size = 0.6e-3
+[grid]
+y = [0.0, 0.007]
+load = [78.5e3]
+xi = [-0.004, 0.0, 0.004]
+eta = [-0.004, 0.004]
+phi = [-0.5, 0.5]
+creep_coordinates = "normalised"
+)", "exact_normalised.toml");
+  const SweepKernel kernel = make_contact_kernel(scene);
+  SweepOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const SweepResult a = run_sweep(scene, kernel, one);
+  const SweepResult b = run_sweep(scene, kernel, two);
+  testing::expect_same_datasets(a.table, b.table);
+  ASSERT_EQ(a.summary.failures, 0u) << a.summary.first_failure;
+  const double mu = scene.tangential.friction, fz = 78.5e3;
+  const Material material = scene.material;
+  const halfspace::HalfspaceOptions options = halfspace_options(scene);
+  halfspace::Workspace ws;
+  const ContactGeometrySolver solver = make_geometry_solver(scene);
+  const std::size_t ncreep = 3 * 2 * 2;
+  int checked = 0, flange = 0;
+  for (std::size_t iy = 0; iy < 2; ++iy) {
+    const double y = scene.grids.y[iy];
+    const WheelContactGeometry g = solver.solve_wheel(Side::left, {y, 0.0});
+    const halfspace::WheelHalfspaceResult free = halfspace::solve_halfspace_for_load(g, fz, material, options, ws);
+    const WheelNormalResult normal = to_normal_result(free, g);
+    const PatchSlots slots = assign_patch_slots(normal, Side::left, solver.settings().flange_angle);
+    const TableGroup& nor = *a.table.group("left/normal");
+    const TableGroup& creep = *a.table.group("left/creep");
+    for (std::size_t s = 0; s < kSlots; ++s) {
+      if (!slots.occupied(s)) continue;
+      flange += s == 1;
+      // The scales from the exact model's own slopes.
+      double kxx = 0.0, kyy = 0.0, kyp = 0.0;
+      for (const int ip : slots.patch[s]) {
+        if (ip < 0) continue;
+        const halfspace::HalfspacePatch& hp = free.patches[static_cast<std::size_t>(ip)];
+        const LinearCreep c = halfspace::patch_linear_creep(hp.grid, hp.normal.pressure, material, options.tangential, ws);
+        kxx -= c.slope[0][0];
+        kyy -= c.slope[1][1];
+        kyp -= c.slope[1][2];
+      }
+      const double mun = mu * slot_normal(normal, slots, s).normal_force;
+      const creep_map::Scales sc{3.0 * mun / kxx, 3.0 * mun / kyy, mun / kyp};
+      EXPECT_NEAR(nor.find("creep_scale_xi")->values[iy * 2 + s], sc.xi, 1e-9 * sc.xi) << y << " slot " << s;
+      EXPECT_NEAR(nor.find("creep_scale_eta")->values[iy * 2 + s], sc.eta, 1e-9 * sc.eta) << y << " slot " << s;
+      EXPECT_NEAR(nor.find("creep_scale_phi")->values[iy * 2 + s], sc.phi, 1e-9 * sc.phi) << y << " slot " << s;
+      // Every node against a cold solve at its physical creepage (all patches of the wheel at the
+      // slot's creepage, as the sweep).
+      const std::vector<double> vx = creep_map::nodes(3), ve = creep_map::nodes(2), vp = creep_map::nodes(2);
+      for (std::size_t node = 0; node < ncreep; ++node) {
+        const Creepage c{creep_map::physical(vx[node / 4], -0.004, 0.004, sc.xi),
+                         creep_map::physical(ve[node / 2 % 2], -0.004, 0.004, sc.eta),
+                         creep_map::physical(vp[node % 2], -0.5, 0.5, sc.phi)};
+        const halfspace::WheelHalfspaceResult r = halfspace::solve_halfspace_rolling(g, fz, c, mu, material, options, ws);
+        const WheelNormalResult rn = to_normal_result(r, g);
+        const PatchSlots rs = assign_patch_slots(rn, Side::left, solver.settings().flange_angle);
+        ASSERT_TRUE(rs.occupied(s));
+        double fx = 0.0, fy = 0.0;
+        for (const int ip : rs.patch[s])
+          if (ip >= 0) fx += r.patches[static_cast<std::size_t>(ip)].tangential.fx, fy += r.patches[static_cast<std::size_t>(ip)].tangential.fy;
+        const double n = slot_normal(rn, rs, s).normal_force;
+        const std::array<double, 2> law = creep_map::law(c.xi / sc.xi, c.eta / sc.eta, c.phi / sc.phi);
+        const std::size_t cell = (iy * ncreep + node) * kSlots + s;
+        const std::string where = "y " + std::to_string(y) + " slot " + std::to_string(s) + " node " + std::to_string(node);
+        EXPECT_TRUE(creep.find("status")->status[cell] & status::kConverged) << where;
+        // 2e-4 F_z on the load balance moves N, hence F / (mu N), by about 2e-4 F_z / N.
+        const double tol = 2e-4 * fz / n + 1e-4;
+        EXPECT_NEAR(creep.find("fx_normalised")->values[cell] + law[0], fx / (mu * n), tol) << where;
+        EXPECT_NEAR(creep.find("fy_normalised")->values[cell] + law[1], fy / (mu * n), tol) << where;
+        const double angle = g.points[static_cast<std::size_t>(assign_slots(g).point[s])].contact_angle;
+        EXPECT_NEAR(creep.find("normal_force")->values[cell], creep_map::vertical_share(n, fy, angle), 2e-4 * fz)
+            << where;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 2 * static_cast<int>(ncreep));  // the tread column and the flange column (one slot each)
+  EXPECT_EQ(flange, 1);
 }
 
 TEST(NonFinite, StatusHelperDropsConverged) {

@@ -164,8 +164,6 @@ TEST(Scene, ErrorsNameFileKeyAndLine) {
       {"negative load", m.substr(0, m.find("load")) + "load = [-1.0, 2.0]\n", "grid.load", "> 0"},
       {"syntax", m + "xi = [0.0,\n", "bad.toml", "TOML syntax error"},
       {"bad creep coordinates", m + "creep_coordinates = \"polar\"\n", "grid.creep_coordinates", "polar"},
-      {"normalised with the exact model", m + "creep_coordinates = \"normalised\"\n[contact]\nnormal_model = \"halfspace\"\n",
-       "grid.creep_coordinates", "halfspace"},
   };
   expect_errors(cases);
 }
