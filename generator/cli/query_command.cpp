@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // railtab query TABLE.h5 (--y Y[,Y...] | --states FILE) [--roll R] [--load N] [--creepage XI,ETA,PHI]
-//               [--wheel W] [--method M] [--derivatives] [--json]
+//               [--wheel W] [--method M] [--derivatives] [--creep-coefficients] [--json]
 // Interpolates a table with the runtime library (railtab::lookup, exactly what a simulation
 // gets): every output of every slot at each state, with units and status text. Checks a table
 // one ships against `railtab eval` (the direct models) at the same state. States are printed as
 // they are read (from --y or a states file, stdin included): memory does not grow with their number.
 // --derivatives adds each output's exact partial derivatives of the interpolant with respect to
-// every tabulated axis.
+// every tabulated axis; --creep-coefficients each slot's linear creep coefficients (format 2.3).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -40,6 +40,7 @@ struct QueryOptions {
   std::string states;             // states file ('-': stdin), instead of --y
   std::optional<double> roll;     // [rad]
   bool derivatives = false;       // also the partial derivatives per tabulated axis
+  bool creep_coefficients = false;  // also the linear creep coefficients per slot
   std::optional<double> load;     // [N]
   std::vector<double> creepage;   // xi, eta [1], phi [rad/m]; empty: 0, 0, 0
   std::string wheel = "both";     // left, right or both
@@ -109,6 +110,20 @@ nlohmann::ordered_json derivatives_json(const lk::Table& table, const double (*d
         if (a.name == lk::variable_name(v)) per_axis[a.name] = d[o][v];
     j[lk::output_name(out)] = per_axis;
   }
+  return j;
+}
+
+// Units of the linear creep coefficients [force][creepage] (docs/conventions.md, "Linear creep
+// coefficients").
+constexpr const char* kForceNames[3] = {"fx", "fy", "mz"};
+constexpr const char* kCreepageNames[3] = {"xi", "eta", "phi"};
+constexpr const char* kCoefficientUnits[3][3] = {{"N", "N", "N m"}, {"N", "N", "N m"}, {"N m", "N m", "N m2"}};
+
+// {fx: {xi: .., eta: .., phi: ..}, fy: {..}, mz: {..}} of one slot.
+nlohmann::ordered_json coefficients_json(const double (&k)[3][3]) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (int f = 0; f < 3; ++f)
+    for (int c = 0; c < 3; ++c) j[kForceNames[f]][kCreepageNames[c]] = k[f][c];
   return j;
 }
 
@@ -195,6 +210,19 @@ void print_text_query(const nlohmann::ordered_json& units, const nlohmann::order
         std::cout << "\n";
       }
   }
+  if (!contacts.empty() && contacts[0].contains("creep_coefficients")) {
+    std::cout << "  linear creep coefficients (zero creepage, full adhesion):\n";
+    for (int f = 0; f < 3; ++f)
+      for (int c = 0; c < 3; ++c) {
+        std::cout << fmt::format("  d {:<12} / d {:<4}{:>6}", kForceNames[f], kCreepageNames[c], kCoefficientUnits[f][c]);
+        for (const auto& x : contacts)
+          std::cout << fmt::format(" {:>14.6g}", x["creep_coefficients"][kForceNames[f]][kCreepageNames[c]].get<double>());
+        std::cout << "\n";
+      }
+    std::cout << fmt::format("  {:<25}", "coefficient status");
+    for (const auto& x : contacts) std::cout << fmt::format(" {:>14}", x["creep_coefficient_status"].get<std::string>());
+    std::cout << "\n";
+  }
 }
 
 // JSON: the text nlohmann's dump(2) gives for {header..., "queries": [q, q, ...]}, written one
@@ -236,6 +264,10 @@ void run_query(const QueryOptions& opt) {
   RAILTAB_CHECK(!opt.derivatives || method != lk::Method::kMonotoneCubic,
                 "--derivatives needs --method linear or cubic: the monotone cubic's limited slopes are not "
                 "differentiated");
+  RAILTAB_CHECK(!opt.creep_coefficients || table.has_creep_coefficients(),
+                "--creep-coefficients: {}: this table holds no linear creep coefficients (format {}; they are "
+                "stored since format 2.3): regenerate it with railtab generate",
+                table.path(), table.format_version());
   // The states file is opened before anything is printed: a missing one prints nothing.
   std::unique_ptr<StateReader> reader;
   if (!opt.states.empty()) reader = std::make_unique<StateReader>(opt.states);
@@ -264,6 +296,11 @@ void run_query(const QueryOptions& opt) {
     const auto output = static_cast<lk::Output>(o);
     if (table.has_part(lk::output_part(output))) head["units"][lk::output_name(output)] = kOutputUnits[o];
   }
+  if (opt.creep_coefficients) {
+    nlohmann::ordered_json& u = head["creep_coefficient_units"];
+    for (int f = 0; f < 3; ++f)
+      for (int c = 0; c < 3; ++c) u[kForceNames[f]][kCreepageNames[c]] = kCoefficientUnits[f][c];
+  }
   // Roll that is neither tabulated nor fixed follows the table's equilibrium roll: not an input.
   const bool roll_is_input = is_axis(table, "roll") || is_fixed(table, "roll");
   if (reader && reader->has("roll")) {
@@ -280,6 +317,8 @@ void run_query(const QueryOptions& opt) {
       auto d = std::make_unique<lk::Derivatives>();
       if (opt.derivatives) table.query_derivatives(static_cast<lk::Wheel>(w), s, r, *d);
       else table.query(static_cast<lk::Wheel>(w), s, r);
+      lk::CreepCoefficients k;
+      if (opt.creep_coefficients) table.query_creep_coefficients(static_cast<lk::Wheel>(w), s, k);
       nlohmann::ordered_json q;
       q["wheel"] = w == 0 ? "left" : "right";
       q["state"] = {{"y", s.y}, {"roll", s.roll}, {"load", s.load}, {"xi", s.xi}, {"eta", s.eta}, {"phi", s.phi}};
@@ -289,6 +328,10 @@ void run_query(const QueryOptions& opt) {
       for (int slot = 0; slot < r.n_slots; ++slot) {
         q["contacts"].push_back(contact_json(table, r.contact[slot], slot));
         if (opt.derivatives) q["contacts"].back()["derivatives"] = derivatives_json(table, d->d[slot]);
+        if (opt.creep_coefficients) {
+          q["contacts"].back()["creep_coefficients"] = coefficients_json(k.k[slot]);
+          q["contacts"].back()["creep_coefficient_status"] = status::describe(k.status[slot]);
+        }
         if (opt.error_estimate) q["contacts"].back()["error_estimate"] = error_estimate_json(table, s.y, slot);
       }
       if (json) json->add(q);
@@ -334,6 +377,9 @@ void add_query_command(CLI::App& app) {
   cmd->add_flag("--derivatives", opt->derivatives,
                "Also each output's partial derivatives with respect to every tabulated axis (exact for the "
                "interpolant, SI: output units per axis unit; linear and cubic methods)");
+  cmd->add_flag("--creep-coefficients", opt->creep_coefficients,
+               "Also each slot's linear creep coefficients: d fx, fy, mz / d xi, eta, phi at zero creepage in "
+               "full adhesion, interpolated over y, roll and load (tables of format 2.3)");
   add_number_option(cmd, "--roll", opt->roll, kRollRule, "Wheelset roll [rad] (default: the table's fixed value)");
   add_number_option(cmd, "--load", opt->load, kWheelLoadRule,
                     "Vertical wheel load [N] (default: the table's fixed value)");

@@ -18,6 +18,7 @@
 #include "geometry/contact_geometry.hpp"
 #include "halfspace/patch_linear_creep.hpp"
 #include "normal/normal_model.hpp"
+#include "halfspace/patch_linear_creep.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "wear/archard.hpp"
 
@@ -75,6 +76,39 @@ creep_map::Scales slot_scales(const KernelData& k, const WheelContactGeometry& g
   if (kyy > 0.0 && std::isfinite(kyy)) s.eta = 3.0 * mun / kyy;
   if (kyp > 0.0 && std::isfinite(kyp)) s.phi = mun / kyp;
   return s;
+}
+
+// Index of the first creep_coefficient_* output in the normal part (after the creep scales of
+// normalised tables).
+std::size_t first_coefficient_output(const KernelData& k) {
+  return std::size(kNormalOutputs) + (k.normalised ? std::size(kCreepScaleOutputs) : 0);
+}
+
+// The slot's linear creep coefficients into the normal part's cell (zeros for a slot without a
+// loaded patch). A failed computation stores zeros and marks the cell failed, with a message.
+void store_creep_coefficients(const KernelData& k, const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                              const halfspace::WheelHalfspaceResult* exact, const PatchSlots& slots, std::size_t s,
+                              ColumnOutput& out, std::size_t wheel, std::size_t cell, double y, double load) {
+  LinearCreep c;
+  try {
+    c = slot_linear_creep(geometry, normal, exact, slots, s, k.creep, k.material, k.fastsim, k.halfspace);
+  } catch (const std::exception& e) {
+    out.failure(fmt::format("linear creep coefficients, {} wheel, y = {} m, load = {} N, slot {}: {}",
+                            to_string(geometry.side), y, load, s, e.what()));
+    out.status(wheel, kNormalPart)[cell] = non_finite_status(out.status(wheel, kNormalPart)[cell]);
+    return;
+  }
+  bool finite = true;
+  for (const auto& row : c.slope)
+    for (double v : row) finite = finite && std::isfinite(v);
+  const std::size_t first = first_coefficient_output(k);
+  for (std::size_t f = 0; f < 3; ++f)
+    for (std::size_t q = 0; q < 3; ++q) out.values(wheel, kNormalPart, first + f * 3 + q)[cell] = finite ? c.slope[f][q] : 0.0;
+  if (!finite) {
+    out.failure(fmt::format("linear creep coefficients, {} wheel, y = {} m, load = {} N, slot {}: not finite "
+                            "(stored as 0, status failed)", to_string(geometry.side), y, load, s));
+    out.status(wheel, kNormalPart)[cell] = non_finite_status(out.status(wheel, kNormalPart)[cell]);
+  }
 }
 
 // The exact model's scales of a slot: as slot_scales, with the exact model's own linear creep
@@ -188,6 +222,8 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
                 return fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N", to_string(side), state.y,
                                    state.roll, k.grids.load[il]);
               });
+        store_creep_coefficients(k, geometry, normal, exact ? &exact_result : nullptr, patch_slots, s, out, wheel,
+                                 il * kSlots + s, state.y, k.grids.load[il]);
       }
       if (normal.patches.empty() || k.creepages() == 0) continue;
       if (exact)
@@ -204,6 +240,8 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
               return fmt::format("normal, {} wheel, y = {} m, roll = {} rad, load = {} N", to_string(side), state.y,
                                  state.roll, k.grids.load[il]);
             });
+      store_creep_coefficients(k, geometry, normal, nullptr, patch_slots, s, out, wheel, il * kSlots + s, state.y,
+                               k.grids.load[il]);
       // Creep and wear on top of this normal result; an unloaded slot has none (zeros, lift_off).
       if (!(patch.normal_force > 0.0)) {
         const std::size_t per_load = k.creepages();
@@ -315,6 +353,32 @@ FastsimResult sum_slot_creep(const WheelNormalResult& normal, const PatchSlots& 
   return total;
 }
 
+LinearCreep slot_linear_creep(const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                              const halfspace::WheelHalfspaceResult* exact, const PatchSlots& slots, std::size_t slot,
+                              const CreepConditions& conditions, const Material& material,
+                              const FastsimOptions& fastsim, const halfspace::HalfspaceOptions& halfspace) {
+  RAILTAB_CHECK(slot < kSlots, "slot_linear_creep: slot {} of {}", slot, kSlots);
+  LinearCreep sum;
+  for (int ip : slots.patch[slot]) {
+    if (ip < 0) continue;
+    const std::size_t i = static_cast<std::size_t>(ip);
+    if (!(normal.patches[i].normal_force > 0.0)) continue;
+    LinearCreep c;
+    if (exact) {
+      RAILTAB_CHECK(i < exact->patches.size(), "slot_linear_creep: patch {} of {} exact patches", i,
+                    exact->patches.size());
+      const halfspace::HalfspacePatch& hp = exact->patches[i];
+      c = halfspace::patch_linear_creep(hp.grid, hp.normal.pressure, material, halfspace.tangential,
+                                        thread_halfspace_workspace());
+    } else {
+      c = fastsim_linear_creep(geometry, normal.patches[i], conditions, material, fastsim, thread_fastsim_workspace());
+    }
+    for (int f = 0; f < 3; ++f)
+      for (int q = 0; q < 3; ++q) sum.slope[f][q] += c.slope[f][q];
+  }
+  return sum;
+}
+
 SlotAssignment assign_slots(const WheelContactGeometry& geometry) {
   SlotAssignment a;
   for (std::size_t i = 0; i < geometry.points.size(); ++i) {
@@ -406,6 +470,7 @@ SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver&
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));
   if (scene.creep_normalised)
     for (const OutputInfo& o : kCreepScaleOutputs) kernel.parts.back().outputs.push_back(o);
+  for (const OutputInfo& o : kCreepCoefficientOutputs) kernel.parts.back().outputs.push_back(o);
   kernel.parts.push_back(creep_part_spec(kCreepOutputs, kCreepNormalOutputs, scene.tangential.load_coupling));
   if (scene.creep_normalised) {
     // Format 2.1: stored forces are normalised (creep_map.hpp); the lookup scales them back to N.

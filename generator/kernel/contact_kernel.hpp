@@ -12,7 +12,9 @@
 #include "normal/normal_model.hpp"
 #include "scene/scene.hpp"
 #include "engine/sweep.hpp"
+#include "halfspace/wheel_rail.hpp"
 #include "tangential/fastsim_contact.hpp"
+#include "tangential/linear_creep.hpp"
 #include "wear/archard.hpp"
 
 namespace railtab {
@@ -69,6 +71,18 @@ FastsimResult slot_creep(const WheelContactGeometry& geometry, const WheelNormal
 using PatchCreep = std::function<FastsimResult(std::size_t patch, WearResult* wear)>;
 FastsimResult sum_slot_creep(const WheelNormalResult& normal, const PatchSlots& slots, std::size_t slot,
                              const PatchCreep& solve_patch, SlotWear* wear = nullptr);
+
+// The linear creep coefficients of a slot (the normal part's creep_coefficient_* datasets): the
+// slopes of the slot's creep forces at zero creepage in full adhesion, summed over its loaded
+// patches (mz each about its own patch's reference, as slot_creep sums). The fast models:
+// fastsim_linear_creep on each patch of `normal`; with `exact` (the half-space model's own
+// result, whose patches are those of `normal`): its steady rolling solution on each patch
+// (halfspace::patch_linear_creep). A slot without a loaded patch gives zeros. Throws what those
+// throw (a steady rolling solve that does not converge).
+LinearCreep slot_linear_creep(const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                              const halfspace::WheelHalfspaceResult* exact, const PatchSlots& slots, std::size_t slot,
+                              const CreepConditions& conditions, const Material& material,
+                              const FastsimOptions& fastsim, const halfspace::HalfspaceOptions& halfspace);
 
 // Run time per grid point of the scene's contact chain (the exact half-space model's or the fast
 // models'), for the table size check (engine/table_size.hpp).

@@ -72,6 +72,23 @@ inline const OutputInfo kCreepScaleOutputs[] = {
     {"creep_scale_phi", "rad/m", "spin creepage scale s_phi = mu N / (G c^3 C23) of the creep part's coordinate"},
 };
 
+// Normal part, every table since format 2.3: the slot's linear creep coefficients, the slopes of
+// its creep forces on the wheel against the creepages at zero creepage in full adhesion
+// (tangential/linear_creep.hpp; docs/conventions.md, "Linear creep coefficients"), summed over the
+// slot's loaded patches (mz each about its own patch's reference, as the creep part's). Order:
+// force-major, [fx, fy, mz] x [xi, eta, phi], as LinearCreep::slope.
+inline const OutputInfo kCreepCoefficientOutputs[] = {
+    {"creep_coefficient_fx_xi", "N", "d fx / d xi at zero creepage, full adhesion (-G c^2 C11 on an ellipse)"},
+    {"creep_coefficient_fx_eta", "N", "d fx / d eta at zero creepage, full adhesion"},
+    {"creep_coefficient_fx_phi", "N m", "d fx / d phi at zero creepage, full adhesion [N per rad/m]"},
+    {"creep_coefficient_fy_xi", "N", "d fy / d xi at zero creepage, full adhesion"},
+    {"creep_coefficient_fy_eta", "N", "d fy / d eta at zero creepage, full adhesion (-G c^2 C22 on an ellipse)"},
+    {"creep_coefficient_fy_phi", "N m", "d fy / d phi at zero creepage, full adhesion [N per rad/m] (-G c^3 C23 on an ellipse)"},
+    {"creep_coefficient_mz_xi", "N m", "d mz / d xi at zero creepage, full adhesion"},
+    {"creep_coefficient_mz_eta", "N m", "d mz / d eta at zero creepage, full adhesion (+G c^3 C23 on an ellipse)"},
+    {"creep_coefficient_mz_phi", "N m2", "d mz / d phi at zero creepage, full adhesion [N m per rad/m]"},
+};
+
 // Creep part, per loaded patch and creepage (axes y, roll, load, xi, eta, phi, slot).
 inline const Output<FastsimResult> kCreepOutputs[] = {
     {"fx", "N", "longitudinal creep force on the wheel (contact frame x)", [](const FastsimResult& r) { return r.fx; }},

@@ -21,7 +21,8 @@ namespace railtab {
 inline constexpr int kTableFormatMajor = 2;
 // 2.1: normalised creep coordinates, located contact jumps (/jumps); 2.2: creep and wear outputs
 // stored as float32 rounded to 20 significant bits (table/storage_precision.hpp); 2.3: additive
-// groups and datasets only (the error map, /error_map), a 2.2 reader reads a 2.3 table.
+// groups and datasets only (the error map, /error_map; the normal part's linear creep
+// coefficients, creep_coefficient_*), a 2.2 reader reads a 2.3 table.
 inline constexpr int kTableFormatMinor = 3;
 inline constexpr const char* kTableFormatVersion = "2.3";
 

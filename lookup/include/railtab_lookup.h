@@ -34,6 +34,8 @@ extern "C" {
 #define RAILTAB_LOOKUP_ERROR_INTERNAL 3 /* unexpected failure, e.g. out of memory */
 #define RAILTAB_LOOKUP_ERROR_BUFFER 4   /* an output buffer is too short (nothing written) */
 #define RAILTAB_LOOKUP_ERROR_RANGE 5    /* an index (axis, fixed axis, slot) out of range */
+#define RAILTAB_LOOKUP_ERROR_NOT_IN_TABLE 6 /* the table does not hold what was asked (creep
+                                              coefficients of a table before format 2.3) */
 
 /* Load options for railtab_lookup_open_options (bit flags). */
 #define RAILTAB_LOOKUP_REQUIRE_CHECKSUMS 1u /* refuse tables without dataset checksums */
@@ -161,6 +163,19 @@ typedef struct railtab_lookup_track_forces {
   double y_over_q;                                /* [1] Y / Q; 0 when Q <= 0 */
 } railtab_lookup_track_forces;
 
+/* Linear creep coefficients of every slot (railtab::lookup::CreepCoefficients; tables of format
+ * 2.3, docs/lookup.md "Linear creep coefficients"): k[slot][force][creepage] = d force / d creepage
+ * at zero creepage in full adhesion, force RAILTAB_LOOKUP_CREEP_FX/_FY/_MZ (on the wheel),
+ * creepage RAILTAB_LOOKUP_VAR_XI/_ETA/_PHI minus RAILTAB_LOOKUP_VAR_XI. Units: fx, fy per xi or
+ * eta N; per phi N m; mz per xi or eta N m; per phi N m2. */
+enum { RAILTAB_LOOKUP_CREEP_FX = 0, RAILTAB_LOOKUP_CREEP_FY = 1, RAILTAB_LOOKUP_CREEP_MZ = 2 };
+typedef struct railtab_lookup_creep_coefficients {
+  double k[RAILTAB_LOOKUP_MAX_SLOTS][3][3]; /* [slot][force][creepage]; 0 for an empty slot */
+  uint32_t status[RAILTAB_LOOKUP_MAX_SLOTS]; /* per slot: the normal part's status at the state */
+  uint32_t query_status; /* RAILTAB_LOOKUP_OUT_OF_RANGE, RAILTAB_LOOKUP_INVALID_INPUT */
+  int n_slots;           /* contact slots in the table */
+} railtab_lookup_creep_coefficients;
+
 typedef struct railtab_lookup_table railtab_lookup_table; /* opaque */
 
 /* Loads `path` with `method`; on success *table is a handle to close with
@@ -190,6 +205,15 @@ RAILTAB_LOOKUP_API int railtab_lookup_query_slot(const railtab_lookup_table* tab
 RAILTAB_LOOKUP_API int railtab_lookup_query_derivatives(const railtab_lookup_table* table, int wheel,
                                      const railtab_lookup_state* state, railtab_lookup_result* result,
                                      railtab_lookup_derivatives* derivatives);
+
+/* The linear creep coefficients of `wheel` at the state's (y, roll, load) (its creepages are not
+ * used). RAILTAB_LOOKUP_ERROR_NOT_IN_TABLE, nothing written, for a table without them (format 2.2
+ * and older; the last error says so); railtab_lookup_has_creep_coefficients tells beforehand
+ * (1 yes, 0 no or a null table). */
+RAILTAB_LOOKUP_API int railtab_lookup_query_creep_coefficients(const railtab_lookup_table* table, int wheel,
+                                            const railtab_lookup_state* state,
+                                            railtab_lookup_creep_coefficients* coefficients);
+RAILTAB_LOOKUP_API int railtab_lookup_has_creep_coefficients(const railtab_lookup_table* table);
 
 /* Track-frame forces and Y/Q of `wheel` from `result` (a railtab_lookup_query of that wheel):
  * railtab::lookup::track_forces. RAILTAB_LOOKUP_ERROR_ARGUMENT for a null pointer or a bad wheel. */

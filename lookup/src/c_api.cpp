@@ -63,6 +63,10 @@ static_assert(RAILTAB_LOOKUP_WEAR == lk::kWear && RAILTAB_LOOKUP_NUM_PARTS == lk
 
 static_assert(sizeof(railtab_lookup_derivatives) == sizeof(lk::Derivatives));
 static_assert(sizeof(railtab_lookup_track_forces) == sizeof(lk::TrackForces));
+static_assert(sizeof(railtab_lookup_creep_coefficients) == sizeof(lk::CreepCoefficients));
+static_assert(offsetof(railtab_lookup_creep_coefficients, status) == offsetof(lk::CreepCoefficients, status));
+static_assert(offsetof(railtab_lookup_creep_coefficients, query_status) == offsetof(lk::CreepCoefficients, query_status));
+static_assert(offsetof(railtab_lookup_creep_coefficients, n_slots) == offsetof(lk::CreepCoefficients, n_slots));
 static_assert(offsetof(railtab_lookup_track_forces, contact_angle) == offsetof(lk::TrackForces, contact_angle));
 static_assert(offsetof(railtab_lookup_track_forces, wheel_lateral) == offsetof(lk::TrackForces, wheel_lateral));
 static_assert(offsetof(railtab_lookup_track_forces, y_over_q) == offsetof(lk::TrackForces, y_over_q));
@@ -150,6 +154,26 @@ int railtab_lookup_query_derivatives(const railtab_lookup_table* table, int whee
   store(r, result);
   std::memcpy(derivatives, &d, sizeof(*derivatives));
   return RAILTAB_LOOKUP_OK;
+}
+
+int railtab_lookup_query_creep_coefficients(const railtab_lookup_table* table, int wheel,
+                                            const railtab_lookup_state* state,
+                                            railtab_lookup_creep_coefficients* coefficients) {
+  if (!table || !state || !coefficients)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_creep_coefficients: null argument");
+  if (wheel != RAILTAB_LOOKUP_LEFT && wheel != RAILTAB_LOOKUP_RIGHT)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_creep_coefficients: wheel must be 0 or 1");
+  lk::CreepCoefficients c;
+  if (!table->table.query_creep_coefficients(static_cast<lk::Wheel>(wheel), to_state(*state), c))
+    return fail(RAILTAB_LOOKUP_ERROR_NOT_IN_TABLE,
+                "railtab_lookup_query_creep_coefficients: the table holds no linear creep coefficients "
+                "(format 2.2 or older): regenerate it with railtab generate (format 2.3)");
+  std::memcpy(coefficients, &c, sizeof(*coefficients));
+  return RAILTAB_LOOKUP_OK;
+}
+
+int railtab_lookup_has_creep_coefficients(const railtab_lookup_table* table) {
+  return table && table->table.has_creep_coefficients() ? 1 : 0;
 }
 
 int railtab_lookup_compute_track_forces(int wheel, const railtab_lookup_result* result,

@@ -28,6 +28,7 @@
 #include <utility>
 #include <vector>
 
+#include "creep_coefficients.hpp"
 #include "creep_map.hpp"
 #include "fast_path.hpp"
 #include "grid.hpp"
@@ -126,6 +127,7 @@ struct TableData {
   bool has_jumps = false;             // the file has /jumps (format 2.1): one-sided jump cells
   JumpWheel jumps[2];                 // per wheel (jump_side.hpp)
   FastPath fast;                      // the fused query when the table has its shape (fast_path.hpp)
+  CreepCoefficientData coefficients;  // format 2.3 linear creep coefficients (creep_coefficients.hpp)
   // Format 2.3's error map (/error_map): band edges and per (band, slot) the two comparisons.
   struct ErrorMap {
     bool present = false, exact = false, same_model = false;

@@ -534,6 +534,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   }
   read_creep_map(f, *d);
   read_jumps(f, *d);  // format 2.1; absent: no one-sided cells (as before)
+  read_creep_coefficients(f, *d);  // format 2.3; absent: has_creep_coefficients() false
   read_error_map(f, *d);  // format 2.3; absent: no error estimate
   mark_unbalanced_load(*d);  // low_confidence.hpp: the load-balance rule
   narrow_exact_blocks(*d);  // float records where every value is a float (format 2.2's creep, wear)

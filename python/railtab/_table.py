@@ -13,6 +13,10 @@ _CREEPAGES = ("xi", "eta", "phi")  # default 0 (pure rolling) when tabulated and
 _WHEELS = {"left": 0, "right": 1}
 # track_forces=True: names and units of the per-slot and per-state arrays, in the binding's order.
 _TRACK_SLOT = (("track_lateral_force", "N"), ("track_vertical_force", "N"), ("track_contact_angle", "rad"))
+# creep_coefficients=True: (force, creepage) of the binding's 9 values, force-major, and units.
+_COEFFICIENTS = tuple((f, c) for f in ("fx", "fy", "mz") for c in ("xi", "eta", "phi"))
+_COEFFICIENT_UNITS = {"fx": {"xi": "N", "eta": "N", "phi": "N m"}, "fy": {"xi": "N", "eta": "N", "phi": "N m"},
+                      "mz": {"xi": "N m", "eta": "N m", "phi": "N m2"}}
 _TRACK_WHEEL = (("wheel_lateral_force", "N"), ("wheel_vertical_force", "N"), ("y_force", "N"), ("q_force", "N"),
                 ("y_over_q", "1"))
 
@@ -85,6 +89,7 @@ class Table:
     format_version = property(lambda self: self._t.format_version)
     scene_name = property(lambda self: self._t.scene_name)
     memory_bytes = property(lambda self: self._t.memory_bytes)
+    has_creep_coefficients = property(lambda self: self._t.has_creep_coefficients)  # format 2.3 tables
     has_error_map = property(lambda self: self._t.has_error_map, doc="the table carries an error map (2.3)")
 
     def error_estimate(self, y, slot):
@@ -108,7 +113,7 @@ class Table:
         return f"<railtab.Table {self.path!r} scene={self.scene_name!r} axes: {axes}>"
 
     def query(self, wheel, y=None, roll=None, load=None, xi=None, eta=None, phi=None, *, slot=None,
-              derivatives=False, track_forces=False, as_xarray=None):
+              derivatives=False, track_forces=False, creep_coefficients=False, as_xarray=None):
         """Interpolates the table at many states at once.
 
         wheel: 'left', 'right' (or 0, 1, or an array of them). y [m], roll [rad], load [N],
@@ -139,6 +144,13 @@ class Table:
         wheel's lateral force on its rail, + towards that rail's field side), 'q_force' (Q, its
         vertical force on the rail, + down) [N] and 'y_over_q' [1] (0 where Q <= 0).
 
+        creep_coefficients=True adds each slot's linear creep coefficients (tables of format 2.3;
+        docs/conventions.md, "Linear creep coefficients"): 'creep_coefficient_<f>_<c>' = d f / d c at
+        zero creepage in full adhesion for f in fx, fy, mz and c in xi, eta, phi (e.g.
+        creep_coefficient_fx_xi [N], -G c^2 C11 on an ellipse), interpolated over y, roll and load
+        (the creepages given do not change them), one-sided at contact jumps. ValueError for a table
+        without them (format 2.2 and older: Table.has_creep_coefficients is False).
+
         Raises TypeError for a missing tabulated variable or a complex value, ValueError for
         shapes that do not broadcast (naming each argument's shape), an unknown wheel or slot.
         """
@@ -165,9 +177,9 @@ class Table:
                                 {"wheel": codes.shape, **{k: values[k].shape for k in _STATE if given[k] is not None}})
         n = int(np.prod(shape, dtype=np.int64))
         slot_arg = -1 if slot is None else int(checked_number("slot", slot, 0, self.n_slots - 1, whole=True))
-        raw, part_status, status, deriv, track = self._t._query_arrays(
+        raw, part_status, status, deriv, track, coefficients = self._t._query_arrays(
             n, _flat(codes, shape, n), *(_flat(values[k], shape, n) for k in _STATE), slot_arg,
-            bool(derivatives), bool(track_forces))
+            bool(derivatives), bool(track_forces), bool(creep_coefficients))
         slots = raw.shape[1]
         raw = raw.reshape(shape + (slots, raw.shape[2]))
         part_status = part_status.reshape(shape + (slots, part_status.shape[2]))
@@ -194,6 +206,13 @@ class Table:
                         out[key] = deriv[..., k, v]
                         out.units[key] = _per(OUTPUT_UNITS[name], AXIS_UNITS[axis])
                         out.dims[key] = state_dims + ("slot",)
+        if coefficients is not None:
+            coefficients = coefficients.reshape(shape + (slots, 9))
+            for k, (f, c) in enumerate(_COEFFICIENTS):
+                key = f"creep_coefficient_{f}_{c}"
+                out[key] = coefficients[..., k]
+                out.units[key] = _COEFFICIENT_UNITS[f][c]
+                out.dims[key] = state_dims + ("slot",)
         if track is not None:
             per_slot, per_wheel = track
             per_slot = per_slot.reshape(shape + (slots, 3))

@@ -72,10 +72,13 @@ py::array_t<T> uninitialised(std::vector<py::ssize_t> shape) {
 // `derivatives`: None, or with want_derivatives (Table::query_derivatives) d output / d variable
 // [n, slots, outputs, variables] (variables y, roll, load, xi, eta, phi); `track`: None, or with
 // want_track_forces (every slot only; lk::track_forces) the pair (per slot [n, slots, 3]: lateral,
-// vertical [N], contact angle [rad]; per wheel [n, 5]: wheel_lateral, wheel_vertical, Y, Q [N], Y/Q).
+// vertical [N], contact angle [rad]; per wheel [n, 5]: wheel_lateral, wheel_vertical, Y, Q [N], Y/Q);
+// `coefficients`: None, or with want_creep_coefficients (Table::query_creep_coefficients) the
+// linear creep coefficients [n, slots, 9] (force-major: fx, fy, mz by xi, eta, phi).
 py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel, const Doubles& y,
                        const Doubles& roll, const Doubles& load, const Doubles& xi, const Doubles& eta,
-                       const Doubles& phi, int slot, bool want_derivatives, bool want_track_forces) {
+                       const Doubles& phi, int slot, bool want_derivatives, bool want_track_forces,
+                       bool want_creep_coefficients) {
   if (n < 0) throw py::value_error("n must be >= 0");
   if (wheel.ndim() != 1 || (wheel.shape(0) != n && wheel.shape(0) != 1)) {
     throw py::value_error("wheel: expected 1 or " + std::to_string(n) + " values");
@@ -96,7 +99,18 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
                           std::string(method_name(table.method())) + "' (its limited slopes are not differentiated)");
   if (want_track_forces && slot >= 0)
     throw py::value_error("track_forces=True sums the forces of every slot: leave slot out");
+  if (want_creep_coefficients && !table.has_creep_coefficients())
+    throw py::value_error("creep_coefficients=True: " + table.path() + " holds no linear creep coefficients (format " +
+                          table.format_version() + "; they are stored since format 2.3): regenerate it with "
+                          "railtab generate");
   const py::ssize_t slots = slot < 0 ? table.n_slots() : 1;
+  py::object coefficient_array = py::none();
+  double* kv = nullptr;
+  if (want_creep_coefficients) {
+    auto a = uninitialised<double>({n, slots, 9});
+    kv = a.mutable_data();
+    coefficient_array = a;
+  }
   py::object track_array = py::none();
   double* tv = nullptr;
   double* tw = nullptr;
@@ -127,6 +141,7 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
     lk::Result r;
     lk::Contact c;
     lk::Derivatives d;
+    lk::CreepCoefficients cc;
     for (py::ssize_t k = 0; k < n; ++k) {
       s.y = in[0].at(k);
       s.roll = in[1].at(k);
@@ -148,6 +163,13 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
         contacts = r.contact;
       } else {
         table.query_slot(w, s, slot, c);
+      }
+      if (kv) {
+        table.query_creep_coefficients(w, s, cc);
+        for (py::ssize_t j = 0; j < slots; ++j) {
+          std::copy_n(&cc.k[std::max(slot, 0) + j][0][0], 9, kv);
+          kv += 9;
+        }
       }
       if (tv) {  // slot < 0 here: `r` holds every slot
         const lk::TrackForces f = lk::track_forces(w, r);
@@ -171,7 +193,7 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
       }
     }
   }
-  return py::make_tuple(values, part_status, status, derivative_array, track_array);
+  return py::make_tuple(values, part_status, status, derivative_array, track_array, coefficient_array);
 }
 
 }  // namespace
@@ -219,6 +241,7 @@ void bind_table(py::module_& m) {
       .def_property_readonly("format_version", &lk::Table::format_version)
       .def_property_readonly("scene_name", &lk::Table::scene_name)
       .def_property_readonly("memory_bytes", &lk::Table::memory_bytes)
+      .def_property_readonly("has_creep_coefficients", &lk::Table::has_creep_coefficients)
       .def_property_readonly("has_error_map", &lk::Table::has_error_map)
       .def(
           "error_estimate",
@@ -248,7 +271,7 @@ void bind_table(py::module_& m) {
           py::arg("y"), py::arg("slot"))
       .def("_query_arrays", &query_arrays, py::arg("n"), py::arg("wheel"), py::arg("y"), py::arg("roll"), py::arg("load"),
            py::arg("xi"), py::arg("eta"), py::arg("phi"), py::arg("slot"), py::arg("derivatives") = false,
-           py::arg("track_forces") = false);
+           py::arg("track_forces") = false, py::arg("creep_coefficients") = false);
 
   py::list outputs;
   for (int o = 0; o < lk::kNumOutputs; ++o) {

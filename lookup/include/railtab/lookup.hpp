@@ -178,6 +178,21 @@ struct TrackForces {
 // wheel gives all zeros.
 RAILTAB_LOOKUP_API TrackForces track_forces(Wheel wheel, const Result& result) noexcept;
 
+// Linear creep coefficients of every slot (tables of format 2.3; docs/lookup.md "Linear creep
+// coefficients", docs/conventions.md): k[slot][f][c] = d f / d c at zero creepage in full adhesion,
+// f = 0 fx, 1 fy, 2 mz (on the wheel), c = 0 xi, 1 eta, 2 phi (Variable - kXi), from the table's
+// own model, interpolated over (y, roll, load) and one-sided at located contact jumps. Units: fx,
+// fy per xi or eta N; fx, fy per phi N m (N per rad/m); mz per xi or eta N m; mz per phi N m2. On an
+// elliptic patch k[s][0][0] = -G c^2 C11, k[s][1][1] = -G c^2 C22, k[s][1][2] = -G c^3 C23.
+struct CreepCoefficients {
+  double k[kMaxSlots][3][3] = {};      // [slot][force][creepage], see above; 0 for an empty slot
+  StatusBits status[kMaxSlots] = {};   // per slot: the normal part's status at the state, as
+                                       // query()'s contact[slot].part_status[kNormal]
+  StatusBits query_status = 0;         // query bits as Result::status: kOutOfRange (clamped to
+                                       // the table's edge), kInvalidInput (coefficients 0)
+  int n_slots = 0;                     // contact slots in the table
+};
+
 // One item of a batch query (e.g. both wheels of every wheelset).
 struct Query {
   Wheel wheel = Wheel::kLeft;  // which wheel-rail pair
@@ -286,6 +301,12 @@ class RAILTAB_LOOKUP_API Table {
                          Derivatives& derivatives) const noexcept;
   bool derivatives_supported() const noexcept;  // method() is kLinear or kCubic
 
+  // The linear creep coefficients of `wheel` at the state's (y, roll, load); its creepages are
+  // not used (the coefficients are at zero creepage). Returns false, with `out` zeroed, when the
+  // table holds none (format 2.2 and older: has_creep_coefficients() false). Out-of-range and
+  // invalid states are flagged as by query(). Never throws, allocates nothing.
+  bool query_creep_coefficients(Wheel wheel, const State& state, CreepCoefficients& out) const noexcept;
+  bool has_creep_coefficients() const noexcept;
   // The stored error map at (y, slot) (ErrorEstimate): false, and `estimate` with available 0,
   // when the table has no error map (before format 2.3), y is NaN or outside its bands, or the
   // slot is outside 0 .. n_slots()-1. Never throws, allocates nothing.
