@@ -18,7 +18,6 @@
 #include "geometry/contact_geometry.hpp"
 #include "halfspace/patch_linear_creep.hpp"
 #include "normal/normal_model.hpp"
-#include "halfspace/patch_linear_creep.hpp"
 #include "tangential/fastsim_contact.hpp"
 #include "wear/archard.hpp"
 
@@ -112,28 +111,24 @@ void store_creep_coefficients(const KernelData& k, const WheelContactGeometry& g
 }
 
 // The exact model's scales of a slot: as slot_scales, with the exact model's own linear creep
-// coefficients (halfspace::patch_linear_creep: its steady rolling solution in full adhesion on each
-// of the slot's solved patches, the slopes summed over them as the slot's forces are), so the nodes
+// coefficients (slot_linear_creep: halfspace::patch_linear_creep, its steady rolling solution in full
+// adhesion on each of the slot's solved patches, the slopes summed over them), so the nodes
 // gather where the exact creep forces bend, for tread, flange and spin alike. Kalker's scale stays
 // where a slope is not positive or a solve fails (the creep points report their own failures).
-creep_map::Scales exact_slot_scales(const KernelData& k, const halfspace::WheelHalfspaceResult& exact,
-                                    const WheelNormalResult& normal, const PatchSlots& slots, std::size_t slot) {
+creep_map::Scales exact_slot_scales(const KernelData& k, const WheelContactGeometry& geometry,
+                                    const halfspace::WheelHalfspaceResult& exact, const WheelNormalResult& normal,
+                                    const PatchSlots& slots, std::size_t slot) {
   const ContactPatch patch = slot_normal(normal, slots, slot);
   creep_map::Scales s = creep_map::scales(patch, k.material, k.creep.friction);
   const double mun = k.creep.friction * patch.normal_force;
   if (!(mun > 0.0)) return s;
   double kxx = 0.0, kyy = 0.0, kyp = 0.0;
   try {
-    for (const int ip : slots.patch[slot]) {
-      if (ip < 0) continue;
-      const halfspace::HalfspacePatch& hp = exact.patches[static_cast<std::size_t>(ip)];
-      if (!(hp.normal.normal_force > 0.0)) continue;
-      const LinearCreep c = halfspace::patch_linear_creep(hp.grid, hp.normal.pressure, k.material,
-                                                          k.halfspace.tangential, thread_halfspace_workspace());
-      kxx -= c.slope[0][0];
-      kyy -= c.slope[1][1];
-      kyp -= c.slope[1][2];
-    }
+    const LinearCreep c = slot_linear_creep(geometry, normal, &exact, slots, slot, k.creep, k.material, k.fastsim,
+                                            k.halfspace);
+    kxx = -c.slope[0][0];
+    kyy = -c.slope[1][1];
+    kyp = -c.slope[1][2];
   } catch (const std::exception&) {
     return s;
   }
@@ -200,7 +195,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     if (k.normalised) {
       for (std::size_t s = 0; s < kSlots; ++s)
         if (patch_slots.occupied(s))
-          scales[s] = exact ? exact_slot_scales(k, exact_result, normal, patch_slots, s)
+          scales[s] = exact ? exact_slot_scales(k, geometry, exact_result, normal, patch_slots, s)
                             : slot_scales(k, geometry, normal, patch_slots, s);
       for (std::size_t s = 0; s < kSlots; ++s)
         if (!patch_slots.occupied(s))
