@@ -9,9 +9,8 @@ Linear part (docs/critical-speed.md):
 - equivalent conicity lambda_e, e0, r0 from `railtab conicity --table T --json` at --amplitude;
 - creep coefficients f11 = G c^2 C11, f22 = G c^2 C22 per wheel (Kalker's linear theory on the
   table's contact ellipse at the centred wheelset: semi-axes a, b of slot 0 at the vehicle's wheel
-  load; C11, C22 from railtab.kalker_coefficients), and for comparison the table's own linear
-  creep coefficients -creep_coefficient_fx_xi, -_fy_eta, -_fy_phi (format 2.3: the model's slopes at
-  zero creepage, Table.query(..., creep_coefficients=True));
+  load; C11, C22 from railtab.kalker_coefficients), and for comparison the table's own slope
+  -d fx / d xi, -d fy / d eta at zero creepage (its interpolant);
 - the lateral stiffness of the normal forces (gravitational stiffness) from the table;
 - suspension, masses and geometry from the [vehicle] of a `railtab simulate` scene, so that the
   linear numbers and the simulated onset belong to the same vehicle.
@@ -175,20 +174,20 @@ def contact_at_centre(table_path, scene_path, centre, load):
     result = {"shear_modulus_Pa": shear, "poisson_ratio": poisson, "wheel_load_N": load, "wheels": {}}
     f11_k, f22_k, f23_k, f11_t, f22_t, f23_t = [], [], [], [], [], []
     for wheel in ("left", "right"):
-        r = table.query(wheel, y=centre, load=load, slot=0, creep_coefficients=True, as_xarray=False)
+        r = table.query(wheel, y=centre, load=load, slot=0, derivatives=True, as_xarray=False)
         a, b = float(np.ravel(r["a"])[0]), float(np.ravel(r["b"])[0])
         c11, c22, c23 = railtab.kalker_coefficients(a / b, poisson)
         f11_k.append(shear * a * b * c11)
         f22_k.append(shear * a * b * c22)
         f23_k.append(shear * (a * b) ** 1.5 * c23)
-        f11_t.append(-float(np.ravel(r["creep_coefficient_fx_xi"])[0]))
-        f22_t.append(-float(np.ravel(r["creep_coefficient_fy_eta"])[0]))
-        f23_t.append(-float(np.ravel(r["creep_coefficient_fy_phi"])[0]))
+        f11_t.append(-float(np.ravel(r["d_fx_d_xi"])[0]))
+        f22_t.append(-float(np.ravel(r["d_fy_d_eta"])[0]))
+        f23_t.append(-float(np.ravel(r["d_fy_d_phi"])[0]))
         result["wheels"][wheel] = {"a_m": a, "b_m": b, "normal_force_N": float(np.ravel(r["normal_force"])[0]),
                                    "C11": c11, "C22": c22, "C23": c23, "f11_kalker_N": f11_k[-1],
                                    "f22_kalker_N": f22_k[-1], "f23_kalker_N_m": f23_k[-1], "f11_table_N": f11_t[-1],
                                    "f22_table_N": f22_t[-1], "f23_table_N_m": f23_t[-1],
-                                   "d_mz_d_eta_table_N_m": float(np.ravel(r["creep_coefficient_mz_eta"])[0])}
+                                   "d_mz_d_eta_table_N_m": float(np.ravel(r["d_mz_d_eta"])[0])}
     result["f11_kalker_N"], result["f22_kalker_N"] = float(np.mean(f11_k)), float(np.mean(f22_k))
     result["f23_kalker_N_m"] = float(np.mean(f23_k))
     result["f11_table_N"], result["f22_table_N"] = float(np.mean(f11_t)), float(np.mean(f22_t))
