@@ -7,6 +7,8 @@
 
 #include <cstring>
 #include <fstream>
+#include <streambuf>
+#include <string>
 
 #include "generator/synthetic_kernel.hpp"
 #include "generator/test_tables.hpp"
@@ -59,6 +61,61 @@ TEST(Generate, InterruptedRunLeavesNoTarget) {
   f.control.columns = 1000 - 14;
   EXPECT_THROW(generate_table(f.options), Interrupted);
   EXPECT_EQ(f.dir.files(), std::vector<std::string>{"scene.toml"});
+}
+
+// A log that sets a flag once a given text has been written to it (unbuffered: every character).
+class FlagOnText : public std::streambuf {
+ public:
+  FlagOnText(std::string text, std::atomic<bool>& flag) : text_(std::move(text)), flag_(flag) {}
+
+ protected:
+  int overflow(int c) override {
+    if (c != EOF) seen_ += static_cast<char>(c);
+    if (seen_.find(text_) != std::string::npos) flag_ = true;
+    return c;
+  }
+
+ private:
+  std::string text_, seen_;
+  std::atomic<bool>& flag_;
+};
+
+// The interrupt reaches the contact-jump stages after the sweep: the flag, set when the jump
+// locator reports its end, stops the one-sided values (minutes of columns with the exact model)
+// at their first report instead of after them, and nothing is written.
+TEST(Generate, InterruptDuringTheContactJumpsStopsThem) {
+  testing::TempDir dir{"gen_interrupt_jumps"};
+  std::ofstream(dir / "scene.toml") << R"(
+[scene]
+name = "jumps"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[contact]
+normal_model = "hertz"
+[grid]
+y = { start = -0.004, stop = 0.004, count = 5 }
+equilibrium_roll = true
+load = [60e3, 90e3]
+xi = [-0.002, 0.0, 0.002]
+eta = [-0.001, 0.001]
+)";
+  std::atomic<bool> stop{false};
+  FlagOnText buffer("locating contact jumps", stop);
+  std::ostream log(&buffer);
+  GenerateOptions o;
+  o.scene = dir / "scene.toml";
+  o.output = dir / "t.h5";
+  o.threads = 2;
+  o.interrupt = &stop;
+  o.log = &log;
+  try {
+    generate_table(o);
+    FAIL() << "the run went through";
+  } catch (const Interrupted& e) {
+    EXPECT_NE(std::string(e.what()).find("one-sided jump values"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.toml"});
 }
 
 TEST(Generate, ResumeAfterInterruptEqualsFreshRun) {
