@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // The direct contact model with the exact half-space model (normal_model = "halfspace"): at a grid
-// node it returns what the table sweep stores (same calls: solve_halfspace_for_load for the normal
-// part, solve_halfspace_rolling for the coupled creep part).
+// node it returns what the table sweep stores: the normal part bit for bit (the same call,
+// solve_halfspace_for_load), the coupled creep part within the coupled solve's tolerance (the
+// sweep starts each creepage from its neighbour's solution, the direct model from cold; both
+// stop at the same fixed point's tolerance).
 #include <gtest/gtest.h>
 
 #include "core/status.hpp"
@@ -51,10 +53,13 @@ phi = [0.0]
     EXPECT_EQ(c.area, nor.find("area")->values[0]) << side;
     EXPECT_EQ(c.status, nor.find("status")->status[0]) << side;
     const std::size_t cell = 1 * kSlots + 0;  // xi index 1, slot 0
-    EXPECT_EQ(forces[w][0].fx, creep.find("fx")->values[cell]) << side;
-    EXPECT_EQ(forces[w][0].fy, creep.find("fy")->values[cell]) << side;
-    EXPECT_EQ(forces[w][0].mz, creep.find("mz")->values[cell]) << side;
-    EXPECT_EQ(forces[w][0].normal_force, creep.find("normal_force")->values[cell]) << side;
+    // The warm chain's bound (HalfspaceWheelRail.WarmChainIsTheColdFixedPoint): the load split
+    // within 2e-4 F_z, the creep forces within that share of mu F_z plus 1e-4 mu N.
+    const double fz = load[w], mun = 0.3 * c.normal_force, creep_tol = 2e-4 * fz * 0.3 + 1e-4 * mun;
+    EXPECT_NEAR(forces[w][0].fx, creep.find("fx")->values[cell], creep_tol) << side;
+    EXPECT_NEAR(forces[w][0].fy, creep.find("fy")->values[cell], creep_tol) << side;
+    EXPECT_NEAR(forces[w][0].mz, creep.find("mz")->values[cell], creep_tol * 0.01) << side;
+    EXPECT_NEAR(forces[w][0].normal_force, creep.find("normal_force")->values[cell], 2e-4 * fz) << side;
     EXPECT_LT(forces[w][0].fx, -1e3) << side;
     EXPECT_TRUE(forces[w][0].status & status::kConverged) << side;
   }
