@@ -39,6 +39,24 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+// A contact scene (the real kernel) whose y grid is crossed by contact jumps: flange onset,
+// lift-off and rolling-radius steps fall between its 5 y nodes at both loads.
+inline constexpr const char* kJumpScene = R"(
+[scene]
+name = "jumps"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[contact]
+normal_model = "hertz"
+[grid]
+y = { start = -0.004, stop = 0.004, count = 5 }
+equilibrium_roll = true
+load = [60e3, 90e3]
+xi = [-0.002, 0.0, 0.002]
+eta = [-0.001, 0.001]
+)";
+
 // Every dataset of `a` exists in `b` with the same shape, axes and identical bytes; same axes.
 inline void expect_same_datasets(const Table& a, const Table& b) {
   ASSERT_EQ(a.axes.size(), b.axes.size());

@@ -85,21 +85,7 @@ class FlagOnText : public std::streambuf {
 // at their first report instead of after them, and nothing is written.
 TEST(Generate, InterruptDuringTheContactJumpsStopsThem) {
   testing::TempDir dir{"gen_interrupt_jumps"};
-  std::ofstream(dir / "scene.toml") << R"(
-[scene]
-name = "jumps"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[contact]
-normal_model = "hertz"
-[grid]
-y = { start = -0.004, stop = 0.004, count = 5 }
-equilibrium_roll = true
-load = [60e3, 90e3]
-xi = [-0.002, 0.0, 0.002]
-eta = [-0.001, 0.001]
-)";
+  std::ofstream(dir / "scene.toml") << testing::kJumpScene;
   std::atomic<bool> stop{false};
   FlagOnText buffer("locating contact jumps", stop);
   std::ostream log(&buffer);

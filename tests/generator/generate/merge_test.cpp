@@ -58,24 +58,6 @@ TEST(Merge, ShardsEqualASingleRun) {
   }
 }
 
-// A contact scene (the real kernel) whose y grid is crossed by contact jumps: flange onset,
-// lift-off and rolling-radius steps fall between its 5 y nodes at both loads.
-constexpr const char* kJumpScene = R"(
-[scene]
-name = "jumps"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[contact]
-normal_model = "hertz"
-[grid]
-y = { start = -0.004, stop = 0.004, count = 5 }
-equilibrium_roll = true
-load = [60e3, 90e3]
-xi = [-0.002, 0.0, 0.002]
-eta = [-0.001, 0.001]
-)";
-
 // Positions of the jumps of one wheel ("left"/"right") at load node `l` (the list before its NaN
 // padding).
 std::vector<double> jump_positions(const Table& t, const std::string& wheel, std::size_t l) {
@@ -88,7 +70,7 @@ std::vector<double> jump_positions(const Table& t, const std::string& wheel, std
 
 TEST(Merge, MergedTableCarriesTheJumpsAndAnswersOfASingleRun) {
   testing::TempDir dir{"merge_jumps"};
-  std::ofstream(dir / "scene.toml") << kJumpScene;
+  std::ofstream(dir / "scene.toml") << testing::kJumpScene;
   auto generate = [&](const std::string& output, int index, int count) {
     GenerateOptions o;
     o.scene = dir / "scene.toml";
