@@ -10,6 +10,7 @@ function(railtab_module name)
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${ARG_DIR}/*.cpp)
   if(sources)
     add_library(railtab_${name} STATIC ${sources})
+    railtab_unity(railtab_${name})
     target_include_directories(railtab_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
     target_compile_options(railtab_${name} PRIVATE ${RAILTAB_WARNINGS})
     target_link_libraries(railtab_${name} PUBLIC ${ARG_DEPENDS})
@@ -118,14 +119,15 @@ function(railtab_pch_ccache target)
 endfunction()
 
 # railtab_unity(TARGET): compiles the target's files in unity batches (RAILTAB_UNITY_BUILD, ON by
-# default): used for the test executables, the railtab program (generator/cli) and the Python
-# module, whose files each include the same heavy headers (GoogleTest, Eigen, CLI11, nlohmann
-# json, pybind11), so a batch parses and instantiates them once instead of once per file (the
-# test executables, the program and the module take about a third of the CPU time to build;
-# docs/reliability.md). The libraries (src/, lookup/, generator/ libraries) are built file by file
-# as before, with the same flags. Two files of one batch must not define the same name: a test
-# file's helpers live in an anonymous namespace, and files whose helpers share a name each have
-# their own named namespace (railtab::<file stem>).
+# default): every library (src/, lookup/, generator/), the test executables, the railtab program
+# (generator/cli) and the Python module. Their files include the same headers (GoogleTest, Eigen,
+# CLI11, nlohmann json, pybind11, fmt, HDF5, the standard library), which a batch parses and
+# instantiates once instead of once per file; CI has no compiler cache, so its build is a clean
+# one (docs/ci.md, "Building the test stage"). Two files of one batch must not define the same
+# name: a file's helpers live in an anonymous namespace, a helper two files need lives once in a
+# header, and test files whose helpers share a name each have their own named namespace
+# (railtab::<file stem>). A file that is one long compile on its own stays out of the batches
+# (SKIP_UNITY_BUILD_INCLUSION: the lookup's interpolation kernels), so the two cores share it.
 function(railtab_unity target)
   if(RAILTAB_UNITY_BUILD)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)

@@ -23,10 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 double slot_force_ratio(const vehicle::ContactSnapshot& snap, double mu) {
   double worst = 0.0;
   for (int w = 0; w < vehicle::kWheels; ++w) {
@@ -97,6 +93,10 @@ std::string trajectory_part(const vehicle::WheelsetState& x, const vehicle::Cont
 }
 
 }  // namespace
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 WheelsetSample wheelset_sample(int wheelset, const vehicle::ContactSnapshot& snapshot, double distance) {
   WheelsetSample s;

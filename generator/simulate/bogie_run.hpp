@@ -7,6 +7,7 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -101,6 +102,9 @@ struct RunSummary {
 // `trajectory_csv`. `lookup` / `direct` (either may be null) are `contact` seen as what it is,
 // for the counters. `interrupt` (may be null) is polled every RK4 step: set, the run throws
 // Interrupted before writing the trajectory (a direct run takes hours; Ctrl-C must not wait).
+// Wall seconds since `start` (the runs' timings in their summaries).
+double seconds_since(std::chrono::steady_clock::time_point start);
+
 RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact, const LookupContactModel* lookup,
                      const DirectContactModel* direct, double friction, double max_duration,
                      const std::filesystem::path& trajectory_csv, WearPostProcessing& wear,

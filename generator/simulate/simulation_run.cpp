@@ -37,10 +37,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // Text to `file` through a locked, synced temporary (table/output_file.hpp): a reader never sees
 // half a file, a non-regular `file` is refused.
 void write_file(const fs::path& file, const std::string& text) { write_text_file(file, text); }

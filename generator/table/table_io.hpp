@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "table/output_file.hpp"  // temporary_path
@@ -31,5 +32,14 @@ void write_table(const Table& table, const std::filesystem::path& target,
 // non-HDF5 file, a truncated file, an unknown major format version, missing required groups,
 // datasets or attributes, and datasets whose shape disagrees with their axes.
 Table read_table(const std::filesystem::path& path);
+
+// Names of format 2 that the writer and the reader share.
+namespace table_format {
+// Root attributes whose in-memory text is a JSON object: stored as a group of typed attributes.
+inline constexpr const char* kObjectAttributes[] = {"models", "accuracy_targets", "accuracy_achieved"};
+// Dimensions that are not axes: list indices without a coordinate (jump list and side of /jumps,
+// the y bands of /error_map).
+inline bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side" || name == "band"; }
+}  // namespace table_format
 
 }  // namespace railtab

@@ -22,6 +22,9 @@
 namespace railtab {
 namespace {
 
+using table_format::is_plain_dimension;
+using table_format::kObjectAttributes;
+
 // Names of the members (links or attributes) of an object, in creation order when the file tracks
 // it, else alphabetically (files written by other tools).
 herr_t collect_link(hid_t, const char* name, const H5L_info_t*, void* data) {
@@ -67,18 +70,15 @@ std::vector<std::string> split_axes(const std::string& text) {
   return out;
 }
 
-// Format 2 names: root attributes stored as groups, the order the sweep writes root attributes in
-// (the reader restores it), and the coordinate copies in part groups (not outputs).
-constexpr const char* kObjectAttributes[] = {"models", "accuracy_targets", "accuracy_achieved"};
+// Format 2 names: the order the sweep writes root attributes in (the reader restores it), and the
+// coordinate copies in part groups (not outputs).
 constexpr const char* kAttributeOrder[] = {"format_version", "railtab_version", "git_commit", "created",
                                           "scene", "scene_name", "models", "fixed_axes", "shard",
                                           "shard_y_begin", "shard_y_end", "shard_y_total", "shard_jumps",
                                           "accuracy_targets", "accuracy_achieved"};
 constexpr const char* kCoordinateNames[] = {"y", "roll", "load", "xi", "eta", "phi", "slot"};
 
-// Dimensions without a coordinate (the jump list and its side, the error map's y bands), and uint32 datasets: status bits
-// and the jump kinds (<wheel>_kind).
-bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side" || name == "band"; }
+// uint32 datasets: status bits and the jump kinds (<wheel>_kind).
 bool is_uint32_dataset(const std::string& name) {
   return name == "status" || (name.size() > 5 && name.compare(name.size() - 5, 5, "_kind") == 0);
 }

@@ -32,6 +32,9 @@
 namespace railtab {
 namespace {
 
+using table_format::is_plain_dimension;
+using table_format::kObjectAttributes;
+
 // Compressed above 4 KiB: the default table's one-sided statuses at the jumps (55 KB each, 220 KB
 // in all) shrink to 150-330 B; the datasets below (normal part, axes) stay one plain chunk.
 constexpr std::size_t kCompressAbove = 4 * 1024;  // datasets above this are compressed [B]
@@ -40,8 +43,6 @@ constexpr std::size_t kChunkTarget = 256 * 1024;  // chunk size aimed at [B]
 // compressing its datasets takes 0.20 s, 0.36 s and 2.2 s (docs/table-format.md).
 constexpr unsigned kDeflateLevel = 6;
 
-// Root attributes whose in-memory text is a JSON object: stored as a group of typed attributes.
-constexpr const char* kObjectAttributes[] = {"models", "accuracy_targets", "accuracy_achieved"};
 // Root attributes whose text is an integer: stored as int64.
 constexpr const char* kIntegerAttributes[] = {"shard_y_begin", "shard_y_end", "shard_y_total"};
 // Units of the state variables, for fixed ones (scalar datasets /axes/<name>).
@@ -71,9 +72,6 @@ std::string join_axes(const std::vector<std::string>& axes) {
   return out;
 }
 
-// Dimensions that are not axes: list indices without a coordinate (jump list and side of /jumps,
-// the y bands of /error_map).
-bool is_plain_dimension(const std::string& name) { return name == "jump" || name == "side" || name == "band"; }
 
 // The float32 image of a float64 output (format 2.2, table/storage_precision.hpp). A finite value
 // beyond float32's range is an error, never an infinity in the file.

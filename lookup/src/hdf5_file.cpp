@@ -34,15 +34,6 @@ std::string with_hdf5_message(const std::string& problem) {
   return m.empty() ? problem : problem + " (HDF5: " + m + ")";
 }
 
-std::string shape_text(const std::vector<hsize_t>& dims) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < dims.size(); ++i) {
-    if (i) s += ',';
-    s += std::to_string(static_cast<unsigned long long>(dims[i]));
-  }
-  return s + ']';
-}
-
 // Product of `dims`, or nullopt if it does not fit in size_t.
 std::optional<std::size_t> checked_product(const std::vector<hsize_t>& dims) {
   std::size_t n = 1;
@@ -65,6 +56,15 @@ const char* file_kind(mode_t mode) {
 }
 
 }  // namespace
+
+std::string shape_text(const std::vector<hsize_t>& dims) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < dims.size(); ++i) {
+    if (i) s += ',';
+    s += std::to_string(static_cast<unsigned long long>(dims[i]));
+  }
+  return s + ']';
+}
 
 Hid& Hid::operator=(Hid&& o) noexcept {
   if (this != &o) {

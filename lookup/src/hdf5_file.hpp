@@ -122,6 +122,9 @@ class Hdf5File {
   mutable bool heap_checked_ = false;  // global heap checked (before the first vlen read)
 };
 
+// A dataset's shape as text for messages: "[3,4]".
+std::string shape_text(const std::vector<hsize_t>& dims);
+
 // Turns HDF5's automatic error printing off for its lifetime (the loader reports errors itself)
 // and restores the previous handler afterwards, so the process-wide setting is left as found.
 class Hdf5ErrorsSilenced {

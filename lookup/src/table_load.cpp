@@ -29,16 +29,6 @@ constexpr int kNewestMajor = 2;
 constexpr std::size_t kMaxAxisNodes = 1'000'000;
 constexpr std::size_t kMaxTableValues = std::size_t{1} << 28;
 
-std::string shape_text(const std::vector<hsize_t>& dims) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < dims.size(); ++i) {
-    if (i) s += ',';
-    s += std::to_string(static_cast<unsigned long long>(dims[i]));
-  }
-  s += ']';
-  return s;
-}
-
 std::string without_spaces(const std::string& s) {
   std::string out;
   for (char c : s)
