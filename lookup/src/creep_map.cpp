@@ -63,10 +63,10 @@ namespace {
 void coordinate_partials(double x, double a, double b, double out[3]) noexcept {
   auto m = [](double z) { return z / (1.0 + std::abs(z)); };
   auto dm = [](double z) { return 1.0 / ((1.0 + std::abs(z)) * (1.0 + std::abs(z))); };
-  const double mx = m(x), ma = m(a), mb = m(b), den = mb - ma;
-  out[0] = 2.0 * dm(x) / den;
-  out[1] = 2.0 * dm(a) * (mx - mb) / (den * den);
-  out[2] = -2.0 * dm(b) * (mx - ma) / (den * den);
+  const double mx = m(x), ma = m(a), mb = m(b), two_over = 2.0 / (mb - ma);  // one division
+  out[0] = dm(x) * two_over;
+  out[1] = dm(a) * (mx - mb) * (two_over * two_over) * 0.5;
+  out[2] = -dm(b) * (mx - ma) * (two_over * two_over) * 0.5;
 }
 
 // The saturation law (creep_law) and its Jacobian with respect to (xi', eta', psi'):
