@@ -95,31 +95,20 @@ void scales(const TableData& d, int w, const Location& at, int slot, double inv[
     return;
   }
   const JumpWheel& j = d.jumps[w];
-  int ydim = -1, ldim = -1;
-  for (int k = 0; k < map.n_dims; ++k) {
-    if (map.var[k] == kVarY) ydim = k;
-    if (map.var[k] == kVarLoad) ldim = k;
-  }
   const int nodes = j.load_axis ? 2 : 1, lc = j.load_axis ? at.loc[kVarLoad].i : 0;
   const double weight[2] = {j.load_axis ? 1.0 - at.loc[kVarLoad].t : 1.0, j.load_axis ? at.loc[kVarLoad].t : 0.0};
   const double* x = d.axis[kVarY].nodes();
   const AxisLoc& ly = at.loc[kVarY];
   const double yq = x[ly.i] + ly.t * (x[ly.i + 1] - x[ly.i]);
+  const double* grid = map.scale[w].data() + s * map.nodes * 3;
+  const double* at_jump = slot_at_jump(j, j.inv_scale, 3, slot);
   double node_inv[2][3] = {};
   inv[0] = inv[1] = inv[2] = 0.0;
   for (int k = 0; k < nodes; ++k) {
     const std::size_t lnode = static_cast<std::size_t>(lc + k);
-    auto end_scale = [&](const End& e) -> const double* {
-      if (e.sample)
-        return j.inv_scale.data() +
-               ((((s * j.n_load_nodes + lnode) * j.n_jumps + static_cast<std::size_t>(e.index)) * 2 +
-                 static_cast<std::size_t>(e.side)) * 3);
-      const std::size_t node = static_cast<std::size_t>(e.index) * map.stride[ydim] + (ldim >= 0 ? lnode * map.stride[ldim] : 0);
-      return map.scale[w].data() + (s * map.nodes + node) * 3;
-    };
     const Piece& piece = at.pieces[0][k];
-    const double* a = end_scale(piece.a);
-    const double* b = end_scale(piece.b);
+    const double* a = node_end_values(map, j, grid, at_jump, 3, lnode, piece.a);
+    const double* b = node_end_values(map, j, grid, at_jump, 3, lnode, piece.b);
     const double slope = piece_slope(j, d.axis[kVarY], lnode, piece, yq);
     for (int c = 0; c < 3; ++c) {
       node_inv[k][c] = (1.0 - piece.t) * a[c] + piece.t * b[c];

@@ -157,7 +157,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   {
     const double* base = map.scale[w].data() + slot * map.nodes * 3;
     const std::size_t origin = static_cast<std::size_t>(ly.i) * map.stride[0] + static_cast<std::size_t>(ll.i) * map.stride[1];
-    bilinear_scales(base + origin * 3, map.stride[0], map.stride[1], ly.t, ll.t, inv);
+    bilinear_node_values(base + origin * 3, map.stride[0], map.stride[1], 3, ly.t, ll.t, inv);
     if constexpr (kGrad) {
       const double* p00 = base + origin * 3;
       const double* p01 = p00 + map.stride[1] * 3;
@@ -344,22 +344,9 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
 
   // The slot's reciprocal scales on the query's side (one_sided_scales): list 0's pieces, ends at
   // grid nodes from CreepMap::scale, at jumps from JumpWheel::inv_scale.
-  double inv[3] = {0.0, 0.0, 0.0};
-  for (int k = 0; k < 2; ++k) {
-    const std::size_t lnode = static_cast<std::size_t>(lc + k);
-    auto end_scale = [&](const End& e) -> const double* {
-      if (e.sample)
-        return j.inv_scale.data() + ((((slot * j.n_load_nodes + lnode) * j.n_jumps + static_cast<std::size_t>(e.index)) * 2 +
-                                      static_cast<std::size_t>(e.side)) * 3);
-      const std::size_t node = static_cast<std::size_t>(e.index) * map.stride[0] + lnode * map.stride[1];
-      return map.scale[w].data() + (slot * map.nodes + node) * 3;
-    };
-    const Piece& p = pieces[0][k];
-    const double* a = end_scale(p.a);
-    const double* b = end_scale(p.b);
-    const double t = p.t;
-    for (int m = 0; m < 3; ++m) inv[m] += weight[k] * ((1.0 - t) * a[m] + t * b[m]);
-  }
+  double inv[3];
+  one_sided_node_values(map, j, map.scale[w].data() + slot * map.nodes * 3, slot_at_jump(j, j.inv_scale, 3, s), 3,
+                        pieces[0], 2, lc, weight, inv);
   // The creepage cell at the normalised coordinates (creep_cell_n<3>): corner bit q = upper node
   // along creepage axis q, weights 1.0 * f_xi * f_eta * f_phi built by doubling the list per axis.
   double xn[3], cw[8];
