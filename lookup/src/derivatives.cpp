@@ -94,32 +94,7 @@ void scales(const TableData& d, int w, const Location& at, int slot, double inv[
     }
     return;
   }
-  const JumpWheel& j = d.jumps[w];
-  const int nodes = j.load_axis ? 2 : 1, lc = j.load_axis ? at.loc[kVarLoad].i : 0;
-  const double weight[2] = {j.load_axis ? 1.0 - at.loc[kVarLoad].t : 1.0, j.load_axis ? at.loc[kVarLoad].t : 0.0};
-  const double* x = d.axis[kVarY].nodes();
-  const AxisLoc& ly = at.loc[kVarY];
-  const double yq = x[ly.i] + ly.t * (x[ly.i + 1] - x[ly.i]);
-  const double* grid = map.scale[w].data() + s * map.nodes * 3;
-  const double* at_jump = slot_at_jump(j, j.inv_scale, 3, slot);
-  double node_inv[2][3] = {};
-  inv[0] = inv[1] = inv[2] = 0.0;
-  for (int k = 0; k < nodes; ++k) {
-    const std::size_t lnode = static_cast<std::size_t>(lc + k);
-    const Piece& piece = at.pieces[0][k];
-    const double* a = node_end_values(map, j, grid, at_jump, 3, lnode, piece.a);
-    const double* b = node_end_values(map, j, grid, at_jump, 3, lnode, piece.b);
-    const double slope = piece_slope(j, d.axis[kVarY], lnode, piece, yq);
-    for (int c = 0; c < 3; ++c) {
-      node_inv[k][c] = (1.0 - piece.t) * a[c] + piece.t * b[c];
-      inv[c] += weight[k] * node_inv[k][c];
-      dinv[c][kVarY] += weight[k] * (b[c] - a[c]) * slope;
-    }
-  }
-  if (j.load_axis) {
-    const double iw = inverse_width(d.axis[kVarLoad], at.loc[kVarLoad]);
-    for (int c = 0; c < 3; ++c) dinv[c][kVarLoad] = (node_inv[1][c] - node_inv[0][c]) * iw;
-  }
+  one_sided_scales_gradient(d, w, at.loc, at.pieces, slot, inv, dinv);
 }
 
 // The normalised creep block of one slot: its v cells at the slot's scales, its gradient chained
@@ -145,15 +120,8 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
   }
   BlockGradient g;
   block_gradient(d, w, bi, at, loc, slot, g);
-  for (int k = 0; k < b.n_values; ++k) {
-    const int o = b.output_of[k];
-    out.value[o] = g.value[k];
-    for (int var = 0; var < kNumVars; ++var) {
-      double sum = var < kVarXi ? g.d[k][var] : 0.0;
-      for (int q = 0; q < 3; ++q) sum += g.d[k][kVarXi + q] * dv[q][var];
-      out.d[o][var] = sum;
-    }
-  }
+  for (int k = 0; k < b.n_values; ++k) out.value[b.output_of[k]] = g.value[k];
+  chain_creep_coordinates(b, g, dv, out.d);
   if (!d.has_part[kCreep]) return;
   const double angle = out.value[kContactAngle];
   denormalise_creep_gradient(map, xn, dxn, out.value, std::cos(angle), std::sin(angle), out.d);
