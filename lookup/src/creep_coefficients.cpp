@@ -58,7 +58,7 @@ void read_creep_coefficients(const Hdf5File& f, TableData& d) {
   if (!d.has_part[kNormal]) f.fail("creep coefficients without a normal part");
   CreepCoefficientData& c = d.coefficients;
   std::vector<hsize_t> expected;
-  for (int var = 0; var < kNumVars; ++var) {
+  for (const int var : kFileOrder) {
     if (!kPartSpecs[kNormal].uses[var] || !d.tabulated[var]) continue;
     c.var[c.n_dims] = var;
     expected.push_back(static_cast<hsize_t>(d.axis[var].size()));
@@ -164,7 +164,7 @@ bool Table::query_creep_coefficients(Wheel wheel, const State& state, CreepCoeff
   for (int s = 0; s < d.n_slots; ++s) out.status[s] = r.contact[s].part_status[kNormal];
   if (r.status & status::kInvalidInput) return true;
   AxisLoc loc[kNumVars];
-  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi};
+  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi, state.yaw};
   for (int k = 0; k < d.coefficients.n_dims; ++k) {
     const int var = d.coefficients.var[k];
     d.axis[var].locate_fast(v[var], loc[var]);

@@ -20,10 +20,10 @@ inline constexpr int kCoefficients = 9;  // [fx, fy, mz] x [xi, eta, phi], force
 
 struct CreepCoefficientData {
   bool present = false;  // the table has them (format 2.3); false: 2.2 and older
-  // The normal part's tabulated axes among y, roll, load (file order), their sizes and strides in nodes.
+  // The normal part's tabulated axes among y, roll, yaw, load (file order), their sizes and strides in nodes.
   int n_dims = 0;
-  int var[3] = {};
-  std::size_t stride[3] = {};
+  int var[kMaxNormalDims] = {};
+  std::size_t stride[kMaxNormalDims] = {};
   std::size_t nodes = 1;
   // value[wheel][(slot * nodes + node) * 9 + k]: the grid's coefficients.
   std::vector<double> value[2];

@@ -29,12 +29,12 @@ struct CreepMap {
   bool vertical_share = false;    // the creep part's normal_force is N cos(angle) + Fy sin(angle)
   double lo_k[3] = {}, hi_k[3] = {};
   // Reciprocal scales 1/s_xi, 1/s_eta, 1/s_phi per node of the normal part's grid (its axes among
-  // y, roll, load, in file order) and slot: scale[wheel][(slot * nodes + node) * 3 + k]. The
+  // y, roll, yaw, load, in file order) and slot: scale[wheel][(slot * nodes + node) * 3 + k]. The
   // query interpolates the reciprocals (the same at the nodes, and no division on its path).
   int n_dims = 0;
-  int var[3] = {};
-  int size[3] = {};
-  std::size_t stride[3] = {};     // in nodes
+  int var[kMaxNormalDims] = {};
+  int size[kMaxNormalDims] = {};
+  std::size_t stride[kMaxNormalDims] = {};  // in nodes
   std::size_t nodes = 1;
   std::vector<double> scale[2];
 };

@@ -29,6 +29,7 @@ double state_var(const State& s, int var) noexcept {
     case kVarLoad: return s.load;
     case kVarXi: return s.xi;
     case kVarEta: return s.eta;
+    case kVarYaw: return s.yaw;
     default: return s.phi;
   }
 }
@@ -389,7 +390,7 @@ void prepare_fast_path(TableData& d) noexcept {
   if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_FAST_PATH"); env && *env && *env != '0') return;
   const CreepMap& map = d.creep_map;
   if (d.method != Method::kLinear || !map.active || d.n_blocks != 3) return;
-  if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll])) return;
+  if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll] && !d.tabulated[kVarYaw])) return;
   if (d.n_located != 2 || d.n_clamped != 3 || !map.swept[0] || !map.swept[1] || !map.swept[2]) return;
   if (map.n_dims != 2 || map.var[0] != kVarY || map.var[1] != kVarLoad) return;
   if (!d.has_part[kGeometry] || !d.has_part[kNormal] || !d.has_part[kCreep]) return;
