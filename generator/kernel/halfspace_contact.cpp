@@ -169,7 +169,7 @@ halfspace::WheelHalfspaceResult solve_halfspace_rolling_per_patch(
     return t;
   };
   halfspace::WheelHalfspaceResult r;
-  auto round = [&](double tz) {  // normal for F_z - tz, then tangential; returns the new tz
+  auto round = [&](double tz, bool) {  // normal for F_z - tz, then tangential (full tolerances); the new tz
     halfspace::WheelHalfspaceResult next =
         halfspace::solve_halfspace_for_load(geometry, std::max(0.0, load - tz), material, options, workspace);
     if (next.patches.size() == r.patches.size())  // warm start of the tractions from the previous round

@@ -6,84 +6,32 @@
 #include <cstring>
 
 #include "interpolate.hpp"  // use_avx2
+#include "weighted_sum.hpp"
 
 namespace railtab::lookup::detail {
 
 namespace {
 
-// multilinear_gradient for N dimensions, the values in chunks of L lanes (the corner loops unroll,
-// the lane loops vectorise). L is the block's value count rounded up (2, 3, 4, 6 or 8: no lanes
-// computed for nothing); more than 8 values go in chunks of 8.
-template <int N, int L, class T>
-__attribute__((always_inline)) inline void multilinear_gradient_n(RecordPtr p, const std::size_t* stride,
-                                                                  const double* t, int n_values, double* value,
-                                                                  double (*out_dt)[kMaxDims]) noexcept {
-  // Corner c holds the upper node along dimension dim where bit (N - 1 - dim) of c is set, so the
-  // two corners of a pair (2e, 2e + 1) differ in the last dimension. The cell is reduced one
-  // dimension at a time, last first: a pair's value is the lerp of its two, its derivative along
-  // the reduced dimension their difference, and the derivatives already found are lerped along.
-  constexpr int kCorners = 1 << N;
-  std::size_t off[kCorners];
-#pragma GCC unroll 64
-  for (int c = 0; c < kCorners; ++c) {
-    std::size_t o = 0;
-    for (int dim = 0; dim < N; ++dim)
-      if ((c >> (N - 1 - dim)) & 1) o += stride[dim];
-    off[c] = o;
-  }
-  for (int k0 = 0; k0 < n_values; k0 += L) {
-    const int lanes = std::min(L, n_values - k0);
-    double v[kCorners][L], g[kCorners][N > 0 ? N : 1][L];
-    for (int c = 0; c < kCorners; ++c)
-      for (int k = 0; k < L; ++k) v[c][k] = k < lanes ? record_value<T>(p + off[c], k0 + k) : 0.0;
-    int m = kCorners;
-#pragma GCC unroll 8
-    for (int dim = N - 1; dim >= 0; --dim) {
-      m >>= 1;
-      const double tt = t[dim], u = 1.0 - tt;
-      for (int e = 0; e < m; ++e) {
-        const int lo = 2 * e, hi = 2 * e + 1;
-        for (int r = dim + 1; r < N; ++r)
-          for (int k = 0; k < L; ++k) g[e][r][k] = u * g[lo][r][k] + tt * g[hi][r][k];
-        for (int k = 0; k < L; ++k) {
-          g[e][dim][k] = v[hi][k] - v[lo][k];
-          v[e][k] = u * v[lo][k] + tt * v[hi][k];
-        }
-      }
-    }
-    for (int k = 0; k < lanes; ++k) {
-      value[k0 + k] = v[0][k];
-      for (int dim = 0; dim < N; ++dim) out_dt[k0 + k][dim] = g[0][dim][k];
-    }
-  }
-}
-
-// The kernel for one (N, L, T), compiled for SSE2 and for AVX2 (the same operations in the same
-// order, no fused multiply-add: the same bits either way).
-template <int N, int L, class T>
+// multilinear_gradient for N dimensions (cell_gradient in weighted_sum.hpp), compiled for SSE2
+// and for AVX2 (the same operations in the same order, no fused multiply-add: the same bits
+// either way).
+template <int N, class T>
 void gradient_sse2(RecordPtr p, const std::size_t* stride, const double* t, int n_values, double* value,
                    double (*out_dt)[kMaxDims]) noexcept {
-  multilinear_gradient_n<N, L, T>(p, stride, t, n_values, value, out_dt);
+  cell_gradient_sse2<N, T>(p, stride, t, n_values, value, out_dt);
 }
-template <int N, int L, class T>
+template <int N, class T>
 __attribute__((target("avx2"))) void gradient_avx2(RecordPtr p, const std::size_t* stride, const double* t,
                                                    int n_values, double* value, double (*out_dt)[kMaxDims]) noexcept {
-  multilinear_gradient_n<N, L, T>(p, stride, t, n_values, value, out_dt);
+  cell_gradient_avx2<N, T>(p, stride, t, n_values, value, out_dt);
 }
 
 template <int N, class T>
 void gradient_dims(RecordPtr p, const std::size_t* stride, const double* t, int n_values, double* value,
                    double (*out_dt)[kMaxDims]) noexcept {
   static const bool avx2 = use_avx2();
-#define RAILTAB_GRADIENT_LANES(L)                                                         \
-  return avx2 ? gradient_avx2<N, L, T>(p, stride, t, n_values, value, out_dt)             \
-              : gradient_sse2<N, L, T>(p, stride, t, n_values, value, out_dt)
-  if (n_values <= 2) RAILTAB_GRADIENT_LANES(2);
-  if (n_values <= 3) RAILTAB_GRADIENT_LANES(3);
-  if (n_values <= 4) RAILTAB_GRADIENT_LANES(4);
-  if (n_values <= 6) RAILTAB_GRADIENT_LANES(6);
-  RAILTAB_GRADIENT_LANES(8);
-#undef RAILTAB_GRADIENT_LANES
+  if (avx2) gradient_avx2<N, T>(p, stride, t, n_values, value, out_dt);
+  else gradient_sse2<N, T>(p, stride, t, n_values, value, out_dt);
 }
 
 }  // namespace

@@ -31,10 +31,7 @@ void multilinear_gradient(RecordPtr p, int n, const std::size_t* stride, const d
                           int n_values, double* value, double (*out_dt)[kMaxDims]) noexcept;
 
 // 1 / width of the cell `loc` lies in.
-inline double inverse_width(const Axis& axis, const AxisLoc& loc) noexcept {
-  const double* x = axis.nodes();
-  return 1.0 / (x[loc.i + 1] - x[loc.i]);
-}
+inline double inverse_width(const Axis& axis, const AxisLoc& loc) noexcept { return axis.inverse_width(loc.i); }
 
 // A cell no jump cuts: the multilinear kernel's interpolant.
 void linear_gradient(const Block& b, const Axis* axes, const AxisLoc* loc, int slot,

@@ -2,6 +2,8 @@
 // Normalised creep coordinates on the lookup side (creep_map.hpp): physical creepage to node coordinate and back to N.
 #include "creep_map.hpp"
 
+#include <cmath>
+
 namespace railtab::lookup::detail {
 
 void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc* loc, double out[3]) noexcept {
@@ -32,6 +34,78 @@ void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc*
 double creep_coordinate(double q, double lo, double hi, double s) noexcept {
   const double inv = 1.0 / s;
   return creep_coordinate_normalised(q * inv, lo * inv, hi * inv);
+}
+
+namespace {
+
+// v = -1 + 2 (m(x) - m(a)) / (m(b) - m(a)) (creep_coordinate_normalised) and its partial
+// derivatives with respect to x, a and b; m(x) = x / (1 + |x|), m'(x) = 1 / (1 + |x|)^2.
+void coordinate_partials(double x, double a, double b, double out[3]) noexcept {
+  auto m = [](double z) { return z / (1.0 + std::abs(z)); };
+  auto dm = [](double z) { return 1.0 / ((1.0 + std::abs(z)) * (1.0 + std::abs(z))); };
+  const double mx = m(x), ma = m(a), mb = m(b), den = mb - ma;
+  out[0] = 2.0 * dm(x) / den;
+  out[1] = 2.0 * dm(a) * (mx - mb) / (den * den);
+  out[2] = -2.0 * dm(b) * (mx - ma) / (den * den);
+}
+
+// The saturation law (creep_law) and its Jacobian with respect to (xi', eta', psi'):
+// law = -q(r) (x, y), x = xi', y = eta' + psi' / 3, q = g / r = 3 - 3 r + r^2 below r = 1, 1 / r above.
+void law_jacobian(const double xn[3], double law[2], double jac[2][3]) noexcept {
+  const double x = xn[0], y = xn[1] + xn[2] / 3.0;
+  const double r = std::sqrt(x * x + y * y);
+  const double q = r < 1.0 ? 3.0 - 3.0 * r + r * r : 1.0 / r;
+  const double dq = r < 1.0 ? -3.0 + 2.0 * r : -1.0 / (r * r);
+  // The law is 0 at r = 0 (creep_law); its derivative there is the limit -3 I.
+  law[0] = r > 0.0 ? -q * x : 0.0;
+  law[1] = r > 0.0 ? -q * y : 0.0;
+  const double cx = r > 0.0 ? x / r : 0.0, cy = r > 0.0 ? y / r : 0.0;
+  const double dxx = -(q + dq * x * cx), dxy = -dq * x * cy, dyx = -dq * y * cx, dyy = -(q + dq * y * cy);
+  jac[0][0] = dxx, jac[0][1] = dxy, jac[0][2] = dxy / 3.0;
+  jac[1][0] = dyx, jac[1][1] = dyy, jac[1][2] = dyy / 3.0;
+}
+
+}  // namespace
+
+void coordinate_gradient(const CreepMap& map, int k, double xn, double inv, const double* dxn, const double* dinv,
+                         double* dv) noexcept {
+  double p[3];
+  coordinate_partials(xn * map.kinv[k], map.lo_k[k] * inv, map.hi_k[k] * inv, p);
+  const double along = p[0] * map.kinv[k], ends = p[1] * map.lo_k[k] + p[2] * map.hi_k[k];
+  for (int var = 0; var < kNumVars; ++var) dv[var] = along * dxn[var] + ends * dinv[var];
+}
+
+void denormalise_creep_gradient(const CreepMap& map, const double xn[3], const double (*dxn)[kNumVars],
+                                const double* stored, double cos_angle, double sin_angle,
+                                double (*dd)[kNumVars]) noexcept {
+  double law[2], jac[2][3], dlaw[2][kNumVars];
+  law_jacobian(xn, law, jac);
+  for (int c = 0; c < 2; ++c)
+    for (int var = 0; var < kNumVars; ++var)
+      dlaw[c][var] = jac[c][0] * dxn[0][var] + jac[c][1] * dxn[1][var] + jac[c][2] * dxn[2][var];
+  const double mu = map.friction;
+  double n = stored[kNormalForce];
+  if (map.vertical_share) {  // N = share / (cos a + mu r_y sin a), normal_from_share
+    const double share = stored[kNormalForce];
+    const double ca = cos_angle, sa = sin_angle, ry = stored[kFy] + law[1];
+    const double den = ca + mu * ry * sa;
+    const bool guarded = !(std::abs(den) > 1e-3);
+    const double used = guarded ? std::copysign(1e-3, den) : den;
+    n = share / used;
+    for (int var = 0; var < kNumVars; ++var) {
+      const double dry = dd[kFy][var] + dlaw[1][var];
+      const double dden = guarded ? 0.0 : -sa * dd[kContactAngle][var] + mu * dry * sa + mu * ry * ca * dd[kContactAngle][var];
+      dd[kNormalForce][var] = (dd[kNormalForce][var] - n * dden) / used;
+    }
+  }
+  const double mun = mu * n;
+  const double rx = stored[kFx] + law[0], ry = stored[kFy] + law[1], rz = stored[kMz];
+  for (int var = 0; var < kNumVars; ++var) {
+    const double dmun = mu * dd[kNormalForce][var];
+    dd[kFx][var] = (dd[kFx][var] + dlaw[0][var]) * mun + rx * dmun;
+    dd[kFy][var] = (dd[kFy][var] + dlaw[1][var]) * mun + ry * dmun;
+    dd[kMz][var] = dd[kMz][var] * mun + rz * dmun;
+  }
 }
 
 }  // namespace railtab::lookup::detail

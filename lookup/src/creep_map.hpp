@@ -112,4 +112,24 @@ inline void denormalise_creep(const CreepMap& map, const double xn[3], double co
   value[kMz] *= mun;
 }
 
+// ---- Derivatives of the above (Table::query_derivatives, derivatives.cpp and the fused path of
+// fast_path.cpp: one formula for both).
+
+// The row d v / d variable of creepage axis k's coordinate v = creep_coordinate_normalised(xn
+// kinv, lo_k inv, hi_k inv) at the normalised creepage xn = creepage inv (inv the slot's
+// reciprocal scale), from d xn / d variable (`dxn`) and d inv / d variable (`dinv`), rows over
+// the state variables.
+void coordinate_gradient(const CreepMap& map, int k, double xn, double inv, const double* dxn, const double* dinv,
+                         double* dv) noexcept;
+
+// The derivatives of denormalise_creep's outputs: `stored` the block's values before it (indexed
+// by Output: the contact angle, the normal force or its vertical share, the fx, fy, mz
+// residuals), xn the normalised creepages and dxn their rows, cos_angle and sin_angle those of
+// stored[kContactAngle] (used with a vertical share only); `dd` (rows by Output, columns by state
+// variable) holds the stored values' derivatives on entry and those of the forces in N
+// (kNormalForce, kFx, kFy, kMz) on return.
+void denormalise_creep_gradient(const CreepMap& map, const double xn[3], const double (*dxn)[kNumVars],
+                                const double* stored, double cos_angle, double sin_angle,
+                                double (*dd)[kNumVars]) noexcept;
+
 }  // namespace railtab::lookup::detail

@@ -133,33 +133,6 @@ void scales(const TableData& d, int w, const Location& at, int slot, double inv[
   }
 }
 
-// v = -1 + 2 (m(x) - m(a)) / (m(b) - m(a)) (creep_coordinate_normalised) and its partial
-// derivatives with respect to x, a and b; m(x) = x / (1 + |x|), m'(x) = 1 / (1 + |x|)^2.
-void coordinate_partials(double x, double a, double b, double out[3]) noexcept {
-  auto m = [](double z) { return z / (1.0 + std::abs(z)); };
-  auto dm = [](double z) { return 1.0 / ((1.0 + std::abs(z)) * (1.0 + std::abs(z))); };
-  const double mx = m(x), ma = m(a), mb = m(b), den = mb - ma;
-  out[0] = 2.0 * dm(x) / den;
-  out[1] = 2.0 * dm(a) * (mx - mb) / (den * den);
-  out[2] = -2.0 * dm(b) * (mx - ma) / (den * den);
-}
-
-// The saturation law (creep_law) and its Jacobian with respect to (xi', eta', psi'):
-// law = -q(r) (x, y), x = xi', y = eta' + psi' / 3, q = g / r = 3 - 3 r + r^2 below r = 1, 1 / r above.
-void law_jacobian(const double xn[3], double law[2], double jac[2][3]) noexcept {
-  const double x = xn[0], y = xn[1] + xn[2] / 3.0;
-  const double r = std::sqrt(x * x + y * y);
-  const double q = r < 1.0 ? 3.0 - 3.0 * r + r * r : 1.0 / r;
-  const double dq = r < 1.0 ? -3.0 + 2.0 * r : -1.0 / (r * r);
-  // The law is 0 at r = 0 (creep_law); its derivative there is the limit -3 I.
-  law[0] = r > 0.0 ? -q * x : 0.0;
-  law[1] = r > 0.0 ? -q * y : 0.0;
-  const double cx = r > 0.0 ? x / r : 0.0, cy = r > 0.0 ? y / r : 0.0;
-  const double dxx = -(q + dq * x * cx), dxy = -dq * x * cy, dyx = -dq * y * cx, dyy = -(q + dq * y * cy);
-  jac[0][0] = dxx, jac[0][1] = dxy, jac[0][2] = dxy / 3.0;
-  jac[1][0] = dyx, jac[1][1] = dyy, jac[1][2] = dyy / 3.0;
-}
-
 // The normalised creep block of one slot: its v cells at the slot's scales, its gradient chained
 // through v to y, roll, load and the physical creepages, then the forces scaled back to N
 // (denormalise_creep) with their derivatives.
@@ -178,14 +151,9 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
       if (!is_creepage(var)) dxn[k][var] = at.creepage[k] * dinv[k][var];
     if (map.swept[k] && !at.frozen[cv]) dxn[k][cv] = inv[k];
     if (!map.swept[k]) continue;
-    const double xa = xn[k] * map.kinv[k], a = map.lo_k[k] * inv[k], bb = map.hi_k[k] * inv[k];
-    d.axis[cv].locate_fast(creep_coordinate_normalised(xa, a, bb), loc[cv]);
-    double p[3];
-    coordinate_partials(xa, a, bb, p);
-    for (int var = 0; var < kNumVars; ++var)
-      if (!is_creepage(var))
-        dv[k][var] = p[0] * map.kinv[k] * dxn[k][var] + (p[1] * map.lo_k[k] + p[2] * map.hi_k[k]) * dinv[k][var];
-    dv[k][cv] = p[0] * map.kinv[k] * dxn[k][cv];
+    d.axis[cv].locate_fast(creep_coordinate_normalised(xn[k] * map.kinv[k], map.lo_k[k] * inv[k], map.hi_k[k] * inv[k]),
+                           loc[cv]);
+    coordinate_gradient(map, k, xn[k], inv[k], dxn[k], dinv[k], dv[k]);
   }
   BlockGradient g;
   block_gradient(d, w, bi, at, loc, slot, g);
@@ -199,39 +167,8 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
     }
   }
   if (!d.has_part[kCreep]) return;
-  double law[2], jac[2][3], dlaw[2][kNumVars];
-  law_jacobian(xn, law, jac);
-  for (int c = 0; c < 2; ++c)
-    for (int var = 0; var < kNumVars; ++var)
-      dlaw[c][var] = jac[c][0] * dxn[0][var] + jac[c][1] * dxn[1][var] + jac[c][2] * dxn[2][var];
-  double* v = out.value;
-  double (*dd)[kNumVars] = out.d;
-  const double mu = map.friction;
-  if (map.vertical_share) {  // N = share / (cos a + mu r_y sin a), normal_from_share
-    const double share = v[kNormalForce], angle = v[kContactAngle];
-    const double ca = std::cos(angle), sa = std::sin(angle), ry = v[kFy] + law[1];
-    const double den = ca + mu * ry * sa;
-    const bool guarded = !(std::abs(den) > 1e-3);
-    const double used = guarded ? std::copysign(1e-3, den) : den;
-    const double n = share / used;
-    for (int var = 0; var < kNumVars; ++var) {
-      const double dry = dd[kFy][var] + dlaw[1][var];
-      const double dden = guarded ? 0.0 : -sa * dd[kContactAngle][var] + mu * dry * sa + mu * ry * ca * dd[kContactAngle][var];
-      dd[kNormalForce][var] = (dd[kNormalForce][var] - n * dden) / used;
-    }
-    v[kNormalForce] = n;
-  }
-  const double mun = mu * v[kNormalForce];
-  const double rx = v[kFx] + law[0], ry = v[kFy] + law[1], rz = v[kMz];
-  for (int var = 0; var < kNumVars; ++var) {
-    const double dmun = mu * dd[kNormalForce][var];
-    dd[kFx][var] = (dd[kFx][var] + dlaw[0][var]) * mun + rx * dmun;
-    dd[kFy][var] = (dd[kFy][var] + dlaw[1][var]) * mun + ry * dmun;
-    dd[kMz][var] = dd[kMz][var] * mun + rz * dmun;
-  }
-  v[kFx] = rx * mun;
-  v[kFy] = ry * mun;
-  v[kMz] = rz * mun;
+  const double angle = out.value[kContactAngle];
+  denormalise_creep_gradient(map, xn, dxn, out.value, std::cos(angle), std::sin(angle), out.d);
 }
 
 void slot_gradient(const TableData& d, int w, const Location& at, int slot, SlotGradient& out) noexcept {
@@ -260,8 +197,17 @@ bool Table::derivatives_supported() const noexcept { return data_->method != Met
 
 bool Table::query_derivatives(Wheel wheel, const State& state, Result& result, Derivatives& derivatives) const noexcept {
   using namespace detail;
-  query(wheel, state, result);
   const TableData& d = *data_;
+  const int wf = static_cast<int>(wheel);
+  if (d.fast.derivatives && (wf == 0 || wf == 1)) {  // fast_path.hpp; false: not finite, or a cut cell
+    StatusBits q = 0;
+    if (d.fast.derivatives(d, wf, state, result.contact, derivatives.d, q)) {
+      result.n_slots = d.n_slots;
+      result.status = q;
+      return true;
+    }
+  }
+  query(wheel, state, result);
   const int ns = std::max(0, std::min(result.n_slots, kMaxSlots));
   for (int s = 0; s < ns; ++s)
     for (auto& row : derivatives.d[s])

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <initializer_list>
 
+#include "block_gradient.hpp"
 #include "interpolate.hpp"
 #include "jump_piece.hpp"
 #include "low_confidence.hpp"
@@ -74,12 +75,38 @@ inline void fold_status(const TableData& d, StatusBits q, Contact& c) noexcept {
   c.reserved = 0;
 }
 
+// What the derivative query adds to regular_slot: where the slot's derivatives go (rows by Output,
+// zeroed here) and the variables held at the table's edge (their columns stay 0).
+struct SlotDerivatives {
+  double (*d)[kNumVars] = nullptr;
+  unsigned frozen = 0;  // bit var: clamped
+};
+
+// A row of derivatives over the state variables: y, load and the three creepages (roll 0: the
+// fast path's tables do not tabulate it).
+__attribute__((always_inline)) inline void set_row(double* row, double y, double load, double xi, double eta,
+                                                   double phi) noexcept {
+  static_assert(kVarY == 0 && kVarRoll == 1 && kVarLoad == 2 && kVarXi == 3 && kVarEta == 4 && kVarPhi == 5 &&
+                kVarYaw == 6 && kNumVars == 7);
+  row[0] = y, row[1] = 0.0, row[2] = load, row[3] = xi, row[4] = eta, row[5] = phi, row[6] = 0.0;  // no roll, yaw axis
+}
+
+// d value / d t of a bilinear cell over (y, load) for the value at f00 (lower y, lower load),
+// f01 (lower y, upper load), f10, f11: along y and along load.
+inline void bilinear_dt(double f00, double f01, double f10, double f11, double ty, double tl, double& dy,
+                        double& dl) noexcept {
+  dy = (1.0 - tl) * (f10 - f00) + tl * (f11 - f01);
+  dl = (1.0 - ty) * (f01 - f00) + ty * (f11 - f10);
+}
+
 // One slot of a cell no jump cuts. NG, NN, NC: values per record of the geometry, normal and creep
 // blocks; NP: parts of the creep block (creep, or creep and wear); TC: the creep block's value
 // type (float for format 2.2, Block::value_bytes; the geometry and normal blocks hold doubles).
-template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
+// kGrad: also the partial derivatives (into grad), derivatives.cpp's formulas on the cell, scales
+// and creepage cells found here once; the values are the plain query's, the same code.
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC, bool kGrad = false>
 void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, StatusBits q,
-                  int s, Contact& c) noexcept {
+                  int s, Contact& c, const SlotDerivatives* grad = nullptr) noexcept {
   const FastPath& fp = d.fast;
   const Block& gb = d.block[w][fp.geometry];
   const Block& nb = d.block[w][fp.normal];
@@ -90,6 +117,19 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   const AxisLoc ly = loc[kVarY], ll = loc[kVarLoad];
   // t and 1 - t of y and load, in the generic kernels' order (first dimension first).
   const double t2[2] = {ly.t, ll.t}, u2[2] = {1.0 - ly.t, 1.0 - ll.t};
+  // Every row of dd is written whole (no zeroing first: it costs as much as the rows): a block's
+  // rows with their variables' columns, the others 0.
+  double (*dd)[kNumVars] = nullptr;
+  double iw_y = 0.0, iw_load = 0.0;
+  if constexpr (kGrad) {
+    dd = grad->d;
+    for (int a = 0; a < d.n_absent; ++a) {
+      const PartSpec& spec = kPartSpecs[d.absent_part[a]];
+      for (int k = 0; k < spec.n_out; ++k) set_row(dd[spec.first_output + k], 0.0, 0.0, 0.0, 0.0, 0.0);
+    }
+    iw_y = inverse_width(d.axis[kVarY], ly);
+    iw_load = inverse_width(d.axis[kVarLoad], ll);
+  }
 
   // Geometry (y), first: its contact angle's sine and cosine (normal_from_share) are the longest
   // computation of the query, and depend on nothing else, so they overlap with what follows.
@@ -101,6 +141,10 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     store_values(gb, sums, c);
     store_status_run<1>(kGeometry, gb, g, c);
   }
+  if constexpr (kGrad)
+    for (int k = 0; k < NG; ++k)
+      set_row(dd[gb.output_of[k]], (record_value<double>(g + gb.stride[0], k) - record_value<double>(g, k)) * iw_y,
+              0.0, 0.0, 0.0, 0.0);
   double cos_angle = 0.0, sin_angle = 0.0;
   if (map.vertical_share) {
     cos_angle = std::cos(c.value[kContactAngle]);
@@ -110,10 +154,22 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   // The slot's reciprocal scales at (y, load) (interpolate_scales, bilinear), the normalised
   // creepages and their cells (interpolate_normalised_creep): the creep records' address.
   double inv[3];
+  double dinv[3][kNumVars], dxn[3][kNumVars], dv[3][kNumVars], iw_v[3];  // kGrad
   {
     const double* base = map.scale[w].data() + slot * map.nodes * 3;
     const std::size_t origin = static_cast<std::size_t>(ly.i) * map.stride[0] + static_cast<std::size_t>(ll.i) * map.stride[1];
     bilinear_scales(base + origin * 3, map.stride[0], map.stride[1], ly.t, ll.t, inv);
+    if constexpr (kGrad) {
+      const double* p00 = base + origin * 3;
+      const double* p01 = p00 + map.stride[1] * 3;
+      const double* p10 = p00 + map.stride[0] * 3;
+      const double* p11 = p10 + map.stride[1] * 3;
+      for (int k = 0; k < 3; ++k) {
+        double dy, dl;
+        bilinear_dt(p00[k], p01[k], p10[k], p11[k], ly.t, ll.t, dy, dl);
+        set_row(dinv[k], dy * iw_y, dl * iw_load, 0.0, 0.0, 0.0);
+      }
+    }
   }
   double x[3], t5[5] = {ly.t, ll.t, 0.0, 0.0, 0.0};
   std::size_t cell = static_cast<std::size_t>(ly.i) * cb.stride[0] + static_cast<std::size_t>(ll.i) * cb.stride[1];
@@ -124,6 +180,12 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
         creep_coordinate_normalised(x[k] * map.kinv[k], map.lo_k[k] * inv[k], map.hi_k[k] * inv[k]), l);
     t5[2 + k] = l.t;
     cell += static_cast<std::size_t>(l.i) * cb.stride[2 + k];
+    if constexpr (kGrad) {
+      iw_v[k] = inverse_width(d.axis[kVarXi + k], l);
+      set_row(dxn[k], creepage[k] * dinv[k][kVarY], creepage[k] * dinv[k][kVarLoad], 0.0, 0.0, 0.0);
+      if (!(grad->frozen >> (kVarXi + k) & 1u)) dxn[k][kVarXi + k] = inv[k];
+      coordinate_gradient(map, k, x[k], inv[k], dxn[k], dinv[k], dv[k]);
+    }
   }
   RecordPtr cr = cb.data.data() + slot * cb.slot_size + cell;
   const double u5[5] = {1.0 - t5[0], 1.0 - t5[1], 1.0 - t5[2], 1.0 - t5[3], 1.0 - t5[4]};
@@ -137,6 +199,15 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     walk_corners_sse2<2, 0>(n, 1.0, t2, u2, nb.stride, sums);
     store_values(nb, sums, c);
     store_status_run<1>(kNormal, nb, n, c);
+    if constexpr (kGrad) {
+      RecordPtr n01 = n + nb.stride[1], n10 = n + nb.stride[0], n11 = n10 + nb.stride[1];
+      for (int k = 0; k < NN; ++k) {
+        double dy, dl;
+        bilinear_dt(record_value<double>(n, k), record_value<double>(n01, k), record_value<double>(n10, k),
+                    record_value<double>(n11, k), ly.t, ll.t, dy, dl);
+        set_row(dd[nb.output_of[k]], dy * iw_y, dl * iw_load, 0.0, 0.0, 0.0);
+      }
+    }
   }
 
   // Creep and wear (y, load, v_xi, v_eta, v_phi): 32 corners.
@@ -148,8 +219,29 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
     store_status_run<NP>(kCreep, cb, cr, c);
   }
-
-  denormalise_creep(map, x, cos_angle, sin_angle, c.value);
+  if constexpr (kGrad) {
+    // d / d t of the cell's 5 fractions, chained: y and load directly and through the v
+    // coordinates (dv), the creepages through dv.
+    double ignored[NC], dt[NC][kMaxDims];
+    multilinear_gradient<TC>(cr, 5, cb.stride, t5, NC, ignored, dt);
+    for (int k = 0; k < NC; ++k) {
+      double* row = dd[cb.output_of[k]];
+      const double a = dt[k][2] * iw_v[0], b = dt[k][3] * iw_v[1], e = dt[k][4] * iw_v[2];
+      for (int var = 0; var < kNumVars; ++var) row[var] = a * dv[0][var] + b * dv[1][var] + e * dv[2][var];
+      row[kVarY] += dt[k][0] * iw_y;
+      row[kVarLoad] += dt[k][1] * iw_load;
+    }
+    double stored[kNumOutputs];  // the values denormalise_creep_gradient reads
+    for (int o : {kContactAngle, kNormalForce, kFx, kFy, kMz}) stored[o] = c.value[o];
+    denormalise_creep(map, x, cos_angle, sin_angle, c.value);
+    denormalise_creep_gradient(map, x, dxn, stored, cos_angle, sin_angle, dd);
+    if (grad->frozen)
+      for (int var = 0; var < kNumVars; ++var)
+        if (grad->frozen >> var & 1u)
+          for (int o = 0; o < kNumOutputs; ++o) dd[o][var] = 0.0;
+  } else {
+    denormalise_creep(map, x, cos_angle, sin_angle, c.value);
+  }
   fold_status(d, q, c);
 }
 
@@ -303,37 +395,51 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
   denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
 }
 
-template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
-bool fast_query(const TableData& d, int w, const State& state, int slot_begin, int slot_end, Contact* contact,
-                StatusBits& q) noexcept {
+// locate_state for this shape: y and load on their axes, the creepages clamped to their physical
+// ranges, the fixed variables compared with their values. Returns false when a variable is not
+// finite; else q gets kOutOfRange as locate_state sets it, and `clamped` bit var for each
+// variable held at the table's edge.
+__attribute__((always_inline)) inline bool locate(const TableData& d, const State& state, AxisLoc* loc,
+                                                  double* creepage, StatusBits& q, unsigned& clamped) noexcept {
   const double y = state.y, load = state.load;
   const double physical[3] = {state.xi, state.eta, state.phi};
   bool finite = std::isfinite(y) && std::isfinite(load) && std::isfinite(physical[0]) &&
                 std::isfinite(physical[1]) && std::isfinite(physical[2]);
   for (int k = 0; k < d.n_fixed; ++k) finite = finite && std::isfinite(state_var(state, d.fixed_var[k]));
   if (!finite) return false;
-  // locate_state: y and load on their axes, the creepages clamped to their physical ranges, the
-  // fixed variables compared with their values.
-  // Only y and load are located (kVarRoll between them stays zero): not the whole kNumVars array,
-  // whose zeroing GCC emits as a `rep stos` on every query.
-  static_assert(kVarY < kVarLoad && kVarRoll < kVarLoad);
-  AxisLoc loc[kVarLoad + 1];
-  bool out = d.axis[kVarY].locate_fast(y, loc[kVarY]);
-  out |= d.axis[kVarLoad].locate_fast(load, loc[kVarLoad]);
+  clamped = static_cast<unsigned>(d.axis[kVarY].locate_fast(y, loc[kVarY])) << kVarY;
+  clamped |= static_cast<unsigned>(d.axis[kVarLoad].locate_fast(load, loc[kVarLoad])) << kVarLoad;
   const CreepMap& map = d.creep_map;
-  double creepage[3];
   for (int c = 0; c < 3; ++c) {
     const double x = physical[c];
-    out |= x < map.lo[c] || x > map.hi[c];
+    clamped |= static_cast<unsigned>(x < map.lo[c] || x > map.hi[c]) << (kVarXi + c);
     creepage[c] = std::min(std::max(x, map.lo[c]), map.hi[c]);
   }
+  bool out = clamped != 0;
   for (int k = 0; k < d.n_fixed; ++k) {
     const int var = d.fixed_var[k];
     out |= std::abs(state_var(state, var) - d.fixed_value[var]) > d.fixed_tolerance[var];
   }
   q = out ? status::kOutOfRange : 0u;
-  if (d.has_jumps && d.jumps[w].cut[static_cast<std::size_t>(loc[kVarY].i) * static_cast<std::size_t>(d.jumps[w].load_cells) +
-                                     static_cast<std::size_t>(loc[kVarLoad].i)]) {  // jump_cell, with a load axis  // one-sided (jump_side.hpp), as interpolate_slots
+  return true;
+}
+
+inline bool cut_cell(const TableData& d, int w, const AxisLoc* loc) noexcept {
+  return d.has_jumps && d.jumps[w].cut[static_cast<std::size_t>(loc[kVarY].i) * static_cast<std::size_t>(d.jumps[w].load_cells) +
+                                       static_cast<std::size_t>(loc[kVarLoad].i)];  // jump_cell, with a load axis
+}
+
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
+bool fast_query(const TableData& d, int w, const State& state, int slot_begin, int slot_end, Contact* contact,
+                StatusBits& q) noexcept {
+  // Only y and load are located (kVarRoll between them stays zero): not the whole kNumVars array,
+  // whose zeroing GCC emits as a `rep stos` on every query.
+  static_assert(kVarY < kVarLoad && kVarRoll < kVarLoad);
+  AxisLoc loc[kVarLoad + 1];
+  double creepage[3];
+  unsigned clamped;
+  if (!locate(d, state, loc, creepage, q, clamped)) return false;
+  if (cut_cell(d, w, loc)) {  // one-sided (jump_side.hpp), as interpolate_slots
     const int n = slot_end - slot_begin;
     for (int s = 0; s < n; ++s) zero_absent(d, contact[s]);
     if (d.fast.cut) {
@@ -355,6 +461,22 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
   return true;
 }
 
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
+bool fast_derivatives(const TableData& d, int w, const State& state, Contact* contact,
+                      double (*deriv)[kNumOutputs][kNumVariables], StatusBits& q) noexcept {
+  AxisLoc loc[kVarLoad + 1];
+  double creepage[3];
+  unsigned clamped;
+  StatusBits bits;
+  if (!locate(d, state, loc, creepage, bits, clamped) || cut_cell(d, w, loc)) return false;
+  q = bits;
+  for (int s = 0; s < d.n_slots; ++s) {
+    const SlotDerivatives grad{deriv[s], clamped};
+    regular_slot<NG, NN, NC, NP, kAvx2, TC, true>(d, w, loc, creepage, q, s, contact[s], &grad);
+  }
+  return true;
+}
+
 // The block holding `part` (-1: none).
 int block_of(const TableData& d, int part) noexcept {
   for (int b = 0; b < d.n_blocks; ++b)
@@ -371,15 +493,21 @@ bool block_over(const Block& b, std::initializer_list<int> vars) noexcept {
   return true;
 }
 
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
+void pick(FastPath& fp) noexcept {
+  fp.query = &fast_query<NG, NN, NC, NP, kAvx2, TC>;
+  fp.derivatives = &fast_derivatives<NG, NN, NC, NP, kAvx2, TC>;
+}
+
 template <int NG, int NN, int NC, class TC>
-FastQuery pick(bool avx2, int np) noexcept {
-  if (np == 2) return avx2 ? &fast_query<NG, NN, NC, 2, true, TC> : &fast_query<NG, NN, NC, 2, false, TC>;
-  return avx2 ? &fast_query<NG, NN, NC, 1, true, TC> : &fast_query<NG, NN, NC, 1, false, TC>;
+void pick(FastPath& fp, bool avx2, int np) noexcept {
+  if (np == 2) avx2 ? pick<NG, NN, NC, 2, true, TC>(fp) : pick<NG, NN, NC, 2, false, TC>(fp);
+  else avx2 ? pick<NG, NN, NC, 1, true, TC>(fp) : pick<NG, NN, NC, 1, false, TC>(fp);
 }
 
 template <int NG, int NN, int NC>
-FastQuery pick(bool avx2, int np, bool single) noexcept {
-  return single ? pick<NG, NN, NC, float>(avx2, np) : pick<NG, NN, NC, double>(avx2, np);
+void pick(FastPath& fp, bool avx2, int np, bool single) noexcept {
+  single ? pick<NG, NN, NC, float>(fp, avx2, np) : pick<NG, NN, NC, double>(fp, avx2, np);
 }
 
 }  // namespace
@@ -424,16 +552,14 @@ void prepare_fast_path(TableData& d) noexcept {
   for (int w = 1; w < 2; ++w)
     if (d.block[w][c].n_parts != np) return;
   const bool avx2 = use_avx2(), single = cb.value_bytes == sizeof(float);
-  FastQuery q = nullptr;
   // The shapes railtab generate writes: creep with its per-creepage normal force (load coupling)
   // and wear, or without either.
   if (gb.n_values == 7 && nb.n_values == 6) {
-    if (cb.n_values == 6) q = pick<7, 6, 6>(avx2, np, single);
-    else if (cb.n_values == 5) q = pick<7, 6, 5>(avx2, np, single);
-    else if (cb.n_values == 4) q = pick<7, 6, 4>(avx2, np, single);
+    if (cb.n_values == 6) pick<7, 6, 6>(d.fast, avx2, np, single);
+    else if (cb.n_values == 5) pick<7, 6, 5>(d.fast, avx2, np, single);
+    else if (cb.n_values == 4) pick<7, 6, 4>(d.fast, avx2, np, single);
   }
-  if (!q) return;
-  d.fast.query = q;
+  if (!d.fast.query) return;
   d.fast.geometry = g;
   d.fast.normal = n;
   d.fast.creep = c;

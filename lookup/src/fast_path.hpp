@@ -20,8 +20,16 @@ struct TableData;
 using FastQuery = bool (*)(const TableData& d, int w, const State& state, int slot_begin,
                            int slot_end, Contact* contact, StatusBits& q) noexcept;
 
+// The same with the partial derivatives (Table::query_derivatives) of every slot: the values
+// query() gives, and into d[slot] those of derivatives.cpp's generic path (the same formulas,
+// the gradient of the creep cell from its corners read once more). Returns false, writing
+// nothing, when a variable is not finite or a located jump cuts the cell (the generic path).
+using FastDerivatives = bool (*)(const TableData& d, int w, const State& state, Contact* contact,
+                                 double (*deriv)[kNumOutputs][kNumVariables], StatusBits& q) noexcept;
+
 struct FastPath {
   FastQuery query = nullptr;  // null: the table does not have the shape (generic path)
+  FastDerivatives derivatives = nullptr;  // set with query
   int geometry = -1, normal = -1, creep = -1;  // its blocks
   bool cut = false;  // cells a located jump cuts fused too (else interpolate_jump_cell)
 };

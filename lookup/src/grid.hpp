@@ -97,6 +97,7 @@ class Axis {
 
   int size() const noexcept { return static_cast<int>(x_.size()); }
   const double* nodes() const noexcept { return x_.data(); }
+  double inverse_width(int cell) const noexcept { return inv_width_[static_cast<std::size_t>(cell)]; }  // 1 / width
   const std::vector<double>& node_vector() const noexcept { return x_; }
 
  private:

@@ -13,6 +13,7 @@
 
 #include <immintrin.h>
 
+#include "grid.hpp"
 #include "records.hpp"
 
 namespace railtab::lookup::detail {
@@ -203,5 +204,109 @@ __attribute__((noinline, target("avx2"))) void stencil_sum_avx2(
 RAILTAB_JUMP_SUM(jump_sum_sse2, SumsSse2, __attribute__((noinline)))
 RAILTAB_JUMP_SUM(jump_sum_avx2, SumsAvx2, __attribute__((noinline, target("avx2"))))
 #undef RAILTAB_JUMP_SUM
+
+// ---- The multilinear interpolant's value and its derivatives with respect to the cell fractions
+// (the derivative query: block_gradient.cpp, fast_path.cpp). One lane group of a record at a
+// time: 4 values (AVX2), 2, or 1 (the other lane 0; a record's bytes after its last value hold
+// statuses, which must not enter the arithmetic).
+template <class T>
+struct LoadQuad {
+  std::size_t at;  // bytes from the record's start
+  RAILTAB_AVX2 V4 operator()(RecordPtr r) const noexcept { return load4<T>(r + at); }
+};
+template <class T>
+struct LoadPair {
+  std::size_t at;
+  __attribute__((always_inline)) V2 operator()(RecordPtr r) const noexcept { return load2<T>(r + at); }
+};
+template <class T>
+struct LoadSingle {
+  std::size_t at;
+  __attribute__((always_inline)) V2 operator()(RecordPtr r) const noexcept {
+    T x;
+    std::memcpy(&x, r + at, sizeof x);
+    return V2{static_cast<double>(x), 0.0};
+  }
+};
+
+// The cell's 2^(N-D) corners below dimension D, depth first as walk_corners (corner at p, the
+// upper node along dimension d stride[d] bytes further): v = the interpolated value over
+// dimensions D .. N-1 at fractions t, g[r] = d v / d t[D + r]. Each dimension's pair (lo, hi) gives
+// g = hi - lo and v = lo + t g; the derivatives found below are interpolated the same way. Only
+// O(N^2) vectors are live at a time. No fused multiply-add: the same bits with either instruction set.
+#define RAILTAB_GRADIENT_WALK(NAME, ATTRIBUTES)                                                  \
+  template <int N, int D, class V, class Load>                                                  \
+  ATTRIBUTES inline void NAME(RecordPtr p, const std::size_t* stride, const double* t,          \
+                              const Load& load, V& v, V* g) noexcept {                          \
+    if constexpr (D == N) {                                                                     \
+      v = load(p);                                                                              \
+    } else {                                                                                    \
+      constexpr int kBelow = N - D - 1 > 0 ? N - D - 1 : 1;                                     \
+      V lo, hi, glo[kBelow], ghi[kBelow];                                                       \
+      NAME<N, D + 1>(p, stride, t, load, lo, glo);                                              \
+      NAME<N, D + 1>(p + stride[D], stride, t, load, hi, ghi);                                  \
+      const double tt = t[D];                                                                   \
+      g[0] = hi - lo;                                                                           \
+      v = lo + tt * g[0];                                                                       \
+      for (int r = 0; r + 1 < N - D; ++r) g[r + 1] = glo[r] + tt * (ghi[r] - glo[r]);           \
+    }                                                                                           \
+  }
+RAILTAB_GRADIENT_WALK(gradient_walk_sse2, __attribute__((always_inline)))
+RAILTAB_GRADIENT_WALK(gradient_walk_avx2, RAILTAB_AVX2)
+#undef RAILTAB_GRADIENT_WALK
+
+// Stores one lane group's value and derivatives into value[k0 ..], dt[k0 ..][0 .. N-1].
+template <int N, class V>
+__attribute__((always_inline)) inline void store_gradient(const V& v, const V* g, int k0, int lanes, double* value,
+                                                          double (*dt)[kNumVars]) noexcept {
+  constexpr int kLanes = sizeof(V) / sizeof(double);
+  double x[kLanes];
+  std::memcpy(x, &v, sizeof x);
+  for (int k = 0; k < lanes; ++k) value[k0 + k] = x[k];
+  for (int dim = 0; dim < N; ++dim) {
+    std::memcpy(x, &g[dim], sizeof x);
+    for (int k = 0; k < lanes; ++k) dt[k0 + k][dim] = x[k];
+  }
+}
+
+// Value and d value / d t[dim] of n_values values of T over the N-dimensional cell at p, every
+// lane group walked once: value[k], dt[k][dim]. The SSE2 variant in pairs, the AVX2 one in quads
+// first.
+template <int N, class T>
+__attribute__((always_inline)) inline void cell_gradient_sse2(RecordPtr p, const std::size_t* stride, const double* t,
+                                                             int n_values, double* value, double (*dt)[kNumVars]) noexcept {
+  int k = 0;
+  for (; k + 2 <= n_values; k += 2) {
+    V2 v, g[N > 0 ? N : 1];
+    gradient_walk_sse2<N, 0>(p, stride, t, LoadPair<T>{k * sizeof(T)}, v, g);
+    store_gradient<N>(v, g, k, 2, value, dt);
+  }
+  if (k < n_values) {
+    V2 v, g[N > 0 ? N : 1];
+    gradient_walk_sse2<N, 0>(p, stride, t, LoadSingle<T>{k * sizeof(T)}, v, g);
+    store_gradient<N>(v, g, k, 1, value, dt);
+  }
+}
+template <int N, class T>
+RAILTAB_AVX2 inline void cell_gradient_avx2(RecordPtr p, const std::size_t* stride, const double* t, int n_values,
+                                            double* value, double (*dt)[kNumVars]) noexcept {
+  int k = 0;
+  for (; k + 4 <= n_values; k += 4) {
+    V4 v, g[N > 0 ? N : 1];
+    gradient_walk_avx2<N, 0>(p, stride, t, LoadQuad<T>{k * sizeof(T)}, v, g);
+    store_gradient<N>(v, g, k, 4, value, dt);
+  }
+  if (k + 2 <= n_values) {
+    V2 v, g[N > 0 ? N : 1];
+    gradient_walk_avx2<N, 0>(p, stride, t, LoadPair<T>{k * sizeof(T)}, v, g);
+    store_gradient<N>(v, g, k, 2, value, dt);
+    k += 2;
+  }
+  if (k < n_values) {
+    V2 v, g[N > 0 ? N : 1];
+    gradient_walk_avx2<N, 0>(p, stride, t, LoadSingle<T>{k * sizeof(T)}, v, g);
+    store_gradient<N>(v, g, k, 1, value, dt);
+  }
+}
 
 }  // namespace railtab::lookup::detail

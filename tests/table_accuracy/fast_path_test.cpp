@@ -3,10 +3,13 @@
 // gives the same bytes as the generic path (RAILTAB_LOOKUP_NO_FAST_PATH=1 at load), for query and
 // query_slot of every slot, both wheels, at random states in and out of range, on grid nodes,
 // within 0.1 and 0.6 mm of every located jump (cut cells: the fast path has its own fused one-sided
-// query for them, cut_slot) and with non-finite variables; with the AVX2 and the SSE2 kernels.
+// query for them, cut_slot) and with non-finite variables; with the AVX2 and the SSE2 kernels. And
+// the derivative query's fused path against the generic one (DerivativesAgreeWithTheGenericPath).
 //
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='FastPath*'
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
@@ -131,6 +134,53 @@ TEST(FastPath, SameBytesAsTheGenericPathWithSse2Kernels) {
   const Tables& t = tables();
   expect_same_bytes(*t.generic_sse2, *t.fast_sse2, t.jump_y);
   expect_same_bytes(*t.generic, *t.fast_sse2, t.jump_y);
+}
+
+// Table::query_derivatives through the fused path (fast_derivatives in fast_path.cpp) against the
+// generic one (derivatives.cpp) at the states above, both wheels: the same Result bytes, and
+// derivatives that differ only by rounding (the two paths order a few sums differently: the
+// bilinear cells' slopes). The bound: 1e-12 of the largest magnitude
+// of that output's derivative with respect to that variable over all the states (a row's terms
+// can cancel, so not of the value itself); measured 3.6e-15.
+void expect_close_derivatives(const lk::Table& generic, const lk::Table& fast, const std::vector<double>& jump_y) {
+  std::mt19937 rng(5);
+  double scale[lk::kNumOutputs][lk::kNumVariables] = {}, diff[lk::kNumOutputs][lk::kNumVariables] = {};
+  std::size_t nonzero = 0;
+  for (int k = 0; k < 6000; ++k) {
+    const lk::State s = state(fast, jump_y, k, rng);
+    for (int w = 0; w < 2; ++w) {
+      const lk::Wheel wheel = static_cast<lk::Wheel>(w);
+      lk::Result ra{}, rb{};
+      lk::Derivatives a, b;
+      const bool oka = generic.query_derivatives(wheel, s, ra, a);
+      const bool okb = fast.query_derivatives(wheel, s, rb, b);
+      ASSERT_TRUE(oka && okb);
+      ASSERT_EQ(std::memcmp(&ra, &rb, sizeof ra), 0) << "query_derivatives values, wheel " << w << " state " << k;
+      for (int slot = 0; slot < fast.n_slots(); ++slot)
+        for (int o = 0; o < lk::kNumOutputs; ++o)
+          for (int v = 0; v < lk::kNumVariables; ++v) {
+            const double x = a.d[slot][o][v], y = b.d[slot][o][v];
+            nonzero += x != 0.0 || y != 0.0;
+            scale[o][v] = std::max({scale[o][v], std::abs(x), std::abs(y)});
+            diff[o][v] = std::max(diff[o][v], std::abs(x - y));
+          }
+    }
+  }
+  double worst = 0.0;
+  for (int o = 0; o < lk::kNumOutputs; ++o)
+    for (int v = 0; v < lk::kNumVariables; ++v)
+      if (scale[o][v] > 0.0) worst = std::max(worst, diff[o][v] / scale[o][v]);
+  std::printf("fast against generic derivatives: %zu nonzero compared, worst |fast - generic| = %.2g of the "
+              "largest |derivative| of that output and variable\n",
+              nonzero, worst);
+  EXPECT_GT(nonzero, 300000u);
+  EXPECT_LE(worst, 1e-12);
+}
+
+TEST(FastPath, DerivativesAgreeWithTheGenericPath) {
+  const Tables& t = tables();
+  expect_close_derivatives(*t.generic, *t.fast, t.jump_y);
+  expect_close_derivatives(*t.generic_sse2, *t.fast_sse2, t.jump_y);
 }
 
 }  // namespace
