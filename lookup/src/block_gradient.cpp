@@ -335,4 +335,48 @@ void jump_gradient(const TableData& d, int w, int bi, const AxisLoc* loc, const 
   }
 }
 
+void one_sided_scales_gradient(const TableData& d, int w, const AxisLoc* loc, const Piece (*pieces)[2], int slot,
+                               double inv[3], double (*dinv)[kNumVars]) noexcept {
+  const CreepMap& map = d.creep_map;
+  const JumpWheel& j = d.jumps[w];
+  for (int c = 0; c < 3; ++c)
+    for (int var = 0; var < kNumVars; ++var) dinv[c][var] = 0.0;
+  const int nodes = j.load_axis ? 2 : 1, lc = j.load_axis ? loc[kVarLoad].i : 0;
+  const double weight[2] = {j.load_axis ? 1.0 - loc[kVarLoad].t : 1.0, j.load_axis ? loc[kVarLoad].t : 0.0};
+  const double* x = d.axis[kVarY].nodes();
+  const AxisLoc& ly = loc[kVarY];
+  const double yq = x[ly.i] + ly.t * (x[ly.i + 1] - x[ly.i]);
+  const double* grid = map.scale[w].data() + static_cast<std::size_t>(slot) * map.nodes * 3;
+  const double* at_jump = slot_at_jump(j, j.inv_scale, 3, slot);
+  double node_inv[2][3] = {};
+  inv[0] = inv[1] = inv[2] = 0.0;
+  for (int k = 0; k < nodes; ++k) {
+    const std::size_t lnode = static_cast<std::size_t>(lc + k);
+    const Piece& piece = pieces[0][k];
+    const double* a = node_end_values(map, j, grid, at_jump, 3, lnode, piece.a);
+    const double* b = node_end_values(map, j, grid, at_jump, 3, lnode, piece.b);
+    const double slope = piece_slope(j, d.axis[kVarY], lnode, piece, yq);
+    for (int c = 0; c < 3; ++c) {
+      node_inv[k][c] = (1.0 - piece.t) * a[c] + piece.t * b[c];
+      inv[c] += weight[k] * node_inv[k][c];
+      dinv[c][kVarY] += weight[k] * (b[c] - a[c]) * slope;
+    }
+  }
+  if (j.load_axis) {
+    const double iw = inverse_width(d.axis[kVarLoad], loc[kVarLoad]);
+    for (int c = 0; c < 3; ++c) dinv[c][kVarLoad] = (node_inv[1][c] - node_inv[0][c]) * iw;
+  }
+}
+
+void chain_creep_coordinates(const Block& b, const BlockGradient& g, const double (*dv)[kNumVars],
+                             double (*out)[kNumVars]) noexcept {
+  for (int k = 0; k < b.n_values; ++k) {
+    double* row = out[b.output_of[k]];
+    const double* gk = g.d[k];
+    for (int var = 0; var < kNumVars; ++var)
+      row[var] = (is_creepage(var) ? 0.0 : gk[var]) + gk[kVarXi] * dv[0][var] + gk[kVarXi + 1] * dv[1][var] +
+                 gk[kVarXi + 2] * dv[2][var];
+  }
+}
+
 }  // namespace railtab::lookup::detail

@@ -53,4 +53,16 @@ double piece_slope(const JumpWheel& j, const Axis& y_axis, std::size_t load_node
 void jump_gradient(const TableData& d, int w, int bi, const AxisLoc* loc, const Piece (*pieces)[2],
                    int slot, BlockGradient& g) noexcept;
 
+// A cut cell's reciprocal creepage scales (one_sided_node_values of the normal part's pieces,
+// `pieces` from query_pieces) and their derivatives with respect to y and load (dinv rows over the
+// state variables, the others 0).
+void one_sided_scales_gradient(const TableData& d, int w, const AxisLoc* loc, const Piece (*pieces)[2], int slot,
+                               double inv[3], double (*dinv)[kNumVars]) noexcept;
+
+// The rows out[b.output_of[k]] of a normalised creep block's values: g's derivatives with respect
+// to y, roll and load, plus those along the block's v coordinates (per unit v) chained through
+// dv[q][var] = d v_q / d var.
+void chain_creep_coordinates(const Block& b, const BlockGradient& g, const double (*dv)[kNumVars],
+                             double (*out)[kNumVars]) noexcept;
+
 }  // namespace railtab::lookup::detail

@@ -7,7 +7,6 @@
 
 #include "hdf5_file.hpp"
 #include "jump_piece.hpp"
-#include "part_spec.hpp"
 #include "table_data.hpp"
 
 namespace railtab::lookup::detail {
@@ -57,18 +56,8 @@ void read_creep_coefficients(const Hdf5File& f, TableData& d) {
   if (found == 0) return;  // format 2.2 and older
   if (!d.has_part[kNormal]) f.fail("creep coefficients without a normal part");
   CreepCoefficientData& c = d.coefficients;
-  std::vector<hsize_t> expected;
-  for (const int var : kFileOrder) {
-    if (!kPartSpecs[kNormal].uses[var] || !d.tabulated[var]) continue;
-    c.var[c.n_dims] = var;
-    expected.push_back(static_cast<hsize_t>(d.axis[var].size()));
-    ++c.n_dims;
-  }
-  c.nodes = 1;
-  for (int k = c.n_dims - 1; k >= 0; --k) {
-    c.stride[k] = c.nodes;
-    c.nodes *= static_cast<std::size_t>(d.axis[c.var[k]].size());
-  }
+  set_normal_grid(d, c);
+  std::vector<hsize_t> expected(c.size, c.size + c.n_dims);
   expected.push_back(static_cast<hsize_t>(d.n_slots));
   const std::size_t ns = static_cast<std::size_t>(d.n_slots);
   for (int w = 0; w < 2; ++w) {
@@ -92,7 +81,6 @@ void read_creep_coefficients(const Hdf5File& f, TableData& d) {
 void interpolate_creep_coefficients(const TableData& d, int w, const AxisLoc* loc, int slot,
                                     double out[kCoefficients]) noexcept {
   const CreepCoefficientData& c = d.coefficients;
-  for (int k = 0; k < kCoefficients; ++k) out[k] = 0.0;
   const double* grid = c.value[w].data() + static_cast<std::size_t>(slot) * c.nodes * kCoefficients;
   if (d.has_jumps && jump_cell(d, w, loc)) {
     // One-sided: the normal part's pieces (list 0) at each load node of the cell, blended in load.
@@ -102,42 +90,11 @@ void interpolate_creep_coefficients(const TableData& d, int w, const AxisLoc* lo
     const double weight[2] = {j.load_axis ? 1.0 - loc[kVarLoad].t : 1.0, j.load_axis ? loc[kVarLoad].t : 0.0};
     Piece pieces[2][2];
     query_pieces(j, d.axis[kVarY], loc, nodes, pieces);
-    int ydim = -1, ldim = -1;
-    for (int k = 0; k < c.n_dims; ++k) {
-      if (c.var[k] == kVarY) ydim = k;
-      if (c.var[k] == kVarLoad) ldim = k;
-    }
-    for (int n = 0; n < nodes; ++n) {
-      const std::size_t lnode = static_cast<std::size_t>(lc + n);
-      auto end_values = [&](const End& e) -> const double* {
-        if (e.sample)
-          return c.at_jump[w].data() +
-                 ((((static_cast<std::size_t>(slot) * j.n_load_nodes + lnode) * j.n_jumps +
-                    static_cast<std::size_t>(e.index)) * 2 + static_cast<std::size_t>(e.side)) * kCoefficients);
-        const std::size_t node = static_cast<std::size_t>(e.index) * c.stride[ydim] + (ldim >= 0 ? lnode * c.stride[ldim] : 0);
-        return grid + node * kCoefficients;
-      };
-      const Piece& p = pieces[0][n];
-      const double* a = end_values(p.a);
-      const double* b = end_values(p.b);
-      for (int k = 0; k < kCoefficients; ++k) out[k] += weight[n] * ((1.0 - p.t) * a[k] + p.t * b[k]);
-    }
+    one_sided_node_values(c, j, grid, slot_at_jump(j, c.at_jump[w], kCoefficients, slot), kCoefficients, pieces[0],
+                          nodes, lc, weight, out);
     return;
   }
-  std::size_t origin = 0;
-  for (int k = 0; k < c.n_dims; ++k) origin += static_cast<std::size_t>(loc[c.var[k]].i) * c.stride[k];
-  for (int corner = 0; corner < (1 << c.n_dims); ++corner) {
-    double weight = 1.0;
-    std::size_t node = origin;
-    for (int k = 0; k < c.n_dims; ++k) {
-      const bool upper = (corner >> k) & 1;
-      const double t = loc[c.var[k]].t;
-      weight *= upper ? t : 1.0 - t;
-      node += upper ? c.stride[k] : 0;
-    }
-    const double* v = grid + node * kCoefficients;
-    for (int k = 0; k < kCoefficients; ++k) out[k] += weight * v[k];
-  }
+  interpolate_node_values(c, grid, kCoefficients, loc, out);
 }
 
 }  // namespace railtab::lookup::detail

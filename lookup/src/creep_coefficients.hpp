@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 // The normal part's linear creep coefficients (format 2.3, `creep_coefficient_<f>_<c>`;
 // docs/lookup.md "Linear creep coefficients"): read at load, interpolated over the normal part's
-// axes (y, roll, load) as the creep scales are (creep_map.cpp: multilinear), and one-sided in a
-// cell a located contact jump may cut (the pieces of jump_piece.hpp, the normal part's list),
-// never blended across it.
+// axes (y, roll, load) by the creep scales' own functions (interpolate_node_values in
+// creep_map.cpp: multilinear; one_sided_node_values in jump_piece.hpp in a cell a located contact
+// jump may cut: the normal part's pieces), never blended across a jump.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
+#include "creep_map.hpp"
 #include "grid.hpp"
 
 namespace railtab::lookup::detail {
@@ -18,13 +19,8 @@ struct TableData;
 
 inline constexpr int kCoefficients = 9;  // [fx, fy, mz] x [xi, eta, phi], force-major
 
-struct CreepCoefficientData {
+struct CreepCoefficientData : NodeGrid {  // on the normal part's grid
   bool present = false;  // the table has them (format 2.3); false: 2.2 and older
-  // The normal part's tabulated axes among y, roll, yaw, load (file order), their sizes and strides in nodes.
-  int n_dims = 0;
-  int var[kMaxNormalDims] = {};
-  std::size_t stride[kMaxNormalDims] = {};
-  std::size_t nodes = 1;
   // value[wheel][(slot * nodes + node) * 9 + k]: the grid's coefficients.
   std::vector<double> value[2];
   // at_jump[wheel][(((slot * load nodes + load node) * jumps + jump) * 2 + side) * 9 + k]: the

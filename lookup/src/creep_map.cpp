@@ -4,31 +4,51 @@
 
 #include <cmath>
 
+#include "part_spec.hpp"
+#include "table_data.hpp"
+
 namespace railtab::lookup::detail {
 
-void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc* loc, double out[3]) noexcept {
-  const double* base = map.scale[wheel].data() + static_cast<std::size_t>(slot) * map.nodes * 3;
+void set_normal_grid(const TableData& d, NodeGrid& g) noexcept {
+  g = NodeGrid{};
+  for (const int var : kFileOrder) {
+    if (!kPartSpecs[kNormal].uses[var] || !d.tabulated[var]) continue;
+    g.var[g.n_dims] = var;
+    g.size[g.n_dims] = d.axis[var].size();
+    ++g.n_dims;
+  }
+  for (int k = g.n_dims - 1; k >= 0; --k) {
+    g.stride[k] = g.nodes;
+    g.nodes *= static_cast<std::size_t>(g.size[k]);
+  }
+}
+
+void interpolate_node_values(const NodeGrid& g, const double* values, int width, const AxisLoc* loc,
+                             double* out) noexcept {
   std::size_t origin = 0;
-  for (int d = 0; d < map.n_dims; ++d) origin += static_cast<std::size_t>(loc[map.var[d]].i) * map.stride[d];
-  if (map.n_dims == 2) {  // (y, load), the usual case: bilinear without the corner loop
-    bilinear_scales(base + origin * 3, map.stride[0], map.stride[1], loc[map.var[0]].t, loc[map.var[1]].t, out);
+  for (int d = 0; d < g.n_dims; ++d) origin += static_cast<std::size_t>(loc[g.var[d]].i) * g.stride[d];
+  const double* base = values + origin * static_cast<std::size_t>(width);
+  if (g.n_dims == 2) {  // (y, load), the usual case: bilinear without the corner loop
+    bilinear_node_values(base, g.stride[0], g.stride[1], width, loc[g.var[0]].t, loc[g.var[1]].t, out);
     return;
   }
-  out[0] = out[1] = out[2] = 0.0;
-  for (int corner = 0; corner < (1 << map.n_dims); ++corner) {
+  for (int k = 0; k < width; ++k) out[k] = 0.0;
+  for (int corner = 0; corner < (1 << g.n_dims); ++corner) {
     double w = 1.0;
-    std::size_t node = origin;
-    for (int d = 0; d < map.n_dims; ++d) {
+    std::size_t node = 0;
+    for (int d = 0; d < g.n_dims; ++d) {
       const bool upper = (corner >> d) & 1;
-      const double t = loc[map.var[d]].t;
+      const double t = loc[g.var[d]].t;
       w *= upper ? t : 1.0 - t;
-      node += upper ? map.stride[d] : 0;
+      node += upper ? g.stride[d] : 0;
     }
-    const double* v = base + node * 3;
-    out[0] += w * v[0];
-    out[1] += w * v[1];
-    out[2] += w * v[2];
+    const double* v = base + node * static_cast<std::size_t>(width);
+    for (int k = 0; k < width; ++k) out[k] += w * v[k];
   }
+}
+
+void interpolate_scales(const CreepMap& map, int wheel, int slot, const AxisLoc* loc, double out[3]) noexcept {
+  interpolate_node_values(map, map.scale[wheel].data() + static_cast<std::size_t>(slot) * map.nodes * 3, 3, loc, out);
 }
 
 double creep_coordinate(double q, double lo, double hi, double s) noexcept {
@@ -43,10 +63,10 @@ namespace {
 void coordinate_partials(double x, double a, double b, double out[3]) noexcept {
   auto m = [](double z) { return z / (1.0 + std::abs(z)); };
   auto dm = [](double z) { return 1.0 / ((1.0 + std::abs(z)) * (1.0 + std::abs(z))); };
-  const double mx = m(x), ma = m(a), mb = m(b), den = mb - ma;
-  out[0] = 2.0 * dm(x) / den;
-  out[1] = 2.0 * dm(a) * (mx - mb) / (den * den);
-  out[2] = -2.0 * dm(b) * (mx - ma) / (den * den);
+  const double mx = m(x), ma = m(a), mb = m(b), two_over = 2.0 / (mb - ma);  // one division
+  out[0] = dm(x) * two_over;
+  out[1] = dm(a) * (mx - mb) * (two_over * two_over) * 0.5;
+  out[2] = -dm(b) * (mx - ma) * (two_over * two_over) * 0.5;
 }
 
 // The saturation law (creep_law) and its Jacobian with respect to (xi', eta', psi'):

@@ -17,7 +17,45 @@
 
 namespace railtab::lookup::detail {
 
-struct CreepMap {
+// The normal part's grid: its tabulated axes among y, roll, load (file order), their sizes and
+// strides in nodes. Fields of a few values per node and slot live on it: the creep scales
+// (CreepMap) and the linear creep coefficients (creep_coefficients.hpp), interpolated by one
+// function (interpolate_node_values; one-sided at jumps: one_sided_node_values, jump_piece.hpp).
+struct NodeGrid {                 // its axes among y, roll, yaw, load, in file order
+  int n_dims = 0;
+  int var[kMaxNormalDims] = {};
+  int size[kMaxNormalDims] = {};
+  std::size_t stride[kMaxNormalDims] = {};  // in nodes
+  std::size_t nodes = 1;
+  int dim_of(int v) const noexcept {  // the dimension of variable v, -1: not tabulated
+    for (int k = 0; k < n_dims; ++k)
+      if (var[k] == v) return k;
+    return -1;
+  }
+};
+
+// Sets g to the normal part's grid of a loaded table (its axes read).
+struct TableData;
+void set_normal_grid(const TableData& d, NodeGrid& g) noexcept;
+
+// Bilinear interpolation of `width` values per node over (y, load): `p00` the values of the cell's
+// lowest corner, `stride0` / `stride1` the two axes' strides in nodes, t0 / t1 the cell fractions.
+// The one formula of interpolate_node_values' usual case and of the fused query.
+inline void bilinear_node_values(const double* p00, std::size_t stride0, std::size_t stride1, int width, double t0,
+                                 double t1, double* out) noexcept {
+  const double w00 = (1.0 - t0) * (1.0 - t1), w01 = (1.0 - t0) * t1, w10 = t0 * (1.0 - t1), w11 = t0 * t1;
+  const double* p01 = p00 + stride1 * static_cast<std::size_t>(width);
+  const double* p10 = p00 + stride0 * static_cast<std::size_t>(width);
+  const double* p11 = p10 + stride1 * static_cast<std::size_t>(width);
+  for (int k = 0; k < width; ++k) out[k] = w00 * p00[k] + w01 * p01[k] + w10 * p10[k] + w11 * p11[k];
+}
+
+// Multilinear interpolation of `width` values per node of grid g at the located cell (loc indexed
+// by Var): `values` the slot's first node, [node * width + k].
+void interpolate_node_values(const NodeGrid& g, const double* values, int width, const AxisLoc* loc,
+                             double* out) noexcept;
+
+struct CreepMap : NodeGrid {      // on the normal part's grid
   bool active = false;            // the table has normalised creep coordinates
   double friction = 0.0;          // mu of F / (mu N)
   bool swept[3] = {};             // xi, eta, phi tabulated (else fixed: their value is used)
@@ -28,14 +66,9 @@ struct CreepMap {
   double kinv[3] = {1.0, 1.0, 1.0};
   bool vertical_share = false;    // the creep part's normal_force is N cos(angle) + Fy sin(angle)
   double lo_k[3] = {}, hi_k[3] = {};
-  // Reciprocal scales 1/s_xi, 1/s_eta, 1/s_phi per node of the normal part's grid (its axes among
-  // y, roll, yaw, load, in file order) and slot: scale[wheel][(slot * nodes + node) * 3 + k]. The
-  // query interpolates the reciprocals (the same at the nodes, and no division on its path).
-  int n_dims = 0;
-  int var[kMaxNormalDims] = {};
-  int size[kMaxNormalDims] = {};
-  std::size_t stride[kMaxNormalDims] = {};  // in nodes
-  std::size_t nodes = 1;
+  // Reciprocal scales 1/s_xi, 1/s_eta, 1/s_phi per node of the normal part's grid and slot:
+  // scale[wheel][(slot * nodes + node) * 3 + k]. The query interpolates the reciprocals (the
+  // same at the nodes, and no division on its path).
   std::vector<double> scale[2];
 };
 
@@ -52,18 +85,6 @@ inline double creep_coordinate_normalised(double x, double a, double b) noexcept
   // (the query path's cost), the same value to rounding.
   const double ax = 1.0 + std::abs(x), aa = 1.0 + std::abs(a), ab = 1.0 + std::abs(b);
   return -1.0 + 2.0 * ((x * aa - a * ax) * ab) / ((b * aa - a * ab) * ax);
-}
-
-// Bilinear interpolation of one slot's three reciprocal scales over (y, load): `p00` the record of
-// the cell's lowest corner, `stride0` / `stride1` the two axes' strides in nodes (3 values each), t0 / t1 the
-// cell fractions. The one formula of interpolate_scales' usual case and of the fused query.
-inline void bilinear_scales(const double* p00, std::size_t stride0, std::size_t stride1, double t0, double t1,
-                            double out[3]) noexcept {
-  const double w00 = (1.0 - t0) * (1.0 - t1), w01 = (1.0 - t0) * t1, w10 = t0 * (1.0 - t1), w11 = t0 * t1;
-  const double* p01 = p00 + stride1 * 3;
-  const double* p10 = p00 + stride0 * 3;
-  const double* p11 = p10 + stride1 * 3;
-  for (int k = 0; k < 3; ++k) out[k] = w00 * p00[k] + w01 * p01[k] + w10 * p10[k] + w11 * p11[k];
 }
 
 // N from the creep part's stored vertical load share (creep_map "normal_force": "vertical_share";

@@ -94,43 +94,7 @@ void scales(const TableData& d, int w, const Location& at, int slot, double inv[
     }
     return;
   }
-  const JumpWheel& j = d.jumps[w];
-  int ydim = -1, ldim = -1;
-  for (int k = 0; k < map.n_dims; ++k) {
-    if (map.var[k] == kVarY) ydim = k;
-    if (map.var[k] == kVarLoad) ldim = k;
-  }
-  const int nodes = j.load_axis ? 2 : 1, lc = j.load_axis ? at.loc[kVarLoad].i : 0;
-  const double weight[2] = {j.load_axis ? 1.0 - at.loc[kVarLoad].t : 1.0, j.load_axis ? at.loc[kVarLoad].t : 0.0};
-  const double* x = d.axis[kVarY].nodes();
-  const AxisLoc& ly = at.loc[kVarY];
-  const double yq = x[ly.i] + ly.t * (x[ly.i + 1] - x[ly.i]);
-  double node_inv[2][3] = {};
-  inv[0] = inv[1] = inv[2] = 0.0;
-  for (int k = 0; k < nodes; ++k) {
-    const std::size_t lnode = static_cast<std::size_t>(lc + k);
-    auto end_scale = [&](const End& e) -> const double* {
-      if (e.sample)
-        return j.inv_scale.data() +
-               ((((s * j.n_load_nodes + lnode) * j.n_jumps + static_cast<std::size_t>(e.index)) * 2 +
-                 static_cast<std::size_t>(e.side)) * 3);
-      const std::size_t node = static_cast<std::size_t>(e.index) * map.stride[ydim] + (ldim >= 0 ? lnode * map.stride[ldim] : 0);
-      return map.scale[w].data() + (s * map.nodes + node) * 3;
-    };
-    const Piece& piece = at.pieces[0][k];
-    const double* a = end_scale(piece.a);
-    const double* b = end_scale(piece.b);
-    const double slope = piece_slope(j, d.axis[kVarY], lnode, piece, yq);
-    for (int c = 0; c < 3; ++c) {
-      node_inv[k][c] = (1.0 - piece.t) * a[c] + piece.t * b[c];
-      inv[c] += weight[k] * node_inv[k][c];
-      dinv[c][kVarY] += weight[k] * (b[c] - a[c]) * slope;
-    }
-  }
-  if (j.load_axis) {
-    const double iw = inverse_width(d.axis[kVarLoad], at.loc[kVarLoad]);
-    for (int c = 0; c < 3; ++c) dinv[c][kVarLoad] = (node_inv[1][c] - node_inv[0][c]) * iw;
-  }
+  one_sided_scales_gradient(d, w, at.loc, at.pieces, slot, inv, dinv);
 }
 
 // The normalised creep block of one slot: its v cells at the slot's scales, its gradient chained
@@ -157,15 +121,8 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
   }
   BlockGradient g;
   block_gradient(d, w, bi, at, loc, slot, g);
-  for (int k = 0; k < b.n_values; ++k) {
-    const int o = b.output_of[k];
-    out.value[o] = g.value[k];
-    for (int var = 0; var < kNumVars; ++var) {
-      double sum = is_creepage(var) ? 0.0 : g.d[k][var];
-      for (int q = 0; q < 3; ++q) sum += g.d[k][kVarXi + q] * dv[q][var];
-      out.d[o][var] = sum;
-    }
-  }
+  for (int k = 0; k < b.n_values; ++k) out.value[b.output_of[k]] = g.value[k];
+  chain_creep_coordinates(b, g, dv, out.d);
   if (!d.has_part[kCreep]) return;
   const double angle = out.value[kContactAngle];
   denormalise_creep_gradient(map, xn, dxn, out.value, std::cos(angle), std::sin(angle), out.d);

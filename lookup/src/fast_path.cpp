@@ -99,6 +99,41 @@ inline void bilinear_dt(double f00, double f01, double f10, double f11, double t
   dl = (1.0 - ty) * (f01 - f00) + ty * (f11 - f10);
 }
 
+// The rows of the parts the table does not hold: 0 (the derivative query's zero_absent).
+inline void zero_absent_rows(const TableData& d, double (*dd)[kNumVars]) noexcept {
+  for (int a = 0; a < d.n_absent; ++a) {
+    const PartSpec& spec = kPartSpecs[d.absent_part[a]];
+    for (int k = 0; k < spec.n_out; ++k) set_row(dd[spec.first_output + k], 0.0, 0.0, 0.0, 0.0, 0.0);
+  }
+}
+
+// Creepage axis q's rows: dxn = d xn / d var of its normalised creepage xn = creepage inv (through
+// the scale's dinv row, and the creepage itself unless it is clamped), dv = d v / d var of its coordinate.
+inline void creepage_rows(const CreepMap& map, int q, double creepage, double inv, double xn, const double* dinv,
+                          bool clamped, double* dxn, double* dv) noexcept {
+  set_row(dxn, creepage * dinv[kVarY], creepage * dinv[kVarLoad], 0.0, 0.0, 0.0);
+  if (!clamped) dxn[kVarXi + q] = inv;
+  coordinate_gradient(map, q, xn, inv, dxn, dinv, dv);
+}
+
+// The creep block's rows from its gradient g (y and load per SI unit, the v coordinates per unit
+// v) chained through dv, then the forces in N and their derivatives (denormalise_creep on c.value
+// and its gradient), the clamped variables' columns cleared.
+inline void finish_creep_gradient(const TableData& d, const Block& cb, const BlockGradient& g, const double (*dv)[kNumVars],
+                                  const double* xn, const double (*dxn)[kNumVars], double cos_angle, double sin_angle,
+                                  unsigned frozen, Contact& c, double (*dd)[kNumVars]) noexcept {
+  const CreepMap& map = d.creep_map;
+  chain_creep_coordinates(cb, g, dv, dd);
+  double stored[kNumOutputs];  // the values denormalise_creep_gradient reads
+  for (int o : {kContactAngle, kNormalForce, kFx, kFy, kMz}) stored[o] = c.value[o];
+  denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
+  denormalise_creep_gradient(map, xn, dxn, stored, cos_angle, sin_angle, dd);
+  if (frozen)
+    for (int var = 0; var < kNumVars; ++var)
+      if (frozen >> var & 1u)
+        for (int o = 0; o < kNumOutputs; ++o) dd[o][var] = 0.0;
+}
+
 // One slot of a cell no jump cuts. NG, NN, NC: values per record of the geometry, normal and creep
 // blocks; NP: parts of the creep block (creep, or creep and wear); TC: the creep block's value
 // type (float for format 2.2, Block::value_bytes; the geometry and normal blocks hold doubles).
@@ -123,10 +158,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   double iw_y = 0.0, iw_load = 0.0;
   if constexpr (kGrad) {
     dd = grad->d;
-    for (int a = 0; a < d.n_absent; ++a) {
-      const PartSpec& spec = kPartSpecs[d.absent_part[a]];
-      for (int k = 0; k < spec.n_out; ++k) set_row(dd[spec.first_output + k], 0.0, 0.0, 0.0, 0.0, 0.0);
-    }
+    zero_absent_rows(d, dd);
     iw_y = inverse_width(d.axis[kVarY], ly);
     iw_load = inverse_width(d.axis[kVarLoad], ll);
   }
@@ -158,7 +190,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   {
     const double* base = map.scale[w].data() + slot * map.nodes * 3;
     const std::size_t origin = static_cast<std::size_t>(ly.i) * map.stride[0] + static_cast<std::size_t>(ll.i) * map.stride[1];
-    bilinear_scales(base + origin * 3, map.stride[0], map.stride[1], ly.t, ll.t, inv);
+    bilinear_node_values(base + origin * 3, map.stride[0], map.stride[1], 3, ly.t, ll.t, inv);
     if constexpr (kGrad) {
       const double* p00 = base + origin * 3;
       const double* p01 = p00 + map.stride[1] * 3;
@@ -182,9 +214,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     cell += static_cast<std::size_t>(l.i) * cb.stride[2 + k];
     if constexpr (kGrad) {
       iw_v[k] = inverse_width(d.axis[kVarXi + k], l);
-      set_row(dxn[k], creepage[k] * dinv[k][kVarY], creepage[k] * dinv[k][kVarLoad], 0.0, 0.0, 0.0);
-      if (!(grad->frozen >> (kVarXi + k) & 1u)) dxn[k][kVarXi + k] = inv[k];
-      coordinate_gradient(map, k, x[k], inv[k], dxn[k], dinv[k], dv[k]);
+      creepage_rows(map, k, creepage[k], inv[k], x[k], dinv[k], grad->frozen >> (kVarXi + k) & 1u, dxn[k], dv[k]);
     }
   }
   RecordPtr cr = cb.data.data() + slot * cb.slot_size + cell;
@@ -220,25 +250,13 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     store_status_run<NP>(kCreep, cb, cr, c);
   }
   if constexpr (kGrad) {
-    // d / d t of the cell's 5 fractions, chained: y and load directly and through the v
-    // coordinates (dv), the creepages through dv.
+    // d / d t of the cell's 5 fractions per unit of y, load and v, chained.
     double ignored[NC], dt[NC][kMaxDims];
     multilinear_gradient<TC>(cr, 5, cb.stride, t5, NC, ignored, dt);
-    for (int k = 0; k < NC; ++k) {
-      double* row = dd[cb.output_of[k]];
-      const double a = dt[k][2] * iw_v[0], b = dt[k][3] * iw_v[1], e = dt[k][4] * iw_v[2];
-      for (int var = 0; var < kNumVars; ++var) row[var] = a * dv[0][var] + b * dv[1][var] + e * dv[2][var];
-      row[kVarY] += dt[k][0] * iw_y;
-      row[kVarLoad] += dt[k][1] * iw_load;
-    }
-    double stored[kNumOutputs];  // the values denormalise_creep_gradient reads
-    for (int o : {kContactAngle, kNormalForce, kFx, kFy, kMz}) stored[o] = c.value[o];
-    denormalise_creep(map, x, cos_angle, sin_angle, c.value);
-    denormalise_creep_gradient(map, x, dxn, stored, cos_angle, sin_angle, dd);
-    if (grad->frozen)
-      for (int var = 0; var < kNumVars; ++var)
-        if (grad->frozen >> var & 1u)
-          for (int o = 0; o < kNumOutputs; ++o) dd[o][var] = 0.0;
+    BlockGradient gc;
+    for (int k = 0; k < NC; ++k)
+      set_row(gc.d[k], dt[k][0] * iw_y, dt[k][1] * iw_load, dt[k][2] * iw_v[0], dt[k][3] * iw_v[1], dt[k][4] * iw_v[2]);
+    finish_creep_gradient(d, cb, gc, dv, x, dxn, cos_angle, sin_angle, grad->frozen, c, dd);
   } else {
     denormalise_creep(map, x, cos_angle, sin_angle, c.value);
   }
@@ -323,10 +341,12 @@ __attribute__((always_inline)) inline void cut_block_0(const Block& b, const Jum
   st.store(b, c);
 }
 
-// One slot of a cut cell (interpolate_jump_cell for this shape).
-template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
+// One slot of a cut cell (interpolate_jump_cell for this shape). kGrad: also the partial
+// derivatives (into grad), each block's from jump_gradient (block_gradient.cpp) on the pieces and
+// creepage cell found here, the scales' from one_sided_scales_gradient.
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC, bool kGrad = false>
 void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, const Piece (*pieces)[2],
-              int s, Contact& c) noexcept {
+              int s, Contact& c, const SlotDerivatives* grad = nullptr) noexcept {
   const FastPath& fp = d.fast;
   const JumpWheel& j = d.jumps[w];
   const CreepMap& map = d.creep_map;
@@ -345,21 +365,16 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
 
   // The slot's reciprocal scales on the query's side (one_sided_scales): list 0's pieces, ends at
   // grid nodes from CreepMap::scale, at jumps from JumpWheel::inv_scale.
-  double inv[3] = {0.0, 0.0, 0.0};
-  for (int k = 0; k < 2; ++k) {
-    const std::size_t lnode = static_cast<std::size_t>(lc + k);
-    auto end_scale = [&](const End& e) -> const double* {
-      if (e.sample)
-        return j.inv_scale.data() + ((((slot * j.n_load_nodes + lnode) * j.n_jumps + static_cast<std::size_t>(e.index)) * 2 +
-                                      static_cast<std::size_t>(e.side)) * 3);
-      const std::size_t node = static_cast<std::size_t>(e.index) * map.stride[0] + lnode * map.stride[1];
-      return map.scale[w].data() + (slot * map.nodes + node) * 3;
-    };
-    const Piece& p = pieces[0][k];
-    const double* a = end_scale(p.a);
-    const double* b = end_scale(p.b);
-    const double t = p.t;
-    for (int m = 0; m < 3; ++m) inv[m] += weight[k] * ((1.0 - t) * a[m] + t * b[m]);
+  double inv[3];
+  one_sided_node_values(map, j, map.scale[w].data() + slot * map.nodes * 3, slot_at_jump(j, j.inv_scale, 3, s), 3,
+                        pieces[0], 2, lc, weight, inv);
+  double dinv[3][kNumVars], dxn[3][kNumVars], dv[3][kNumVars];  // kGrad
+  AxisLoc all[kNumVars];                                        // kGrad: jump_gradient's cells
+  if constexpr (kGrad) {
+    double same[3];
+    one_sided_scales_gradient(d, w, loc, pieces, s, same, dinv);
+    all[kVarY] = loc[kVarY];
+    all[kVarLoad] = loc[kVarLoad];
   }
   // The creepage cell at the normalised coordinates (creep_cell_n<3>): corner bit q = upper node
   // along creepage axis q, weights 1.0 * f_xi * f_eta * f_phi built by doubling the list per axis.
@@ -373,6 +388,10 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
     d.axis[kVarXi + q].locate_fast(
         creep_coordinate_normalised(xn[q] * map.kinv[q], map.lo_k[q] * inv[q], map.hi_k[q] * inv[q]), l);
     base += static_cast<std::size_t>(l.i) * cb.stride[2 + q];
+    if constexpr (kGrad) {
+      all[kVarXi + q] = l;
+      creepage_rows(map, q, creepage[q], inv[q], xn[q], dinv[q], grad->frozen >> (kVarXi + q) & 1u, dxn[q], dv[q]);
+    }
     const int half = 1 << q;
     for (int corner = 0; corner < half; ++corner) {
       cw[corner + half] = cw[corner] * l.t;
@@ -392,7 +411,19 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
     else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
     st.store(cb, c);
   }
-  denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
+  if constexpr (kGrad) {
+    double (*dd)[kNumVars] = grad->d;
+    zero_absent_rows(d, dd);
+    BlockGradient g;
+    jump_gradient(d, w, fp.geometry, all, pieces, s, g);
+    for (int k = 0; k < NG; ++k) set_row(dd[d.block[w][fp.geometry].output_of[k]], g.d[k][kVarY], g.d[k][kVarLoad], 0.0, 0.0, 0.0);
+    jump_gradient(d, w, fp.normal, all, pieces, s, g);
+    for (int k = 0; k < NN; ++k) set_row(dd[d.block[w][fp.normal].output_of[k]], g.d[k][kVarY], g.d[k][kVarLoad], 0.0, 0.0, 0.0);
+    jump_gradient(d, w, fp.creep, all, pieces, s, g);
+    finish_creep_gradient(d, cb, g, dv, xn, dxn, cos_angle, sin_angle, grad->frozen, c, dd);
+  } else {
+    denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
+  }
 }
 
 // locate_state for this shape: y and load on their axes, the creepages clamped to their physical
@@ -468,8 +499,21 @@ bool fast_derivatives(const TableData& d, int w, const State& state, Contact* co
   double creepage[3];
   unsigned clamped;
   StatusBits bits;
-  if (!locate(d, state, loc, creepage, bits, clamped) || cut_cell(d, w, loc)) return false;
+  if (!locate(d, state, loc, creepage, bits, clamped)) return false;
+  const bool cut = cut_cell(d, w, loc);
+  if (cut && !d.fast.cut) return false;
   q = bits;
+  if (cut) {
+    Piece pieces[2][2];
+    query_pieces(d.jumps[w], d.axis[kVarY], loc, 2, pieces);
+    for (int s = 0; s < d.n_slots; ++s) {
+      const SlotDerivatives grad{deriv[s], clamped};
+      zero_absent(d, contact[s]);
+      cut_slot<NG, NN, NC, NP, kAvx2, TC, true>(d, w, loc, creepage, pieces, s, contact[s], &grad);
+      fold_status(d, q, contact[s]);
+    }
+    return true;
+  }
   for (int s = 0; s < d.n_slots; ++s) {
     const SlotDerivatives grad{deriv[s], clamped};
     regular_slot<NG, NN, NC, NP, kAvx2, TC, true>(d, w, loc, creepage, q, s, contact[s], &grad);

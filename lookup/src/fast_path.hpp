@@ -21,9 +21,10 @@ using FastQuery = bool (*)(const TableData& d, int w, const State& state, int sl
                            int slot_end, Contact* contact, StatusBits& q) noexcept;
 
 // The same with the partial derivatives (Table::query_derivatives) of every slot: the values
-// query() gives, and into d[slot] those of derivatives.cpp's generic path (the same formulas,
-// the gradient of the creep cell from its corners read once more). Returns false, writing
-// nothing, when a variable is not finite or a located jump cuts the cell (the generic path).
+// query() gives, and into d[slot] those of derivatives.cpp's generic path (the same formulas on
+// the cell, scales and creepage cells the value pass found; the gradient of the creep cell from
+// its corners read once more). Returns false, writing nothing, when a variable is not finite or
+// a located jump cuts the cell and the cut cells are not fused (FastPath::cut: the generic path).
 using FastDerivatives = bool (*)(const TableData& d, int w, const State& state, Contact* contact,
                                  double (*deriv)[kNumOutputs][kNumVariables], StatusBits& q) noexcept;
 

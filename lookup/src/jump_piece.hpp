@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "creep_map.hpp"
 #include "grid.hpp"
 #include "jump_side.hpp"
 
@@ -126,6 +127,40 @@ inline void query_pieces(const JumpWheel& j, const Axis& ya, const AxisLoc* loc,
       if (k == 0) m0 = m;
       pieces[list][k] = side_piece(j, ya, list, loc, yq, k, m);
     }
+}
+
+// A field of `width` values per node of the normal part's grid g (creep_map.hpp: the creep scales,
+// the linear creep coefficients) at the end e of a piece at absolute load node `load_node`:
+// `grid` the slot's first node ([node * width + k]), `at_jump` the slot's one-sided values at
+// the jumps ([((load node * jumps + jump) * 2 + side) * width + k], JumpWheel::inv_scale's layout).
+inline const double* node_end_values(const NodeGrid& g, const JumpWheel& j, const double* grid, const double* at_jump,
+                                     int width, std::size_t load_node, const End& e) noexcept {
+  const std::size_t wd = static_cast<std::size_t>(width);
+  if (e.sample)
+    return at_jump + ((load_node * j.n_jumps + static_cast<std::size_t>(e.index)) * 2 + static_cast<std::size_t>(e.side)) * wd;
+  const int ydim = g.dim_of(kVarY), ldim = g.dim_of(kVarLoad);
+  const std::size_t node = static_cast<std::size_t>(e.index) * g.stride[ydim] + (ldim >= 0 ? load_node * g.stride[ldim] : 0);
+  return grid + node * wd;
+}
+
+// The field on the query's side of a cut cell: list 0's pieces (the normal part's) at the cell's
+// `nodes` load nodes from lc, blended with the load weights; grid and at_jump as node_end_values.
+inline void one_sided_node_values(const NodeGrid& g, const JumpWheel& j, const double* grid, const double* at_jump,
+                                  int width, const Piece* piece, int nodes, int lc, const double* weight,
+                                  double* out) noexcept {
+  for (int k = 0; k < width; ++k) out[k] = 0.0;
+  for (int n = 0; n < nodes; ++n) {
+    const std::size_t lnode = static_cast<std::size_t>(lc + n);
+    const double* a = node_end_values(g, j, grid, at_jump, width, lnode, piece[n].a);
+    const double* b = node_end_values(g, j, grid, at_jump, width, lnode, piece[n].b);
+    const double t = piece[n].t;
+    for (int k = 0; k < width; ++k) out[k] += weight[n] * ((1.0 - t) * a[k] + t * b[k]);
+  }
+}
+
+// The slot's one-sided values at the jumps of a field laid out as JumpWheel::inv_scale.
+inline const double* slot_at_jump(const JumpWheel& j, const std::vector<double>& at_jump, int width, int slot) noexcept {
+  return at_jump.data() + static_cast<std::size_t>(slot) * j.n_load_nodes * j.n_jumps * 2 * static_cast<std::size_t>(width);
 }
 
 }  // namespace railtab::lookup::detail

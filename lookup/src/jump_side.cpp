@@ -379,27 +379,8 @@ void one_sided_scales(const TableData& d, int w, const Piece* piece, int nodes, 
                       int slot, double inv[3]) noexcept {
   const CreepMap& map = d.creep_map;
   const JumpWheel& j = d.jumps[w];
-  int ydim = -1, ldim = -1;
-  for (int k = 0; k < map.n_dims; ++k) {
-    if (map.var[k] == kVarY) ydim = k;
-    if (map.var[k] == kVarLoad) ldim = k;
-  }
-  inv[0] = inv[1] = inv[2] = 0.0;
-  for (int k = 0; k < nodes; ++k) {
-    const std::size_t lnode = static_cast<std::size_t>(lc + k);
-    auto end_scale = [&](const End& e) -> const double* {
-      if (e.sample)
-        return j.inv_scale.data() +
-               ((((static_cast<std::size_t>(slot) * j.n_load_nodes + lnode) * j.n_jumps +
-                  static_cast<std::size_t>(e.index)) * 2 + static_cast<std::size_t>(e.side)) * 3);
-      std::size_t node = static_cast<std::size_t>(e.index) * map.stride[ydim] + (ldim >= 0 ? lnode * map.stride[ldim] : 0);
-      return map.scale[w].data() + (static_cast<std::size_t>(slot) * map.nodes + node) * 3;
-    };
-    const double* a = end_scale(piece[k].a);
-    const double* b = end_scale(piece[k].b);
-    const double t = piece[k].t;
-    for (int c = 0; c < 3; ++c) inv[c] += weight[k] * ((1.0 - t) * a[c] + t * b[c]);
-  }
+  one_sided_node_values(map, j, map.scale[w].data() + static_cast<std::size_t>(slot) * map.nodes * 3,
+                        slot_at_jump(j, j.inv_scale, 3, slot), 3, piece, nodes, lc, weight, inv);
 }
 
 }  // namespace

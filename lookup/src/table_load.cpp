@@ -374,19 +374,8 @@ void read_creep_map(const Hdf5File& f, TableData& d) {
       }
   if (d.creep_block < 0) f.fail("root attribute creep_map but no creep or wear part");
   if (!d.has_part[kNormal]) f.fail("root attribute creep_map needs the normal part (its creep scales)");
-  std::vector<hsize_t> expected;
-  for (const int var : kFileOrder) {
-    if (!kPartSpecs[kNormal].uses[var] || !d.tabulated[var]) continue;
-    m.var[m.n_dims] = var;
-    m.size[m.n_dims] = d.axis[var].size();
-    expected.push_back(static_cast<hsize_t>(d.axis[var].size()));
-    ++m.n_dims;
-  }
-  m.nodes = 1;
-  for (int k = m.n_dims - 1; k >= 0; --k) {
-    m.stride[k] = m.nodes;
-    m.nodes *= static_cast<std::size_t>(m.size[k]);
-  }
+  set_normal_grid(d, m);
+  std::vector<hsize_t> expected(m.size, m.size + m.n_dims);
   expected.push_back(static_cast<hsize_t>(d.n_slots));
   static const char* const names[3] = {"creep_scale_xi", "creep_scale_eta", "creep_scale_phi"};
   static const char* const wheels[2] = {"/left/normal/", "/right/normal/"};

@@ -164,6 +164,25 @@ void build_yawed_grid(const std::vector<PlaneSample>& samples, double delta_n, d
   }
 }
 
+// A field of grid `from` on grid `to` (the same element size): each element of `to` takes the
+// value of the element of `from` whose centre is nearest to its own (coordinates from each grid's
+// reference point), 0 outside `from`. The warm chain's start across a grid placed again
+// (wheel_rail.hpp, RollingState): the field keeps its place relative to the reference instead
+// of shifting with the grid's corner, or being dropped when the grid's size changes.
+std::vector<double> on_grid(const Grid& from, const std::vector<double>& v, const Grid& to) {
+  std::vector<double> out(static_cast<size_t>(to.size()), 0.0);
+  if (v.size() != static_cast<size_t>(from.size()) || from.dx != to.dx || from.dy != to.dy) return out;
+  for (int j = 0; j < to.ny; ++j) {
+    const int jf = static_cast<int>(std::lround((to.y(j) - from.y0) / from.dy));
+    if (jf < 0 || jf >= from.ny) continue;
+    for (int i = 0; i < to.nx; ++i) {
+      const int i_f = static_cast<int>(std::lround((to.x(i) - from.x0) / from.dx));
+      if (i_f >= 0 && i_f < from.nx) out[static_cast<size_t>(to.index(i, j))] = v[static_cast<size_t>(from.index(i_f, jf))];
+    }
+  }
+  return out;
+}
+
 // Start of the load-controlled BCCG where no previous pressure fits the grid: Hertz's shape
 // from the gap, p ~ sqrt(level - h), level halfway from the gap's minimum to the normal approach
 // dn of the normal layer (for a paraboloid gap exactly Hertz's distribution: the contact is where
@@ -283,7 +302,8 @@ void reference_x(const WheelContactGeometry& g, double s, HalfspacePatch& hp) {
 WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double load,
                                     const Material& material, const HalfspaceOptions& o,
                                     Workspace& ws, const WheelHalfspaceResult* previous,
-                                    std::vector<std::vector<PlaneSample>>* samples_out = nullptr);
+                                    std::vector<std::vector<PlaneSample>>* samples_out = nullptr,
+                                    bool remap = false);
 
 }  // namespace
 
@@ -326,7 +346,7 @@ void finish_patches(WheelHalfspaceResult& r, const std::vector<std::vector<Plane
 WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double load,
                                     const Material& material, const HalfspaceOptions& o,
                                     Workspace& ws, const WheelHalfspaceResult* previous,
-                                    std::vector<std::vector<PlaneSample>>* samples_out) {
+                                    std::vector<std::vector<PlaneSample>>* samples_out, bool remap) {
   RAILTAB_CHECK(std::isfinite(load) && load >= 0.0,
                 "halfspace: vertical load must be finite and >= 0, got {}", load);
   RAILTAB_CHECK(o.element_size > 0.0 && std::isfinite(o.element_size),
@@ -367,7 +387,13 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
         const double grow = o.margin * std::pow(1.5, growth) + (growth > 0 ? 0.5 * growth : 0.0);
         const Grid before = hp.grid;
         build_grid(geometry, first.patches[k], dz * c, grow, o, hp, samples[k]);
-        if (!(before.nx == hp.grid.nx && before.ny == hp.grid.ny)) hp.normal.pressure.clear();
+        if (remap && !hp.normal.pressure.empty()) {
+          hp.normal.pressure = on_grid(before, hp.normal.pressure, hp.grid);
+          if (std::none_of(hp.normal.pressure.begin(), hp.normal.pressure.end(), [](double v) { return v > 0.0; }))
+            hp.normal.pressure.clear();
+        } else if (!(before.nx == hp.grid.nx && before.ny == hp.grid.ny)) {
+          hp.normal.pressure.clear();
+        }
         if (single_load && hp.normal.pressure.empty())
           hertz_like_start(hp.gap, dz * c, hp.normal.pressure);
         if (single_load)
@@ -515,12 +541,18 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
       return tangential_vertical(r);
     }
     WheelHalfspaceResult next = solve_for_load(geometry, normal_load, material, oo, ws,
-                                               r.patches.empty() ? nullptr : &r, &samples);
+                                               r.patches.empty() ? nullptr : &r, &samples, warm);
     if (next.patches.size() == r.patches.size())  // warm start from the previous round
-      for (size_t k = 0; k < next.patches.size(); ++k)
-        if (next.patches[k].grid.nx == r.patches[k].grid.nx &&
-            next.patches[k].grid.ny == r.patches[k].grid.ny)
-          next.patches[k].tangential = std::move(r.patches[k].tangential);
+      for (size_t k = 0; k < next.patches.size(); ++k) {
+        const Grid& before = r.patches[k].grid;
+        TangentialSolution& t = r.patches[k].tangential;
+        if (warm && t.traction_x.size() == static_cast<size_t>(before.size())) {  // where they were
+          next.patches[k].tangential.traction_x = on_grid(before, t.traction_x, next.patches[k].grid);
+          next.patches[k].tangential.traction_y = on_grid(before, t.traction_y, next.patches[k].grid);
+        } else if (next.patches[k].grid.nx == before.nx && next.patches[k].grid.ny == before.ny) {
+          next.patches[k].tangential = std::move(t);
+        }
+      }
     solve_halfspace_tangential(next, creepage, mu, material, oo, ws);
     r = std::move(next);
     return tangential_vertical(r);

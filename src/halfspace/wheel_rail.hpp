@@ -130,7 +130,11 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
 // and pressure it keeps, so the first round's normal problem is already solved and the later ones
 // start from a near pressure (the grids kept or placed again by the rules of the later rounds of a
 // cold solve); the tangential problem starts from zero traction and the first round runs at the
-// looser tolerances, as in a cold solve. The result is the same fixed point to within the
+// looser tolerances, as in a cold solve. Where a later round places a grid again, its pressure and
+// tractions start from the previous round's at the same coordinates (from the reference point),
+// also when the grid's size changed (a cold solve then restarts them: flange contact, where the
+// grid is placed again each round; the flange column of BM_CreepageColumnWarm/7: median of 3,
+// 3260 -> 2947 ms CPU). The result is the same fixed point to within the
 // tolerances (1e-4 F_z on the load balance, the solvers' own), not the same bytes as a cold solve;
 // it depends only on the chain of creepages, so a fixed order gives fixed bytes. On return `state`
 // holds this solve's end (cleared when it did not converge). An empty `state` (or a null pointer)
