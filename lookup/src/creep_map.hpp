@@ -5,6 +5,8 @@
 // the creep forces as F / (mu N) minus a saturation law. A query maps its physical creepages to v
 // with the scales of the slot's normal contact (interpolated at (y, roll, load)), interpolates,
 // and scales back to N. The generator's side is generator/kernel/creep_map.hpp: same formulas.
+// Also the normal part's grid (NodeGrid) and the one interpolation of the fields on it (the
+// scales here, the linear creep coefficients), and the derivatives of the map, law and N.
 #pragma once
 
 #include <algorithm>

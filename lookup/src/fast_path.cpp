@@ -3,7 +3,8 @@
 // order as the generic path: locate_state and interpolate_normalised_creep (table.cpp), the
 // linear kernels (interpolate.cpp, weighted_sum.hpp) and interpolate_scales (creep_map.cpp), so
 // both paths give the same bytes (scripts/lookup_result_dump.cpp compares them; the test
-// FastPath.SameBytesAsTheGenericPath runs both on the default table's shape).
+// FastPath.SameBytesAsTheGenericPath runs both on the default table's shape). The derivative
+// query (fast_derivatives) runs the same slot code with its gradients beside the values.
 #include "fast_path.hpp"
 
 #include <algorithm>
