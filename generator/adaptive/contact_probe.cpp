@@ -24,6 +24,7 @@ struct ContactProbe::Data {
   halfspace::HalfspaceOptions halfspace;  // normal model halfspace
   bool equilibrium_roll = false;
   double roll = 0.0;
+  double yaw = 0.0;  // the scene's fixed yaw (the probe is not run over a yaw axis) [rad]
 };
 
 
@@ -73,7 +74,8 @@ void add_loaded_slots(ContactProbe::Wheel& loaded, const WheelNormalResult& norm
 
 ContactProbe::ContactProbe(const Scene& scene)
     : data_(new Data{make_geometry_solver(scene), scene.material, scene.normal, creep_conditions(scene),
-                     fastsim_options(scene), halfspace_options(scene), scene.equilibrium_roll, scene.grids.roll.front()}) {}
+                     fastsim_options(scene), halfspace_options(scene), scene.equilibrium_roll, scene.grids.roll.front(),
+                     fixed_yaw(scene)}) {}
 ContactProbe::~ContactProbe() { delete data_; }
 
 double ContactProbe::roll_at(double y) const { return data_->equilibrium_roll ? data_->solver.equilibrium_roll(y) : data_->roll; }
@@ -99,7 +101,7 @@ std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> ContactProbe::evalu
     Wheel geo;  // geometry part, copied into every (load, creepage)
     WheelContactGeometry geometry;
     try {
-      geometry = k.solver.solve_wheel(side, WheelsetState{y, roll});
+      geometry = k.solver.solve_wheel(side, WheelsetState{y, roll, k.yaw});
     } catch (const std::exception&) {
       for (auto& l : out)
         for (auto& c : l) c[wheel].slot[0].status = c[wheel].slot[1].status = probe_slot_bits::kFailed;
@@ -172,7 +174,7 @@ ContactProbe::Wheel ContactProbe::configuration(double y, std::size_t wheel, dou
   const Side side = wheel == 0 ? Side::left : Side::right;
   WheelContactGeometry geometry;
   try {
-    geometry = k.solver.solve_wheel(side, WheelsetState{y, roll_at(y)});
+    geometry = k.solver.solve_wheel(side, WheelsetState{y, roll_at(y), k.yaw});
   } catch (const std::exception&) {
     w.slot[0].status = w.slot[1].status = probe_slot_bits::kFailed;
     return w;

@@ -136,10 +136,12 @@ TableDataset dataset(std::string name, std::string units, std::string descriptio
   return d;
 }
 
-// Jumps are located per load node at one roll per y, with the scene's one normal model: not for
-// a roll axis nor a per-y model choice (no jumps written: the lookup interpolates as before 2.1).
+// Jumps are located per load node at one roll and one yaw per y, with the scene's one normal model:
+// not for a roll or yaw axis nor a per-y model choice (no jumps written: the lookup interpolates as
+// before 2.1).
 bool roll_is_axis(const Scene& scene) {
-  return (!scene.equilibrium_roll && scene.grids.roll.size() > 1) || !scene.accuracy.model_by_y.empty();
+  return (!scene.equilibrium_roll && scene.grids.roll.size() > 1) || scene.grids.yaw.size() > 1 ||
+         !scene.accuracy.model_by_y.empty();
 }
 
 }  // namespace

@@ -53,6 +53,7 @@ Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std
   state.y = y;
   state.wheels = 1u << wheel;  // the other wheel's cells stay zero (not read)
   state.roll = one.equilibrium_roll ? kernel.equilibrium_roll(y) : one.grids.roll.front();
+  state.yaw = fixed_yaw(one);
   kernel.compute(state, out);
   return c;
 }

@@ -38,6 +38,7 @@ void print_eval_text(const nlohmann::json& out) {
                            out["scene"].get<std::string>(), st["y"].get<double>() * 1e3,
                            st["roll"].get<double>() * 1e3, st["load"].get<double>() * 1e-3,
                            out["normal_model"].get<std::string>());
+  if (st["yaw"].get<double>() != 0.0) std::cout << fmt::format("yaw = {:.4f} mrad\n", st["yaw"].get<double>() * 1e3);
   if (out.contains("creepage")) {
     const auto& c = out["creepage"];
     std::cout << fmt::format("creepage xi = {:g}, eta = {:g}, phi = {:g} rad/m, mu = {:g} (forces on the wheel)\n",
@@ -113,6 +114,9 @@ void add_eval_command(CLI::App& app) {
                     "kinematic equilibrium roll with [grid] equilibrium_roll = true, else its first roll)");
   cmd->add_flag("--equilibrium-roll", opt->request.equilibrium_roll,
                 "Use the kinematic equilibrium roll of the rigid wheelset");
+  add_number_option(cmd, "--yaw", opt->request.yaw, kYawRule,
+                    "Wheelset yaw (angle of attack) relative to the track [rad], + turns the forward axis to the "
+                    "left (default: the scene's first yaw, 0 without one)");
   add_number_option(cmd, "--load", opt->request.load, kWheelLoadRule,
                     "Vertical wheel load in track axes [N] (default: scene's first load)");
   cmd->add_option("--model", opt->request.model,

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// railtab query TABLE.h5 (--y Y[,Y...] | --states FILE) [--roll R] [--load N] [--creepage XI,ETA,PHI]
+// railtab query TABLE.h5 (--y Y[,Y...] | --states FILE) [--roll R] [--yaw A] [--load N] [--creepage XI,ETA,PHI]
 //               [--wheel W] [--method M] [--derivatives] [--creep-coefficients] [--json]
 // Interpolates a table with the runtime library (railtab::lookup, exactly what a simulation
 // gets): every output of every slot at each state, with units and status text. Checks a table
@@ -39,6 +39,7 @@ struct QueryOptions {
   std::vector<double> y;          // one state per value [m]
   std::string states;             // states file ('-': stdin), instead of --y
   std::optional<double> roll;     // [rad]
+  std::optional<double> yaw;      // [rad]
   bool derivatives = false;       // also the partial derivatives per tabulated axis
   bool creep_coefficients = false;  // also the linear creep coefficients per slot
   std::optional<double> load;     // [N]
@@ -161,8 +162,9 @@ void print_text_header(const nlohmann::ordered_json& head) {
 
 void print_text_query(const nlohmann::ordered_json& units, const nlohmann::ordered_json& q) {
   const auto& s = q["state"];
-  const std::string roll = s["roll"].is_null() ? "the table's equilibrium roll"
-                                               : fmt::format("{:g} rad", s["roll"].get<double>());
+  std::string roll = s["roll"].is_null() ? "the table's equilibrium roll"
+                                         : fmt::format("{:g} rad", s["roll"].get<double>());
+  if (s.contains("yaw")) roll += fmt::format(", yaw = {:g} rad", s["yaw"].get<double>());
   std::cout << fmt::format("\n{} wheel: y = {:g} m, roll = {}, load = {:g} N, xi = {:g}, eta = {:g}, "
                            "phi = {:g} rad/m; query status {}\n",
                            q["wheel"].get<std::string>(), s["y"].get<double>(), roll, s["load"].get<double>(),
@@ -279,6 +281,15 @@ void run_query(const QueryOptions& opt) {
                 "equilibrium), so roll is not an input; leave --roll out",
                 table.path());
   set_variable(table, opt.roll, "roll", base.roll);
+  // A table without yaw was computed at yaw 0: another yaw would be answered at 0 (the lookup flags
+  // it out_of_range), so it is refused outright.
+  const bool has_yaw = is_axis(table, "yaw") || is_fixed(table, "yaw");
+  RAILTAB_CHECK(!opt.yaw || *opt.yaw == 0.0 || has_yaw,
+                "--yaw: {}: the table has no yaw (computed at yaw 0: no yaw axis or fixed yaw, format {}); a yaw "
+                "of {:g} rad would be answered at yaw 0: query a table of a scene with [grid] yaw",
+                table.path(), table.format_version(), opt.yaw.value_or(0.0));
+  if (!reader || !reader->has("yaw")) set_variable(table, opt.yaw, "yaw", base.yaw);
+  else if (opt.yaw) base.yaw = *opt.yaw;
   if (!reader || !reader->has("load")) set_variable(table, opt.load, "load", base.load);
   else if (opt.load) base.load = *opt.load;
   if (!opt.creepage.empty()) {
@@ -307,6 +318,7 @@ void run_query(const QueryOptions& opt) {
     RAILTAB_CHECK(roll_is_input, "{}: column roll: this table follows its equilibrium roll; a roll would be ignored",
                   opt.states);
   }
+  // A yaw column on a table without yaw: each non-zero yaw is flagged out_of_range by the lookup.
   std::optional<JsonQueryWriter> json;
   if (opt.json) json.emplace(head);
   else print_text_header(head);
@@ -323,6 +335,7 @@ void run_query(const QueryOptions& opt) {
       q["wheel"] = w == 0 ? "left" : "right";
       q["state"] = {{"y", s.y}, {"roll", s.roll}, {"load", s.load}, {"xi", s.xi}, {"eta", s.eta}, {"phi", s.phi}};
       if (!roll_is_input) q["state"]["roll"] = nullptr;
+      if (has_yaw || s.yaw != 0.0) q["state"]["yaw"] = s.yaw;  // a yaw-free table's answers as before
       q["query_status"] = status::describe(r.status);
       q["contacts"] = nlohmann::ordered_json::array();
       for (int slot = 0; slot < r.n_slots; ++slot) {
@@ -371,7 +384,7 @@ void add_query_command(CLI::App& app) {
   CLI::Option* states =
       cmd->add_option("--states", opt->states,
                       "States file ('-': stdin), read and answered one line at a time: a header naming the "
-                      "columns (y and any of roll, load, xi, eta, phi), then one state per line; columns not "
+                      "columns (y and any of roll, load, xi, eta, phi, yaw), then one state per line; columns not "
                       "given come from --roll, --load, --creepage");
   y->excludes(states);
   cmd->add_flag("--derivatives", opt->derivatives,
@@ -381,6 +394,9 @@ void add_query_command(CLI::App& app) {
                "Also each slot's linear creep coefficients: d fx, fy, mz / d xi, eta, phi at zero creepage in "
                "full adhesion, interpolated over y, roll and load (tables of format 2.3)");
   add_number_option(cmd, "--roll", opt->roll, kRollRule, "Wheelset roll [rad] (default: the table's fixed value)");
+  add_number_option(cmd, "--yaw", opt->yaw, kYawRule,
+                    "Wheelset yaw (angle of attack) [rad], + turns the forward axis to the left (default: the table's "
+                    "fixed value, 0 for a table without yaw)");
   add_number_option(cmd, "--load", opt->load, kWheelLoadRule,
                     "Vertical wheel load [N] (default: the table's fixed value)");
   static constexpr std::array<NumberField, 3> kCreepage{

@@ -19,9 +19,10 @@ namespace railtab {
 namespace {
 
 constexpr std::size_t kMaxLine = 4096;  // characters per line: a state needs fewer than 200
-constexpr const char* kNames[] = {"y", "roll", "load", "xi", "eta", "phi"};
-constexpr NumberRule kRules[] = {kLateralShiftRule, kRollRule,     kWheelLoadRule,
-                                 kCreepageRule,     kCreepageRule, kSpinCreepageRule};
+constexpr const char* kNames[] = {"y", "roll", "load", "xi", "eta", "phi", "yaw"};
+constexpr NumberRule kRules[] = {kLateralShiftRule, kRollRule,     kWheelLoadRule,    kCreepageRule,
+                                 kCreepageRule,     kSpinCreepageRule, kYawRule};
+constexpr int kColumns = 7;
 
 std::string_view trimmed(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -40,7 +41,7 @@ std::vector<std::string_view> fields(std::string_view line) {
 }
 
 double& variable(lookup::State& s, int k) {
-  double* v[] = {&s.y, &s.roll, &s.load, &s.xi, &s.eta, &s.phi};
+  double* v[] = {&s.y, &s.roll, &s.load, &s.xi, &s.eta, &s.phi, &s.yaw};
   return *v[k];
 }
 
@@ -58,13 +59,13 @@ StateReader::StateReader(const std::string& path) : path_(path), in_(&std::cin) 
   }
   std::string header;
   RAILTAB_CHECK(read_line(header), "{}: empty: expected a header naming the columns (y and any of roll, load, xi, "
-                "eta, phi)", path_);
+                "eta, phi, yaw)", path_);
   const std::vector<std::string_view> names = fields(header);
   columns_ = static_cast<int>(names.size());
   for (int c = 0; c < columns_; ++c) {
     int k = 0;
-    while (k < 6 && names[c] != kNames[k]) ++k;
-    RAILTAB_CHECK(k < 6, "{}:{}: header: unknown column '{}' (known: y, roll, load, xi, eta, phi)", path_,
+    while (k < kColumns && names[c] != kNames[k]) ++k;
+    RAILTAB_CHECK(k < kColumns, "{}:{}: header: unknown column '{}' (known: y, roll, load, xi, eta, phi, yaw)", path_,
                   line_number_, names[c].substr(0, 40));
     RAILTAB_CHECK(column_[k] < 0, "{}:{}: header: column {} named twice", path_, line_number_, kNames[k]);
     column_[k] = c;
@@ -73,7 +74,7 @@ StateReader::StateReader(const std::string& path) : path_(path), in_(&std::cin) 
 }
 
 bool StateReader::has(const char* name) const {
-  for (int k = 0; k < 6; ++k)
+  for (int k = 0; k < kColumns; ++k)
     if (std::string_view(name) == kNames[k]) return column_[k] >= 0;
   return false;
 }
@@ -101,7 +102,7 @@ bool StateReader::next(lookup::State& state) {
   const std::vector<std::string_view> values = fields(line);
   RAILTAB_CHECK(static_cast<int>(values.size()) == columns_, "{}:{}: {} values, the header names {} columns", path_,
                 line_number_, values.size(), columns_);
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < kColumns; ++k) {
     if (column_[k] < 0) continue;
     double v = 0.0;
     const std::string problem = number_problem(values[column_[k]], kRules[k], v);

@@ -3,7 +3,7 @@
 // number of states fits in a fixed amount of memory.
 //
 //   # comment lines and blank lines are skipped
-//   y,load,xi          <- header: y and any of roll, load, xi, eta, phi, comma-separated
+//   y,load,xi          <- header: y and any of roll, load, xi, eta, phi, yaw, comma-separated
 //   0.003,78500,0.001  <- one state per line, every number by its documented range
 #pragma once
 
@@ -35,7 +35,7 @@ class StateReader {
   std::ifstream file_;       // when not stdin
   std::istream* in_;         // the file or std::cin
   long line_number_ = 0;     // of the last line read
-  std::array<int, 6> column_{};  // for y, roll, load, xi, eta, phi: its column, or -1
+  std::array<int, 7> column_{};  // for y, roll, load, xi, eta, phi, yaw: its column, or -1
   int columns_ = 0;          // fields per line
 };
 

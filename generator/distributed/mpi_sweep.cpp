@@ -33,7 +33,7 @@ constexpr int kTagResult = 3;   // worker -> 0: ResultHeader, failure message, b
 struct ResultHeader {
   std::uint64_t block;          // local y block
   std::uint64_t failures;       // points where the core threw
-  std::uint64_t first_column;   // block * nroll + roll of the first failure (ordering key)
+  std::uint64_t first_column;   // block * columns + column of the first failure (ordering key)
   std::uint64_t message_bytes;  // length of the failure message that follows
 };
 
@@ -49,9 +49,9 @@ struct BlockResult {
   std::string first_failure;
 };
 
-// Compute the given blocks (every roll column of each) with `threads` threads.
+// Compute the given blocks (every (roll, yaw) column of each) with `threads` threads.
 std::vector<BlockResult> compute_blocks(SweepPlan& plan, const std::vector<std::size_t>& blocks, int threads) {
-  const std::size_t nroll = plan.layout().nroll;
+  const std::size_t nroll = plan.layout().columns;  // columns per block
   std::vector<ColumnReport> reports(blocks.size() * nroll);
   parallel_for_index(threads, reports.size(),
                      [&](std::size_t i) { reports[i] = plan.compute_column(blocks[i / nroll], i % nroll); });

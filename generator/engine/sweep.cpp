@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The sweep engine: a kernel over the (y, roll) grid in parallel, in a deterministic order.
+// The sweep engine: a kernel over the (y, roll, yaw) grid in parallel, in a deterministic order.
 #include "engine/sweep.hpp"
 
 #include <fmt/format.h>
@@ -49,19 +49,19 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
 
   struct Task {
     std::size_t block;  // local y index
-    std::size_t iroll;
+    std::size_t column;  // roll index x nyaw + yaw index
   };
   std::vector<Task> tasks;
   for (std::size_t b = 0; b < l.ny; ++b) {
     if (block_done[b]) continue;
-    for (std::size_t r = 0; r < l.nroll; ++r) tasks.push_back({b, r});
+    for (std::size_t c = 0; c < l.columns; ++c) tasks.push_back({b, c});
   }
   const std::size_t points_todo = tasks.size() * kernel.points_per_column;
   summary.threads = effective_threads(options.threads);
 
   std::atomic<std::size_t> points_done{0};
   std::vector<std::atomic<std::size_t>> remaining(l.ny);
-  for (auto& r : remaining) r.store(l.nroll);
+  for (auto& r : remaining) r.store(l.columns);
   std::mutex mutex;                      // guards the fields below
   std::condition_variable wake;
   std::vector<std::size_t> finished_blocks;  // complete, not yet checkpointed
@@ -73,7 +73,7 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
 
   auto run_task = [&](std::size_t task_index) {
     const Task& task = tasks[task_index];
-    ColumnReport out = plan.compute_column(task.block, task.iroll);
+    ColumnReport out = plan.compute_column(task.block, task.column);
     points_done.fetch_add(kernel.points_per_column, std::memory_order_relaxed);
     bool block_complete = remaining[task.block].fetch_sub(1) == 1;
     if (out.failures > 0 || block_complete) {

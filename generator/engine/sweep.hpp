@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// The table sweep: a generic engine that runs a kernel over the (y, roll) grid in parallel and
-// fills a Table (docs/table-format.md).
+// The table sweep: a generic engine that runs a kernel over the (y, roll, yaw) grid in parallel
+// and fills a Table (docs/table-format.md).
 //
-// Work unit ("column"): one (y, roll) grid point, both wheels, all parts. A kernel solves the
+// Work unit ("column"): one (y, roll, yaw) grid point, both wheels, all parts. A kernel solves the
 // geometry once per column, the normal contact once per load on top of it, and creep/wear per
 // creepage on top of each normal result, so no part is ever recomputed. Every value is written
 // into a preallocated buffer at an offset computed from the grid indices, so the bytes do not
@@ -38,7 +38,7 @@ struct OutputInfo {
   std::string description;  // one line
 };
 
-// A part of the table (a group per wheel): its state axes beyond (y, roll) and its float64
+// A part of the table (a group per wheel): its state axes beyond (y, roll, yaw) and its float64
 // outputs; the engine adds the uint32 `status` dataset.
 struct PartSpec {
   std::string name;                     // "geometry", "normal", "creep", "wear"
@@ -49,8 +49,10 @@ struct PartSpec {
 struct ColumnState {
   std::size_t iy = 0;     // index into the scene's full y grid
   std::size_t iroll = 0;  // index into the roll grid (0 with equilibrium roll)
+  std::size_t iyaw = 0;   // index into the yaw grid (0 without yaw)
   double y = 0.0;         // lateral displacement [m]
   double roll = 0.0;      // roll angle (grid value or equilibrium roll) [rad]
+  double yaw = 0.0;       // yaw angle (grid value; 0 for a scene without yaw) [rad]
   unsigned wheels = 3u;   // wheels the contact kernel computes: bit 0 left, bit 1 right (the
                           //   sweep: both; the one-sided jump values: the jump's wheel only)
 };

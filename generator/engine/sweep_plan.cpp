@@ -24,6 +24,7 @@ struct AxisInfo {
 constexpr AxisInfo kStateAxes[] = {
     {"y", "m", "wheelset lateral displacement, track frame, positive to the left"},
     {"roll", "rad", "wheelset roll relative to the track, right-hand about +x (left wheel up)"},
+    {"yaw", "rad", "wheelset yaw (angle of attack) relative to the track, right-hand about +z"},
     {"load", "N", "vertical wheel load in track axes"},
     {"xi", "1", "longitudinal creepage, wheel relative to rail, per rolling distance"},
     {"eta", "1", "lateral creepage, wheel relative to rail, per rolling distance"},
@@ -34,6 +35,7 @@ const std::vector<double>& grid_of(const Scene& scene, const std::string& name) 
   const SceneGrids& g = scene.grids;
   if (name == "y") return g.y;
   if (name == "roll") return g.roll;
+  if (name == "yaw") return g.yaw;
   if (name == "load") return g.load;
   if (name == "xi") return g.xi;
   if (name == "eta") return g.eta;
@@ -60,6 +62,9 @@ SweepLayout make_layout(const Scene& scene, const SweepKernel& kernel, const Swe
   l.y_tabulated = scene.grids.y.size() > 1;
   l.roll_tabulated = tabulated(scene, "roll");
   l.nroll = scene.equilibrium_roll ? 1 : scene.grids.roll.size();
+  l.yaw_tabulated = tabulated(scene, "yaw");
+  l.nyaw = std::max<std::size_t>(1, scene.grids.yaw.size());
+  l.columns = l.nroll * l.nyaw;
   l.first_output.push_back(0);
   for (const PartSpec& part : kernel.parts) {
     std::size_t cells = kSlots;
@@ -75,7 +80,7 @@ nlohmann::json fixed_axes(const Scene& scene) {
   for (const AxisInfo& axis : kStateAxes) {
     if (std::string(axis.name) == "roll" && scene.equilibrium_roll) {
       fixed["roll"] = "equilibrium";  // per y in the root dataset /equilibrium_roll
-    } else if (grid_of(scene, axis.name).size() == 1) {
+    } else if (grid_of(scene, axis.name).size() == 1) {  // (a scene without yaw has no yaw at all)
       fixed[axis.name] = grid_of(scene, axis.name).front();
     }
   }
@@ -85,7 +90,7 @@ nlohmann::json fixed_axes(const Scene& scene) {
 // The table with every dataset allocated (zeros) and every attribute but `created`.
 Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const SweepLayout& l, const SweepOptions& options) {
   Table t;
-  t.set_attribute("format_version", kTableFormatVersion);
+  t.set_attribute("format_version", scene.grids.yaw.empty() ? kTableFormatVersion : kTableFormatVersionYaw);
   t.set_attribute("railtab_version", version_string());
   t.set_attribute("git_commit", git_commit());
   t.set_attribute("created", "");
@@ -130,6 +135,10 @@ Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const SweepLa
   if (l.roll_tabulated) {
     outer_axes.push_back("roll");
     outer_shape.push_back(l.nroll);
+  }
+  if (l.yaw_tabulated) {
+    outer_axes.push_back("yaw");
+    outer_shape.push_back(l.nyaw);
   }
   for (const char* wheel : {"left", "right"}) {
     for (const PartSpec& part : kernel.parts) {
@@ -190,7 +199,7 @@ std::uint64_t SweepPlan::run_key() const {
   const Table& t = table_;
   std::string id = fmt::format("{}|{}|{}|{}|{}|{}", *t.attribute("scene"), *t.attribute("models"),
                                *t.attribute("railtab_version"), *t.attribute("git_commit"),
-                               t.attribute("shard") ? *t.attribute("shard") : "1/1", kTableFormatVersion);
+                               t.attribute("shard") ? *t.attribute("shard") : "1/1", *t.attribute("format_version"));
   for (const TableGroup& g : t.groups) {
     for (const TableDataset& d : g.datasets) {
       id += "|" + g.path + "/" + d.name;
@@ -216,19 +225,22 @@ SweepPlan::SweepPlan(const Scene& scene, const SweepKernel& kernel, const SweepO
   equilibrium_roll_ = roll_dataset ? roll_dataset->values.data() : nullptr;
 }
 
-ColumnReport SweepPlan::compute_column(std::size_t block, std::size_t iroll) {
+ColumnReport SweepPlan::compute_column(std::size_t block, std::size_t column) {
   const SweepLayout& l = layout_;
   const std::size_t parts = kernel_.parts.size();
+  const std::size_t iroll = column / l.nyaw;
   ColumnState state;
   state.iy = l.y_begin + block;
   state.iroll = iroll;
+  state.iyaw = column % l.nyaw;
   state.y = scene_.grids.y[state.iy];
+  state.yaw = scene_.grids.yaw.empty() ? 0.0 : scene_.grids.yaw[state.iyaw];
   std::vector<double*> values;
   std::vector<StatusBits*> status;
   for (std::size_t wheel = 0; wheel < 2; ++wheel) {
     for (std::size_t p = 0; p < parts; ++p) {
       TableGroup& group = table_.groups[wheel * parts + p];
-      std::size_t offset = (block * l.nroll + iroll) * l.cells[p];
+      std::size_t offset = (block * l.columns + column) * l.cells[p];
       for (std::size_t o = 0; o < kernel_.parts[p].outputs.size(); ++o) {
         values.push_back(group.datasets[o].values.data() + offset);
       }

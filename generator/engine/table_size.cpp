@@ -49,6 +49,7 @@ std::uint64_t table_points(const Scene& scene, std::uint64_t y_count) {
   std::uint64_t points = y_count;
   const SceneGrids& g = scene.grids;
   points = checked_multiply(points, scene.equilibrium_roll ? 1 : axis_count(g.roll), what);
+  points = checked_multiply(points, axis_count(g.yaw), what);
   for (const std::vector<double>* axis : {&g.load, &g.xi, &g.eta, &g.phi}) {
     points = checked_multiply(points, axis_count(*axis), what);
   }
@@ -58,7 +59,8 @@ std::uint64_t table_points(const Scene& scene, std::uint64_t y_count) {
 std::uint64_t table_bytes(const Scene& scene, const SweepKernel& kernel, std::uint64_t y_count) {
   const std::string what = fmt::format("scene '{}': table bytes", scene.name);
   const SceneGrids& g = scene.grids;
-  const std::uint64_t columns = checked_multiply(y_count, scene.equilibrium_roll ? 1 : axis_count(g.roll), what);
+  const std::uint64_t columns = checked_multiply(
+      checked_multiply(y_count, scene.equilibrium_roll ? 1 : axis_count(g.roll), what), axis_count(g.yaw), what);
   std::uint64_t total = 0;
   for (const PartSpec& part : kernel.parts) {
     std::uint64_t cells = checked_multiply(columns, kSlots, what);

@@ -120,6 +120,11 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
   } else if (!scene.grids.roll.empty()) {
     roll = scene.grids.roll.front();
   }
+  double yaw = scene.grids.yaw.empty() ? 0.0 : scene.grids.yaw.front();
+  if (request.yaw) {
+    check_number_input(*request.yaw, "--yaw", kYawRule);
+    yaw = *request.yaw;
+  }
   double load = 0.0;
   if (request.load) {
     load = *request.load;
@@ -132,7 +137,7 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
   RAILTAB_CHECK(load == 0.0 || load >= kMinWheelLoad,
                 "--load {} N is below {} N: the load is in N (SI: 78.5 kN is 78.5e3)", load, kMinWheelLoad);
 
-  const WheelsetContactGeometry geometry = solver.solve({request.y, roll});
+  const WheelsetContactGeometry geometry = solver.solve({request.y, roll, yaw});
   const FastsimOptions fastsim = fastsim_options(scene);
   const CreepConditions conditions = creep_conditions(scene);
   const WearOptions wear = wear_options(scene);
@@ -175,6 +180,7 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
   out.scene = scene.name;
   out.y = request.y;
   out.roll = roll;
+  out.yaw = yaw;
   out.load = load;
   out.normal_model = scene.normal.model;
   out.with_creep = with_creep;

@@ -21,6 +21,7 @@ struct StateEvalRequest {
   double y = 0.0;                 // wheelset lateral displacement [m]
   std::optional<double> roll;     // roll [rad]; default: the scene's choice
   bool equilibrium_roll = false;  // use the kinematic equilibrium roll
+  std::optional<double> yaw;      // yaw [rad]; default: the scene's first yaw, 0 without one
   std::optional<double> load;     // vertical wheel load [N]; default: the scene's first load
   std::string model;              // normal model name overriding the scene's; empty: the scene's
   std::vector<double> creepage;   // xi, eta [-], phi [rad/m]; empty: no creep forces and wear
@@ -61,6 +62,7 @@ struct EvaluatedWheel {
 struct StateEvaluation {
   std::string scene;               // the scene's name
   double y = 0.0, roll = 0.0;      // the state [m], [rad]
+  double yaw = 0.0;                // [rad]
   double load = 0.0;               // vertical wheel load [N]
   NormalModel normal_model = NormalModel::hertz;
   bool with_creep = false;         // a creepage was given

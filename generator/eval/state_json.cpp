@@ -49,7 +49,7 @@ nlohmann::json point_json(const EvaluatedPoint& p) {
 nlohmann::json state_json(const StateEvaluation& e) {
   nlohmann::json out;
   out["scene"] = e.scene;
-  out["state"] = {{"y", e.y}, {"roll", e.roll}, {"load", e.load}};
+  out["state"] = {{"y", e.y}, {"roll", e.roll}, {"yaw", e.yaw}, {"load", e.load}};
   out["normal_model"] = to_string(e.normal_model);
   if (e.with_creep) {
     out["creepage"] = {{"xi", e.creepage[0]}, {"eta", e.creepage[1]}, {"phi", e.creepage[2]}};

@@ -32,6 +32,14 @@ double sequence(std::size_t n, int k) {
   return v - std::floor(v);
 }
 
+// A seventh dimension, yaw (scenes with a yaw axis only, so the other samples do not change): the
+// golden ratio's additive sequence, independent of the six (sqrt 5 is not in the degree-7 field
+// of g).
+double yaw_sequence(std::size_t n) {
+  const double v = 0.5 + 0.6180339887498949 * static_cast<double>(n + 1);
+  return v - std::floor(v);
+}
+
 double range_value(const std::vector<double>& grid, double u) {
   return grid.size() < 2 ? grid.front() : grid.front() + u * (grid.back() - grid.front());
 }
@@ -42,6 +50,7 @@ Scene one_state_scene(const Scene& scene, const ErrorSample& sample, NormalModel
   Scene one = scene;
   one.grids.y = {sample.y};
   one.grids.roll = {sample.roll};
+  if (!scene.grids.yaw.empty()) one.grids.yaw = {sample.yaw};
   one.grids.load = {sample.load};
   one.grids.xi = {sample.creepage[0]};
   one.grids.eta = {sample.creepage[1]};
@@ -141,6 +150,7 @@ std::vector<ErrorSample> error_samples(const Scene& scene, const std::vector<dou
       s.creepage = {range_value(scene.grids.xi, sequence(n, 2)), range_value(scene.grids.eta, sequence(n, 3)),
                     range_value(scene.grids.phi, sequence(n, 4))};
       s.roll = range_value(scene.grids.roll, sequence(n, 5));
+      if (!scene.grids.yaw.empty()) s.yaw = range_value(scene.grids.yaw, yaw_sequence(n));
       out.push_back(s);
     }
   }
@@ -184,6 +194,7 @@ SampleValues model_at(const Scene& scene, const ContactGeometrySolver& geometry,
   ColumnState state;
   state.y = sample.y;
   state.roll = one.equilibrium_roll ? kernel.equilibrium_roll(sample.y) : sample.roll;
+  state.yaw = sample.yaw;
   state.wheels = wheels;
   kernel.compute(state, out);
   auto at = [&](const std::string& part, const std::string& name, std::size_t w, std::size_t s) {
@@ -242,6 +253,7 @@ ErrorMap compute_error_map(const Scene& scene, const std::filesystem::path& writ
     for (const lookup::AxisInfo& a : table.axes()) {
       if (a.name == "load") state.load = s.load;
       if (a.name == "roll") state.roll = s.roll;
+      if (a.name == "yaw") state.yaw = s.yaw;
       if (a.name == "xi") state.xi = s.creepage[0];
       if (a.name == "eta") state.eta = s.creepage[1];
       if (a.name == "phi") state.phi = s.creepage[2];

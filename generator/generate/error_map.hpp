@@ -36,11 +36,12 @@ inline constexpr std::size_t kExactSamplesPerBand = 1;   // model vs exact state
 struct ErrorSample {
   std::size_t band = 0, cell = 0;
   double y = 0.0, roll = 0.0, load = 0.0;
+  double yaw = 0.0;  // 0 for a scene without yaw [rad]
   std::array<double, 3> creepage{};  // xi, eta [-], phi [rad/m]
 };
 
 // The states of the map of a table with y nodes `y_nodes` (the table's own y axis) over `scene`'s
-// load, roll and creepage ranges. `sequence_offset` shifts the index sequence (0 for the stored
+// load, roll, yaw and creepage ranges. `sequence_offset` shifts the index sequence (0 for the stored
 // map; tests use another offset for an independent sampling).
 std::vector<ErrorSample> error_samples(const Scene& scene, const std::vector<double>& y_nodes,
                                        std::size_t samples_per_band = kModelSamplesPerBand,

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The sweep's contact kernel: geometry, normal, FASTSIM and wear per (y, roll) column, in slots.
+// The sweep's contact kernel: geometry, normal, FASTSIM and wear per (y, roll, yaw) column, in slots.
 #include "kernel/contact_kernel.hpp"
 
 #include <fmt/format.h>
@@ -144,7 +144,7 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
   const std::size_t ncreep = nload * k.creepages() * kSlots;  // creep/wear cells of the column
   WheelContactGeometry geometry;
   try {
-    geometry = k.solver.solve_wheel(side, WheelsetState{state.y, state.roll});
+    geometry = k.solver.solve_wheel(side, WheelsetState{state.y, state.roll, state.yaw});
   } catch (const std::exception& e) {
     out.failure(fmt::format("geometry, {} wheel, y = {} m, roll = {} rad: {}", to_string(side), state.y,
                             state.roll, e.what()));

@@ -482,6 +482,18 @@ void parse_grid(const Section& gr, const SceneInput& in, Scene& scene) {
   } else {
     grids.roll = {0.0};
   }
+  if (const toml::node* n = gr.node("yaw")) {
+    if (is_adaptive_range(*n)) fail(ctx, n->source(), "grid.yaw", "yaw cannot be adaptive (use a number or a list)");
+    // The adaptive grids, contact probe and model choice place y at zero yaw.
+    if (acc.enabled) fail(ctx, n->source(), "grid.yaw", "cannot be combined with an [accuracy] section");
+    grids.yaw = parse_axis(gr, "yaw", *n);
+    for (double v : grids.yaw) {
+      if (!(std::abs(v) <= kMaxYaw)) {
+        fail(ctx, n->source(), "grid.yaw",
+             fmt::format("|yaw| = {} rad is beyond {} rad: yaw is in rad (SI: 10 mrad is 0.010)", std::abs(v), kMaxYaw));
+      }
+    }
+  }
   parse_creep_axes(gr, scene);
   if (scene.creep_normalised && acc.enabled) {
     // Adaptive grids compare interpolated and direct creep forces on physical creepage nodes.
@@ -526,7 +538,7 @@ const std::vector<SceneSection>& scene_sections() {
        {"creep_force", "contact_angle", "rolling_radius", "normal_force", "models", "model_tolerance"},
        parse_accuracy},
       {"grid",
-       {"y", "roll", "load", "xi", "eta", "phi", "equilibrium_roll", "creep_coordinates", "creep_knee"},
+       {"y", "roll", "yaw", "load", "xi", "eta", "phi", "equilibrium_roll", "creep_coordinates", "creep_knee"},
        parse_grid},
   };
   return sections;

@@ -53,6 +53,8 @@ struct WearSettings {
 struct SceneGrids {
   std::vector<double> y;     // wheelset lateral displacement [m]
   std::vector<double> roll;  // roll angle [rad]
+  std::vector<double> yaw;   // yaw angle (angle of attack) [rad]; empty: the scene has no yaw key
+                             //   (the yaw-free table, format 2.3); one value: fixed; more: an axis
   std::vector<double> load;  // vertical wheel load [N]
   std::vector<double> xi;    // longitudinal creepage [-]
   std::vector<double> eta;   // lateral creepage [-]
@@ -116,6 +118,10 @@ struct Scene {
   SceneGrids grids;              // adaptive axes hold their starting grid until build_adaptive_grids
   AccuracyTargets accuracy;      // [accuracy]; enabled = false without the section
 };
+
+// The yaw of a scene whose yaw is not an axis: its one value, 0 for a scene without the key (the
+// contact probe, the contact jumps and the error map solve at it).
+inline double fixed_yaw(const Scene& scene) { return scene.grids.yaw.size() == 1 ? scene.grids.yaw.front() : 0.0; }
 
 // Parse a scene file. Unknown keys, missing required keys, wrong types, empty or non-monotonic
 // grids throw railtab::Error naming the file, the key and (where known) the line.

@@ -17,6 +17,8 @@ inline constexpr double kMaxFriction = 10.0;  // [-]
 
 inline constexpr NumberRule kLateralShiftRule{-kMaxLateralShift, kMaxLateralShift, false, "m"};
 inline constexpr NumberRule kRollRule{-kMaxRoll, kMaxRoll, false, "rad"};
+// Yaw up to the contact search's limit (geometry/contact_geometry.hpp, 11.5 degrees).
+inline constexpr NumberRule kYawRule{-kMaxYaw, kMaxYaw, false, "rad"};
 inline constexpr NumberRule kWheelLoadRule{0.0, kMaxWheelLoad, false, "N"};
 inline constexpr NumberRule kCreepageRule{-kMaxCreepage, kMaxCreepage, false, ""};
 inline constexpr NumberRule kSpinCreepageRule{-kMaxSpinCreepage, kMaxSpinCreepage, false, "1/m"};

@@ -22,9 +22,12 @@ inline constexpr int kTableFormatMajor = 2;
 // 2.1: normalised creep coordinates, located contact jumps (/jumps); 2.2: creep and wear outputs
 // stored as float32 rounded to 20 significant bits (table/storage_precision.hpp); 2.3: additive
 // groups and datasets only (the error map, /error_map; the normal part's linear creep
-// coefficients, creep_coefficient_*), a 2.2 reader reads a 2.3 table.
-inline constexpr int kTableFormatMinor = 3;
+// coefficients, creep_coefficient_*), a 2.2 reader reads a 2.3 table; 2.4: the yaw axis or fixed
+// yaw (/axes/yaw), written only by scenes with a yaw key: a scene without one keeps writing 2.3,
+// so its table is unchanged byte for byte.
+inline constexpr int kTableFormatMinor = 4;
 inline constexpr const char* kTableFormatVersion = "2.3";
+inline constexpr const char* kTableFormatVersionYaw = "2.4";
 
 // The group of the contact jumps along y (format 2.1, docs/table-format.md) and the one a shard
 // carries instead: the jumps of its y cells, which `railtab merge` joins into kJumpGroup.

@@ -76,7 +76,7 @@ constexpr const char* kAttributeOrder[] = {"format_version", "railtab_version", 
                                           "scene", "scene_name", "models", "fixed_axes", "shard",
                                           "shard_y_begin", "shard_y_end", "shard_y_total", "shard_jumps",
                                           "accuracy_targets", "accuracy_achieved"};
-constexpr const char* kCoordinateNames[] = {"y", "roll", "load", "xi", "eta", "phi", "slot"};
+constexpr const char* kCoordinateNames[] = {"y", "roll", "yaw", "load", "xi", "eta", "phi", "slot"};
 
 // uint32 datasets: status bits and the jump kinds (<wheel>_kind).
 bool is_uint32_dataset(const std::string& name) {

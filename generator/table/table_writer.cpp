@@ -46,8 +46,9 @@ constexpr unsigned kDeflateLevel = 6;
 // Root attributes whose text is an integer: stored as int64.
 constexpr const char* kIntegerAttributes[] = {"shard_y_begin", "shard_y_end", "shard_y_total"};
 // Units of the state variables, for fixed ones (scalar datasets /axes/<name>).
-constexpr std::pair<const char*, const char*> kStateUnits[] = {{"y", "m"},  {"roll", "rad"}, {"load", "N"},
-                                                               {"xi", "1"}, {"eta", "1"},    {"phi", "rad/m"}};
+constexpr std::pair<const char*, const char*> kStateUnits[] = {{"y", "m"},   {"roll", "rad"}, {"yaw", "rad"},
+                                                               {"load", "N"}, {"xi", "1"},     {"eta", "1"},
+                                                               {"phi", "rad/m"}};
 
 template <std::size_t N>
 bool one_of(const std::string& name, const char* const (&names)[N]) {

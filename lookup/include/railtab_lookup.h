@@ -111,6 +111,8 @@ typedef struct railtab_lookup_state {
   double xi;   /* [1] longitudinal creepage */
   double eta;  /* [1] lateral creepage */
   double phi;  /* [rad/m] spin creepage */
+  double yaw;  /* [rad] wheelset yaw (angle of attack) relative to track, + forward axis to the
+                  left; last, so older positional initialisers keep their meaning (yaw 0) */
 } railtab_lookup_state;
 
 typedef struct railtab_lookup_contact {
@@ -135,6 +137,7 @@ enum {
   RAILTAB_LOOKUP_VAR_XI,    /* [1] */
   RAILTAB_LOOKUP_VAR_ETA,   /* [1] */
   RAILTAB_LOOKUP_VAR_PHI,   /* [rad/m] */
+  RAILTAB_LOOKUP_VAR_YAW,   /* [rad] (last, as in the state struct) */
   RAILTAB_LOOKUP_NUM_VARS
 };
 
@@ -282,7 +285,7 @@ typedef struct railtab_lookup_error_estimate {
 RAILTAB_LOOKUP_API int railtab_lookup_error_estimate_at(const railtab_lookup_table* table, double y, int slot,
                                                      railtab_lookup_error_estimate* estimate);
 
-/* Tabulated axis `index` (file order): name ("y", "roll", "load", "xi", "eta", "phi"), units
+/* Tabulated axis `index` (file order): name ("y", "roll", "yaw", "load", "xi", "eta", "phi"), units
  * (the file's attribute, "" if absent), node count and nodes (strictly increasing, SI). Any of
  * the output pointers may be NULL. RAILTAB_LOOKUP_ERROR_RANGE for an index outside the axes. */
 RAILTAB_LOOKUP_API int railtab_lookup_axis(const railtab_lookup_table* table, int index, const char** name,
@@ -301,7 +304,7 @@ RAILTAB_LOOKUP_API const char* railtab_lookup_output_units(int output);
 RAILTAB_LOOKUP_API int railtab_lookup_output_part(int output);
 RAILTAB_LOOKUP_API const char* railtab_lookup_part_name(int part);
 RAILTAB_LOOKUP_API const char* railtab_lookup_slot_name(int slot);
-/* Name of a state variable ("y", "roll", "load", "xi", "eta", "phi"; "?" out of range). */
+/* Name of a state variable ("y", "roll", "load", "xi", "eta", "phi", "yaw"; "?" out of range). */
 RAILTAB_LOOKUP_API const char* railtab_lookup_var_name(int var);
 
 /* Name of one status bit ("converged", "two_point", ...; "unknown" if not a single defined bit). */

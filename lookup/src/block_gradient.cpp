@@ -36,6 +36,10 @@ void gradient_dims(RecordPtr p, const std::size_t* stride, const double* t, int 
 
 }  // namespace
 
+// The switches below name every dimension count up to kMaxDims (y, roll, yaw, load and the three
+// creepages): the default is the largest.
+static_assert(kMaxDims == 7);
+
 template <class T>
 void multilinear_gradient(RecordPtr p, int n, const std::size_t* stride, const double* t, int n_values,
                           double* value, double (*out_dt)[kMaxDims]) noexcept {
@@ -46,6 +50,7 @@ void multilinear_gradient(RecordPtr p, int n, const std::size_t* stride, const d
     case 3: gradient_dims<3, T>(p, stride, t, n_values, value, out_dt); break;
     case 4: gradient_dims<4, T>(p, stride, t, n_values, value, out_dt); break;
     case 5: gradient_dims<5, T>(p, stride, t, n_values, value, out_dt); break;
+    case 6: gradient_dims<6, T>(p, stride, t, n_values, value, out_dt); break;
     default: gradient_dims<kMaxDims, T>(p, stride, t, n_values, value, out_dt); break;
   }
 }
@@ -216,6 +221,7 @@ void cubic_sum(const Block& b, const StencilWeights* sw, RecordPtr p, BlockGradi
     case 3: cubic_dims<3, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
     case 4: cubic_dims<4, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
     case 5: cubic_dims<5, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
+    case 6: cubic_dims<6, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
     default: cubic_dims<kMaxDims, T>(b.stride, sw, p, b.n_values, g.value, dt); break;
   }
   for (int k = 0; k < b.n_values; ++k)
@@ -368,7 +374,7 @@ void chain_creep_coordinates(const Block& b, const BlockGradient& g, const doubl
     double* row = out[b.output_of[k]];
     const double* gk = g.d[k];
     for (int var = 0; var < kNumVars; ++var)
-      row[var] = (var < kVarXi ? gk[var] : 0.0) + gk[kVarXi] * dv[0][var] + gk[kVarXi + 1] * dv[1][var] +
+      row[var] = (is_creepage(var) ? 0.0 : gk[var]) + gk[kVarXi] * dv[0][var] + gk[kVarXi + 1] * dv[1][var] +
                  gk[kVarXi + 2] * dv[2][var];
   }
 }

@@ -29,6 +29,7 @@ static_assert(offsetof(railtab_lookup_error_estimate, model_vs_exact) == offseto
 static_assert(RAILTAB_LOOKUP_NUM_ERR == lk::kErrorQuantities && RAILTAB_LOOKUP_ERR_FY == lk::kErrorFy &&
               RAILTAB_LOOKUP_ERR_CONTACT_ANGLE == lk::kErrorContactAngle);
 static_assert(offsetof(railtab_lookup_state, phi) == offsetof(lk::State, phi));
+static_assert(offsetof(railtab_lookup_state, yaw) == offsetof(lk::State, yaw));
 static_assert(sizeof(railtab_lookup_contact) == sizeof(lk::Contact));
 static_assert(offsetof(railtab_lookup_contact, part_status) == offsetof(lk::Contact, part_status));
 static_assert(offsetof(railtab_lookup_contact, status) == offsetof(lk::Contact, status));
@@ -72,6 +73,7 @@ static_assert(offsetof(railtab_lookup_track_forces, wheel_lateral) == offsetof(l
 static_assert(offsetof(railtab_lookup_track_forces, y_over_q) == offsetof(lk::TrackForces, y_over_q));
 static_assert(int{RAILTAB_LOOKUP_NUM_VARS} == int{lk::kNumVariables});
 static_assert(int{RAILTAB_LOOKUP_VAR_PHI} == int{lk::kPhi} && int{RAILTAB_LOOKUP_VAR_LOAD} == int{lk::kLoad});
+static_assert(int{RAILTAB_LOOKUP_VAR_YAW} == int{lk::kYaw});
 
 thread_local std::string last_error;
 
@@ -84,7 +86,7 @@ int fail(int code, const char* message) noexcept {
 }
 
 lk::State to_state(const railtab_lookup_state& s) noexcept {
-  return lk::State{s.y, s.roll, s.load, s.xi, s.eta, s.phi};
+  return lk::State{s.y, s.roll, s.load, s.xi, s.eta, s.phi, s.yaw};
 }
 
 void store(const lk::Result& r, railtab_lookup_result* out) noexcept {
@@ -245,7 +247,7 @@ int railtab_lookup_default_state(const railtab_lookup_table* table, railtab_look
   if (!table || !state)
     return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_default_state: null argument");
   const lk::State s = table->table.default_state();
-  *state = railtab_lookup_state{s.y, s.roll, s.load, s.xi, s.eta, s.phi};
+  *state = railtab_lookup_state{s.y, s.roll, s.load, s.xi, s.eta, s.phi, s.yaw};
   return RAILTAB_LOOKUP_OK;
 }
 

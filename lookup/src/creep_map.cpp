@@ -11,7 +11,7 @@ namespace railtab::lookup::detail {
 
 void set_normal_grid(const TableData& d, NodeGrid& g) noexcept {
   g = NodeGrid{};
-  for (int var = 0; var < kNumVars; ++var) {
+  for (const int var : kFileOrder) {
     if (!kPartSpecs[kNormal].uses[var] || !d.tabulated[var]) continue;
     g.var[g.n_dims] = var;
     g.size[g.n_dims] = d.axis[var].size();

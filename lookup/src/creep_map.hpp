@@ -23,11 +23,11 @@ namespace railtab::lookup::detail {
 // strides in nodes. Fields of a few values per node and slot live on it: the creep scales
 // (CreepMap) and the linear creep coefficients (creep_coefficients.hpp), interpolated by one
 // function (interpolate_node_values; one-sided at jumps: one_sided_node_values, jump_piece.hpp).
-struct NodeGrid {
+struct NodeGrid {                 // its axes among y, roll, yaw, load, in file order
   int n_dims = 0;
-  int var[3] = {};
-  int size[3] = {};
-  std::size_t stride[3] = {};     // in nodes
+  int var[kMaxNormalDims] = {};
+  int size[kMaxNormalDims] = {};
+  std::size_t stride[kMaxNormalDims] = {};  // in nodes
   std::size_t nodes = 1;
   int dim_of(int v) const noexcept {  // the dimension of variable v, -1: not tabulated
     for (int k = 0; k < n_dims; ++k)

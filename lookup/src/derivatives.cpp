@@ -20,7 +20,7 @@ namespace {
 // The public Variable numbers are the internal Var ones.
 constexpr bool same(int a, int b) { return a == b; }
 static_assert(same(kNumVars, kNumVariables) && same(kVarY, kY) && same(kVarRoll, kRoll) && same(kVarLoad, kLoad) &&
-              same(kVarXi, kXi) && same(kVarEta, kEta) && same(kVarPhi, kPhi));
+              same(kVarXi, kXi) && same(kVarEta, kEta) && same(kVarPhi, kPhi) && same(kVarYaw, kYaw));
 
 // Where the query lies, as locate_state (table.cpp) places it, and which variables are held at
 // the table's edge (their derivative is 0: the value does not change there).
@@ -33,7 +33,7 @@ struct Location {
 };
 
 void locate(const TableData& d, int w, const State& state, Location& at) noexcept {
-  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi};
+  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi, state.yaw};
   const CreepMap& map = d.creep_map;
   for (int k = 0; k < d.n_located; ++k) {
     const int var = d.located_var[k];
@@ -68,7 +68,7 @@ void block_gradient(const TableData& d, int w, int bi, const Location& at, const
   else cubic_gradient(b, d.axis, loc, slot, g);
 }
 
-// The slot's reciprocal creepage scales and their derivatives with respect to y, roll and load:
+// The slot's reciprocal creepage scales and their derivatives with respect to y, roll, yaw and load:
 // multilinear over the normal part's grid (interpolate_scales), or in a cut cell one-sided from
 // the pieces of every jump (one_sided_scales in jump_side.cpp).
 void scales(const TableData& d, int w, const Location& at, int slot, double inv[3], double dinv[3][kNumVars]) noexcept {
@@ -77,8 +77,8 @@ void scales(const TableData& d, int w, const Location& at, int slot, double inv[
     for (int var = 0; var < kNumVars; ++var) dinv[c][var] = 0.0;
   const std::size_t s = static_cast<std::size_t>(slot);
   if (!at.cut) {
-    std::size_t origin = 0, stride[3];
-    double t[3], dt[3][kMaxDims];
+    std::size_t origin = 0, stride[kMaxNormalDims];
+    double t[kMaxNormalDims], dt[3][kMaxDims];
     for (int k = 0; k < map.n_dims; ++k) {
       const AxisLoc& l = at.loc[map.var[k]];
       origin += static_cast<std::size_t>(l.i) * map.stride[k];
@@ -111,7 +111,8 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
   for (int k = 0; k < 3; ++k) {
     const int cv = kVarXi + k;
     xn[k] = at.creepage[k] * inv[k];
-    for (int var = 0; var < kVarXi; ++var) dxn[k][var] = at.creepage[k] * dinv[k][var];
+    for (int var = 0; var < kNumVars; ++var)
+      if (!is_creepage(var)) dxn[k][var] = at.creepage[k] * dinv[k][var];
     if (map.swept[k] && !at.frozen[cv]) dxn[k][cv] = inv[k];
     if (!map.swept[k]) continue;
     d.axis[cv].locate_fast(creep_coordinate_normalised(xn[k] * map.kinv[k], map.lo_k[k] * inv[k], map.hi_k[k] * inv[k]),

@@ -31,6 +31,7 @@ double state_var(const State& s, int var) noexcept {
     case kVarLoad: return s.load;
     case kVarXi: return s.xi;
     case kVarEta: return s.eta;
+    case kVarYaw: return s.yaw;
     default: return s.phi;
   }
 }
@@ -87,8 +88,8 @@ struct SlotDerivatives {
 __attribute__((always_inline)) inline void set_row(double* row, double y, double load, double xi, double eta,
                                                    double phi) noexcept {
   static_assert(kVarY == 0 && kVarRoll == 1 && kVarLoad == 2 && kVarXi == 3 && kVarEta == 4 && kVarPhi == 5 &&
-                kNumVars == 6);
-  row[0] = y, row[1] = 0.0, row[2] = load, row[3] = xi, row[4] = eta, row[5] = phi;
+                kVarYaw == 6 && kNumVars == 7);
+  row[0] = y, row[1] = 0.0, row[2] = load, row[3] = xi, row[4] = eta, row[5] = phi, row[6] = 0.0;  // no roll, yaw axis
 }
 
 // d value / d t of a bilinear cell over (y, load) for the value at f00 (lower y, lower load),
@@ -562,7 +563,7 @@ void prepare_fast_path(TableData& d) noexcept {
   if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_FAST_PATH"); env && *env && *env != '0') return;
   const CreepMap& map = d.creep_map;
   if (d.method != Method::kLinear || !map.active || d.n_blocks != 3) return;
-  if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll])) return;
+  if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll] && !d.tabulated[kVarYaw])) return;
   if (d.n_located != 2 || d.n_clamped != 3 || !map.swept[0] || !map.swept[1] || !map.swept[2]) return;
   if (map.n_dims != 2 || map.var[0] != kVarY || map.var[1] != kVarLoad) return;
   if (!d.has_part[kGeometry] || !d.has_part[kNormal] || !d.has_part[kCreep]) return;

@@ -8,7 +8,7 @@
 namespace railtab::lookup::detail {
 
 const char* var_name(int var) {
-  static const char* const names[kNumVars] = {"y", "roll", "load", "xi", "eta", "phi"};
+  static const char* const names[kNumVars] = {"y", "roll", "load", "xi", "eta", "phi", "yaw"};
   return (var >= 0 && var < kNumVars) ? names[var] : "?";
 }
 

@@ -9,9 +9,16 @@
 
 namespace railtab::lookup::detail {
 
-// State variables in table order (docs/table-format.md: y, roll, load, xi, eta, phi).
-enum Var : int { kVarY = 0, kVarRoll, kVarLoad, kVarXi, kVarEta, kVarPhi, kNumVars };
+// State variables, numbered as State's members and the public Variable (yaw last).
+enum Var : int { kVarY = 0, kVarRoll, kVarLoad, kVarXi, kVarEta, kVarPhi, kVarYaw, kNumVars };
 const char* var_name(int var);  // "y", "roll", ...
+// The order of the table's dimensions (docs/table-format.md: y, roll, yaw, load, xi, eta, phi):
+// every loop that reads or lays out the file's axes walks this, not the Var numbers.
+inline constexpr int kFileOrder[kNumVars] = {kVarY, kVarRoll, kVarYaw, kVarLoad, kVarXi, kVarEta, kVarPhi};
+// The normal part's axes at most: y, roll, yaw, load (the creep scales and coefficients' grid).
+inline constexpr int kMaxNormalDims = 4;
+// The creepages (not the wheelset's position, orientation or load).
+constexpr bool is_creepage(int var) noexcept { return var == kVarXi || var == kVarEta || var == kVarPhi; }
 
 // Where a query value falls: between nodes i and i+1, at fraction t of the cell.
 struct AxisLoc {

@@ -40,7 +40,7 @@ bool cuts(const JumpWheel& j, int list, int l, double x0, double x1) {
 // First creepage dimension of a block: after y and (when tabulated) load.
 int first_inner(const Block& b) {
   int d = 0;
-  while (d < b.n_dims && (b.var[d] == kVarY || b.var[d] == kVarLoad || b.var[d] == kVarRoll)) ++d;
+  while (d < b.n_dims && (b.var[d] == kVarY || b.var[d] == kVarLoad || b.var[d] == kVarRoll || b.var[d] == kVarYaw)) ++d;
   return d;
 }
 
@@ -293,8 +293,8 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
 
 void read_jumps(const Hdf5File& f, TableData& d) {
   if (!f.exists("/jumps")) return;  // before 2.1, or a table without jumps
-  if (!d.tabulated[kVarY] || d.tabulated[kVarRoll])
-    f.fail("group /jumps needs a y axis and no roll axis (jumps are located per load node)");
+  if (!d.tabulated[kVarY] || d.tabulated[kVarRoll] || d.tabulated[kVarYaw])
+    f.fail("group /jumps needs a y axis and no roll or yaw axis (jumps are located per load node)");
   for (int w = 0; w < 2; ++w) read_wheel(f, d, w);
   d.has_jumps = true;
 }

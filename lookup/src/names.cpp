@@ -5,12 +5,12 @@
 namespace railtab::lookup {
 namespace detail {
 
-//                                          y     roll  load  xi     eta    phi
+//                                          y     roll  load  xi     eta    phi    yaw
 const PartSpec kPartSpecs[kNumParts] = {
-    {"geometry", kContactAngle, 7, {true, true, false, false, false, false}},
-    {"normal", kNormalForce, 6, {true, true, true, false, false, false}},
-    {"creep", kFx, 4, {true, true, true, true, true, true}},
-    {"wear", kWearRate, 1, {true, true, true, true, true, true}},
+    {"geometry", kContactAngle, 7, {true, true, false, false, false, false, true}},
+    {"normal", kNormalForce, 6, {true, true, true, false, false, false, true}},
+    {"creep", kFx, 4, {true, true, true, true, true, true, true}},
+    {"wear", kWearRate, 1, {true, true, true, true, true, true, true}},
 };
 
 }  // namespace detail

@@ -42,7 +42,7 @@ namespace {
 StatusBits locate_state(const detail::TableData& d, const State& state, detail::AxisLoc* loc,
                         double* creepage) noexcept {
   using namespace detail;
-  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi};
+  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi, state.yaw};
   const CreepMap& map = d.creep_map;
   // A variable the table neither tabulates nor fixes does not affect it: ignored.
   bool finite = true, out = false;
@@ -257,7 +257,7 @@ State Table::default_state() const {
   double v[detail::kNumVars] = {};
   for (int var = 0; var < detail::kNumVars; ++var)
     if (d.fixed[var]) v[var] = d.fixed_value[var];
-  return State{v[0], v[1], v[2], v[3], v[4], v[5]};
+  return State{v[0], v[1], v[2], v[3], v[4], v[5], v[6]};
 }
 
 std::size_t Table::memory_bytes() const {

@@ -44,7 +44,7 @@ namespace railtab::lookup::detail {
 // ORed over the nodes (docs/lookup.md, "What a query returns").
 inline constexpr StatusBits kEveryCorner = status::kConverged | status::kFullSlip;
 
-inline constexpr int kMaxDims = kNumVars;  // a block tabulates at most y, roll, load, xi, eta, phi
+inline constexpr int kMaxDims = kNumVars;  // a block tabulates at most y, roll, yaw, load, xi, eta, phi
 inline constexpr int kMaxSlotValues = kNumOutputs;  // values in one slot record, at most
 
 struct Block;
@@ -112,6 +112,8 @@ struct TableData {
   int n_fixed = 0;                    // fixed variables, and which (Var)
   int fixed_var[kNumVars] = {};
   double fixed_tolerance[kNumVars] = {};  // |query - fixed_value| above this: kOutOfRange
+  bool yaw_absent = false;            // the table has no yaw (no /axes/yaw): in fixed_var at 0, not
+                                      // in fixed[] / fixed_list (a table computed at yaw 0)
   bool roll_equilibrium = false;      // roll follows the equilibrium (roll_mode): in fixed_var at 0,
                                       // not in fixed[] / fixed_list (not a fixed value of the table)
   int n_absent = 0;                   // parts not in the table, and which (their outputs are 0)

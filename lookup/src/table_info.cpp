@@ -48,7 +48,7 @@ const char* output_units(Output output) {
 }
 
 const char* state_units(const std::string& variable) {
-  static const char* const units[detail::kNumVars] = {"m", "rad", "N", "1", "1", "rad/m"};
+  static const char* const units[detail::kNumVars] = {"m", "rad", "N", "1", "1", "rad/m", "rad"};
   for (int var = 0; var < detail::kNumVars; ++var)
     if (variable == detail::var_name(var)) return units[var];
   return "";
@@ -61,7 +61,7 @@ std::string slot_name(int slot) {
 }
 
 const char* library_version() noexcept { return RAILTAB_LOOKUP_VERSION; }
-const char* supported_format_version() noexcept { return "2.3"; }
+const char* supported_format_version() noexcept { return "2.4"; }
 
 bool Table::checksums_verified() const { return data_->checksums_verified; }
 

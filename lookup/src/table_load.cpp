@@ -118,7 +118,7 @@ void check_axis(const Hdf5File& f, const std::string& name, const std::vector<do
 
 void read_axes(const Hdf5File& f, TableData& d, int major) {
   if (!f.exists("/axes")) f.fail("missing group /axes");
-  for (int var = 0; var < kNumVars; ++var) {
+  for (const int var : kFileOrder) {
     const std::string name = std::string("/axes/") + var_name(var);
     if (!f.exists(name)) continue;
     auto a = f.read_axis(name, kMaxAxisNodes, /*allow_scalar=*/major >= 2);
@@ -168,7 +168,7 @@ void read_fixed_axes(const Hdf5File& f, TableData& d) {
     while (var < kNumVars && e.key != var_name(var)) ++var;
     if (var == kNumVars)
       f.fail("root attribute fixed_axes names '" + e.key + "', not a state variable (y, roll, " +
-             "load, xi, eta, phi)");
+             "yaw, load, xi, eta, phi)");
     if (listed[var]) f.fail("root attribute fixed_axes lists '" + e.key + "' twice");
     listed[var] = true;
     if (d.tabulated[var]) f.fail("'" + e.key + "' is both an axis and in fixed_axes");
@@ -189,8 +189,9 @@ void read_fixed_axes(const Hdf5File& f, TableData& d) {
   }
   // Every state variable is either tabulated or fixed: a table that says nothing about one
   // cannot tell the caller what value its numbers hold for.
+  d.yaw_absent = !d.tabulated[kVarYaw] && !listed[kVarYaw];  // format 1 knows no yaw
   for (int var = 0; var < kNumVars; ++var)
-    if (!d.tabulated[var] && !listed[var])
+    if (!d.tabulated[var] && !listed[var] && var != kVarYaw)
       f.fail(std::string("state variable '") + var_name(var) + "' is neither an axis (/axes/" +
              var_name(var) + ") nor in the root attribute fixed_axes");
 }
@@ -206,7 +207,7 @@ void check_fixed_variables(const Hdf5File& f, TableData& d) {
     int var = 0;
     while (var < kNumVars && member != var_name(var)) ++var;
     if (var == kNumVars && member != "slot")
-      f.fail("/axes/" + member + " is not a state variable (y, roll, load, xi, eta, phi) nor slot");
+      f.fail("/axes/" + member + " is not a state variable (y, roll, yaw, load, xi, eta, phi) nor slot");
   }
   if (const auto mode = f.string_attribute("/", "roll_mode")) {
     if (*mode != "equilibrium")
@@ -215,8 +216,10 @@ void check_fixed_variables(const Hdf5File& f, TableData& d) {
       f.fail("roll_mode = \"equilibrium\" but /axes/roll exists too");
     d.roll_equilibrium = true;
   }
+  // Yaw may be absent (a table of a scene without yaw, or older than format 2.4): computed at yaw 0.
+  d.yaw_absent = !d.tabulated[kVarYaw] && !d.fixed[kVarYaw];
   for (int var = 0; var < kNumVars; ++var)
-    if (!d.tabulated[var] && !d.fixed[var] && !(var == kVarRoll && d.roll_equilibrium))
+    if (!d.tabulated[var] && !d.fixed[var] && !(var == kVarRoll && d.roll_equilibrium) && !(var == kVarYaw && d.yaw_absent))
       f.fail(std::string("state variable '") + var_name(var) + "' is neither an axis nor a fixed " +
              "value (dataset /axes/" + var_name(var) + ")");
 }
@@ -235,7 +238,7 @@ PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& g
                      const PartSpec& spec) {
   PartArrays p;
   std::string axes_attr;
-  for (int var = 0; var < kNumVars; ++var) {
+  for (const int var : kFileOrder) {
     if (!spec.uses[var] || !d.tabulated[var]) continue;
     p.vars.push_back(var);
     p.dims.push_back(static_cast<hsize_t>(d.axis[var].size()));
@@ -449,12 +452,15 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   read_axes(f, *d, major);
   if (major == 1) read_fixed_axes(f, *d);  // format 2 stores them in /axes (read_axes)
   else check_fixed_variables(f, *d);
-  for (int var = 0; var < kNumVars; ++var) {
+  for (const int var : kFileOrder) {
     if (d->tabulated[var]) d->tabulated_var[d->n_tabulated++] = var;
     // Roll following the equilibrium is checked as a variable fixed at 0 (not listed in
     // fixed_axes): the table holds no other roll, so a query that sets one is flagged
     // kOutOfRange (NaN/inf: kInvalidInput) instead of being answered at the equilibrium silently.
-    if (d->fixed[var] || (var == kVarRoll && d->roll_equilibrium)) d->fixed_var[d->n_fixed++] = var;
+    // So is yaw in a table without it (before format 2.4, or a scene without yaw): every value
+    // was computed at yaw 0.
+    const bool implicit_zero = (var == kVarRoll && d->roll_equilibrium) || (var == kVarYaw && d->yaw_absent);
+    if (d->fixed[var] || implicit_zero) d->fixed_var[d->n_fixed++] = var;
     // A fixed variable counts as "at its fixed value" within 1e-9 relative (absolute below
     // magnitude 1): round-off in the caller's state must not flag kOutOfRange.
     d->fixed_tolerance[var] = 1e-9 * std::max(1.0, std::abs(d->fixed_value[var]));
@@ -520,7 +526,7 @@ std::shared_ptr<TableData> load_checked(const std::string& path, const LoadOptio
   // What the query does with each tabulated variable, fixed here so its loop has no branch on it.
   for (int k = 0; k < d->n_tabulated; ++k) {
     const int var = d->tabulated_var[k];
-    if (d->creep_map.active && var >= kVarXi) d->clamped_var[d->n_clamped++] = var;
+    if (d->creep_map.active && is_creepage(var)) d->clamped_var[d->n_clamped++] = var;
     else d->located_var[d->n_located++] = var;
   }
   prepare_fast_path(*d);  // fast_path.hpp: the fused query for the usual shape

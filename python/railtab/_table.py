@@ -8,7 +8,7 @@ from ._shapes import broadcast_named
 from ._status import cf_flag_attributes
 from ._units import AXIS_UNITS, OUTPUT_UNITS
 
-_STATE = ("y", "roll", "load", "xi", "eta", "phi")
+_STATE = ("y", "roll", "load", "xi", "eta", "phi", "yaw")  # the lookup's Variable order (yaw last)
 _CREEPAGES = ("xi", "eta", "phi")  # default 0 (pure rolling) when tabulated and not given
 _WHEELS = {"left": 0, "right": 1}
 # track_forces=True: names and units of the per-slot and per-state arrays, in the binding's order.
@@ -112,15 +112,15 @@ class Table:
         axes = ", ".join(f"{k}[{len(v)}]" for k, v in self.axes.items())
         return f"<railtab.Table {self.path!r} scene={self.scene_name!r} axes: {axes}>"
 
-    def query(self, wheel, y=None, roll=None, load=None, xi=None, eta=None, phi=None, *, slot=None,
+    def query(self, wheel, y=None, roll=None, load=None, xi=None, eta=None, phi=None, yaw=None, *, slot=None,
               derivatives=False, track_forces=False, creep_coefficients=False, as_xarray=None):
         """Interpolates the table at many states at once.
 
         wheel: 'left', 'right' (or 0, 1, or an array of them). y [m], roll [rad], load [N],
-        xi, eta [1], phi [rad/m]: numbers or numpy arrays, broadcast against each other (numpy
-        rules). A tabulated y, roll or load must be given; a creepage axis not given is 0; an
+        xi, eta [1], phi [rad/m], yaw [rad]: numbers or numpy arrays, broadcast against each other
+        (numpy rules). A tabulated y, roll, yaw or load must be given; a creepage axis not given is 0; an
         untabulated variable defaults to the table's fixed value (another value is flagged
-        out_of_range, as in the C++ lookup). slot: None for every slot (0 = tread, 1 = flange),
+        out_of_range, as in the C++ lookup; a table without yaw holds yaw 0 only). slot: None for every slot (0 = tread, 1 = flange),
         or one slot only (half the cost).
 
         Returns an xarray.Dataset when xarray is installed (as_xarray=None) or asked for
@@ -154,7 +154,7 @@ class Table:
         Raises TypeError for a missing tabulated variable or a complex value, ValueError for
         shapes that do not broadcast (naming each argument's shape), an unknown wheel or slot.
         """
-        given = {"y": y, "roll": roll, "load": load, "xi": xi, "eta": eta, "phi": phi}
+        given = {"y": y, "roll": roll, "load": load, "xi": xi, "eta": eta, "phi": phi, "yaw": yaw}
         fixed = self.fixed_axes
         axes = self.axes
         values = {}

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """SI units of the table's axes and outputs (docs/table-format.md)."""
 
-AXIS_UNITS = {"y": "m", "roll": "rad", "load": "N", "xi": "1", "eta": "1", "phi": "rad/m"}
+AXIS_UNITS = {"y": "m", "roll": "rad", "yaw": "rad", "load": "N", "xi": "1", "eta": "1", "phi": "rad/m"}
 
 OUTPUT_UNITS = {
     "contact_angle": "rad",

@@ -40,10 +40,12 @@ void bind_evaluate(py::module_& m) {
   m.def(
       "_evaluate_json",
       [](const PyScene& s, double y, std::optional<double> roll, bool equilibrium_roll, std::optional<double> load,
-         const std::string& model, const std::vector<double>& creepage, std::optional<double> mu) {
+         const std::string& model, const std::vector<double>& creepage, std::optional<double> mu,
+         std::optional<double> yaw) {
         StateEvalRequest request;
         request.y = y;
         request.roll = roll;
+        request.yaw = yaw;
         request.equilibrium_roll = equilibrium_roll;
         request.load = load;
         request.model = model;
@@ -57,7 +59,7 @@ void bind_evaluate(py::module_& m) {
         return text;
       },
       py::arg("scene"), py::arg("y"), py::arg("roll"), py::arg("equilibrium_roll"), py::arg("load"),
-      py::arg("model"), py::arg("creepage"), py::arg("mu"));
+      py::arg("model"), py::arg("creepage"), py::arg("mu"), py::arg("yaw") = py::none());
 }
 
 }  // namespace railtab::python

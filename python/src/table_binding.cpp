@@ -70,14 +70,14 @@ py::array_t<T> uninitialised(std::vector<py::ssize_t> shape) {
 // slot only (Table::query_slot, about half the cost). Returns (values [n, slots, outputs],
 // part_status [n, slots, parts], status [n, slots], derivatives) with slots = n_slots or 1;
 // `derivatives`: None, or with want_derivatives (Table::query_derivatives) d output / d variable
-// [n, slots, outputs, variables] (variables y, roll, load, xi, eta, phi); `track`: None, or with
+// [n, slots, outputs, variables] (variables y, roll, load, xi, eta, phi, yaw); `track`: None, or with
 // want_track_forces (every slot only; lk::track_forces) the pair (per slot [n, slots, 3]: lateral,
 // vertical [N], contact angle [rad]; per wheel [n, 5]: wheel_lateral, wheel_vertical, Y, Q [N], Y/Q);
 // `coefficients`: None, or with want_creep_coefficients (Table::query_creep_coefficients) the
 // linear creep coefficients [n, slots, 9] (force-major: fx, fy, mz by xi, eta, phi).
 py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel, const Doubles& y,
                        const Doubles& roll, const Doubles& load, const Doubles& xi, const Doubles& eta,
-                       const Doubles& phi, int slot, bool want_derivatives, bool want_track_forces,
+                       const Doubles& phi, const Doubles& yaw, int slot, bool want_derivatives, bool want_track_forces,
                        bool want_creep_coefficients) {
   if (n < 0) throw py::value_error("n must be >= 0");
   if (wheel.ndim() != 1 || (wheel.shape(0) != n && wheel.shape(0) != 1)) {
@@ -87,8 +87,9 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
     throw py::value_error("slot " + std::to_string(slot) + " out of range: the table has " +
                           std::to_string(table.n_slots()) + " slots");
   }
-  const std::array<Column, 6> in{column(y, n, "y"),   column(roll, n, "roll"), column(load, n, "load"),
-                                 column(xi, n, "xi"), column(eta, n, "eta"),   column(phi, n, "phi")};
+  const std::array<Column, 7> in{column(y, n, "y"),   column(roll, n, "roll"), column(load, n, "load"),
+                                 column(xi, n, "xi"), column(eta, n, "eta"),   column(phi, n, "phi"),
+                                 column(yaw, n, "yaw")};
   const std::int32_t* wheels = wheel.data();
   const py::ssize_t wheel_step = wheel.shape(0) == 1 ? 0 : 1;
   for (py::ssize_t k = 0; k < wheel.shape(0); ++k) {
@@ -149,6 +150,7 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
       s.xi = in[3].at(k);
       s.eta = in[4].at(k);
       s.phi = in[5].at(k);
+      s.yaw = in[6].at(k);
       const auto w = static_cast<lk::Wheel>(wheels[k * wheel_step]);
       const lk::Contact* contacts = &c;
       if (dv) {
@@ -270,7 +272,7 @@ void bind_table(py::module_& m) {
           },
           py::arg("y"), py::arg("slot"))
       .def("_query_arrays", &query_arrays, py::arg("n"), py::arg("wheel"), py::arg("y"), py::arg("roll"), py::arg("load"),
-           py::arg("xi"), py::arg("eta"), py::arg("phi"), py::arg("slot"), py::arg("derivatives") = false,
+           py::arg("xi"), py::arg("eta"), py::arg("phi"), py::arg("yaw"), py::arg("slot"), py::arg("derivatives") = false,
            py::arg("track_forces") = false, py::arg("creep_coefficients") = false);
 
   py::list outputs;

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """railtab.Table: loading, vectorised queries against the fixture's known values, units, status."""
 import os
+import subprocess
 
 import numpy as np
 import pytest
@@ -190,6 +191,41 @@ def test_roll_on_an_equilibrium_roll_table_is_flagged(default_table):
     np.testing.assert_array_equal(rolled["fx"][1], plain["fx"])
     nan = t.query("left", y=0.003, load=78.5e3, roll=np.nan, as_xarray=False)
     assert railtab.has_flag(nan["status"], "invalid_input").all()
+
+
+def test_yaw_on_a_table_without_yaw_is_flagged(default_table):
+    # The default table has no yaw: it was computed at yaw 0. A query with another yaw is
+    # answered at yaw 0 and flagged out_of_range, never silently (docs/lookup.md, "Yaw").
+    t = railtab.Table.load(default_table)
+    assert "yaw" not in t.axes and "yaw" not in t.fixed_axes
+    plain = t.query("left", y=0.003, load=78.5e3, as_xarray=False)
+    yawed = t.query("left", y=0.003, load=78.5e3, yaw=[0.0, 0.004], as_xarray=False)
+    assert list(railtab.has_flag(yawed["status"][:, 0], "out_of_range")) == [False, True]
+    np.testing.assert_array_equal(yawed["fx"][1], plain["fx"])
+
+
+def test_yaw_axis_from_python(tmp_path, railtab_program):
+    # A table of a scene with a yaw axis: Table.query(yaw=...) interpolates it, yaw must be given
+    # (an axis), and the yaw = 0 node is railtab.evaluate's state at yaw 0.
+    text = (SOURCE_DIR / "tables" / "default.toml").read_text()
+    scene = tmp_path / "yaw.toml"
+    scene.write_text(text[:text.index("[grid]")] + "[grid]\ny = [0.0, 0.004, 0.008]\nequilibrium_roll = true\n"
+                     "yaw = [-0.01, 0.0, 0.01]\nload = 78.5e3\n")
+    table = tmp_path / "yaw.h5"
+    subprocess.run([railtab_program, "generate", str(scene), "-o", str(table), "--threads", "2"], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    t = railtab.Table.load(table)
+    assert t.format_version == "2.4" and list(t.axes["yaw"]) == [-0.01, 0.0, 0.01]
+    with pytest.raises(TypeError, match="yaw is an axis"):
+        t.query("left", y=0.004)
+    r = t.query("left", y=0.008, yaw=[-0.01, 0.0, 0.005, 0.01], as_xarray=False)
+    assert not railtab.has_flag(r["status"], "out_of_range").any()
+    direct = railtab.evaluate(str(scene), 0.008, yaw=0.0)
+    n0 = sum(c["normal_force"] for c in direct["wheels"][0]["contacts"])
+    assert r["normal_force"][1].sum() == pytest.approx(n0, rel=2e-6)  # the creep part: float32 (format 2.2)
+    flange = r["contact_angle"][:, 1]
+    assert flange[1] != flange[3]  # the flange contact moves with yaw (at second order: +-yaw give one angle)
+    assert flange[2] == pytest.approx(0.5 * (flange[1] + flange[3]), rel=1e-12)  # linear between nodes
 
 
 # The low_confidence bit on the default table (docs/lookup.md, "Low confidence").

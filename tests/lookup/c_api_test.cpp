@@ -221,7 +221,7 @@ TEST(CApiComplete, IntrospectionAndVersions) {
   EXPECT_STREQ(railtab_lookup_part_name(RAILTAB_LOOKUP_CREEP), "creep");
   EXPECT_STREQ(railtab_lookup_slot_name(1), "flange");
   EXPECT_EQ(std::string(railtab_lookup_version()), library_version());
-  EXPECT_STREQ(railtab_lookup_format_version(), "2.3");
+  EXPECT_STREQ(railtab_lookup_format_version(), "2.4");
   railtab_lookup_close(t);
 }
 

@@ -36,8 +36,11 @@ FixtureSpec six_axis_spec(testing::ValueFn value) {
   return spec;
 }
 
+// The fixture tables' variables (table_fixture.hpp): every one but yaw, which they do not hold (its
+// derivative is 0, like any untabulated variable's).
+constexpr int kFixtureVars = 6;
 // Scale of each variable so that the test functions vary by O(1) over the table.
-constexpr double kScale[kNumVariables] = {100.0, 250.0, 1e-5, 150.0, 150.0, 1.5};
+constexpr double kScale[kNumVariables] = {100.0, 250.0, 1e-5, 150.0, 150.0, 1.5, 1.0};
 
 // The (part, output) index mixed into a test function, so every output differs.
 double tag(int wheel, int part, int out, int slot) { return 1.0 + 0.3 * part + 0.07 * out + 0.5 * slot - 0.2 * wheel; }
@@ -45,7 +48,7 @@ double tag(int wheel, int part, int out, int slot) { return 1.0 + 0.3 * part + 0
 double affine(int wheel, int part, int out, int slot, const double* x) {
   const double c = tag(wheel, part, out, slot);
   double f = 3.0 * c;
-  for (int v = 0; v < kNumVariables; ++v) f += c * (v + 1) * kScale[v] * x[v];
+  for (int v = 0; v < kFixtureVars; ++v) f += c * (v + 1) * kScale[v] * x[v];
   return f;
 }
 
@@ -56,21 +59,21 @@ double affine_slope(int wheel, int part, int out, int slot, int v) {
 // A quadratic with squares and cross terms of every pair.
 double quadratic(int wheel, int part, int out, int slot, const double* x) {
   const double c = tag(wheel, part, out, slot);
-  double s[kNumVariables], f = c;
-  for (int v = 0; v < kNumVariables; ++v) s[v] = kScale[v] * x[v];
-  for (int v = 0; v < kNumVariables; ++v) {
+  double s[kFixtureVars], f = c;
+  for (int v = 0; v < kFixtureVars; ++v) s[v] = kScale[v] * x[v];
+  for (int v = 0; v < kFixtureVars; ++v) {
     f += c * (v + 1) * s[v] + 0.5 * c * s[v] * s[v];
-    for (int u = v + 1; u < kNumVariables; ++u) f += 0.25 * c * s[u] * s[v];
+    for (int u = v + 1; u < kFixtureVars; ++u) f += 0.25 * c * s[u] * s[v];
   }
   return f;
 }
 
 double quadratic_slope(int wheel, int part, int out, int slot, int v, const double* x) {
   const double c = tag(wheel, part, out, slot);
-  double s[kNumVariables];
-  for (int u = 0; u < kNumVariables; ++u) s[u] = kScale[u] * x[u];
+  double s[kFixtureVars];
+  for (int u = 0; u < kFixtureVars; ++u) s[u] = kScale[u] * x[u];
   double g = c * (v + 1) + c * s[v];
-  for (int u = 0; u < kNumVariables; ++u)
+  for (int u = 0; u < kFixtureVars; ++u)
     if (u != v) g += 0.25 * c * s[u];
   return g * kScale[v];
 }
@@ -82,11 +85,11 @@ double smooth(int wheel, int part, int out, int slot, const double* x) {
 }
 
 void set(State& s, int v, double x) {
-  double* p[kNumVariables] = {&s.y, &s.roll, &s.load, &s.xi, &s.eta, &s.phi};
+  double* p[kNumVariables] = {&s.y, &s.roll, &s.load, &s.xi, &s.eta, &s.phi, &s.yaw};
   *p[v] = x;
 }
 double get(const State& s, int v) {
-  const double p[kNumVariables] = {s.y, s.roll, s.load, s.xi, s.eta, s.phi};
+  const double p[kNumVariables] = {s.y, s.roll, s.load, s.xi, s.eta, s.phi, s.yaw};
   return p[v];
 }
 
@@ -114,10 +117,10 @@ int part_local(int o) {
   return o - first[part_of(o)];
 }
 bool part_uses(int part, int v) {
-  static const bool uses[kNumParts][kNumVariables] = {{true, true, false, false, false, false},
-                                                      {true, true, true, false, false, false},
-                                                      {true, true, true, true, true, true},
-                                                      {true, true, true, true, true, true}};
+  static const bool uses[kNumParts][kNumVariables] = {{true, true, false, false, false, false, false},
+                                                      {true, true, true, false, false, false, false},
+                                                      {true, true, true, true, true, true, false},
+                                                      {true, true, true, true, true, true, false}};
   return uses[part][v];
 }
 
@@ -152,7 +155,7 @@ TEST(Derivatives, CubicGivesTheGradientOfAQuadraticExactly) {
   Result r;
   Derivatives d;
   for (const State& s : random_states(t, 100, 2)) {
-    const double x[kNumVariables] = {s.y, s.roll, s.load, s.xi, s.eta, s.phi};
+    const double x[kNumVariables] = {s.y, s.roll, s.load, s.xi, s.eta, s.phi, s.yaw};
     for (int w = 0; w < 2; ++w) {
       ASSERT_TRUE(t.query_derivatives(static_cast<Wheel>(w), s, r, d));
       for (int slot = 0; slot < r.n_slots; ++slot)
@@ -196,6 +199,7 @@ void expect_finite_differences(Method method, double tolerance) {
       const Wheel wheel = static_cast<Wheel>(w);
       ASSERT_TRUE(t.query_derivatives(wheel, s, r, d));
       for (int v = 0; v < kNumVariables; ++v) {
+        if (min_width[v] == 0.0) continue;  // not an axis of the fixture (yaw)
         const double h = 1e-6 * min_width[v];
         State plus = s, minus = s;
         set(plus, v, get(s, v) + h);
@@ -297,7 +301,7 @@ TEST(Derivatives, MonotoneCubicIsRefused) {
 
   railtab_lookup_table* c = nullptr;
   ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_MONOTONE_CUBIC, &c), RAILTAB_LOOKUP_OK);
-  railtab_lookup_state cs{0.001, 0.0, 78500.0, 0.0, 0.0, 0.0};
+  railtab_lookup_state cs{0.001, 0.0, 78500.0, 0.0, 0.0, 0.0, 0.0};
   railtab_lookup_result cr;
   railtab_lookup_derivatives cd;
   EXPECT_EQ(railtab_lookup_query_derivatives(c, RAILTAB_LOOKUP_LEFT, &cs, &cr, &cd), RAILTAB_LOOKUP_ERROR_ARGUMENT);
@@ -317,7 +321,7 @@ TEST(Derivatives, CApiGivesTheCppNumbers) {
     Result r;
     Derivatives d;
     ASSERT_TRUE(t.query_derivatives(Wheel::kRight, s, r, d));
-    const railtab_lookup_state cs{s.y, s.roll, s.load, s.xi, s.eta, s.phi};
+    const railtab_lookup_state cs{s.y, s.roll, s.load, s.xi, s.eta, s.phi, s.yaw};
     railtab_lookup_result cr;
     railtab_lookup_derivatives cd;
     ASSERT_EQ(railtab_lookup_query_derivatives(c, RAILTAB_LOOKUP_RIGHT, &cs, &cr, &cd), RAILTAB_LOOKUP_OK);
@@ -325,7 +329,7 @@ TEST(Derivatives, CApiGivesTheCppNumbers) {
     EXPECT_EQ(std::memcmp(&cd, &d, sizeof cd), 0);
     EXPECT_EQ(cd.d[1][RAILTAB_LOOKUP_FY][RAILTAB_LOOKUP_VAR_XI], d.d[1][kFy][kXi]);
   }
-  railtab_lookup_state cs{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  railtab_lookup_state cs{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   railtab_lookup_result cr;
   EXPECT_EQ(railtab_lookup_query_derivatives(c, 2, &cs, &cr, nullptr), RAILTAB_LOOKUP_ERROR_ARGUMENT);
   railtab_lookup_close(c);

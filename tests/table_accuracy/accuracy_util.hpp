@@ -143,9 +143,11 @@ inline void check_kernel_layout(const SweepKernel& kernel) {
   ASSERT_EQ(o, lk::kNumOutputs);
 }
 
-// The contact kernel at one state (both wheels), as the sweep computes a grid point.
-inline Direct evaluate_direct(const Scene& scene, const Point& p) {
+// The contact kernel at one state (both wheels), as the sweep computes a grid point; `yaw` [rad]
+// for a scene with yaw (its grid is then that one value).
+inline Direct evaluate_direct(const Scene& scene, const Point& p, double yaw = 0.0) {
   Scene one = scene;
+  if (!scene.grids.yaw.empty()) one.grids.yaw = {yaw};
   one.creep_normalised = false;  // the physical creep forces at the state itself
   one.grids.y = {p.v[kY]};
   one.grids.load = {p.v[kLoad]};
@@ -166,6 +168,7 @@ inline Direct evaluate_direct(const Scene& scene, const Point& p) {
   ColumnState state;
   state.y = p.v[kY];
   state.roll = scene.equilibrium_roll ? kernel.equilibrium_roll(p.v[kY]) : scene.grids.roll.front();
+  state.yaw = yaw;
   kernel.compute(state, out);
   const std::vector<int> index = lookup_outputs(kernel);
   Direct d;

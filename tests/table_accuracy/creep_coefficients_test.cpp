@@ -275,7 +275,7 @@ xi = 0.0
   railtab_lookup_table* h = nullptr;
   ASSERT_EQ(railtab_lookup_open(path.string().c_str(), RAILTAB_LOOKUP_LINEAR, &h), RAILTAB_LOOKUP_OK);
   EXPECT_EQ(railtab_lookup_has_creep_coefficients(h), 0);
-  railtab_lookup_state s{0.001, 0.0, 78.5e3, 0.0, 0.0, 0.0};
+  railtab_lookup_state s{0.001, 0.0, 78.5e3, 0.0, 0.0, 0.0, 0.0};
   railtab_lookup_creep_coefficients cc;
   EXPECT_EQ(railtab_lookup_query_creep_coefficients(h, RAILTAB_LOOKUP_LEFT, &s, &cc), RAILTAB_LOOKUP_ERROR_NOT_IN_TABLE);
   EXPECT_NE(std::string(railtab_lookup_last_error()).find("format 2.2 or older"), std::string::npos)
@@ -293,7 +293,7 @@ TEST(CreepCoefficients, CApiMatchesTheCppApi) {
   ASSERT_EQ(railtab_lookup_open(path.string().c_str(), RAILTAB_LOOKUP_LINEAR, &h), RAILTAB_LOOKUP_OK);
   EXPECT_EQ(railtab_lookup_has_creep_coefficients(h), 1);
   for (double y : {0.0031, 0.0087, 0.02}) {
-    railtab_lookup_state s{y, 0.0, 81e3, 0.0, 0.0, 0.0};
+    railtab_lookup_state s{y, 0.0, 81e3, 0.0, 0.0, 0.0, 0.0};
     railtab_lookup_creep_coefficients cc;
     ASSERT_EQ(railtab_lookup_query_creep_coefficients(h, RAILTAB_LOOKUP_RIGHT, &s, &cc), RAILTAB_LOOKUP_OK);
     lk::CreepCoefficients c;

@@ -29,6 +29,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "accuracy_util.hpp"
@@ -53,6 +55,18 @@ struct Fixture {
 // RAILTAB_HALFSPACE_TABLE=<file>: a table `railtab generate tables/default_halfspace.toml` wrote
 // (scripts/halfspace_table_accuracy.sh) instead of the reduced one generated here.
 const char* full_table() { return std::getenv("RAILTAB_HALFSPACE_TABLE"); }
+
+// RAILTAB_HALFSPACE_STATES=<n>: n random states instead of 150 (400 with a full table); the
+// accuracy targets are stated at 10,000 (docs/validation/exact-tables.md has that run).
+std::size_t state_count() {
+  const char* n = std::getenv("RAILTAB_HALFSPACE_STATES");
+  if (n == nullptr) return full_table() ? 400 : 150;
+  char* end = nullptr;
+  const long long v = std::strtoll(n, &end, 10);
+  if (end == n || *end != '\0' || v < 1)
+    throw std::runtime_error(std::string("RAILTAB_HALFSPACE_STATES: a whole number >= 1, got '") + n + "'");
+  return static_cast<std::size_t>(v);
+}
 
 Scene accuracy_scene() {
   Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
@@ -101,18 +115,21 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);
   ASSERT_TRUE(view.normalised());  // the scene's normalised creep coordinates (format 2.1)
-  const std::vector<Point> points = random_states(f.scene, full_table() ? 400 : 150, kSeed);
+  const std::vector<Point> points = random_states(f.scene, state_count(), kSeed);
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<Direct> direct = evaluate_direct(f.scene, points);
   const double direct_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double mu = f.scene.tangential.friction;
   SlotStats stats[lk::kNumOutputs][kSlots];
   std::vector<double> creep_error[kSlots];  // smooth cells: |fx, fy error| / (mu N), both outputs
+  std::vector<double> all_creep_error[kSlots];  // the same over every cell, jump cells included
   for_each_slot_error(view, *f.lookup, points, direct, [&](const SlotError& e) {
     const int o = e.output;
     const std::size_t s = e.slot;
     const Point& p = points[e.state];
     SlotStats& st = stats[o][s];
+    if ((o == lk::kFx || o == lk::kFy) && e.normal_force > 0.0)
+      all_creep_error[s].push_back(e.error / (mu * e.normal_force));
     if (!st.add(e, p, mu)) return;
     // Normalised creep part: fx, fy, mz are stored as F / (mu N) minus a law, so the table's second
     // differences do not bound their error in N: judged against mu N (as the default scene's test).
@@ -161,6 +178,16 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
                 "(%zu values)\n",
                 s, s == 0 ? "tread" : "flange", rms[s], percentile(creep_error[s], 0.5),
                 percentile(creep_error[s], 0.99), percentile(creep_error[s], 1.0), creep_error[s].size());
+  }
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    double sq = 0.0;
+    for (double e : all_creep_error[s]) sq += e * e;
+    std::printf("all cells (smooth and jump), slot %zu (%s): fx and fy error / (mu N): rms %.4f median %.4f p90 %.4f "
+                "p99 %.4f max %.4f (%zu values)\n",
+                s, s == 0 ? "tread" : "flange",
+                std::sqrt(sq / std::max<double>(1.0, static_cast<double>(all_creep_error[s].size()))),
+                percentile(all_creep_error[s], 0.5), percentile(all_creep_error[s], 0.9),
+                percentile(all_creep_error[s], 0.99), percentile(all_creep_error[s], 1.0), all_creep_error[s].size());
   }
   // The reduced table (78.5 kN, element 0.5 mm, 7 x 5 x 3 normalised nodes) measured rms 0.0096
   // tread, 0.0203 flange (p99 0.034 / 0.068; docs/validation/exact-tables.md); with the earlier 3 x 3

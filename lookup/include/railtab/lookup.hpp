@@ -115,6 +115,10 @@ struct State {
   double xi = 0.0;    // [1] longitudinal creepage
   double eta = 0.0;   // [1] lateral creepage
   double phi = 0.0;   // [rad/m] spin creepage
+  // [rad] wheelset yaw (angle of attack) relative to track, + turns the forward axis to the left.
+  // Last, so that positional initialisation written before yaw existed keeps its meaning; in the
+  // files yaw sits after roll (docs/table-format.md). A table without yaw holds yaw 0 only.
+  double yaw = 0.0;
 };
 
 // Interpolated outputs of one contact slot.
@@ -138,9 +142,10 @@ struct Result {
 
 // State variables as indices (the order of State and of the table's axes): the second index of
 // Derivatives::d. The C API uses the same numbers (RAILTAB_LOOKUP_VAR_*).
-enum Variable : int { kY = 0, kRoll = 1, kLoad = 2, kXi = 3, kEta = 4, kPhi = 5, kNumVariables = 6 };
-// Name of a state variable as in the table files ("y", "roll", "load", "xi", "eta", "phi"; "?"
-// out of range).
+// kYaw is last for the same reason as State::yaw.
+enum Variable : int { kY = 0, kRoll = 1, kLoad = 2, kXi = 3, kEta = 4, kPhi = 5, kYaw = 6, kNumVariables = 7 };
+// Name of a state variable as in the table files ("y", "roll", "load", "xi", "eta", "phi", "yaw";
+// "?" out of range).
 RAILTAB_LOOKUP_API const char* variable_name(int variable) noexcept;
 
 // Partial derivatives of every output of every slot with respect to each state variable: the
@@ -232,7 +237,7 @@ class RAILTAB_LOOKUP_API LoadError : public std::runtime_error {
 
 // One tabulated axis (a dimension scale under /axes).
 struct AxisInfo {
-  std::string name;            // "y", "roll", "load", "xi", "eta" or "phi"
+  std::string name;            // "y", "roll", "yaw", "load", "xi", "eta" or "phi"
   std::vector<double> nodes;   // strictly increasing grid nodes, SI units
   std::string units;           // the axis's `units` attribute ("m", "rad", ...; "" if absent)
 };

@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
     if (r.status != 0 || r.n_slots != 2) return 1;
     railtab_lookup_table* t = nullptr;
     if (railtab_lookup_open(argv[1], RAILTAB_LOOKUP_LINEAR, &t) != RAILTAB_LOOKUP_OK) return 1;
-    railtab_lookup_state cs = {s.y, s.roll, s.load, s.xi, s.eta, s.phi};
+    railtab_lookup_state cs = {s.y, s.roll, s.load, s.xi, s.eta, s.phi, s.yaw};
     railtab_lookup_result cr;
     const int rc = railtab_lookup_query(t, RAILTAB_LOOKUP_LEFT, &cs, &cr);
     railtab_lookup_close(t);

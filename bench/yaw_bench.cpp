@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: Apache-2.0
+// Cost of a yaw axis (format 2.4): the default scene (tables/default.toml) as it is and with a
+// 5-node yaw axis [grid] yaw = [-0.01, -0.005, 0, 0.005, 0.01] (rad), the rest unchanged.
+// Targets (docs/validation/yaw-tables.md): generation time and table size at most 5x, a lookup
+// at most 1.3x the yaw-free table's.
+//   BM_Sweep/0, /1            the table sweep (run_sweep: geometry, normal, creep and wear of
+//                             every node, both wheels), process CPU time; counter `bytes`: the
+//                             table file written by write_table (no contact jumps, no error map:
+//                             both tables the same way)
+//   BM_Lookup/0, /1           Table::query, one wheel, every output of every slot, at random
+//                             states over the table's ranges (yaw too for /1), thread CPU time
+//   BM_LookupGeneric/0        the yaw-free table without its fast path (RAILTAB_LOOKUP_NO_FAST_PATH
+//                             at load): the generic query the yaw table takes, one axis fewer
+//   BM_LookupCoherent/0, /1   as BM_Lookup along a smooth path through the same ranges (a
+//                             simulation's consecutive states: neighbouring cells, warm caches)
+// Run: cmake --build --preset release --target yaw_bench &&
+//   build/release/bench/yaw_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/sweep.hpp"
+#include "kernel/contact_kernel.hpp"
+#include "railtab/lookup.hpp"
+#include "scene/scene.hpp"
+#include "table/table_io.hpp"
+
+namespace {
+
+namespace lk = railtab::lookup;
+
+// The default scene, with the 5-node yaw axis when `yaw`.
+railtab::Scene scene(bool yaw) {
+  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  if (yaw) s.insert(s.find("equilibrium_roll = true"), "yaw = [-0.01, -0.005, 0.0, 0.005, 0.01]\n");
+  return railtab::parse_scene(s, yaw ? "default + yaw" : "default", std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables");
+}
+
+std::string temp_path(bool yaw) {
+  return (std::filesystem::temp_directory_path() /
+          ("railtab_yaw_bench_" + std::to_string(::getpid()) + (yaw ? "_yaw" : "_free") + ".h5"))
+      .string();
+}
+
+// The table file of each scene, swept and written once per process; its size [B].
+const std::string& table_file(bool yaw, std::uintmax_t* bytes = nullptr) {
+  static std::string paths[2];
+  static std::uintmax_t sizes[2] = {};
+  std::string& path = paths[yaw];
+  if (path.empty()) {
+    const railtab::Scene sc = scene(yaw);
+    railtab::SweepResult r = railtab::run_sweep(sc, railtab::make_contact_kernel(sc), railtab::SweepOptions{});
+    path = temp_path(yaw);
+    railtab::write_table(r.table, path);
+    sizes[yaw] = std::filesystem::file_size(path);
+    static bool registered = false;
+    if (!registered) {
+      registered = true;
+      std::atexit([] {
+        for (const std::string& p : paths)
+          if (!p.empty()) std::filesystem::remove(p);
+      });
+    }
+  }
+  if (bytes) *bytes = sizes[yaw];
+  return path;
+}
+
+void BM_Sweep(benchmark::State& st) {
+  const bool yaw = st.range(0) != 0;
+  const railtab::Scene sc = scene(yaw);
+  const railtab::SweepKernel kernel = railtab::make_contact_kernel(sc);
+  std::size_t points = 0;
+  for (auto _ : st) {
+    railtab::SweepResult r = railtab::run_sweep(sc, kernel, railtab::SweepOptions{});
+    points = r.summary.points_total;
+    benchmark::DoNotOptimize(r.table.groups.data());
+  }
+  std::uintmax_t bytes = 0;
+  table_file(yaw, &bytes);
+  st.counters["bytes"] = static_cast<double>(bytes);
+  st.counters["points"] = static_cast<double>(points);
+}
+BENCHMARK(BM_Sweep)->Arg(0)->Arg(1)->Iterations(1)->MeasureProcessCPUTime()->Unit(benchmark::kSecond);
+
+// 4096 random states over the table's ranges (yaw over its axis for the yaw table, 0 otherwise),
+// wheels alternating.
+std::vector<lk::Query> states(const lk::Table& t, bool yaw) {
+  std::mt19937_64 rng(20261129);
+  std::vector<lk::Query> q(4096);
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    lk::State s = t.default_state();
+    for (const lk::AxisInfo& a : t.axes()) {
+      std::uniform_real_distribution<double> x(a.nodes.front(), a.nodes.back());
+      if (a.name == "y") s.y = x(rng);
+      if (a.name == "load") s.load = x(rng);
+      if (a.name == "xi") s.xi = x(rng);
+      if (a.name == "eta") s.eta = x(rng);
+      if (a.name == "phi") s.phi = x(rng);
+      if (a.name == "yaw" && yaw) s.yaw = x(rng);
+    }
+    q[k] = {static_cast<lk::Wheel>(k % 2), s};
+  }
+  return q;
+}
+
+// 4096 states along a smooth path through the table's ranges (periods of hundreds of states, as a
+// simulation's wheelset moving over 1 ms steps), wheels alternating.
+std::vector<lk::Query> path_states(const lk::Table& t, bool yaw) {
+  std::vector<lk::Query> q(4096);
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    lk::State s = t.default_state();
+    const double u = 2.0 * M_PI * static_cast<double>(k / 2) / 2048.0;
+    for (const lk::AxisInfo& a : t.axes()) {
+      const double mid = 0.5 * (a.nodes.front() + a.nodes.back()), half = 0.45 * (a.nodes.back() - a.nodes.front());
+      if (a.name == "y") s.y = mid + half * std::sin(3.0 * u);
+      if (a.name == "load") s.load = mid + half * std::sin(5.0 * u + 1.0);
+      if (a.name == "xi") s.xi = 0.3 * half * std::sin(7.0 * u + 2.0);
+      if (a.name == "eta") s.eta = 0.3 * half * std::sin(11.0 * u + 3.0);
+      if (a.name == "phi") s.phi = 0.3 * half * std::sin(13.0 * u + 4.0);
+      if (a.name == "yaw" && yaw) s.yaw = mid + half * std::sin(2.0 * u + 5.0);
+    }
+    q[k] = {static_cast<lk::Wheel>(k % 2), s};
+  }
+  return q;
+}
+
+void run_lookup(benchmark::State& st, const lk::Table& t, bool yaw, bool coherent = false) {
+  const std::vector<lk::Query> q = coherent ? path_states(t, yaw) : states(t, yaw);
+  lk::Result r;
+  std::size_t k = 0;
+  for (auto _ : st) {
+    t.query(q[k].wheel, q[k].state, r);
+    benchmark::DoNotOptimize(r.contact[0].value[0]);
+    k = (k + 1) & (q.size() - 1);
+  }
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()));
+}
+
+void BM_Lookup(benchmark::State& st) {
+  const bool yaw = st.range(0) != 0;
+  static std::unique_ptr<lk::Table> tables[2];
+  if (!tables[yaw]) tables[yaw] = std::make_unique<lk::Table>(lk::Table::load(table_file(yaw)));
+  run_lookup(st, *tables[yaw], yaw);
+}
+BENCHMARK(BM_Lookup)->Arg(0)->Arg(1);
+
+void BM_LookupCoherent(benchmark::State& st) {
+  const bool yaw = st.range(0) != 0;
+  static std::unique_ptr<lk::Table> tables[2];
+  if (!tables[yaw]) tables[yaw] = std::make_unique<lk::Table>(lk::Table::load(table_file(yaw)));
+  run_lookup(st, *tables[yaw], yaw, true);
+}
+BENCHMARK(BM_LookupCoherent)->Arg(0)->Arg(1);
+
+void BM_LookupGeneric(benchmark::State& st) {
+  static std::unique_ptr<lk::Table> table;
+  if (!table) {
+    ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);  // read at load
+    table = std::make_unique<lk::Table>(lk::Table::load(table_file(false)));
+    ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
+  }
+  run_lookup(st, *table, false);
+}
+BENCHMARK(BM_LookupGeneric)->Arg(0);
+
+}  // namespace
+
+BENCHMARK_MAIN();

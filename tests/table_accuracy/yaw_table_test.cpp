@@ -1,0 +1,386 @@
+// SPDX-License-Identifier: Apache-2.0
+// The yaw axis of a table (format 2.4, docs/table-format.md): the default scene's models over a
+// small grid with five yaw nodes, swept with the generator API and read through the lookup.
+// The yaw = 0 node against the same scene without yaw, the lookup off the yaw nodes against the
+// contact kernel run directly, mirror symmetry (y, yaw) -> (-y, -yaw) between the wheels, outputs
+// even in yaw, continuity in yaw, derivatives along yaw, and a yaw query on a table without yaw.
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "accuracy_util.hpp"
+#include "railtab_lookup.h"
+#include "table/storage_precision.hpp"
+
+namespace railtab::accuracy {
+namespace {
+
+constexpr double kYawNodes[] = {-0.01, -0.005, 0.0, 0.005, 0.01};  // [rad]
+constexpr std::size_t kNyaw = 5, kZeroYaw = 2;
+
+// The default scene's profiles, track and models with a small grid: y symmetric about 0 (the
+// mirror test needs -y for every y), tread and flange contact, two loads, three nodes per creepage.
+std::string scene_text(bool with_yaw) {
+  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  s = s.substr(0, s.find("[grid]"));
+  s += "[grid]\n"
+       "y = [-0.009, -0.0075, -0.006, -0.0045, -0.003, -0.0015, 0.0, 0.0015, 0.003, 0.0045, 0.006, 0.0075, 0.009]\n"
+       "equilibrium_roll = true\n";
+  if (with_yaw) s += "yaw = [-0.01, -0.005, 0.0, 0.005, 0.01]\n";
+  s += "load = [60e3, 100e3]\n"
+       "xi = [-0.004, 0.0, 0.004]\n"
+       "eta = [-0.004, 0.0, 0.004]\n"
+       "phi = [-0.3, 0.0, 0.3]\n"
+       "creep_coordinates = \"normalised\"\n"
+       "creep_knee = [1.0, 3.0, 4.0]\n";
+  return s;
+}
+
+struct YawFixture {
+  Scene scene, free_scene;  // with the yaw axis; the same without yaw
+  Table table, free_table;  // their sweeps
+  std::optional<lk::Table> lookup, free_lookup;
+};
+
+const YawFixture& fixture() {
+  static const YawFixture f = [] {
+    YawFixture x;
+    x.scene = parse_scene(scene_text(true), "yaw scene");
+    x.free_scene = parse_scene(scene_text(false), "yaw-free scene");
+    SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
+    SweepResult rf = run_sweep(x.free_scene, make_contact_kernel(x.free_scene), SweepOptions{});
+    if (r.summary.failures || rf.summary.failures) throw std::runtime_error("yaw table: " + r.summary.first_failure);
+    x.table = std::move(r.table);
+    x.free_table = std::move(rf.table);
+    const std::filesystem::path path = temp_table_path("yaw"), free_path = temp_table_path("yaw_free");
+    write_for_lookup(x.table, path);
+    write_for_lookup(x.free_table, free_path);
+    x.lookup.emplace(lk::Table::load(path.string()));
+    x.free_lookup.emplace(lk::Table::load(free_path.string()));
+    std::filesystem::remove(path);
+    std::filesystem::remove(free_path);
+    return x;
+  }();
+  return f;
+}
+
+lk::State state_at(const lk::Table& t, double y, double yaw, double load, double xi = 0.0, double eta = 0.0,
+                   double phi = 0.0) {
+  lk::State s = t.default_state();
+  s.y = y;
+  s.yaw = yaw;
+  s.load = load;
+  s.xi = xi;
+  s.eta = eta;
+  s.phi = phi;
+  return s;
+}
+
+std::string label(int o) { return lk::output_name(static_cast<lk::Output>(o)); }
+
+// The core's own resolution of an output, relative to its scale: 1e-4 (load iteration), but 1e-3
+// for the patch's area and semi-axes, which step when STRIPES' strips enter or leave the patch
+// (measured by ContinuousInYaw's sweep: up to 7e-4 of the area per 0.5 mrad step at y = 0, five
+// times the median step, with unchanged statuses).
+double core_floor(int o) { return o == lk::kArea || o == lk::kSemiAxisA || o == lk::kSemiAxisB ? 1e-3 : 1e-4; }
+
+// Every wheel group's dataset at the yaw = 0 node is the yaw-free table's, bit for bit: the sweep
+// passes yaw 0 to the geometry, which then takes the yaw-free path.
+TEST(YawTable, ZeroYawNodeIsTheYawFreeTable) {
+  const YawFixture& f = fixture();
+  EXPECT_EQ(*f.table.attribute("format_version"), "2.4");
+  EXPECT_EQ(*f.free_table.attribute("format_version"), "2.3");
+  const TableAxis* yaw = f.table.axis("yaw");
+  ASSERT_NE(yaw, nullptr);
+  EXPECT_EQ(yaw->units, "rad");
+  EXPECT_EQ(yaw->values, std::vector<double>(std::begin(kYawNodes), std::end(kYawNodes)));
+  EXPECT_EQ(f.free_table.axis("yaw"), nullptr);
+  std::size_t compared = 0, differ_at_edge = 0;
+  for (const TableGroup& free_group : f.free_table.groups) {
+    if (free_group.path.empty()) continue;  // /equilibrium_roll: over y only, checked below
+    const TableGroup* group = f.table.group(free_group.path);
+    ASSERT_NE(group, nullptr) << free_group.path;
+    for (const TableDataset& free_d : free_group.datasets) {
+      const TableDataset* d = group->find(free_d.name);
+      ASSERT_NE(d, nullptr) << free_group.path << "/" << free_d.name;
+      ASSERT_GE(d->axes.size(), 2u);
+      ASSERT_EQ(d->axes[1], "yaw");
+      const std::size_t ny = d->shape[0], inner = free_d.size() / ny;
+      ASSERT_EQ(d->size(), ny * kNyaw * inner);
+      for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t k = 0; k < inner; ++k) {
+          const std::size_t a = (iy * kNyaw + kZeroYaw) * inner + k, b = iy * inner + k;
+          const std::size_t edge = (iy * kNyaw + kNyaw - 1) * inner + k;
+          if (free_d.is_status) {
+            ASSERT_EQ(d->status[a], free_d.status[b]) << free_group.path << "/" << free_d.name << " y " << iy;
+          } else {
+            ASSERT_EQ(d->values[a], free_d.values[b]) << free_group.path << "/" << free_d.name << " y " << iy;
+            differ_at_edge += d->values[edge] != free_d.values[b];
+          }
+          ++compared;
+        }
+    }
+  }
+  EXPECT_GT(compared, 10000u);
+  // The yaw reaches the kernel: at yaw 10 mrad most values differ from the yaw-free ones.
+  EXPECT_GT(differ_at_edge, compared / 4);
+  EXPECT_EQ(f.table.group("")->find("equilibrium_roll")->values, f.free_table.group("")->find("equilibrium_roll")->values);
+}
+
+// The query's fixed-variable rule for yaw: a table without yaw answers yaw 0 and flags any other
+// yaw out_of_range (it was computed at yaw 0); the yaw table clamps a yaw beyond its axis and
+// flags it. The C API carries yaw as the last member of its state.
+TEST(YawTable, YawOnATableWithoutYawIsFlagged) {
+  const YawFixture& f = fixture();
+  const lk::Table& free = *f.free_lookup;
+  EXPECT_EQ(free.query(lk::Wheel::kLeft, state_at(free, 0.003, 0.0, 78.5e3)).status, 0u);
+  const lk::Result at_zero = free.query(lk::Wheel::kLeft, state_at(free, 0.003, 0.0, 78.5e3));
+  const lk::Result yawed = free.query(lk::Wheel::kLeft, state_at(free, 0.003, 0.002, 78.5e3));
+  EXPECT_EQ(yawed.status, lk::status::kOutOfRange);
+  EXPECT_EQ(at_zero.contact[0].value[lk::kNormalForce], yawed.contact[0].value[lk::kNormalForce]);
+  EXPECT_EQ(free.query(lk::Wheel::kLeft, state_at(free, 0.003, NAN, 78.5e3)).status & lk::status::kInvalidInput,
+            lk::status::kInvalidInput);
+  for (const auto& [name, value] : free.fixed_axes()) EXPECT_NE(name, "yaw");  // not a fixed value of the table
+  const lk::Table& t = *f.lookup;
+  EXPECT_EQ(t.query(lk::Wheel::kLeft, state_at(t, 0.003, 0.004, 78.5e3)).status, 0u);
+  const lk::Result beyond = t.query(lk::Wheel::kLeft, state_at(t, 0.007, 0.03, 78.5e3));
+  EXPECT_EQ(beyond.status, lk::status::kOutOfRange);
+  const lk::Result edge = t.query(lk::Wheel::kLeft, state_at(t, 0.007, 0.01, 78.5e3));
+  EXPECT_EQ(beyond.contact[1].value[lk::kNormalForce], edge.contact[1].value[lk::kNormalForce]);
+  bool yaw_axis = false;
+  for (const lk::AxisInfo& a : t.axes()) yaw_axis |= a.name == "yaw" && a.units == "rad";
+  EXPECT_TRUE(yaw_axis);
+  // C API: the same answer as C++ at a yawed state.
+  const std::filesystem::path path = temp_table_path("yaw_c");
+  write_for_lookup(f.table, path);
+  railtab_lookup_table* c = nullptr;
+  ASSERT_EQ(railtab_lookup_open(path.string().c_str(), RAILTAB_LOOKUP_LINEAR, &c), RAILTAB_LOOKUP_OK);
+  const lk::State s = state_at(t, 0.0068, -0.0071, 81e3, 0.001, -0.0007, 0.05);
+  railtab_lookup_state cs = {s.y, s.roll, s.load, s.xi, s.eta, s.phi, s.yaw};
+  railtab_lookup_result cr;
+  ASSERT_EQ(railtab_lookup_query(c, RAILTAB_LOOKUP_RIGHT, &cs, &cr), RAILTAB_LOOKUP_OK);
+  const lk::Result r = t.query(lk::Wheel::kRight, s);
+  EXPECT_EQ(std::memcmp(&cr, &r, sizeof r), 0);
+  EXPECT_STREQ(railtab_lookup_var_name(RAILTAB_LOOKUP_VAR_YAW), "yaw");
+  railtab_lookup_close(c);
+  std::filesystem::remove(path);
+}
+
+// Off the yaw nodes (y, load and creepage on their nodes, so only yaw is interpolated) the lookup
+// against the contact kernel run at that yaw. Tolerance as the default table's (docs/lookup.md
+// "Accuracy"): 5 x the linear interpolation bound h^2/8 |f''|, |f''| from the table's second
+// differences along yaw at the cell's corners, plus core_floor of the output's scale (the core's
+// own resolution) and the float32 rounding of the creep part. Cells whose corners' statuses differ from
+// each other or from the direct evaluation's (a contact jump along yaw) are counted, not asserted.
+TEST(YawTable, LookupAgainstDirectEvaluationOffTheYawNodes) {
+  const YawFixture& f = fixture();
+  const lk::Table& t = *f.lookup;
+  const std::vector<double>& ys = f.scene.grids.y;
+  const std::vector<double>& loads = f.scene.grids.load;
+  Random rng(31);
+  struct Sample {
+    Point p;
+    double yaw;
+    std::size_t cell;
+  };
+  std::vector<Sample> samples;
+  for (std::size_t iy = 0; iy < ys.size(); ++iy)
+    for (double load : loads)
+      for (int k = 0; k < 2; ++k) {
+        Sample s;
+        s.p.v[kY] = ys[iy];
+        s.p.v[kLoad] = load;
+        s.yaw = rng.uniform(kYawNodes[0], kYawNodes[kNyaw - 1]);
+        s.cell = std::min<std::size_t>(kNyaw - 2, static_cast<std::size_t>((s.yaw - kYawNodes[0]) / 0.005));
+        samples.push_back(s);
+      }
+  std::vector<Direct> direct(samples.size());
+  tbb::parallel_for(std::size_t{0}, samples.size(),
+                    [&](std::size_t i) { direct[i] = evaluate_direct(f.scene, samples[i].p, samples[i].yaw); });
+  // The lookup at the yaw nodes of each sample's (y, load): its nodal values along yaw.
+  std::size_t checked = 0, jump_cells = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Sample& s = samples[i];
+    for (std::size_t w = 0; w < 2; ++w) {
+      const auto wheel = static_cast<lk::Wheel>(w);
+      const lk::Result r = t.query(wheel, state_at(t, s.p.v[kY], s.yaw, s.p.v[kLoad]));
+      lk::Result node[kNyaw];
+      for (std::size_t j = 0; j < kNyaw; ++j) node[j] = t.query(wheel, state_at(t, s.p.v[kY], kYawNodes[j], s.p.v[kLoad]));
+      for (std::size_t slot = 0; slot < kSlots; ++slot) {
+        bool smooth = true;
+        for (int p = 0; p < lk::kNumParts; ++p) {
+          const StatusBits a = node[s.cell].contact[slot].part_status[p], b = node[s.cell + 1].contact[slot].part_status[p];
+          smooth &= (a & kCompared) == (b & kCompared) && (a & kCompared) == (direct[i][w].status[p][slot] & kCompared);
+        }
+        if (!smooth) {
+          ++jump_cells;
+          continue;
+        }
+        for (int o = 0; o < lk::kNumOutputs; ++o) {
+          const bool creep = lk::output_part(static_cast<lk::Output>(o)) >= lk::kCreep || o == lk::kNormalForce;
+          double scale = 0.0, second = 0.0;
+          for (std::size_t j = 0; j < kNyaw; ++j) scale = std::max(scale, std::abs(node[j].contact[slot].value[o]));
+          for (std::size_t j = std::max<std::size_t>(1, s.cell); j <= std::min(kNyaw - 2, s.cell + 1); ++j)
+            second = std::max(second, std::abs(node[j - 1].contact[slot].value[o] - 2.0 * node[j].contact[slot].value[o] +
+                                               node[j + 1].contact[slot].value[o]));
+          const double tolerance = 5.0 * second / 8.0 + (core_floor(o) + (creep ? 4.0 * kStoredRounding : 0.0)) * scale;
+          const double error = std::abs(r.contact[slot].value[o] - direct[i][w].value[o][slot]);
+          if (scale > 0.0) worst = std::max(worst, error / scale);
+          EXPECT_LE(error, tolerance) << label(o) << " wheel " << w << " slot " << slot << " y " << s.p.v[kY]
+                                      << " yaw " << s.yaw << " load " << s.p.v[kLoad];
+          ++checked;
+        }
+      }
+    }
+  }
+  std::printf("yaw off-node: %zu outputs checked, %zu jump cells (not asserted), worst error / scale %.2e\n", checked,
+              jump_cells, worst);
+  EXPECT_GE(checked, samples.size() * 2 * kSlots * lk::kNumOutputs * 3 / 4);  // most cells are smooth
+}
+
+// Mirror symmetry: the left wheel at (y, yaw, eta, phi) is the right wheel at (-y, -yaw, -eta,
+// -phi), with the lateral quantities' signs flipped (contact angle, fy, mz; docs/conventions.md),
+// on and off the nodes.
+TEST(YawTable, MirrorSwapsTheWheels) {
+  const YawFixture& f = fixture();
+  const lk::Table& t = *f.lookup;
+  Random rng(32);
+  const auto flips = [](int o) { return o == lk::kContactAngle || o == lk::kFy || o == lk::kMz; };
+  std::size_t flange = 0;
+  for (int k = 0; k < 400; ++k) {
+    const double y = rng.uniform(-0.009, 0.009), yaw = rng.uniform(-0.01, 0.01), load = rng.uniform(60e3, 100e3);
+    const double xi = rng.uniform(-0.004, 0.004), eta = rng.uniform(-0.004, 0.004), phi = rng.uniform(-0.3, 0.3);
+    const lk::Result l = t.query(lk::Wheel::kLeft, state_at(t, y, yaw, load, xi, eta, phi));
+    const lk::Result r = t.query(lk::Wheel::kRight, state_at(t, -y, -yaw, load, xi, -eta, -phi));
+    ASSERT_EQ(l.status, 0u);
+    for (std::size_t slot = 0; slot < kSlots; ++slot) {
+      EXPECT_EQ(l.contact[slot].status, r.contact[slot].status) << "y " << y << " yaw " << yaw << " slot " << slot;
+      flange += slot == 1 && l.contact[slot].value[lk::kNormalForce] > 0.0;
+      for (int o = 0; o < lk::kNumOutputs; ++o) {
+        const double a = l.contact[slot].value[o], b = (flips(o) ? -1.0 : 1.0) * r.contact[slot].value[o];
+        EXPECT_NEAR(a, b, 1e-9 * std::max(std::abs(a), std::abs(b)) + 1e-12)
+            << label(o) << " slot " << slot << " y " << y << " yaw " << yaw;
+      }
+    }
+  }
+  EXPECT_GT(flange, 50u);  // the flange contact is among the states
+}
+
+// One wheel at given creepages does not see the sign of yaw: +-yaw put the contact at the same
+// place on the wheel's silhouette, only its lead (not a table output) changes sign
+// (docs/validation/yaw-tables.md), so every stored output is even in yaw, on and off the nodes.
+TEST(YawTable, OutputsAreEvenInYaw) {
+  const YawFixture& f = fixture();
+  const lk::Table& t = *f.lookup;
+  Random rng(34);
+  std::size_t differ_from_zero = 0;
+  for (int k = 0; k < 200; ++k) {
+    const double y = rng.uniform(-0.009, 0.009), yaw = rng.uniform(0.0, 0.01), load = rng.uniform(60e3, 100e3);
+    const double xi = rng.uniform(-0.004, 0.004), eta = rng.uniform(-0.004, 0.004), phi = rng.uniform(-0.3, 0.3);
+    for (int w = 0; w < 2; ++w) {
+      const auto wheel = static_cast<lk::Wheel>(w);
+      const lk::Result plus = t.query(wheel, state_at(t, y, yaw, load, xi, eta, phi));
+      const lk::Result minus = t.query(wheel, state_at(t, y, -yaw, load, xi, eta, phi));
+      const lk::Result zero = t.query(wheel, state_at(t, y, 0.0, load, xi, eta, phi));
+      for (std::size_t slot = 0; slot < kSlots; ++slot)
+        for (int o = 0; o < lk::kNumOutputs; ++o) {
+          const double a = plus.contact[slot].value[o], b = minus.contact[slot].value[o];
+          EXPECT_NEAR(a, b, 1e-9 * std::max(std::abs(a), std::abs(b)) + 1e-12) << label(o) << " y " << y << " yaw " << yaw;
+          differ_from_zero += a != zero.contact[slot].value[o];
+        }
+    }
+  }
+  EXPECT_GT(differ_from_zero, 1000u);  // yaw changes the outputs, only not with its sign
+}
+
+// Continuity in yaw: the kernel at a yaw of 1e-9 rad either side of the yaw = 0 node gives that
+// node (the yawed path meets the yaw-free one), and along a fine yaw sweep (0.5 mrad steps over the
+// table's range) in flange and tread contact no output steps by more than 3 x its median step plus
+// core_floor of its scale where the statuses do not change.
+TEST(YawTable, ContinuousInYaw) {
+  const YawFixture& f = fixture();
+  const lk::Table& t = *f.lookup;
+  for (const double y : {-0.0075, 0.0, 0.0075}) {
+    Point p;
+    p.v[kY] = y;
+    p.v[kLoad] = 60e3;
+    for (const double tiny : {1e-9, -1e-9}) {
+      const Direct d = evaluate_direct(f.scene, p, tiny);
+      for (std::size_t w = 0; w < 2; ++w) {
+        const lk::Result node = t.query(static_cast<lk::Wheel>(w), state_at(t, y, 0.0, 60e3));
+        for (std::size_t slot = 0; slot < kSlots; ++slot)
+          for (int o = 0; o < lk::kNumOutputs; ++o) {
+            const double a = node.contact[slot].value[o], b = d[w].value[o][slot];
+            const bool creep = lk::output_part(static_cast<lk::Output>(o)) >= lk::kCreep || o == lk::kNormalForce;
+            EXPECT_NEAR(a, b, (1e-6 + (creep ? 2.0 * kStoredRounding : 0.0)) * std::max(std::abs(a), 1e-3) + 1e-9)
+                << label(o) << " y " << y << " yaw " << tiny << " wheel " << w << " slot " << slot;
+          }
+      }
+    }
+    std::vector<double> yaws;
+    for (int k = -20; k <= 20; ++k) yaws.push_back(0.0005 * k);
+    std::vector<Direct> sweep(yaws.size());
+    tbb::parallel_for(std::size_t{0}, yaws.size(), [&](std::size_t i) { sweep[i] = evaluate_direct(f.scene, p, yaws[i]); });
+    for (std::size_t w = 0; w < 2; ++w)
+      for (std::size_t slot = 0; slot < kSlots; ++slot)
+        for (int o = 0; o < lk::kNumOutputs; ++o) {
+          std::vector<double> steps;
+          double scale = 0.0;
+          for (std::size_t i = 0; i + 1 < yaws.size(); ++i) {
+            steps.push_back(std::abs(sweep[i + 1][w].value[o][slot] - sweep[i][w].value[o][slot]));
+            scale = std::max(scale, std::abs(sweep[i][w].value[o][slot]));
+          }
+          std::vector<double> sorted = steps;
+          std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+          const double median = sorted[sorted.size() / 2];
+          for (std::size_t i = 0; i < steps.size(); ++i) {
+            bool same = true;
+            for (int q = 0; q < lk::kNumParts; ++q) same &= sweep[i][w].status[q][slot] == sweep[i + 1][w].status[q][slot];
+            if (!same) continue;
+            EXPECT_LE(steps[i], 3.0 * median + core_floor(o) * scale)
+                << label(o) << " y " << y << " wheel " << w << " slot " << slot << " yaw " << yaws[i] << " .. " << yaws[i + 1];
+          }
+        }
+  }
+}
+
+// d/d yaw of the interpolant against central differences of the query inside the cells (the
+// derivative code is generic over the axes; the normalised creep part's scales depend on yaw).
+TEST(YawTable, DerivativeAlongYaw) {
+  const YawFixture& f = fixture();
+  const lk::Table& t = *f.lookup;
+  Random rng(33);
+  std::size_t nonzero = 0;
+  for (int k = 0; k < 100; ++k) {
+    const lk::State s = state_at(t, rng.uniform(-0.009, 0.009), rng.uniform(-0.01, 0.01), rng.uniform(60e3, 100e3),
+                                 rng.uniform(-0.004, 0.004), rng.uniform(-0.004, 0.004), rng.uniform(-0.3, 0.3));
+    for (int w = 0; w < 2; ++w) {
+      const auto wheel = static_cast<lk::Wheel>(w);
+      lk::Result r, rp, rm;
+      lk::Derivatives d;
+      ASSERT_TRUE(t.query_derivatives(wheel, s, r, d));
+      const double h = 1e-9;
+      lk::State plus = s, minus = s;
+      plus.yaw += h;
+      minus.yaw -= h;
+      t.query(wheel, plus, rp);
+      t.query(wheel, minus, rm);
+      for (std::size_t slot = 0; slot < kSlots; ++slot)
+        for (int o = 0; o < lk::kNumOutputs; ++o) {
+          const double fd = (rp.contact[slot].value[o] - rm.contact[slot].value[o]) / (2.0 * h);
+          const double dv = d.d[slot][o][lk::kYaw];
+          nonzero += dv != 0.0;
+          const double scale = std::abs(r.contact[slot].value[o]) / 0.005 + std::abs(fd);  // per cell width
+          EXPECT_NEAR(dv, fd, 1e-5 * scale + 1e-12) << label(o) << " wheel " << w << " slot " << slot;
+        }
+    }
+  }
+  EXPECT_GT(nonzero, 1000u);
+}
+
+}  // namespace
+}  // namespace railtab::accuracy
