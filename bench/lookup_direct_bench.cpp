@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // What a table lookup saves: the direct model evaluation of one contact state against the lookup
 // of the same state, in one run (the issue asks for lookup >= 10,000x faster than the models).
-//   BM_DirectStripesFastsim: seed 000 central case (S1002 on UIC60 1:40, right wheel, y = 0,
+//   BM_DirectStripesFastsim: Sichani et al. 2014 central case (S1002 on UIC60 1:40, right wheel, y = 0,
 //     78.5 kN), load-controlled STRIPES (default NormalOptions: stripes_ab, 50 strips) and then
 //     strip-wise FASTSIM on the loaded tread patch at xi = eta = 1e-3, phi = 0.05 rad/m, mu 0.3,
 //     20 m/s. The rigid geometry is solved once outside the timed loop.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// One load-controlled normal solve per model on the seed 000 central case (S1002 on UIC60 1:40,
+// One load-controlled normal solve per model on the Sichani et al. 2014 central case (S1002 on UIC60 1:40,
 // right wheel, y = 0, 78.5 kN). The geometry is solved once outside the timed loop.
 // Targets: STRIPES < 20 us per solve (~50 strips), Hertz < 1 us. Every solve includes the patch
 // grouping and the reference point of each patch (normal_model.hpp: CONTACT-style for the overlap

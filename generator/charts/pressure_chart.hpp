@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The pressure comparison of seed 000: peak pressure along the strip centre lines of one wheel's
+// The pressure comparison of Sichani et al. 2014: peak pressure along the strip centre lines of one wheel's
 // patch, every normal model and negative-curvature treatment side by side.
 #pragma once
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The radial wear distribution across the wheel profile (seed 001, Figs. 11-13): radial wear depth
+// The radial wear distribution across the wheel profile (Enblom and Berg 2008, Figs. 11-13): radial wear depth
 // against the wheel-profile coordinate u (+ towards the field side), several named series in one
 // chart, e.g. the elliptic model (Hertz + FASTSIM) against STRIPES.
 #pragma once

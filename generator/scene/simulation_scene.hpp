@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // A simulation scene for `railtab simulate`: which contact scene, the contact model of the
-// dynamics and the wear post-processors (seed 001: one dynamics, several wear models), the
+// dynamics and the wear post-processors (Enblom and Berg 2008: one dynamics, several wear models), the
 // vehicle (a bogie of vehicle::BogieParameters), the route (tangent, transition and circular
 // sections, lateral irregularity) and the wear loop (steps, running distance, lubrication,
 // smoothing). TOML, checked key by key like the contact scenes; docs/simulation.md.

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // One run of the bogie over a simulation scene's route with the dynamics' contact model (a table
 // or the core directly), and the wear post-processing it feeds: once per wheel revolution each
-// counted wheelset's state goes, as ONE WheelsetSample, to every wear post-processor (seed 001:
+// counted wheelset's state goes, as ONE WheelsetSample, to every wear post-processor (Enblom and Berg 2008:
 // one dynamics, the wear models differ only in the contact model). docs/simulation.md.
 #pragma once
 

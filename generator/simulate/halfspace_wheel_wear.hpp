@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The exact half-space wear post-processor ("halfspace", seed 001's CONTACT): src/halfspace's
+// The exact half-space wear post-processor ("halfspace", Enblom and Berg's (2008) CONTACT): src/halfspace's
 // planar-patch solver instead of a fast normal model + FASTSIM, then Archard/KTH wear per element.
 //
 // Load: the normal problem is solved for the dynamics' vertical force sum N cos(g)

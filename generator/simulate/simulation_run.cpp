@@ -442,7 +442,7 @@ nlohmann::json summary_json(const SimulationScene& sim, const SimulationOptions&
   return j;
 }
 
-// The chart of the cumulative radial wear (seed 001 Figs. 11-13) and its evolution: every
+// The chart of the cumulative radial wear (Enblom and Berg 2008 Figs. 11-13) and its evolution: every
 // post-processor after each wear step. A chart that fails is a warning: the CSVs are written.
 void draw_charts(const SimulationScene& sim, const SimulationOptions& options, const SimulationSummary& summary,
                  const std::vector<WearSeries>& final_series, double step_distance) {
@@ -503,7 +503,7 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
 
   for (int k = 0; k < sim.wear_steps; ++k) {
     // Step 0: every post-processor starts from the same wheel, so ONE dynamics run feeds them
-    // all. Later steps: each runs on its own worn wheel (its own profile evolution, as seed 001
+    // all. Later steps: each runs on its own worn wheel (its own profile evolution, as Enblom and Berg 2008
     // ran one loop per wear model).
     std::vector<std::vector<std::size_t>> groups;
     if (k == 0) {

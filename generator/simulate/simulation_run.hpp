@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// `railtab simulate` as a library call: the profile-evolution loop of seed 001 with the contact
+// `railtab simulate` as a library call: the profile-evolution loop of Enblom and Berg 2008 with the contact
 // tables in the time-stepping loop and the dynamics separated from the wear. Per wear step: write
 // the step's contact scene (current wheel profile, the DYNAMICS' normal model, the simulation
 // speed and lubrication), generate its table in parallel, run the bogie over the route with it (or
 // the core directly, --direct), hand each counted wheelset's state once per wheel revolution to
-// every wear post-processor (the same states for all: seed 001 changed only the wear model),
+// every wear post-processor (the same states for all: Enblom and Berg 2008 changed only the wear model),
 // scale the wear to the step's running distance, average left/right wheels and wheelsets, and
 // write the worn wheel profile that the next step runs on. Step 0 is one shared run; later steps
 // run each post-processor on its own worn wheel. Outputs: docs/simulation.md.

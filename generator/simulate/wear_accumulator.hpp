@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Wear post-processing of a simulation, once per wheel revolution, as seed 001 does after its MBS
+// Wear post-processing of a simulation, once per wheel revolution, as Enblom and Berg 2008 does after its MBS
 // runs: at the wheelset's state the core solves geometry, the scene's normal model, FASTSIM and
 // Archard/KTH wear for every loaded patch of each wheel, and the radial wear depth per strip is
 // accumulated across the wheel profile on a fixed grid of wheel u (wear smeared around the

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The contact model of one wear post-processor (seed 001 sections 2.1, 4: the dynamics runs with
+// The contact model of one wear post-processor (Enblom and Berg 2008 sections 2.1, 4: the dynamics runs with
 // one contact model, the wear is computed afterwards, once per wheel revolution, with another):
 // from one wheel's contact geometry, its vertical contact force in the dynamics and the
 // wheelset's motion to the radial wear rate per strip across the wheel profile. WearAccumulator
@@ -9,7 +9,7 @@
 // "stripes-a", "stripes-ab", "kik-piotrowski", "linder" (the non-elliptic normal models +
 // strip-wise FASTSIM): FastsimWheelWear, one class for all, the normal model is the difference.
 // "halfspace": the exact half-space model (src/halfspace), HalfspaceWheelWear
-// (halfspace_wheel_wear.hpp), seed 001's CONTACT.
+// (halfspace_wheel_wear.hpp), Enblom and Berg's (2008) CONTACT.
 #pragma once
 
 #include <memory>

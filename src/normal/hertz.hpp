@@ -15,8 +15,8 @@ struct HertzContact {
   double normal_force = 0.0;  // [N]
   double p0 = 0.0;            // peak pressure 3N/(2 pi a b) [Pa]
   double area = 0.0;          // pi a b [m2]
-  double coef_a = 1.0;        // a = coef_a c (seed 000's m0: m or n of FACTS 1.3 by direction) [-]
-  double coef_b = 1.0;        // b = coef_b c (seed 000's n0) [-]
+  double coef_a = 1.0;        // a = coef_a c (Sichani et al.'s (2014) m0: m or n of FACTS 1.3 by direction) [-]
+  double coef_b = 1.0;        // b = coef_b c (Sichani et al.'s (2014) n0) [-]
   HertzShape shape{};         // shape for A_min/A_max (m, n along long/short axis) [-]
 
   // Semi-elliptic pressure at (x, y) relative to the centre [Pa]; zero outside the ellipse.
@@ -31,8 +31,8 @@ HertzContact hertz_for_approach(double A, double B, double approach, const Mater
 
 // Shape part only (no load): coefficients by direction for curvatures A, B > 0.
 struct HertzCoefficients {
-  double coef_a;  // seed 000 m0 (x direction) [-]
-  double coef_b;  // seed 000 n0 (lateral) [-]
+  double coef_a;  // Sichani et al. 2014 m0 (x direction) [-]
+  double coef_b;  // Sichani et al. 2014 n0 (lateral) [-]
   double r;       // approach coefficient r0 [-]
   double K;       // K(e) [-]
   double E;       // E(e) [-]

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // Linder (with Brauchli, 1997): virtual interpenetration with the constant fraction eps = 0.55 of
-// the Hertzian approach (seed 000; FACTS 2.2). Planar patch (reference normal), semi-elliptic
+// the Hertzian approach (Sichani et al. 2014; FACTS 2.2). Planar patch (reference normal), semi-elliptic
 // pressure along every strip, p(x, s) = C sqrt(L(s)^2 - x^2), L(s) = sqrt(v(s)/A(s)).
-// Load closure: the true approach delta is Hertz's for the load at the point (seed 001 sec. 1.2:
+// Load closure: the true approach delta is Hertz's for the load at the point (Enblom and Berg 2008 sec. 1.2:
 // "interpenetration depth taken as a given fraction of the Hertzian body approach"), so
 // N(delta) = N_Hertz(A0, B0, delta), and C distributes N over the VI patch. Where Hertz cannot run
 // (A0 or B0 <= 0) the Kik-Piotrowski Boussinesq closure replaces it (kFallbackModel).
 // For FASTSIM every strip gets a local ellipse with the same lateral semi-axis, the patch
-// half-width (seed 000, "Local ellipse assignment").
+// half-width (Sichani et al. 2014, "Local ellipse assignment").
 #include <algorithm>
 #include <cmath>
 #include <numbers>

@@ -57,7 +57,7 @@ NormalModel parse_normal_model(std::string_view name);   // throws railtab::Erro
 // How STRIPES treats negative or very small lateral relative curvature B.
 enum class NegativeCurvature {
   clip_and_smooth,  // classic STRIPES: replace by a small positive value, then smooth across strips
-  shift,            // seed 000: shift the B distribution of the patch upward, no smoothing
+  shift,            // Sichani et al. 2014: shift the B distribution of the patch upward, no smoothing
 };
 const char* to_string(NegativeCurvature treatment);
 
@@ -84,7 +84,7 @@ struct NormalOptions {
   double virtual_penetration = 0.55;      // epsilon of Linder and Kik-Piotrowski [-]
   double tolerance = 1e-8;                // relative tolerance on the normal load [-]
   int max_iterations = 60;                // load-control iteration limit [-]
-  // Negative/small-B treatment of STRIPES (FACTS 2.4.6; seed 000 leaves the constants open):
+  // Negative/small-B treatment of STRIPES (FACTS 2.4.6; Sichani et al. 2014 leaves the constants open):
   double min_curvature_ratio = 0.02;      // B floor as a fraction of A at the point [-]
   double curvature_window = 0.1e-3;       // band samples with rigid gap up to this much above the
                                           //   point's gap count for the treatment (about twice the

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// STRIPES (Ayasse & Chollet 2005) with the A- and the A&B-correction of seed 000 (FACTS 2.4).
+// STRIPES (Ayasse & Chollet 2005) with the A- and the A&B-correction of Sichani et al. 2014 (FACTS 2.4).
 //
 // Patch: virtual interpenetration along the band; every strip follows its own contact angle (the
-// patch is not planar, seed 001 sec. 1.2). Strip half-length a_i = sqrt(v_i / A_ci) with the
-// corrected longitudinal curvature (seed 000):
+// patch is not planar, Enblom and Berg 2008 sec. 1.2). Strip half-length a_i = sqrt(v_i / A_ci) with the
+// corrected longitudinal curvature (Sichani et al. 2014):
 //   A-correction:    eps = n0^2 B0 / (r0 (A0 + B0)),        A_ci = (n_i/m_i)^2 B_i
 //   A&B-correction:  eps = n0^2 / (r0 (1 + (n0/m0)^2)),     A_ci = (A_i + B_i)(n_i/m_i)^2/(1 + (n_i/m_i)^2)
-// (m, n of seed 000 belong to the rolling and lateral directions; (n_i/m_i)^2 is the local Hertz
+// (m, n of Sichani et al. 2014 belong to the rolling and lateral directions; (n_i/m_i)^2 is the local Hertz
 // (b/a)^2.) The lateral extent always comes from the real separation (FACTS 2.4.2).
-// Pressure: parabolic along each strip (Kalker's simplified theory, seed 001 sec. 1.2), proportional
+// Pressure: parabolic along each strip (Kalker's simplified theory, Enblom and Berg 2008 sec. 1.2), proportional
 // to the local virtual overlap (FACTS 2.4.4): p(x, s) = p_max (v(s) - A_c(s) x^2) / (eps delta0).
 // Closure (StripesClosure):
 //  - boussinesq (default): the amplitude C of p = C (v(s) - A_c(s) x^2) satisfies the contact
@@ -30,7 +30,7 @@
 //
 // Negative or small B (FACTS 2.4.6): B enters only the local Hertz shapes (n_i/m_i) and the
 // corrections, never the lateral extent. Default NegativeCurvature::shift with stripes_ab, as in
-// seed 000's proposal: shifting keeps the B distribution's variation (no sharp changes, no smoothing
+// Sichani et al.'s (2014) proposal: shifting keeps the B distribution's variation (no sharp changes, no smoothing
 // that smears pressure peaks), and the A&B-correction stays finite as B -> 0 (A_c -> A + B), while
 // the A-correction's A_c = (n/m)^2 B grows like A^(4/3) B^(-1/3) and makes strips collapse where B
 // is small. The shift is B_i += max(0, B_floor - min B) over the band samples within

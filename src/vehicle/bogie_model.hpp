@@ -20,7 +20,7 @@ namespace railtab::vehicle {
 
 inline constexpr int kBogieWheelsets = 2;  // 0 = leading (ahead of the frame centre), 1 = trailing
 
-// Defaults: a commuter-class electric multiple unit car, ASSUMED (seed 001 names its vehicle
+// Defaults: a commuter-class electric multiple unit car, ASSUMED (Enblom and Berg 2008 names its vehicle
 // only as "commuter car ... reasonably soft wheelset guidance"): docs/vehicle-model.md lists
 // each value and why.
 struct BogieParameters {

@@ -27,7 +27,7 @@ TEST(Linder, HertzianGeometry) {
   EXPECT_NEAR(p.semi_axis_a / std::sqrt(0.55 * h.approach / A), 1.0, 2e-3);
   EXPECT_NEAR(p.semi_axis_b / std::sqrt(0.55 * h.approach / B), 1.0, 2e-3);
   for (const Strip& s : p.strips) EXPECT_DOUBLE_EQ(s.ellipse_b, p.semi_axis_b);
-  // Identical to Hertz only for A = B (seed 000): here the axis ratio is sqrt(B/A), not m/n.
+  // Identical to Hertz only for A = B (Sichani et al. 2014): here the axis ratio is sqrt(B/A), not m/n.
   EXPECT_NEAR(p.semi_axis_a / p.semi_axis_b, std::sqrt(B / A), 2e-3);
   EXPECT_GT(std::abs(p.semi_axis_a / p.semi_axis_b - h.a / h.b), 0.05);
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Seed 001 Table 2 (S1002 on UIC60 1:40, 90 kN) and the seed 000 central case: every model on the
+// Seed 001 Table 2 (S1002 on UIC60 1:40, 90 kN) and the Sichani et al. 2014 central case: every model on the
 // real profiles through the geometry solver. Prints the comparison table (docs/validation/normal.md)
 // and writes CSVs under <repo>/build/validation/.
 #include <gtest/gtest.h>

@@ -35,7 +35,7 @@ NormalOptions opts(NormalModel m) {
   return o;
 }
 
-// Seed 001 Fig. 2: STRIPES (A-correction) reproduces the Hertz ellipse on the Table 1 cases; seed 000:
+// Seed 001 Fig. 2: STRIPES (A-correction) reproduces the Hertz ellipse on the Table 1 cases; Sichani et al. 2014:
 // the A-correction gives exactly Hertz's semi-axes. We ask for 2 % at the same 78 kN load.
 TEST(Stripes, ACorrectionReproducesHertzOnTable1Cases) {
   const Material steel{210e9, 0.3};

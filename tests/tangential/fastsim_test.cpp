@@ -174,7 +174,7 @@ TEST(Fastsim, SlipOutputsAreConsistent) {
 }
 
 // Per-strip spin reduces exactly to the patch-constant one on a planar patch with the kinematic
-// spin of a rolling wheel, and differs on a curved patch (seed 000).
+// spin of a rolling wheel, and differs on a curved patch (Sichani et al. 2014).
 TEST(Fastsim, PerStripSpinVariant) {
   const Material mat = contact_material();
   const double gamma = -0.035, r0 = 0.46;

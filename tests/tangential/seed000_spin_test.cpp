@@ -3,7 +3,7 @@
 // pure spin 0.052 rad/m, mu 0.3, through the real geometry and normal layers. Compares the two
 // spin treatments (patch-constant as CONTACT, per-strip as STRIPES). Forces are printed in
 // CONTACT's convention (on the rail): fx_N = -fx, fs_N = +fy (docs/conventions.md).
-// Reference: CONTACT (block A, dy = 0) -226 / -1581 N; seed 000: CONTACT -2459 / -1558,
+// Reference: CONTACT (block A, dy = 0) -226 / -1581 N; Sichani et al. 2014: CONTACT -2459 / -1558,
 // STRIPES -5333 / -2843, KP -2333 / -1258, Linder -2870 / -1672 N.
 #include <gtest/gtest.h>
 

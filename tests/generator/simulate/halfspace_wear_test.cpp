@@ -2,7 +2,7 @@
 // The exact half-space wear post-processor (simulate/halfspace_wheel_wear.hpp): plausibility on
 // tangent track against the elliptic one, zero wear without creepage, worn area kept when the
 // element wear is mapped onto the wheel profile. The disabled Table3PatchWear test prints the
-// single-patch comparison of docs/validation/wear-cases.md (seed 001 Table 3 states):
+// single-patch comparison of docs/validation/wear-cases.md (Enblom and Berg 2008 Table 3 states):
 //   test_generator_simulate --gtest_also_run_disabled_tests --gtest_filter='Table3PatchWear*'
 #include <gtest/gtest.h>
 
@@ -46,7 +46,7 @@ Distribution describe(const WearAccumulator& acc, int wheel) {
   return d;
 }
 
-// Tangent track, 120 km/h, 78 kN per wheel (seed 001 Table 3's tangent load), wheelset 1 mm to
+// Tangent track, 120 km/h, 78 kN per wheel (Enblom and Berg 2008 Table 3's tangent load), wheelset 1 mm to
 // the left, spin V / r0: tread contact (one patch per wheel); the yaw sets the lateral creepage.
 vehicle::WheelsetMotion tangent_motion(double yaw = 1.0e-3) {
   vehicle::WheelsetMotion m;
@@ -60,7 +60,7 @@ vehicle::WheelsetMotion tangent_motion(double yaw = 1.0e-3) {
 // the slip is then set by the creepage, not by the contact model's elasticity) the worn areas
 // must agree within a factor 2 and the wear sit at the same place. In partial slip (1 mrad) the
 // half-space wear must be the SMALLER one: FASTSIM's slip grows towards the trailing edge more
-// than the exact solution's (seed 001 section 4.1: CONTACT's "maximum sliding velocity at the
+// than the exact solution's (Enblom and Berg 2008 section 4.1: CONTACT's "maximum sliding velocity at the
 // rear edge ... is smaller"); measured 0.26 (DISABLED_RatioToEllipticAgainstYaw prints the
 // ratio against yaw).
 TEST(HalfspaceWear, TangentWearIsNonNegativeNearTheEllipticInFullSlipAndBelowItInPartialSlip) {

@@ -228,7 +228,7 @@ TEST(WearAccumulator, EllipticWearCoversTheProjectedEllipse) {
 }
 
 // Radial wear across the left wheel after a prescribed sinusoidal run on tangent track (as Knothe
-// and Le-The's comparison in seed 001: y = A sin(2 pi x / L), kinematic yaw psi = dy/dx, wheel
+// and Le-The's comparison in Enblom and Berg 2008: y = A sin(2 pi x / L), kinematic yaw psi = dy/dx, wheel
 // speed V / r0), per 1000 km, Hertz+FASTSIM against STRIPES. Printed and drawn, not asserted:
 //   RAILTAB_CHART_DIR=docs/img test_generator --gtest_also_run_disabled_tests
 //     --gtest_filter='*SinusoidalRunChart*'

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Where one wear sample puts the wear on the outer wheel, elliptic (Hertz) against STRIPES, as the
 // wheelset moves outwards in a curve: the diagnostic behind docs/validation/wear-cases.md's direction check
-// (seed 001: STRIPES relocates wear towards the flange). Disabled: it prints a table, it asserts
+// (Enblom and Berg 2008: STRIPES relocates wear towards the flange). Disabled: it prints a table, it asserts
 // nothing about the numbers. Run with
 //   test_generator_simulate --gtest_also_run_disabled_tests --gtest_filter='*WearCentroidAcrossY*'
 #include <gtest/gtest.h>
