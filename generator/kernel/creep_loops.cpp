@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <exception>
 #include <vector>
 
@@ -12,6 +13,19 @@
 #include "kernel/kernel_cells.hpp"
 
 namespace railtab::kernel {
+namespace {
+
+// The geometry part's contact angle of each slot (0 for an empty slot): the angle of the slot's
+// vertical load share in normalised tables (creep_map::vertical_share).
+std::array<double, kSlots> slot_contact_angles(const WheelContactGeometry& geometry) {
+  std::array<double, kSlots> out{};
+  const SlotAssignment points = assign_slots(geometry);
+  for (std::size_t s = 0; s < kSlots; ++s)
+    if (points.point[s] >= 0) out[s] = geometry.points[static_cast<std::size_t>(points.point[s])].contact_angle;
+  return out;
+}
+
+}  // namespace
 
 // Creep forces and wear of one slot's loaded patches (summed, slot_creep) over the creepage grid,
 // into the cells of load il. Without the load coupling.
@@ -73,12 +87,7 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
   // N cos(delta) + Fy sin(delta), delta the geometry part's contact angle of the slot (0 for an
   // empty geometry slot), which stays nearly constant over the creepages where N itself does not
   // (flange: Fy carries load; creep_map.hpp, vertical_share). The lookup recovers N from it.
-  double slot_angle[kSlots] = {};
-  if (per_slot) {
-    const SlotAssignment points = assign_slots(geometry);
-    for (std::size_t s = 0; s < kSlots; ++s)
-      if (points.point[s] >= 0) slot_angle[s] = geometry.points[static_cast<std::size_t>(points.point[s])].contact_angle;
-  }
+  const std::array<double, kSlots> slot_angle = per_slot ? slot_contact_angles(geometry) : std::array<double, kSlots>{};
   for (std::size_t pass = 0; pass < (per_slot ? kSlots : 1); ++pass) {
   if (per_slot && !uncoupled_slots.occupied(pass)) continue;  // status 0, zeros: no contact
   std::size_t c = il * k.creepages();
@@ -178,12 +187,7 @@ void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geom
   // solves per occupied slot, keeping that slot's outputs (as solve_creep_coupled); the creep
   // part's normal_force is then the slot's vertical load share (creep_map::vertical_share).
   const bool per_slot = scales != nullptr;
-  double slot_angle[kSlots] = {};
-  if (per_slot) {
-    const SlotAssignment points = assign_slots(geometry);
-    for (std::size_t s = 0; s < kSlots; ++s)
-      if (points.point[s] >= 0) slot_angle[s] = geometry.points[static_cast<std::size_t>(points.point[s])].contact_angle;
-  }
+  const std::array<double, kSlots> slot_angle = per_slot ? slot_contact_angles(geometry) : std::array<double, kSlots>{};
   const std::size_t ne = k.grids.eta.size(), np = k.grids.phi.size();
   for (std::size_t pass = 0; pass < (per_slot ? kSlots : 1); ++pass) {
     if (per_slot && !uncoupled_slots.occupied(pass)) continue;  // status 0, zeros: no contact
