@@ -146,9 +146,16 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
 // holds this solve's end (cleared when it did not converge). An empty `state` (or a null pointer)
 // solves from cold.
 struct PlaneSamples;  // the band samples of each patch in its plane (wheel_rail.cpp)
+// A single patch's pressure on a kept grid at an earlier load: with the current one, a later
+// round's start is extrapolated linearly in the load (wheel_rail.cpp, resolve_on_kept_grid).
+struct EarlierPressure {
+  std::vector<double> pressure;  // per element; empty: none [Pa]
+  double load = 0.0;             // the vertical load it carried [N]
+};
 struct RollingState {
   WheelHalfspaceResult result;                  // the last solve (no patches: none yet)
   std::shared_ptr<const PlaneSamples> samples;  // its patches' band samples
+  EarlierPressure earlier;                      // its grid's pressure before its last load change
   void clear() { *this = RollingState{}; }
 };
 WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometry,
