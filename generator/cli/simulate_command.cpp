@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// railtab simulate SCENE --out DIR [--threads N] [--direct] [--duration SECONDS] [--post-processors P ...] [-q]
+// railtab simulate SCENE --out DIR [--threads N] [--direct] [--duration SECONDS] [--yaw-nodes LIST]
+//                  [--post-processors P ...] [-q]
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -13,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "cli/number_options.hpp"
 #include "scene/simulation_scene.hpp"
+#include "scene/state_rules.hpp"
 #include "simulate/simulation_run.hpp"
 
 namespace railtab {
@@ -38,6 +40,10 @@ void add_simulate_command(CLI::App& app) {
   add_number_option(cmd, "--duration", opt->duration, kDurationRule,
                     "Simulate at most this long per run [s] (speed measurements; default: the whole route)")
       ->default_str("");
+  add_number_list_option(cmd, "--yaw-nodes", opt->yaw_nodes, kYawRule,
+                         "Tabulate yaw at these nodes in every step's table ([grid] yaw of its scene, increasing; "
+                         "e.g. -0.002,-0.001,0,0.001,0.002): the dynamics then reads each wheelset's yaw from the "
+                         "tables [rad]");
   cmd->add_option("--post-processors", opt->post_processors,
                   "Wear post-processors instead of the scene's (e.g. hertz stripes-a)")
       ->check(error_check_validator(check_wear_post_processor));  // a misspelt name, at once

@@ -208,6 +208,9 @@ RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact,
       r.max_creep_force_ratio = std::max(r.max_creep_force_ratio, slot_force_ratio(w, friction));
       r.max_abs_y[i] = std::max(r.max_abs_y[i], std::abs(w.y_relative));
       r.max_abs_yaw[i] = std::max(r.max_abs_yaw[i], std::abs(before.wheelset[i].yaw));
+      for (int side = 0; side < vehicle::kWheels; ++side) {
+        if (w.load[side] > 0.0) r.max_y_over_q[i] = std::max(r.max_y_over_q[i], std::abs(w.lateral_force[side]) / w.load[side]);
+      }
       if (wear.counts(i) && travelled >= next_wear[i]) {
         try {
           wear.sample(wheelset_sample(i, w, revolution));
@@ -242,9 +245,10 @@ RunSummary run_bogie(const SimulationScene& sim, vehicle::ContactModel& contact,
     r.queries = now.queries - counts_before.queries;
     r.out_of_range = now.out_of_range - counts_before.out_of_range;
     r.invalid_input = now.invalid_input - counts_before.invalid_input;
-    for (std::size_t v = 0; v < 5; ++v) r.outside_axis[v] = now.outside_axis[v] - counts_before.outside_axis[v];
+    for (std::size_t v = 0; v < kLookupVariables; ++v) r.outside_axis[v] = now.outside_axis[v] - counts_before.outside_axis[v];
   }
   if (direct) r.contact_failures = direct->failures() - failures_before;
+  r.yaw_axis = (lookup && lookup->has_yaw_axis()) || (direct && direct->has_yaw_axis());
   return r;
 }
 

@@ -17,12 +17,12 @@
 
 #include "scene/scene.hpp"
 #include "scene/simulation_scene.hpp"
+#include "simulate/lookup_contact_model.hpp"  // kLookupVariables
 #include "simulate/wear_accumulator.hpp"
 #include "vehicle/bogie_model.hpp"
 
 namespace railtab {
 
-class LookupContactModel;
 class DirectContactModel;
 
 // The state a wear post-processor works from: the dynamics' wheelset at one wheel revolution.
@@ -85,11 +85,16 @@ struct RunSummary {
   double max_creep_force_ratio = 0.0;      // max over steps, wheelsets and slots of |(fx, fy)| / (mu N) [-]
   double max_abs_y[vehicle::kBogieWheelsets] = {};  // largest |y - irregularity| per wheelset [m]
   double max_abs_yaw[vehicle::kBogieWheelsets] = {};  // largest |psi| per wheelset [rad]
+  // Largest |Y| / Q per wheelset over its two wheels: Y the contact's lateral force on the wheel
+  // (track axes), Q the wheel's vertical load [-].
+  double max_y_over_q[vehicle::kBogieWheelsets] = {};
+  bool yaw_axis = false;                   // the contact model follows the wheelsets' yaw (its table
+                                           //   or, --direct, its scene has a yaw axis)
   std::uint64_t steps = 0;                 // RK4 steps [-]
   std::uint64_t queries = 0;               // table queries (lookup only) [-]
   std::uint64_t out_of_range = 0;          // of them flagged kOutOfRange [-]
   std::uint64_t invalid_input = 0;         // of them flagged kInvalidInput [-]
-  std::uint64_t outside_axis[5] = {};      // per variable y, load, xi, eta, phi [-]
+  std::uint64_t outside_axis[kLookupVariables] = {};  // per variable y, load, xi, eta, phi, yaw [-]
   std::uint64_t contact_failures = 0;      // direct model: evaluations where the core threw [-]
   int wear_samples = 0;                    // samples per counted wheelset [-]
   std::uint32_t status = 0;                // OR of the snapshot status over the run

@@ -17,10 +17,13 @@ DirectContactModel::DirectContactModel(const Scene& scene)
       creep_conditions_(creep_conditions(scene)),
       fastsim_options_(fastsim_options(scene)),
       coupling_(coupled_load_options(scene)),
-      halfspace_options_(halfspace_options(scene)) {}
+      halfspace_options_(halfspace_options(scene)),
+      yaw_axis_(scene.grids.yaw.size() > 1),
+      fixed_yaw_(fixed_yaw(scene)) {}
 
-void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels],
+void DirectContactModel::normal(double y, double yaw, const double (&load)[vehicle::kWheels],
                                 vehicle::WheelContacts (&contacts)[vehicle::kWheels]) {
+  const double psi = yaw_axis_ ? yaw : fixed_yaw_;
   double roll = 0.0;
   bool roll_ok = true;
   try {
@@ -38,7 +41,7 @@ void DirectContactModel::normal(double y, const double (&load)[vehicle::kWheels]
     load_[w] = load[w];
     try {
       if (!roll_ok) throw Error("no equilibrium roll");
-      geometry_[w] = solver_.solve_wheel(side, WheelsetState{y, roll});
+      geometry_[w] = solver_.solve_wheel(side, WheelsetState{y, roll, psi});
       if (normal_options_.model == NormalModel::halfspace) {
         exact_[w] = halfspace::solve_halfspace_for_load(geometry_[w], load[w], material_, halfspace_options_,
                                                         thread_halfspace_workspace());

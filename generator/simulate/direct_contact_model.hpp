@@ -30,13 +30,17 @@ class DirectContactModel final : public vehicle::ContactModel {
   // Builds the scene's profiles and solver; throws railtab::Error for a bad scene.
   explicit DirectContactModel(const Scene& scene);
 
-  void normal(double y, const double (&load)[vehicle::kWheels],
+  // At the wheelset's `yaw` when the scene tabulates yaw ([grid] yaw with several values), as the
+  // lookup model reads a yaw table; otherwise at the scene's fixed yaw (0 without the key).
+  void normal(double y, double yaw, const double (&load)[vehicle::kWheels],
               vehicle::WheelContacts (&contacts)[vehicle::kWheels]) override;
   void creep(const vehicle::SlotCreepage (&creepage)[vehicle::kWheels][vehicle::kContactSlots],
              vehicle::SlotForces (&forces)[vehicle::kWheels][vehicle::kContactSlots]) override;
 
   // Evaluations where the core threw (the slot's outputs are zero, status kFailed) [-].
   std::uint64_t failures() const { return failures_; }
+  // normal() follows the wheelset's yaw (the scene tabulates yaw).
+  bool has_yaw_axis() const { return yaw_axis_; }
 
  private:
   // creep() of wheel w with the load coupling.
@@ -54,6 +58,8 @@ class DirectContactModel final : public vehicle::ContactModel {
   FastsimOptions fastsim_options_;
   CoupledLoadOptions coupling_;
   halfspace::HalfspaceOptions halfspace_options_;
+  bool yaw_axis_ = false;                              // the scene tabulates yaw: normal() follows the wheelset's
+  double fixed_yaw_ = 0.0;                             // otherwise this yaw [rad]
   halfspace::WheelHalfspaceResult exact_[vehicle::kWheels];  // of the last normal() call (halfspace model)
   double load_[vehicle::kWheels] = {0.0, 0.0};        // of the last normal() call [N]
   CoupledLoadResult coupled_;                          // scratch of creep()

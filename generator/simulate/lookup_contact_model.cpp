@@ -12,7 +12,7 @@ namespace {
 
 namespace lk = railtab::lookup;
 
-constexpr int kY = 0, kLoad = 1, kXi = 2, kEta = 3, kPhi = 4;
+constexpr int kY = 0, kLoad = 1, kXi = 2, kEta = 3, kPhi = 4, kYaw = 5;
 
 double variable(const lk::State& s, int v) {
   switch (v) {
@@ -20,12 +20,26 @@ double variable(const lk::State& s, int v) {
     case kLoad: return s.load;
     case kXi: return s.xi;
     case kEta: return s.eta;
-    default: return s.phi;
+    case kPhi: return s.phi;
+    default: return s.yaw;
   }
 }
 
+// Cell of x in increasing `nodes` (x clamped to them): the lower node's index and the weight of
+// the upper one.
+void locate(const std::vector<double>& nodes, double x, std::size_t& i, double& t) {
+  const std::size_t n = nodes.size();
+  i = 0;
+  t = 0.0;
+  if (n < 2) return;
+  const double xc = std::clamp(x, nodes.front(), nodes.back());
+  i = static_cast<std::size_t>(std::upper_bound(nodes.begin(), nodes.end(), xc) - nodes.begin());
+  i = std::clamp<std::size_t>(i, 1, n - 1) - 1;
+  t = (xc - nodes[i]) / (nodes[i + 1] - nodes[i]);
+}
+
 int variable_index(const std::string& name) {
-  for (int v = 0; v < 5; ++v) {
+  for (int v = 0; v < kLookupVariables; ++v) {
     if (name == kLookupVariableNames[v]) return v;
   }
   return -1;
@@ -47,63 +61,83 @@ LookupContactModel::LookupContactModel(lk::Table table) : table_(std::move(table
     if (v < 0 || axis.nodes.empty()) continue;
     range_[static_cast<std::size_t>(v)] = {axis.nodes.front(), axis.nodes.back()};
     if (v == kY) y_nodes_ = axis.nodes;
+    if (v == kYaw) yaw_nodes_ = axis.nodes;
   }
   RAILTAB_CHECK(!y_nodes_.empty(), "{}: the table does not tabulate y", table_.path());
 
-  // The geometry part depends on y only (roll follows it): read it at every y node. At a node the
-  // interpolation weight of the neighbour is 0, so the values are the node's own.
+  // The geometry part depends on y and yaw only (roll follows y): read it at every node. At a node
+  // the interpolation weight of the neighbour is 0, so the values are the node's own.
+  const std::size_t planes = std::max<std::size_t>(yaw_nodes_.size(), 1);
   for (int w = 0; w < vehicle::kWheels; ++w) {
-    for (double y : y_nodes_) {
-      lk::State s = base_;
-      s.y = y;
-      if (!range_[kLoad].empty()) s.load = range_[kLoad][0];
-      const lk::Result r = table_.query(static_cast<lk::Wheel>(w), s);
-      for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
-        const lk::Contact& c = r.contact[slot];
-        GeometryNode node;
-        node.present = c.value[lk::kRollingRadius] > 0.0;  // an empty slot is all zeros
-        node.contact_angle = c.value[lk::kContactAngle];
-        node.rolling_radius = c.value[lk::kRollingRadius];
-        node.wheel_u = c.value[lk::kWheelY];
-        geometry_[w][slot].push_back(node);
+    for (std::size_t j = 0; j < planes; ++j) {
+      for (double y : y_nodes_) {
+        lk::State s = base_;
+        s.y = y;
+        if (!yaw_nodes_.empty()) s.yaw = yaw_nodes_[j];
+        if (!range_[kLoad].empty()) s.load = range_[kLoad][0];
+        const lk::Result r = table_.query(static_cast<lk::Wheel>(w), s);
+        for (int slot = 0; slot < vehicle::kContactSlots; ++slot) {
+          const lk::Contact& c = r.contact[slot];
+          GeometryNode node;
+          node.present = c.value[lk::kRollingRadius] > 0.0;  // an empty slot is all zeros
+          node.contact_angle = c.value[lk::kContactAngle];
+          node.rolling_radius = c.value[lk::kRollingRadius];
+          node.wheel_u = c.value[lk::kWheelY];
+          geometry_[w][slot].push_back(node);
+        }
       }
     }
   }
 }
 
-void LookupContactModel::geometry_at(int wheel, int slot, double y, vehicle::SlotContact& out) const {
-  const std::vector<GeometryNode>& g = geometry_[wheel][slot];
+bool LookupContactModel::geometry_in_plane(int wheel, int slot, std::size_t plane, double y,
+                                           GeometryNode& out) const {
   const std::size_t n = y_nodes_.size();
+  const GeometryNode* g = geometry_[wheel][slot].data() + plane * n;
   std::size_t i = 0;
   double t = 0.0;
-  if (n > 1) {
-    const double yc = std::clamp(y, y_nodes_.front(), y_nodes_.back());
-    i = static_cast<std::size_t>(std::upper_bound(y_nodes_.begin(), y_nodes_.end(), yc) - y_nodes_.begin());
-    i = std::clamp<std::size_t>(i, 1, n - 1) - 1;
-    t = (yc - y_nodes_[i]) / (y_nodes_[i + 1] - y_nodes_[i]);
-  }
+  locate(y_nodes_, y, i, t);
   const GeometryNode& a = g[i];
   const GeometryNode& b = g[std::min(i + 1, n - 1)];
-  const GeometryNode* only = nullptr;
   if (a.present && b.present) {
+    out.present = true;
     out.contact_angle = a.contact_angle + t * (b.contact_angle - a.contact_angle);
     out.rolling_radius = a.rolling_radius + t * (b.rolling_radius - a.rolling_radius);
     out.wheel_u = a.wheel_u + t * (b.wheel_u - a.wheel_u);
-    return;
+    return true;
   }
-  if (a.present) only = &a;
-  if (b.present) only = &b;
-  if (!only) return;  // no point in this slot at either node: the caller falls back
-  out.contact_angle = only->contact_angle;
-  out.rolling_radius = only->rolling_radius;
-  out.wheel_u = only->wheel_u;
+  if (b.present) out = b;
+  else if (a.present) out = a;
+  return out.present;  // false: no point in this slot at either node
+}
+
+bool LookupContactModel::geometry_at(int wheel, int slot, double y, double yaw, vehicle::SlotContact& out) const {
+  std::size_t j = 0;
+  double t = 0.0;
+  locate(yaw_nodes_, yaw, j, t);
+  GeometryNode a, b;
+  const bool has_a = geometry_in_plane(wheel, slot, j, y, a);
+  const bool has_b = yaw_nodes_.size() > 1 && geometry_in_plane(wheel, slot, j + 1, y, b);
+  if (has_a && has_b) {
+    a.contact_angle += t * (b.contact_angle - a.contact_angle);
+    a.rolling_radius += t * (b.rolling_radius - a.rolling_radius);
+    a.wheel_u += t * (b.wheel_u - a.wheel_u);
+  } else if (has_b) {
+    a = b;
+  } else if (!has_a) {
+    return false;  // the caller falls back
+  }
+  out.contact_angle = a.contact_angle;
+  out.rolling_radius = a.rolling_radius;
+  out.wheel_u = a.wheel_u;
+  return true;
 }
 
 void LookupContactModel::count(const lk::State& state, lk::StatusBits query_bits) {
   ++counts_.queries;
   if (query_bits & lk::status::kOutOfRange) {
     ++counts_.out_of_range;
-    for (std::size_t v = 0; v < 5; ++v) {
+    for (std::size_t v = 0; v < kLookupVariables; ++v) {
       if (range_[v].empty()) continue;
       const double x = variable(state, static_cast<int>(v));
       if (x < range_[v][0] || x > range_[v][1]) ++counts_.outside_axis[v];
@@ -112,13 +146,15 @@ void LookupContactModel::count(const lk::State& state, lk::StatusBits query_bits
   if (query_bits & lk::status::kInvalidInput) ++counts_.invalid_input;
 }
 
-void LookupContactModel::normal(double y, const double (&load)[vehicle::kWheels],
+void LookupContactModel::normal(double y, double yaw, const double (&load)[vehicle::kWheels],
                                 vehicle::WheelContacts (&contacts)[vehicle::kWheels]) {
   lk::Query queries[vehicle::kWheels];
   lk::Result results[vehicle::kWheels];
+  if (yaw_nodes_.empty()) yaw = base_.yaw;  // the table's one yaw
   for (int w = 0; w < vehicle::kWheels; ++w) {
     lk::State s = base_;
     s.y = y;
+    s.yaw = yaw;
     s.load = load[w];  // a fixed load queried off its value is flagged out of range: reported
     // Zero creepage where the table tabulates it (the normal part does not depend on it).
     if (!range_[kXi].empty()) s.xi = 0.0;
@@ -141,11 +177,10 @@ void LookupContactModel::normal(double y, const double (&load)[vehicle::kWheels]
       out.loaded = out.normal_force > 0.0;
       loaded_[w][slot] = out.loaded;
       if (!out.loaded) continue;
-      geometry_at(w, slot, y, out);
       // A loaded patch whose rigid point sits in the other slot (its overlap reference crossed
       // the flange angle): the point it grew from.
-      if (out.rolling_radius <= 0.0) geometry_at(w, 1 - slot, y, out);
-      if (out.rolling_radius <= 0.0) {  // no point in either slot: the table's own interpolation
+      if (!geometry_at(w, slot, y, yaw, out) && !geometry_at(w, 1 - slot, y, yaw, out)) {
+        // no point in either slot: the table's own interpolation
         out.contact_angle = c.value[lk::kContactAngle];
         out.rolling_radius = c.value[lk::kRollingRadius];
         out.wheel_u = c.value[lk::kWheelY];

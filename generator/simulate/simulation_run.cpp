@@ -56,11 +56,13 @@ ProfilePtr wheel_profile(const Scene& scene) {
 }
 
 // The step's contact scene: the simulation's contact scene with the current wheel profile, the
-// model, the simulation speed (slip velocities for wear) and the lubrication factor. Profile
+// model, the simulation speed (slip velocities for wear), the lubrication factor and, when
+// `yaw_nodes` is not empty, a yaw axis at those nodes. Profile
 // files are written relative to the step directory so that the directory reproduces the step
 // with `railtab generate` / `railtab eval`.
 std::string step_scene_text(const SimulationScene& sim, const Scene& contact, const std::string& model,
-                            const fs::path& worn_wheel, const fs::path& step_dir, const std::string& name) {
+                            const std::vector<double>& yaw_nodes, const fs::path& worn_wheel,
+                            const fs::path& step_dir, const std::string& name) {
   toml::table root = scene_toml::parse(scene_toml::read_text(sim.contact_scene, "contact scene"),
                                        sim.contact_scene.string());
   auto section = [&](const char* key) -> toml::table& {
@@ -82,6 +84,11 @@ std::string step_scene_text(const SimulationScene& sim, const Scene& contact, co
   section("contact").insert_or_assign("normal_model", model);
   section("contact").insert_or_assign("speed", sim.speed);
   section("wear").insert_or_assign("lubrication_factor", sim.lubrication_factor);
+  if (!yaw_nodes.empty()) {
+    toml::array nodes;
+    for (double v : yaw_nodes) nodes.push_back(v);
+    section("grid").insert_or_assign("yaw", nodes);
+  }
   std::ostringstream text;
   text << "# Written by railtab simulate from " << sim.contact_scene.generic_string() << " (step scene).\n"
        << root << "\n";
@@ -110,6 +117,8 @@ nlohmann::json to_json(const RunSummary& r) {
       {"max_creep_force_ratio", r.max_creep_force_ratio},
       {"max_abs_y_relative_m", {{"leading", r.max_abs_y[0]}, {"trailing", r.max_abs_y[1]}}},
       {"max_abs_yaw_rad", {{"leading", r.max_abs_yaw[0]}, {"trailing", r.max_abs_yaw[1]}}},
+      {"max_y_over_q", {{"leading", r.max_y_over_q[0]}, {"trailing", r.max_y_over_q[1]}}},
+      {"yaw_axis", r.yaw_axis},
       {"queries", r.queries},
       {"out_of_range", r.out_of_range},
       {"invalid_input", r.invalid_input},
@@ -118,7 +127,9 @@ nlohmann::json to_json(const RunSummary& r) {
       {"status", status::describe(r.status)},
   };
   nlohmann::json axes = nlohmann::json::object();
-  for (std::size_t v = 0; v < 5; ++v) axes[kLookupVariableNames[v]] = r.outside_axis[v];
+  for (std::size_t v = 0; v < kLookupVariables; ++v) {
+    if (v != kLookupVariables - 1 || r.yaw_axis) axes[kLookupVariableNames[v]] = r.outside_axis[v];  // yaw: yaw tables only
+  }
   j["outside_axis"] = axes;
   return j;
 }
@@ -396,6 +407,7 @@ nlohmann::json summary_json(const SimulationScene& sim, const SimulationOptions&
   j["contact_scene"] = sim.contact_scene.generic_string();
   j["contact"] = options.direct ? "direct (geometry + normal model + FASTSIM every evaluation)" : "table lookup";
   j["dynamics_model"] = sim.dynamics_model;
+  if (!options.yaw_nodes.empty()) j["yaw_nodes_rad"] = options.yaw_nodes;  // --yaw-nodes: the tables' yaw axis
   j["vehicle"] = "bogie (two wheelsets, frame, quasi-static car body): docs/vehicle-model.md";
   j["positions"] = sim.positions;
   j["speed_m_per_s"] = sim.speed;
@@ -520,7 +532,8 @@ SimulationSummary run_simulation(const SimulationScene& sim, const SimulationOpt
       const std::string name = fmt::format("{}-{}-step{}", sim.name, step.label, k);
       const fs::path scene_file = dir / "scene.toml";
       write_file(scene_file,
-                 step_scene_text(sim, contact, sim.dynamics_model, branches[group.front()].worn_wheel, dir, name));
+                 step_scene_text(sim, contact, sim.dynamics_model, options.yaw_nodes, branches[group.front()].worn_wheel,
+                                 dir, name));
       const Scene scene = load_scene(scene_file);
       const StepContact contact_model = step_contact(step, scene, scene_file, dir);
 

@@ -32,6 +32,9 @@ struct SimulationOptions {
   bool direct = false;              // evaluate geometry + normal + FASTSIM each call, no table
   double duration = 0.0;            // > 0: simulate at most this long per run [s] (speed checks)
   std::vector<std::string> post_processors;  // replaces the scene's wear post-processors when not empty
+  // Not empty: every step's contact scene gets [grid] yaw = these nodes [rad], so the tables have a
+  // yaw axis and the dynamics reads each wheelset's yaw from them (the yaw-free run's comparison).
+  std::vector<double> yaw_nodes;
   std::ostream* log = nullptr;      // progress lines; nullptr = silent
   // Set = stop (Ctrl-C, SIGTERM): run_simulation throws Interrupted; every file already written is
   // whole (written through a temporary), the one in progress is not left behind.

@@ -33,6 +33,8 @@ WearAccumulator::WearAccumulator(const Scene& scene, const WearGrid& grid)
 WearAccumulator::WearAccumulator(const Scene& scene, const std::string& post_processor,
                                  const WearGrid& grid)
     : solver_(make_geometry_solver(scene)),
+      yaw_axis_(scene.grids.yaw.size() > 1),
+      fixed_yaw_(fixed_yaw(scene)),
       wheel_wear_(make_wheel_wear(scene, post_processor)),
       grid_(grid) {
   const std::size_t n = bin_count(grid);
@@ -57,7 +59,7 @@ std::uint32_t WearAccumulator::sample(double y_relative, const double (&load)[ve
   StatusBits bits = 0;
   WheelsetContactGeometry geometry;
   try {
-    geometry = solver_.solve({y_relative, solver_.equilibrium_roll(y_relative)});
+    geometry = solver_.solve({y_relative, solver_.equilibrium_roll(y_relative), yaw_axis_ ? motion.yaw : fixed_yaw_});
   } catch (const Error&) {
     failures_ += vehicle::kWheels;
     return status::kFailed;

@@ -41,7 +41,8 @@ class WearAccumulator {
   // One sample standing for `distance` [m] rolled at this state: wheelset lateral displacement
   // relative to the rails `y_relative` [m] (roll at the kinematic equilibrium), the vertical
   // contact force of each wheel [N] (the normal problem is solved for it), and the wheelset motion (speed, yaw, rates, curvature, spin speed) for the
-  // creepages. Returns the OR of the status bits of every patch solved. A failing solve is
+  // creepages. The geometry is at the motion's yaw when the scene tabulates yaw ([grid] yaw with
+  // several values, as the dynamics' table), otherwise at the scene's fixed yaw (0 without the key). Returns the OR of the status bits of every patch solved. A failing solve is
   // counted (failures(), once per wheel) and adds no wear for that wheel; the returned bits then
   // carry kFailed. A wheel with zero load adds nothing (kLiftOff). Throws railtab::Error only for
   // bad arguments: a load or distance that is negative or not finite, a speed that is not > 0.
@@ -66,6 +67,8 @@ class WearAccumulator {
   void add_strip(int wheel, double u_centre, double width_u, double depth);
 
   ContactGeometrySolver solver_;
+  bool yaw_axis_ = false;    // the scene tabulates yaw: the geometry follows the motion's yaw
+  double fixed_yaw_ = 0.0;   // otherwise this yaw [rad]
   std::unique_ptr<WheelWear> wheel_wear_;
   WearGrid grid_;
   std::vector<double> u_;

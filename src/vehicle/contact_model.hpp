@@ -49,9 +49,10 @@ class ContactModel {
   virtual ~ContactModel() = default;
 
   // Geometry and normal contact of both wheels at wheelset lateral displacement `y` relative to
-  // the rails [m] (track frame, + left) and vertical wheel loads `load` [N]. Unloaded slots come
-  // back with loaded = false.
-  virtual void normal(double y, const double (&load)[kWheels],
+  // the rails [m] (track frame, + left), yaw `yaw` relative to the track [rad] (docs/conventions.md)
+  // and vertical wheel loads `load` [N]. A source that does not resolve yaw (a table without a yaw
+  // axis) answers at its own fixed yaw. Unloaded slots come back with loaded = false.
+  virtual void normal(double y, double yaw, const double (&load)[kWheels],
                       WheelContacts (&contacts)[kWheels]) = 0;
 
   // Creep forces of every loaded slot of the last normal() call, each at its own creepage

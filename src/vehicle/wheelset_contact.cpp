@@ -56,7 +56,7 @@ void evaluate_wheelset_contact(const WheelsetParameters& p, ContactModel& contac
   if (std::abs(transfer) > q_static - q_min) out.status |= status::kLiftOff;
 
   out.y_relative = x.y - track.lateral_irregularity;
-  contact.normal(out.y_relative, out.load, out.contacts);
+  contact.normal(out.y_relative, x.yaw, out.load, out.contacts);
 
   // Creepages use the motion relative to the design frame (the irregularity enters through the
   // geometry only, to first order).
@@ -96,7 +96,7 @@ WheelsetRates wheelset_rates(const WheelsetParameters& p, ContactModel& contact,
   // differences at the current creepages (all slots at once: each slot's forces depend on its own
   // creepage only).
   WheelContacts refreshed[kWheels];
-  contact.normal(base.y_relative, base.load, refreshed);  // creep() refers to the last normal()
+  contact.normal(base.y_relative, base.motion.yaw, base.load, refreshed);  // creep() refers to the last normal()
   constexpr double h = 1e-6;
   SlotCreepage plus[kWheels][kContactSlots], minus[kWheels][kContactSlots];
   SlotForces f_plus[kWheels][kContactSlots], f_minus[kWheels][kContactSlots];
@@ -133,7 +133,7 @@ WheelsetRates wheelset_rates(const WheelsetParameters& p, ContactModel& contact,
   // d(sum -N sin g)/dy at the same loads. Last, so the creep() calls above saw the base normal().
   auto normal_lateral_force = [&](double y) {
     WheelContacts contacts[kWheels];
-    contact.normal(y, base.load, contacts);
+    contact.normal(y, base.motion.yaw, base.load, contacts);
     double f = 0.0;
     for (const WheelContacts& wheel : contacts) {
       for (const SlotContact& c : wheel.slot) {

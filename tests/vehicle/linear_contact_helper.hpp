@@ -27,7 +27,7 @@ class LinearContact : public ContactModel {
   int normal_calls = 0;
   int creep_calls = 0;
 
-  void normal(double y, const double (&load)[kWheels],
+  void normal(double y, double /*yaw*/, const double (&load)[kWheels],
               WheelContacts (&contacts)[kWheels]) override {
     ++normal_calls;
     for (int w = 0; w < kWheels; ++w) {

@@ -19,7 +19,7 @@ class LawContact : public ContactModel {
  public:
   std::function<double(int wheel, double xi)> law;
   int calls = 0;
-  void normal(double, const double (&)[kWheels], WheelContacts (&)[kWheels]) override {}
+  void normal(double, double, const double (&)[kWheels], WheelContacts (&)[kWheels]) override {}
   void creep(const SlotCreepage (&creepage)[kWheels][kContactSlots],
              SlotForces (&forces)[kWheels][kContactSlots]) override {
     ++calls;

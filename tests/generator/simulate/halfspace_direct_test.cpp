@@ -37,7 +37,7 @@ phi = [0.0]
   DirectContactModel direct(scene);
   const double load[vehicle::kWheels] = {78.5e3, 78.5e3};
   vehicle::WheelContacts contacts[vehicle::kWheels];
-  direct.normal(0.0, load, contacts);
+  direct.normal(0.0, 0.0, load, contacts);
   vehicle::SlotCreepage creepage[vehicle::kWheels][vehicle::kContactSlots];
   for (auto& wheel : creepage) wheel[0] = wheel[1] = {0.002, 0.0, 0.0};  // xi node 1
   vehicle::SlotForces forces[vehicle::kWheels][vehicle::kContactSlots];

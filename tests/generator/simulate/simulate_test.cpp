@@ -133,14 +133,55 @@ TEST_F(SimulateTest, OffsetWheelsetStaysBoundedAndFinite) {
 TEST_F(SimulateTest, OutOfRangeQueriesAreCountedPerAxis) {
   LookupContactModel contact(table());
   vehicle::WheelContacts contacts[vehicle::kWheels];
-  contact.normal(0.0, {40e3, 40e3}, contacts);
+  contact.normal(0.0, 0.0, {40e3, 40e3}, contacts);
   EXPECT_EQ(contact.counts().out_of_range, 0u);
-  contact.normal(0.02, {40e3, 90e3}, contacts);  // y beyond 10 mm, right load beyond 60 kN
+  contact.normal(0.02, 0.0, {40e3, 90e3}, contacts);  // y beyond 10 mm, right load beyond 60 kN
   EXPECT_EQ(contact.counts().out_of_range, 2u);
   EXPECT_EQ(contact.counts().outside_axis[0], 2u);  // y, both wheels
   EXPECT_EQ(contact.counts().outside_axis[1], 1u);  // load, right wheel
-  contact.normal(std::nan(""), {40e3, 40e3}, contacts);
+  contact.normal(std::nan(""), 0.0, {40e3, 40e3}, contacts);
   EXPECT_EQ(contact.counts().invalid_input, 2u);
+}
+
+// The lookup and the direct model at a grid node (y, yaw, loads and creepages on nodes) agree to
+// the table's storage rounding; returns the number of loaded slots compared.
+int expect_lookup_matches_direct(LookupContactModel& lookup_model, DirectContactModel& direct_model, double y,
+                                 double yaw, const double (&load)[vehicle::kWheels]) {
+  vehicle::WheelContacts a[vehicle::kWheels], b[vehicle::kWheels];
+  lookup_model.normal(y, yaw, load, a);
+  direct_model.normal(y, yaw, load, b);
+  vehicle::SlotCreepage creepage[vehicle::kWheels][vehicle::kContactSlots];
+  for (auto& wheel : creepage) {
+    wheel[0] = {0.001, -0.004, 0.5};  // creepage nodes
+    wheel[1] = {-0.02, 0.004, -2.0};
+  }
+  vehicle::SlotForces fa[vehicle::kWheels][vehicle::kContactSlots], fb[vehicle::kWheels][vehicle::kContactSlots];
+  lookup_model.creep(creepage, fa);
+  direct_model.creep(creepage, fb);
+  int loaded = 0;
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    for (int k = 0; k < vehicle::kContactSlots; ++k) {
+      const vehicle::SlotContact& ca = a[w].slot[k];
+      const vehicle::SlotContact& cb = b[w].slot[k];
+      SCOPED_TRACE(testing::Message() << "y = " << y << " yaw = " << yaw << " wheel " << w << " slot " << k);
+      EXPECT_EQ(ca.loaded, cb.loaded);
+      if (!ca.loaded || !cb.loaded) continue;
+      ++loaded;
+      const double n = cb.normal_force;
+      // The creep part (forces and the per-creepage N) is stored as float32 rounded to 20
+      // significant bits (format 2.2, table/storage_precision.hpp): each value within 2^-20 of
+      // itself, a force built from F / (mu N) and N within 4 x 2^-20 of N. Geometry is float64.
+      const double stored = 1e-9 * n + 4.0 * kStoredRounding * n;
+      EXPECT_NEAR(ca.normal_force, n, stored);
+      EXPECT_NEAR(ca.contact_angle, cb.contact_angle, 1e-9);
+      EXPECT_NEAR(ca.rolling_radius, cb.rolling_radius, 1e-12);
+      EXPECT_NEAR(ca.wheel_u, cb.wheel_u, 1e-12);
+      EXPECT_NEAR(fa[w][k].fx, fb[w][k].fx, stored);
+      EXPECT_NEAR(fa[w][k].fy, fb[w][k].fy, stored);
+      EXPECT_NEAR(fa[w][k].mz, fb[w][k].mz, stored);
+    }
+  }
+  return loaded;
 }
 
 TEST_F(SimulateTest, LookupAndDirectAgreeAtAGridNode) {
@@ -148,43 +189,80 @@ TEST_F(SimulateTest, LookupAndDirectAgreeAtAGridNode) {
   DirectContactModel direct_model(scene());
   const double load[vehicle::kWheels] = {40e3, 60e3};  // load nodes
   for (double y : {0.0, 0.003, -0.007}) {               // y nodes, tread and flange contact
-    vehicle::WheelContacts a[vehicle::kWheels], b[vehicle::kWheels];
-    lookup_model.normal(y, load, a);
-    direct_model.normal(y, load, b);
-    vehicle::SlotCreepage creepage[vehicle::kWheels][vehicle::kContactSlots];
-    for (auto& wheel : creepage) {
-      wheel[0] = {0.001, -0.004, 0.5};  // creepage nodes
-      wheel[1] = {-0.02, 0.004, -2.0};
-    }
-    vehicle::SlotForces fa[vehicle::kWheels][vehicle::kContactSlots], fb[vehicle::kWheels][vehicle::kContactSlots];
-    lookup_model.creep(creepage, fa);
-    direct_model.creep(creepage, fb);
-    int loaded = 0;
-    for (int w = 0; w < vehicle::kWheels; ++w) {
-      for (int k = 0; k < vehicle::kContactSlots; ++k) {
-        const vehicle::SlotContact& ca = a[w].slot[k];
-        const vehicle::SlotContact& cb = b[w].slot[k];
-        SCOPED_TRACE(testing::Message() << "y = " << y << " wheel " << w << " slot " << k);
-        ASSERT_EQ(ca.loaded, cb.loaded);
-        if (!ca.loaded) continue;
-        ++loaded;
-        const double n = cb.normal_force;
-        // The creep part (forces and the per-creepage N) is stored as float32 rounded to 20
-        // significant bits (format 2.2, table/storage_precision.hpp): each value within 2^-20 of
-        // itself, a force built from F / (mu N) and N within 4 x 2^-20 of N. Geometry is float64.
-        const double stored = 1e-9 * n + 4.0 * kStoredRounding * n;
-        EXPECT_NEAR(ca.normal_force, n, stored);
-        EXPECT_NEAR(ca.contact_angle, cb.contact_angle, 1e-9);
-        EXPECT_NEAR(ca.rolling_radius, cb.rolling_radius, 1e-12);
-        EXPECT_NEAR(ca.wheel_u, cb.wheel_u, 1e-12);
-        EXPECT_NEAR(fa[w][k].fx, fb[w][k].fx, stored);
-        EXPECT_NEAR(fa[w][k].fy, fb[w][k].fy, stored);
-        EXPECT_NEAR(fa[w][k].mz, fb[w][k].mz, stored);
-      }
-    }
-    EXPECT_GE(loaded, 2);
+    EXPECT_GE(expect_lookup_matches_direct(lookup_model, direct_model, y, 0.0, load), 2) << "y = " << y;
   }
   EXPECT_EQ(direct_model.failures(), 0u);
+}
+
+// A table with a yaw axis is read at the wheelset's yaw: the lookup model at a yaw node is the
+// direct model at that yaw, which differs measurably from yaw 0 in flange contact; a yaw-free
+// table answers the same at any yaw and counts nothing. Without the yaw in the lookup State the
+// lookup would return the yaw-0 answer and miss the direct model's.
+TEST_F(SimulateTest, YawTableIsReadAtTheWheelsetYaw) {
+  const fs::path dir = *dir_ / "yaw";
+  fs::create_directories(dir);
+  std::string text = kSceneText;
+  const std::string creep_grid = text.substr(text.find("xi = "));
+  text.replace(text.find("xi = "), creep_grid.size(),
+               "yaw = [-0.01, 0.0, 0.01]\n"
+               "xi = [-0.02, 0.0, 0.001]\neta = [-0.004, 0.0, 0.004]\nphi = [-2.0, 0.0, 0.5]\n");
+  std::ofstream(dir / "scene.toml") << text;
+  GenerateOptions g;
+  g.scene = dir / "scene.toml";
+  g.output = dir / "table.h5";
+  g.threads = 2;
+  generate_table(g);
+  LookupContactModel yaw_lookup(lookup::Table::load(g.output.string()));
+  DirectContactModel yaw_direct(load_scene(g.scene));
+  ASSERT_TRUE(yaw_lookup.has_yaw_axis());
+  ASSERT_TRUE(yaw_direct.has_yaw_axis());
+
+  const double load[vehicle::kWheels] = {40e3, 60e3};
+  double largest_angle_change = 0.0, largest_force_change = 0.0;
+  for (double y : {0.0, 0.007, -0.008}) {
+    for (double yaw : {0.01, -0.01}) {
+      EXPECT_GE(expect_lookup_matches_direct(yaw_lookup, yaw_direct, y, yaw, load), 2) << "y = " << y;
+      vehicle::WheelContacts at_yaw[vehicle::kWheels], at_zero[vehicle::kWheels];
+      yaw_lookup.normal(y, yaw, load, at_yaw);
+      yaw_lookup.normal(y, 0.0, load, at_zero);
+      for (int w = 0; w < vehicle::kWheels; ++w) {
+        for (int k = 0; k < vehicle::kContactSlots; ++k) {
+          const vehicle::SlotContact& a = at_yaw[w].slot[k];
+          const vehicle::SlotContact& b = at_zero[w].slot[k];
+          if (!a.loaded || !b.loaded) continue;
+          largest_angle_change = std::max(largest_angle_change, std::abs(a.contact_angle - b.contact_angle));
+          largest_force_change = std::max(largest_force_change, std::abs(a.normal_force - b.normal_force) / b.normal_force);
+        }
+      }
+    }
+  }
+  std::printf("yaw +-10 mrad against 0: contact angle up to %.3e rad, normal force up to %.3e relative\n",
+              largest_angle_change, largest_force_change);
+  // Far above the storage rounding (float64 geometry, 4 x 2^-20 for N): yaw reached the table.
+  EXPECT_GT(largest_angle_change, 1e-4);
+  EXPECT_GT(largest_force_change, 100.0 * kStoredRounding);
+  EXPECT_EQ(yaw_lookup.counts().out_of_range, 0u);
+
+  // Beyond the axis: clamped to the last node and counted against yaw.
+  vehicle::WheelContacts beyond[vehicle::kWheels], last[vehicle::kWheels];
+  yaw_lookup.normal(0.007, 0.02, load, beyond);
+  EXPECT_EQ(yaw_lookup.counts().outside_axis[5], 2u);  // yaw, both wheels
+  yaw_lookup.normal(0.007, 0.01, load, last);
+  EXPECT_EQ(beyond[0].slot[1].normal_force, last[0].slot[1].normal_force);
+
+  // The yaw-free table: yaw 0 is the only yaw it has, so any yaw gives the same answer, unflagged.
+  LookupContactModel plain(table());
+  EXPECT_FALSE(plain.has_yaw_axis());
+  vehicle::WheelContacts p0[vehicle::kWheels], p1[vehicle::kWheels];
+  plain.normal(0.007, 0.0, load, p0);
+  plain.normal(0.007, 0.01, load, p1);
+  for (int w = 0; w < vehicle::kWheels; ++w) {
+    for (int k = 0; k < vehicle::kContactSlots; ++k) {
+      EXPECT_EQ(p0[w].slot[k].normal_force, p1[w].slot[k].normal_force);
+      EXPECT_EQ(p0[w].slot[k].contact_angle, p1[w].slot[k].contact_angle);
+    }
+  }
+  EXPECT_EQ(plain.counts().out_of_range, 0u);
 }
 
 // A bogie with wheel loads inside the test table's 20-60 kN: (1500 + 20620 / 4 + 3000 / 2) g / 2

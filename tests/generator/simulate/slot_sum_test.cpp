@@ -267,7 +267,7 @@ TEST(SlotSum, DirectModelAgreesWithTheTableAtAGridNode) {
   DirectContactModel direct(scene());
   const double load[vehicle::kWheels] = {kLoad, kLoad};
   vehicle::WheelContacts contacts[vehicle::kWheels];
-  direct.normal(kY, load, contacts);
+  direct.normal(kY, 0.0, load, contacts);
   vehicle::SlotCreepage creepage[vehicle::kWheels][vehicle::kContactSlots];
   for (auto& wheel : creepage) {
     wheel[0] = {0.002, -0.002, 0.5};  // creepage nodes: xi index 2, eta 0, phi 2
