@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // Exact derivatives of one block's interpolant (Table::query_derivatives, derivatives.cpp): the
 // values of one slot and their partial derivatives with respect to the block's coordinates, for
-// the multilinear and the cubic Hermite kernels of a cell no jump cuts and for the one-sided
-// linear rule of a cut cell (jump_side.hpp). Same cells, stencils and one-sided pieces as the
-// value kernels (interpolate.cpp, jump_side.cpp); nothing here changes a value the query returns.
+// the multilinear kernel of a cell no jump cuts and for the one-sided linear rule of a cut cell
+// (jump_side.hpp). Same cells and one-sided pieces as the value kernels (interpolate.cpp,
+// jump_side.cpp); nothing here changes a value the query returns. The cubic kernel gives its
+// derivatives itself, from its own pass (query_generic with a BlockGradient sink).
 #pragma once
 
 #include <cstddef>
@@ -23,6 +24,15 @@ struct BlockGradient {
   double d[kMaxSlotValues][kNumVars];
 };
 
+// The query of slots [slot_begin, slot_end) (valid slots) of wheel w (0 or 1, else every contact
+// kInvalidInput) without the fused fast path (table.cpp): values and statuses into
+// contact[0 .. slot_end - slot_begin - 1]; returns the query bits (kOutOfRange, kInvalidInput).
+// grads: null, or (cubic method) grads[block][s - slot_begin] receives each block's values and
+// their derivatives from the same pass (the derivative query, derivatives.cpp); a cut cell
+// (jump_side.hpp) leaves them unset.
+StatusBits query_generic(const TableData& d, int w, const State& state, int slot_begin, int slot_end,
+                         Contact* contact, BlockGradient (*grads)[kMaxSlots]) noexcept;
+
 // Multilinear value and derivatives with respect to the cell fractions t[0 .. n-1] of n_values
 // values of T (double or float) at the 2^n corners of the cell whose first record is `p`
 // (stride: bytes between neighbouring nodes per dimension). out_dt[k][dim] = d value_k / d t_dim.
@@ -36,11 +46,6 @@ inline double inverse_width(const Axis& axis, const AxisLoc& loc) noexcept { ret
 // A cell no jump cuts: the multilinear kernel's interpolant.
 void linear_gradient(const Block& b, const Axis* axes, const AxisLoc* loc, int slot,
                      BlockGradient& g) noexcept;
-
-// A cell no jump cuts: the tensor cubic Hermite kernel's interpolant (same stencils and slopes,
-// loc[..].cut_stencil honoured). Exact derivative of each axis's Hermite cubic.
-void cubic_gradient(const Block& b, const Axis* axes, const AxisLoc* loc, int slot,
-                    BlockGradient& g) noexcept;
 
 // d piece.t / d y of a jump piece at load node `load_node` (absolute index) for the query's y:
 // 1 / (to - from) while the fraction is inside [0, 1], 0 where it is clamped (the one-sided value

@@ -61,12 +61,18 @@ struct SlotGradient {
   double (*d)[kNumVars] = nullptr;
 };
 
-void block_gradient(const TableData& d, int w, int bi, const Location& at, const AxisLoc* loc, int slot,
-                    BlockGradient& g) noexcept {
-  const Block& b = d.block[w][bi];
-  if (at.cut) jump_gradient(d, w, bi, loc, at.pieces, slot, g);
-  else if (d.method == Method::kLinear) linear_gradient(b, d.axis, loc, slot, g);
-  else cubic_gradient(b, d.axis, loc, slot, g);
+// Each block's values and derivatives per slot from the cubic kernel's own pass (query_generic).
+using Captured = BlockGradient[kNumParts][kMaxSlots];
+
+// One block's values and derivatives for one slot: one-sided in a cut cell, the multilinear
+// cell's, or the cubic kernel's as the query's pass left them in `captured` (into `scratch` or
+// from `captured`).
+const BlockGradient& block_gradient(const TableData& d, int w, int bi, const Location& at, const AxisLoc* loc,
+                                    int slot, const Captured& captured, BlockGradient& scratch) noexcept {
+  if (at.cut) jump_gradient(d, w, bi, loc, at.pieces, slot, scratch);
+  else if (d.method == Method::kLinear) linear_gradient(d.block[w][bi], d.axis, loc, slot, scratch);
+  else return captured[bi][slot];
+  return scratch;
 }
 
 // The slot's reciprocal creepage scales and their derivatives with respect to y, roll, yaw and load:
@@ -101,7 +107,8 @@ void scales(const TableData& d, int w, const Location& at, int slot, double inv[
 // The normalised creep block of one slot: its v cells at the slot's scales, its gradient chained
 // through v to y, roll, load and the physical creepages, then the forces scaled back to N
 // (denormalise_creep) with their derivatives.
-void normalised_creep(const TableData& d, int w, int bi, const Location& at, int slot, SlotGradient& out) noexcept {
+void normalised_creep(const TableData& d, int w, int bi, const Location& at, int slot, const Captured& captured,
+                      SlotGradient& out) noexcept {
   const CreepMap& map = d.creep_map;
   const Block& b = d.block[w][bi];
   double inv[3], dinv[3][kNumVars];
@@ -120,8 +127,8 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
                            loc[cv]);
     coordinate_gradient(map, k, xn[k], inv[k], dxn[k], dinv[k], dv[k]);
   }
-  BlockGradient g;
-  block_gradient(d, w, bi, at, loc, slot, g);
+  BlockGradient scratch;
+  const BlockGradient& g = block_gradient(d, w, bi, at, loc, slot, captured, scratch);
   for (int k = 0; k < b.n_values; ++k) out.value[b.output_of[k]] = g.value[k];
   chain_creep_coordinates(b, g, dv, out.d);
   if (!d.has_part[kCreep]) return;
@@ -129,15 +136,16 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
   denormalise_creep_gradient(map, xn, dxn, out.value, std::cos(angle), std::sin(angle), out.d);
 }
 
-void slot_gradient(const TableData& d, int w, const Location& at, int slot, SlotGradient& out) noexcept {
+void slot_gradient(const TableData& d, int w, const Location& at, int slot, const Captured& captured,
+                   SlotGradient& out) noexcept {
   for (int bi = 0; bi < d.n_blocks; ++bi) {
     if (d.creep_map.active && bi == d.creep_block) {
-      normalised_creep(d, w, bi, at, slot, out);
+      normalised_creep(d, w, bi, at, slot, captured, out);
       continue;
     }
     const Block& b = d.block[w][bi];
-    BlockGradient g;
-    block_gradient(d, w, bi, at, at.loc, slot, g);
+    BlockGradient scratch;
+    const BlockGradient& g = block_gradient(d, w, bi, at, at.loc, slot, captured, scratch);
     for (int k = 0; k < b.n_values; ++k) {
       const int o = b.output_of[k];
       out.value[o] = g.value[k];
@@ -165,7 +173,15 @@ bool Table::query_derivatives(Wheel wheel, const State& state, Result& result, D
       return true;
     }
   }
-  query(wheel, state, result);
+  // The cubic kernel's derivatives come from the value pass itself (captured); the other
+  // methods' from the block gradients below.
+  Captured captured;
+  if (d.method == Method::kCubic) {
+    result.n_slots = d.n_slots;
+    result.status = query_generic(d, wf, state, 0, d.n_slots, result.contact, captured);
+  } else {
+    query(wheel, state, result);
+  }
   const int ns = std::max(0, std::min(result.n_slots, kMaxSlots));
   for (int s = 0; s < ns; ++s)
     for (auto& row : derivatives.d[s])
@@ -178,7 +194,7 @@ bool Table::query_derivatives(Wheel wheel, const State& state, Result& result, D
   for (int s = 0; s < ns; ++s) {
     SlotGradient g;
     g.d = derivatives.d[s];
-    slot_gradient(d, w, at, s, g);
+    slot_gradient(d, w, at, s, captured, g);
     for (int var = 0; var < kNumVars; ++var)
       if (at.frozen[var])
         for (int o = 0; o < kNumOutputs; ++o) derivatives.d[s][o][var] = 0.0;

@@ -12,6 +12,7 @@
 #include <limits>
 #include <utility>
 
+#include "block_gradient.hpp"
 #include "part_spec.hpp"
 #include "weighted_sum.hpp"
 
@@ -80,6 +81,7 @@ struct CubicAxis {
   double c1[4] = {};          // slope at node i+1 = sum_j c1[j] f[j]
   double h00 = 0, h01 = 0;    // Hermite value basis at t
   double h10 = 0, h11 = 0;    // Hermite slope basis at t, times the cell width
+  double t = 0;               // fraction in the cell
 };
 
 CubicAxis make_cubic_axis(const Axis& axis, const AxisLoc& l, std::size_t stride) noexcept {
@@ -122,6 +124,7 @@ CubicAxis make_cubic_axis(const Axis& axis, const AxisLoc& l, std::size_t stride
   a.h01 = -2 * t3 + 3 * t2;
   a.h10 = (t3 - 2 * t2 + t) * h;
   a.h11 = (t3 - t2) * h;
+  a.t = t;
   return a;
 }
 
@@ -173,69 +176,63 @@ double hermite(const CubicAxis& a, const double f[4], bool monotone) noexcept {
   return a.h00 * f[1] + a.h01 * f[2] + a.h10 * m0 + a.h11 * m1;
 }
 
-// The cubic Hermite of one axis as weights on the 2-4 consecutive nodes of its stencil.
-struct AxisWeights {
-  int first = 0;      // first stencil node
-  int count = 0;      // stencil nodes (2..4)
-  double w[4] = {};   // their weights
-};
-
-AxisWeights cubic_weights(const CubicAxis& a) noexcept {
-  AxisWeights out;
+// The cubic Hermite of one axis as weights on the 2-4 consecutive nodes of its stencil and, with
+// `derivative`, the weights of its derivative (the basis differentiated; left 0 otherwise: the
+// value query does not pay for them).
+StencilWeights cubic_weights(const CubicAxis& a, bool derivative) noexcept {
+  StencilWeights out;
   const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
   out.first = static_cast<int>(a.idx[lo]);
   out.count = hi - lo + 1;
   for (int j = lo; j <= hi; ++j)
-    out.w[j - lo] = (j == 1 ? a.h00 : 0.0) + (j == 2 ? a.h01 : 0.0) + a.h10 * a.c0[j] +
-                    a.h11 * a.c1[j];
+    out.w[j - lo] = (j == 1 ? a.h00 : 0.0) + (j == 2 ? a.h01 : 0.0) + a.h10 * a.c0[j] + a.h11 * a.c1[j];
+  if (!derivative) return out;
+  // d/dx of the basis: d h00 / dt / h, d h01 / dt / h; the slope basis's width cancels.
+  const double t = a.t, t2 = t * t, h = a.x[2] - a.x[1];
+  const double d00 = (6 * t2 - 6 * t) / h, d01 = (-6 * t2 + 6 * t) / h;
+  const double d10 = 3 * t2 - 4 * t + 1, d11 = 3 * t2 - 2 * t;
+  for (int j = lo; j <= hi; ++j)
+    out.dw[j - lo] = (j == 1 ? d00 : 0.0) + (j == 2 ? d01 : 0.0) + d10 * a.c0[j] + d11 * a.c1[j];
   return out;
 }
 
-// Tensor cubic Hermite as one weighted sum: the weights of the axes but the last multiplied out
-// into a list (at most 4^(kMaxDims-1) entries), the last (fastest, unit-stride records) axis in
-// the inner loop. NV values of T per record, fixed at compile time as in the linear kernel.
+// Tensor cubic Hermite contracted one dimension at a time (cubic_contract in weighted_sum.hpp),
+// every record of the stencil read once. With `grad`, the same pass also gives each value's
+// derivatives (grad[s - slot_begin], per unit of each block variable): the values are the same
+// bytes either way. NV values of T per record, fixed at compile time as in the linear kernel.
 template <int NV, bool kAvx2, class T>
-void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot_begin,
-                  int slot_end, Contact* contact) noexcept {
-  constexpr int kMaxOuter = 1 << (2 * (kMaxDims - 1));
+void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot_begin, int slot_end,
+                  Contact* contact, BlockGradient* grad) noexcept {
   const int n_dims = b.n_dims;
   std::size_t base = 0, cell = 0;
-  AxisWeights aw[kMaxDims];
+  StencilWeights sw[kMaxDims];
   for (int d = 0; d < n_dims; ++d) {
     const AxisLoc& l = loc[b.var[d]];
-    aw[d] = cubic_weights(make_cubic_axis(axes[b.var[d]], l, b.stride[d]));
-    base += static_cast<std::size_t>(aw[d].first) * b.stride[d];
+    sw[d] = cubic_weights(make_cubic_axis(axes[b.var[d]], l, b.stride[d]), grad != nullptr);
+    base += static_cast<std::size_t>(sw[d].first) * b.stride[d];
     cell += static_cast<std::size_t>(l.i) * b.stride[d];
   }
-  double outer_w[kMaxOuter];
-  std::size_t outer_off[kMaxOuter];
-  int n_outer = 1;
-  outer_w[0] = 1.0;
-  outer_off[0] = 0;
-  for (int d = 0; d + 1 < n_dims; ++d) {
-    // Expand in place, highest stencil node first so entries 0..n_outer-1 are read last.
-    for (int j = aw[d].count - 1; j >= 0; --j)
-      for (int o = n_outer - 1; o >= 0; --o) {
-        outer_w[j * n_outer + o] = outer_w[o] * aw[d].w[j];
-        outer_off[j * n_outer + o] = outer_off[o] + static_cast<std::size_t>(j) * b.stride[d];
-      }
-    n_outer *= aw[d].count;
-  }
-  AxisWeights inner;  // the last axis (none: one node of weight 1)
-  inner.count = 1;
-  inner.w[0] = 1.0;
-  std::size_t inner_stride = 0;
-  if (n_dims > 0) {
-    inner = aw[n_dims - 1];
-    inner_stride = b.stride[n_dims - 1];
-  }
-  const auto sum = kAvx2 ? &stencil_sum_avx2<NV, T> : &stencil_sum_sse2<NV, T>;
   for (int s = slot_begin; s < slot_end; ++s) {
     RecordPtr data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size;
-    double values[NV];
-    sum(data + base, outer_w, outer_off, n_outer, inner.w, inner.count, inner_stride, values);
-    store_values(b, values, contact[s - slot_begin]);
-    store_status(b, data + cell, contact[s - slot_begin]);
+    Contact& c = contact[s - slot_begin];
+    if (grad) {
+      double sums[(kMaxDims + 1) * NV];
+      if constexpr (kAvx2) cubic_sum_avx2<true, NV, T>(data + base, sw, b.stride, n_dims, sums);
+      else cubic_sum_sse2<true, NV, T>(data + base, sw, b.stride, n_dims, sums);
+      BlockGradient& g = grad[s - slot_begin];
+      for (int k = 0; k < NV; ++k) {
+        g.value[k] = sums[k];
+        for (double& x : g.d[k]) x = 0.0;
+        for (int d = 0; d < n_dims; ++d) g.d[k][b.var[d]] = sums[(1 + d) * NV + k];
+      }
+      store_values(b, sums, c);
+    } else {
+      double values[NV];
+      if constexpr (kAvx2) cubic_sum_avx2<false, NV, T>(data + base, sw, b.stride, n_dims, values);
+      else cubic_sum_sse2<false, NV, T>(data + base, sw, b.stride, n_dims, values);
+      store_values(b, values, c);
+    }
+    store_status(b, data + cell, c);
   }
 }
 

@@ -27,10 +27,13 @@ bool use_avx2() noexcept;
 
 // Tensor-product cubic Hermite, 4 nodes per axis (fewer at the table edge), slopes from the
 // parabola through 3 neighbouring nodes (exact for quadratics). Linear in the node values, so
-// each axis reduces to 2-4 weights on consecutive nodes and the query is one weighted sum over
-// the stencil's records (576 for the default scene's 5-D creep block, whose load and phi axes
-// have 3 nodes). Status as in the linear kernel (the cell's). Chosen at load by `n_values`.
+// each axis reduces to 2-4 weights on consecutive nodes (StencilWeights) and the query is a
+// weighted sum over the stencil's records (576 for the default scene's 5-D creep block, whose
+// load and phi axes have 3 nodes), contracted one axis at a time. Status as in the linear kernel
+// (the cell's). With a BlockGradient sink the same pass gives the exact derivatives too (the
+// derivative query). Chosen at load by `n_values`.
 CubicKernel cubic_kernel_for(int n_values, int value_bytes) noexcept;
+
 
 // The one-sided sum of a jump cell (jump_side.hpp) for blocks with n_inner creepage dimensions
 // (0..kMaxJumpInner) and records of n_values values of value_bytes each, chosen once at load.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "block_gradient.hpp"
 #include "interpolate.hpp"
 #include "low_confidence.hpp"
 #include "part_spec.hpp"
@@ -76,14 +77,15 @@ StatusBits locate_state(const detail::TableData& d, const State& state, detail::
   }
   return (finite ? 0u : status::kInvalidInput) | (out ? status::kOutOfRange : 0u);
 }
-// Runs one block's kernel for slots [slot_begin, slot_end).
+// Runs one block's kernel for slots [slot_begin, slot_end); grad (cubic only): null, or one
+// BlockGradient per slot for the kernel's derivatives.
 inline void interpolate_block(const detail::TableData& d, const detail::Block& block,
                               const detail::AxisLoc* loc, int slot_begin, int slot_end,
-                              Contact* contact) noexcept {
+                              Contact* contact, detail::BlockGradient* grad = nullptr) noexcept {
   if (d.method == Method::kLinear) {
     block.linear(block, loc, slot_begin, slot_end, contact);
   } else if (d.method == Method::kCubic) {
-    block.cubic(block, d.axis, loc, slot_begin, slot_end, contact);
+    block.cubic(block, d.axis, loc, slot_begin, slot_end, contact, grad);
   } else {
     detail::interpolate_monotone_cubic(block, d.axis, loc, slot_begin, slot_end, contact);
   }
@@ -96,7 +98,7 @@ inline void interpolate_block(const detail::TableData& d, const detail::Block& b
 // c.value[kNormalForce]: from the creep part when it has it, else from the normal part) gives N.
 void interpolate_normalised_creep(const detail::TableData& d, const detail::Block& block, int w,
                                   const detail::AxisLoc* loc, const double* creepage, int slot,
-                                  Contact& c) noexcept {
+                                  Contact& c, detail::BlockGradient* grad) noexcept {
   using namespace detail;
   const CreepMap& map = d.creep_map;
   double inv_scale[3];
@@ -111,7 +113,7 @@ void interpolate_normalised_creep(const detail::TableData& d, const detail::Bloc
       d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(x[k] * map.kinv[k], map.lo_k[k] * inv, map.hi_k[k] * inv),
                                      slot_loc[kVarXi + k]);
   }
-  interpolate_block(d, block, slot_loc, slot, slot + 1, &c);
+  interpolate_block(d, block, slot_loc, slot, slot + 1, &c, grad);
   if (!d.has_part[kCreep]) return;
   const double angle = c.value[kContactAngle];
   if (map.vertical_share) denormalise_creep(map, x, std::cos(angle), std::sin(angle), c.value);
@@ -119,10 +121,10 @@ void interpolate_normalised_creep(const detail::TableData& d, const detail::Bloc
 }
 
 // Interpolates slots [slot_begin, slot_end) of wheel w into contact[0 .. slot_end-slot_begin-1]
-// (values, part statuses, combined status | q). The query must be valid.
+// (values, part statuses, combined status | q). The query must be valid. grads: as query_generic.
 void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc* loc,
                        const double* creepage, StatusBits q, int slot_begin, int slot_end,
-                       Contact* contact) noexcept {
+                       Contact* contact, detail::BlockGradient (*grads)[kMaxSlots]) noexcept {
   using namespace detail;
   const int n = slot_end - slot_begin;
   for (int a = 0; a < d.n_absent; ++a) {
@@ -146,10 +148,11 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
     const Block& block = d.block[w][b];
     if (d.creep_map.active && b == d.creep_block) {
       for (int s = slot_begin; s < slot_end; ++s)
-        interpolate_normalised_creep(d, block, w, loc, creepage, s, contact[s - slot_begin]);
+        interpolate_normalised_creep(d, block, w, loc, creepage, s, contact[s - slot_begin],
+                                     grads ? &grads[b][s - slot_begin] : nullptr);
       continue;
     }
-    interpolate_block(d, block, loc, slot_begin, slot_end, contact);
+    interpolate_block(d, block, loc, slot_begin, slot_end, contact, grads ? grads[b] : nullptr);
   }
   for (int s = 0; s < n; ++s) {
     mark_unpaired_contact(d.has_part[kGeometry] && d.has_part[kNormal], contact[s]);
@@ -176,30 +179,32 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
 
 }  // namespace
 
+StatusBits detail::query_generic(const TableData& d, int w, const State& state, int slot_begin, int slot_end,
+                                 Contact* contact, BlockGradient (*grads)[kMaxSlots]) noexcept {
+  AxisLoc loc[kNumVars];
+  double creepage[3];
+  StatusBits q = locate_state(d, state, loc, creepage);
+  if (w != 0 && w != 1) q |= status::kInvalidInput;
+  if (q & status::kInvalidInput) {
+    for (int s = 0; s < slot_end - slot_begin; ++s) zero_contact(contact[s], status::kInvalidInput);
+    return q;
+  }
+  interpolate_slots(d, w, loc, creepage, q, slot_begin, slot_end, contact, grads);
+  return q;
+}
+
 void Table::query(Wheel wheel, const State& state, Result& result) const noexcept {
   const detail::TableData& d = *data_;
   const int wf = static_cast<int>(wheel);
+  result.n_slots = d.n_slots;
   if (d.fast.query && (wf == 0 || wf == 1)) {  // fast_path.hpp; false: a variable is not finite
     StatusBits q = 0;
     if (d.fast.query(d, wf, state, 0, d.n_slots, result.contact, q)) {
-      result.n_slots = d.n_slots;
       result.status = q;
       return;
     }
   }
-  detail::AxisLoc loc[detail::kNumVars];
-  double creepage[3];
-  StatusBits q = locate_state(d, state, loc, creepage);
-  const int w = static_cast<int>(wheel);
-  if (w != 0 && w != 1) q |= status::kInvalidInput;
-  const int ns = d.n_slots;
-  result.n_slots = ns;
-  result.status = q;
-  if (q & status::kInvalidInput) {
-    for (int s = 0; s < ns; ++s) zero_contact(result.contact[s], status::kInvalidInput);
-    return;
-  }
-  interpolate_slots(d, w, loc, creepage, q, 0, ns, result.contact);
+  result.status = detail::query_generic(d, wf, state, 0, d.n_slots, result.contact, nullptr);
 }
 
 void Table::query_slot(Wheel wheel, const State& state, int slot, Contact& contact) const noexcept {
@@ -209,16 +214,11 @@ void Table::query_slot(Wheel wheel, const State& state, int slot, Contact& conta
     StatusBits q = 0;
     if (d.fast.query(d, wf, state, slot, slot + 1, &contact, q)) return;
   }
-  detail::AxisLoc loc[detail::kNumVars];
-  double creepage[3];
-  StatusBits q = locate_state(d, state, loc, creepage);
-  const int w = static_cast<int>(wheel);
-  if ((w != 0 && w != 1) || slot < 0 || slot >= d.n_slots) q |= status::kInvalidInput;
-  if (q & status::kInvalidInput) {
+  if (slot < 0 || slot >= d.n_slots) {
     zero_contact(contact, status::kInvalidInput);  // as query() does for every slot
     return;
   }
-  interpolate_slots(d, w, loc, creepage, q, slot, slot + 1, &contact);
+  detail::query_generic(d, wf, state, slot, slot + 1, &contact, nullptr);
 }
 
 Contact Table::query_slot(Wheel wheel, const State& state, int slot) const noexcept {

@@ -54,9 +54,11 @@ struct Block;
 // contact[slot - slot_begin] (interpolate.hpp).
 using LinearKernel = void (*)(const Block& block, const AxisLoc* loc, int slot_begin,
                               int slot_end, Contact* contact) noexcept;
+struct BlockGradient;  // block_gradient.hpp
 // Cubic (tensor Hermite) kernel, chosen at load by the block's value count (interpolate.hpp).
+// grad: null, or one BlockGradient per slot that also receives the values' derivatives.
 using CubicKernel = void (*)(const Block& block, const Axis* axes, const AxisLoc* loc,
-                             int slot_begin, int slot_end, Contact* contact) noexcept;
+                             int slot_begin, int slot_end, Contact* contact, BlockGradient* grad) noexcept;
 
 struct Block {
   int n_dims = 0;                     // tabulated axes (slot excluded), 0..kMaxDims

@@ -50,6 +50,12 @@ struct SumsSse2 {
     for (int k = 0; k < NV / 2; ++k) acc[k] += w * load2<T>(r + 2 * k * sizeof(T));
     if constexpr (NV % 2 != 0) acc[kPairs - 1] += w * V2{record_value<T>(r, NV - 1), 0.0};
   }
+  // acc += weight x another sum's acc (the cubic contraction's outer dimensions).
+  __attribute__((always_inline)) void add_sums(double weight, const SumsSse2& s) noexcept {
+    const V2 w = V2{weight, weight};
+#pragma GCC unroll 16
+    for (int k = 0; k < kPairs; ++k) acc[k] += w * s.acc[k];
+  }
   __attribute__((always_inline)) void store(double* out) const noexcept {
     double all[2 * kPairs];
     std::memcpy(all, acc, sizeof all);
@@ -93,6 +99,14 @@ struct SumsAvx2 {
     if constexpr (kPair) pair += w2 * load2<T>(r + 4 * kQuads * sizeof(T));
     if constexpr (kSingle) single += w2 * V2{record_value<T>(r, NV - 1), 0.0};
   }
+  RAILTAB_AVX2 void add_sums(double weight, const SumsAvx2& s) noexcept {
+    const V4 w4 = V4{weight, weight, weight, weight};
+    const V2 w2 = V2{weight, weight};
+#pragma GCC unroll 8
+    for (int k = 0; k < kQuads; ++k) quad[k] += w4 * s.quad[k];
+    if constexpr (kPair) pair += w2 * s.pair;
+    if constexpr (kSingle) single += w2 * s.single;
+  }
   RAILTAB_AVX2 void store(double* out) const noexcept {
     double all[4 * (kQuads > 0 ? kQuads : 1) + 4];
     std::memcpy(all, quad, kQuads * sizeof(V4));
@@ -121,22 +135,6 @@ RAILTAB_WALK_CORNERS(walk_corners_sse2, __attribute__((always_inline)))
 RAILTAB_WALK_CORNERS(walk_corners_avx2, RAILTAB_AVX2)
 #undef RAILTAB_WALK_CORNERS
 
-// Sum over a cubic stencil: n_outer runs (weight, offset) of `count` records along the last
-// axis, inner_stride apart, each record weighted by outer weight x inner weight.
-#define RAILTAB_WALK_STENCIL(NAME, ATTRIBUTES)                                                   \
-  template <class Sums>                                                                         \
-  ATTRIBUTES inline void NAME(RecordPtr p, const double* outer_w,                               \
-                              const std::size_t* outer_off, int n_outer,                        \
-                              const double* inner_w, int count, std::size_t inner_stride,       \
-                              Sums& sums) noexcept {                                            \
-    for (int o = 0; o < n_outer; ++o) {                                                         \
-      RecordPtr r = p + outer_off[o];                                                           \
-      for (int j = 0; j < count; ++j, r += inner_stride) sums.add(outer_w[o] * inner_w[j], r);  \
-    }                                                                                           \
-  }
-RAILTAB_WALK_STENCIL(walk_stencil_sse2, __attribute__((always_inline)))
-RAILTAB_WALK_STENCIL(walk_stencil_avx2, RAILTAB_AVX2)
-#undef RAILTAB_WALK_STENCIL
 
 // Multilinear sum over the cell's 2^D corners (corner 0 at `p`; t = fractions, u = 1 - t) into
 // out[0..NV-1]: the corner walk unrolls completely and the sums stay in registers. Not inlined
@@ -162,26 +160,126 @@ __attribute__((noinline, target("avx2"))) void corner_sum_avx2(RecordPtr p, cons
   sums.store(out);
 }
 
-// Cubic stencil sums (see walk_stencil) into out[0..NV-1].
-template <int NV, class T>
-__attribute__((noinline)) void stencil_sum_sse2(RecordPtr p, const double* outer_w,
-                                                const std::size_t* outer_off, int n_outer,
-                                                const double* inner_w, int count,
-                                                std::size_t inner_stride, double* out) noexcept {
-  SumsSse2<NV, T> sums;
-  sums.zero();
-  walk_stencil_sse2(p, outer_w, outer_off, n_outer, inner_w, count, inner_stride, sums);
-  sums.store(out);
-}
+// One axis of a tensor cubic stencil as weights on its 2-4 consecutive nodes (interpolate.cpp,
+// cubic_weights): value weights, and the weights of the derivative along the axis.
+struct StencilWeights {
+  int first = 0;      // first stencil node (index on the axis)
+  int count = 0;      // stencil nodes (2..4; 1 with weight 1 for a block without axes)
+  double w[4] = {};   // value weights
+  double dw[4] = {};  // derivative weights [1 / axis unit]
+};
 
-template <int NV, class T>
-__attribute__((noinline, target("avx2"))) void stencil_sum_avx2(
-    RecordPtr p, const double* outer_w, const std::size_t* outer_off, int n_outer,
-    const double* inner_w, int count, std::size_t inner_stride, double* out) noexcept {
-  SumsAvx2<NV, T> sums;
-  sums.zero();
-  walk_stencil_avx2(p, outer_w, outer_off, n_outer, inner_w, count, inner_stride, sums);
-  sums.store(out);
+// The tensor cubic over a stencil, contracted one dimension at a time, depth first: dimension
+// `dim` sums the results of dimensions dim+1 .. n-1 at each of its stencil nodes with the value
+// weights. With kGrad it also sums their derivatives with the value weights and their values
+// with the derivative weights (the derivative along dim). out[0] is the value; out[1 + e] the
+// derivative along dimension dim + e. The value channel is the same arithmetic with or without
+// kGrad, so the value query and the derivative query agree bit for bit. The last (unit-stride)
+// dimension reads the records and the one before it folds them, in registers; the outer ones
+// keep running sums per dimension. Defined twice, for each instruction set; n >= 1.
+#define RAILTAB_CUBIC_CONTRACT(NAME, SUMS, INLINE)                                                 \
+  template <bool kGrad, int NV, class T>                                                        \
+  INLINE void NAME##_last(RecordPtr p, const StencilWeights& s, std::size_t stride,             \
+                          SUMS<NV, T>* out) noexcept {                                          \
+    SUMS<NV, T> v, dv; /* locals: the records' char pointer may alias *out */                   \
+    v.zero();                                                                                   \
+    if constexpr (kGrad) dv.zero();                                                             \
+    for (int j = 0; j < s.count; ++j, p += stride) {                                            \
+      v.add(s.w[j], p);                                                                         \
+      if constexpr (kGrad) dv.add(s.dw[j], p);                                                  \
+    }                                                                                           \
+    out[0] = v;                                                                                 \
+    if constexpr (kGrad) out[1] = dv;                                                           \
+  }                                                                                             \
+  template <bool kGrad, int NV, class T>                                                        \
+  INLINE void NAME##_two(RecordPtr p, const StencilWeights* sw, const std::size_t* stride,      \
+                         SUMS<NV, T>* out) noexcept {                                           \
+    SUMS<NV, T> v, d0, d1;                                                                      \
+    v.zero();                                                                                   \
+    if constexpr (kGrad) d0.zero(), d1.zero();                                                  \
+    for (int j = 0; j < sw[0].count; ++j, p += stride[0]) {                                     \
+      SUMS<NV, T> sub[2];                                                                       \
+      NAME##_last<kGrad>(p, sw[1], stride[1], sub);                                             \
+      v.add_sums(sw[0].w[j], sub[0]);                                                           \
+      if constexpr (kGrad) {                                                                    \
+        d0.add_sums(sw[0].dw[j], sub[0]);                                                       \
+        d1.add_sums(sw[0].w[j], sub[1]);                                                        \
+      }                                                                                         \
+    }                                                                                           \
+    out[0] = v;                                                                                 \
+    if constexpr (kGrad) out[1] = d0, out[2] = d1;                                              \
+  }                                                                                             \
+  /* acc (channels as out's, for dimension d) += the sums of dimension d + 1 at node j of d */  \
+  template <bool kGrad, int NV, class T>                                                        \
+  INLINE void NAME##_fold(SUMS<NV, T>* acc, const SUMS<NV, T>* sub, int sub_channels,           \
+                          const StencilWeights& s, int j) noexcept {                            \
+    acc[0].add_sums(s.w[j], sub[0]);                                                            \
+    if constexpr (kGrad) {                                                                      \
+      acc[1].add_sums(s.dw[j], sub[0]);                                                         \
+      for (int e = 1; e < sub_channels; ++e) acc[1 + e].add_sums(s.w[j], sub[e]);               \
+    }                                                                                           \
+  }                                                                                             \
+  /* Dimensions 0 .. n-3 by a mixed-radix counter (no calls): acc[d] holds dimension d's */     \
+  /* running sums, folded into acc[d - 1] when its counter wraps. */                            \
+  template <bool kGrad, int NV, class T>                                                        \
+  INLINE void NAME(RecordPtr p, const StencilWeights* sw, const std::size_t* stride, int n,     \
+                   SUMS<NV, T>* out) noexcept {                                                 \
+    if (n == 1) return NAME##_last<kGrad>(p, sw[0], stride[0], out);                            \
+    if (n == 2) return NAME##_two<kGrad>(p, sw, stride, out);                                   \
+    const int outer = n - 2;                                                                    \
+    auto channels = [n](int d) { return kGrad ? n - d + 1 : 1; };                               \
+    SUMS<NV, T> acc[kNumVars][kGrad ? kNumVars + 1 : 1];                                        \
+    int idx[kNumVars] = {};                                                                     \
+    for (int d = 0; d < outer; ++d)                                                             \
+      for (int c = 0; c < channels(d); ++c) acc[d][c].zero();                                   \
+    std::size_t off = 0;                                                                        \
+    for (;;) {                                                                                  \
+      SUMS<NV, T> sub[3];                                                                       \
+      NAME##_two<kGrad>(p + off, sw + outer, stride + outer, sub);                              \
+      NAME##_fold<kGrad>(acc[outer - 1], sub, channels(outer), sw[outer - 1], idx[outer - 1]);  \
+      for (int d = outer - 1;; --d) {                                                           \
+        off += stride[d];                                                                       \
+        if (++idx[d] < sw[d].count) break;                                                      \
+        off -= static_cast<std::size_t>(idx[d]) * stride[d];                                    \
+        idx[d] = 0;                                                                             \
+        if (d == 0) {                                                                           \
+          for (int c = 0; c < channels(0); ++c) out[c] = acc[0][c];                             \
+          return;                                                                               \
+        }                                                                                       \
+        NAME##_fold<kGrad>(acc[d - 1], acc[d], channels(d), sw[d - 1], idx[d - 1]);             \
+        for (int c = 0; c < channels(d); ++c) acc[d][c].zero();                                 \
+      }                                                                                         \
+    }                                                                                           \
+  }
+RAILTAB_CUBIC_CONTRACT(cubic_contract_sse2, SumsSse2, __attribute__((always_inline)) inline)
+RAILTAB_CUBIC_CONTRACT(cubic_contract_avx2, SumsAvx2, RAILTAB_AVX2 inline)
+#undef RAILTAB_CUBIC_CONTRACT
+
+// The cubic contraction of one slot's stencil (first record at p, n >= 0 dimensions) into
+// out[c * NV + k]: channel c (0 the value, 1 + dim the derivative along dim when kGrad), value k.
+template <bool kGrad, int NV, class T>
+__attribute__((noinline)) void cubic_sum_sse2(RecordPtr p, const StencilWeights* sw, const std::size_t* stride,
+                                              int n, double* out) noexcept {
+  SumsSse2<NV, T> sums[kNumVars + 1];
+  if (n == 0) {
+    sums[0].zero();
+    sums[0].add(1.0, p);
+  } else {
+    cubic_contract_sse2<kGrad>(p, sw, stride, n, sums);
+  }
+  for (int c = 0; c < (kGrad ? n + 1 : 1); ++c) sums[c].store(out + c * NV);
+}
+template <bool kGrad, int NV, class T>
+__attribute__((noinline, target("avx2"))) void cubic_sum_avx2(RecordPtr p, const StencilWeights* sw,
+                                                             const std::size_t* stride, int n, double* out) noexcept {
+  SumsAvx2<NV, T> sums[kNumVars + 1];
+  if (n == 0) {
+    sums[0].zero();
+    sums[0].add(1.0, p);
+  } else {
+    cubic_contract_avx2<kGrad>(p, sw, stride, n, sums);
+  }
+  for (int c = 0; c < (kGrad ? n + 1 : 1); ++c) sums[c].store(out + c * NV);
 }
 
 // One-sided sum of a jump cell (jump_side.cpp): per end (a grid node or a one-sided sample slice of

@@ -560,7 +560,9 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
   // Loose later rounds only along a warm chain (wheel_rail.hpp): a cold solve stays railtab eval's
   // and the error map's reference, bit for bit.
   const double loose_above = warm ? o.loose_round_residual : std::numeric_limits<double>::infinity();
-  const bool converged = solve_load_fixed_point(load, round, [&r] { return r.patches.empty(); }, start, loose_above);
+  const double jump_width = warm ? o.jump_bracket : 0.0;  // the same for the stall stop
+  const bool converged =
+      solve_load_fixed_point(load, round, [&r] { return r.patches.empty(); }, start, loose_above, jump_width);
   if (state != nullptr) {
     if (converged && !r.patches.empty()) {  // a chain continues only from a converged solve
       state->result = r;
@@ -574,20 +576,34 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
 }
 
 bool solve_load_fixed_point(double load, const std::function<double(double, bool)>& round,
-                            const std::function<bool()>& stop_after_first, double start, double loose_above) {
+                            const std::function<bool()>& stop_after_first, double start, double loose_above,
+                            double jump_width) {
+  const double tolerance = 1e-4 * load;
+  // The tz of the latest full round whose balance missed high (g > 0) and low (g < 0). Missing on
+  // both sides within jump_width * tolerance (0.5) in tz takes |dg/dtz| > 4, while a balance that
+  // varies continuously has |dg/dtz| = |dT/dtz - 1| <= 1 + mu tan g (about 1.8 at mu = 0.3 and a
+  // 70 degree flange): the balance jumps between them (a grid placed again one element over), and
+  // no round can meet it.
+  double high = std::numeric_limits<double>::quiet_NaN(), low = high;
+  auto jumps = [&](double t, double g, bool was_loose) {
+    if (was_loose) return false;
+    (g > 0.0 ? high : low) = t;
+    return std::abs(high - low) < jump_width * tolerance;  // false while either is NaN
+  };
   double t0 = start, g0 = round(t0, true) - t0;  // fixed point tz = T(tz): root of g = T(tz) - tz
   if (stop_after_first()) return true;
   bool loose = std::abs(g0) > loose_above * load;
   double t1 = t0 + g0, g1 = round(t1, loose) - t1;
-  bool ok = !loose && std::abs(g1) <= 1e-4 * load;
+  bool ok = !loose && std::abs(g1) <= tolerance;
   for (int it = 0; it < 18 && !ok; ++it) {
+    if (jumps(t1, g1, loose)) return false;
     const double t2 = g1 != g0 ? t1 - g1 * (t1 - t0) / (g1 - g0) : t1 + g1;
     loose = std::abs(g1) > loose_above * load;
     t0 = t1;
     g0 = g1;
     t1 = t2;
     g1 = round(t1, loose) - t1;
-    ok = !loose && std::abs(g1) <= 1e-4 * load;
+    ok = !loose && std::abs(g1) <= tolerance;
   }
   return ok;
 }

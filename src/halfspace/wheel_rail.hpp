@@ -57,6 +57,9 @@ struct HalfspaceOptions {
   double load_tolerance = 1e-6;       // several patches: relative vertical-load tolerance [-]
   double loose_round_residual = 0.01; // warm coupled solve: a round after one whose load balance
                                       //   missed by more than this times F_z is loose too [-]
+  double jump_bracket = 0.5;          // warm coupled solve: stop, not converged, when full rounds
+                                      //   missing the balance on either side lie closer than this
+                                      //   times the load tolerance in tz (0: never) [-]
   NormalSolverOptions normal;
   TangentialSolverOptions tangential;
 };
@@ -121,8 +124,11 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
 // fy sin g is comparable to F_z: the first rounds miss by 5-90 kN at 78.5 kN, and 2-3 of the 4-5
 // rounds are loose (the default creepage column in flange contact: 29 % less CPU, bench
 // BM_CreepageColumnWarm/7; the tread's rounds miss by less than 1 % and stay as they were).
-// The result is always a full round's. A cold solve makes only its first round loose: it is
-// railtab eval's and the error map's reference, and keeps its bits.
+// The result is always a full round's. A warm solve also stops, not converged, where the balance
+// jumps across its tolerance (`jump_bracket`, solve_load_fixed_point): 2 of the 105 solves of that
+// flange column bounced on +-100 N of grid noise for all 20 rounds. A cold solve makes only its
+// first round loose and runs all its rounds: it is railtab eval's and the error map's reference,
+// and keeps its bits.
 //
 // Warm start along a creepage line (the table sweep): with `state`, a solve continues from the end
 // of the previous solve of the same geometry and load at a neighbouring creepage, if `state` holds
@@ -159,12 +165,15 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
 // within 1e-4 F_z, on a round that was not loose). The first round is always made, loose;
 // `stop_after_first()`, asked after it, ends the iteration there (an uncoupled solve, or no
 // patch), which counts as converged. Later rounds are loose when the round before missed the
-// balance by more than `loose_above` F_z. Returns false when the rounds ran out: the caller
-// marks its result with mark_not_converged.
+// balance by more than `loose_above` F_z. Returns false when the rounds ran out, or (jump_width
+// > 0) when the balance jumps across the tolerance: the latest full rounds that missed it high and
+// low lie closer than `jump_width` times the tolerance (1e-4 F_z) in tz, which a continuous
+// balance would not allow (wheel_rail.cpp); the caller marks its result with mark_not_converged.
 // `start`: the first tz (a warm start's guess).
 bool solve_load_fixed_point(double load, const std::function<double(double, bool)>& round,
                             const std::function<bool()>& stop_after_first, double start = 0.0,
-                            double loose_above = std::numeric_limits<double>::infinity());
+                            double loose_above = std::numeric_limits<double>::infinity(),
+                            double jump_width = 0.0);
 
 // kNotConverged instead of kConverged on the result and each of its patches.
 void mark_not_converged(WheelHalfspaceResult& result);

@@ -207,6 +207,50 @@ TEST(HalfspaceWheelRail, LooseRoundsKeepTheFixedPoint) {
   EXPECT_GT(differ, 0);  // the loose rounds were taken somewhere (else this compares a chain with itself)
 }
 
+// The stall stop (HalfspaceOptions::jump_bracket) ends only solves that cannot converge: along
+// warm chains in flange contact and on the tread, every solve converges or not as it does with all
+// 20 rounds, and a converged one has the same bits (a chain continues only from a converged solve,
+// so the chains stay the same). The stop fires: a stalled solve ends on an earlier round.
+TEST(HalfspaceWheelRail, StallStopEndsOnlyWhatCannotConverge) {
+  halfspace::Workspace ws;
+  const Material m = steel();
+  const double fz = 78.5e3;
+  halfspace::HalfspaceOptions all_rounds;
+  all_rounds.jump_bracket = 0.0;
+  ASSERT_GT(halfspace::HalfspaceOptions{}.jump_bracket, 0.0);
+  int converged = 0, stalled = 0, stopped_earlier = 0;
+  for (const auto& [side, y] : {std::pair{Side::left, 0.002}, std::pair{Side::left, 0.007}, std::pair{Side::right, -0.007}}) {
+    const auto g = solver().solve_wheel(side, {y, 0.0});
+    halfspace::RollingState chain_stop, chain_all;
+    for (const double xi : {-0.002, 0.001})
+      for (const double eta : {-0.004, -0.001, 0.002})
+        for (const double phi : {-0.3, 0.0, 0.3}) {
+          const Creepage c{xi, eta, phi};
+          const auto a = halfspace::solve_halfspace_rolling(g, fz, c, 0.3, m, {}, ws, &chain_stop);
+          const auto b = halfspace::solve_halfspace_rolling(g, fz, c, 0.3, m, all_rounds, ws, &chain_all);
+          const std::string where = std::string(to_string(side)) + " y " + std::to_string(y) + " creepage " +
+                                    std::to_string(xi) + " " + std::to_string(eta) + " " + std::to_string(phi);
+          ASSERT_EQ(a.status & status::kConverged, b.status & status::kConverged) << where;
+          ASSERT_EQ(a.patches.size(), b.patches.size()) << where;
+          bool same = true;
+          for (std::size_t k = 0; k < a.patches.size(); ++k)
+            same = same && a.patches[k].tangential.fy == b.patches[k].tangential.fy &&
+                   a.patches[k].normal.normal_force == b.patches[k].normal.normal_force;
+          if (b.status & status::kConverged) {
+            EXPECT_TRUE(same) << where;
+            ++converged;
+          } else {
+            EXPECT_TRUE(a.status & status::kNotConverged) << where;
+            ++stalled;
+            stopped_earlier += !same;
+          }
+        }
+  }
+  EXPECT_EQ(converged + stalled, 3 * 18);
+  EXPECT_LE(stalled, 3);
+  EXPECT_GT(stopped_earlier, 0);
+}
+
 TEST(HalfspaceWheelRail, BadLoadThrowsNamingIt) {
   halfspace::Workspace ws;
   const auto g = solver().solve_wheel(Side::left, {0.0, 0.0});
