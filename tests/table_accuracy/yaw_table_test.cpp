@@ -429,5 +429,89 @@ TEST(YawTable, DerivativeAlongYaw) {
   EXPECT_GT(nonzero, 1000u);
 }
 
+// The exact half-space model through a yaw table: at its nodes the lookup gives the kernel run at
+// that yaw, the geometry and normal parts to round-off, the coupled creep part within the warm
+// chain's bound (the sweep starts each creepage from its neighbour's solution, the direct
+// evaluation from cold: HalfspaceDirect.AgreesWithTheTableAtAGridNode), and yaw moves it.
+// The exact model's list is stored whole (not folded): how far its outputs at -yaw are from those
+// at +yaw is printed (docs/validation/yaw-tables.md). A small grid at 0.5 mm elements (seconds).
+TEST(YawTable, ExactModelThroughTheTable) {
+  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  s = s.substr(0, s.find("[grid]"));
+  s.replace(s.find("element_size = 0.3e-3"), std::string("element_size = 0.3e-3").size(), "element_size = 0.5e-3");
+  s += "[grid]\ny = [0.003, 0.0075]\nequilibrium_roll = true\nyaw = [-0.01, 0.0, 0.01]\nload = 78.5e3\n"
+       "xi = [-0.002, 0.0, 0.002]\neta = [0.0, 0.001]\nphi = 0.1\n";
+  const Scene scene = parse_scene(s, "exact yaw scene");
+  ASSERT_FALSE(scene.grids.yaw_even);  // the exact model's list is kept whole
+  SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+  ASSERT_EQ(r.summary.failures, 0u) << r.summary.first_failure;
+  const std::filesystem::path path = temp_table_path("yaw_exact");
+  write_for_lookup(r.table, path);
+  const lk::Table t = lk::Table::load(path.string());
+  std::filesystem::remove(path);
+  std::vector<Point> points;
+  for (double y : scene.grids.y)
+    for (double xi : scene.grids.xi)
+      for (double eta : scene.grids.eta) {
+        Point p;
+        p.v[kY] = y, p.v[kLoad] = 78.5e3, p.v[kXi] = xi, p.v[kEta] = eta, p.v[kPhi] = 0.1;
+        points.push_back(p);
+      }
+  const double yaws[] = {-0.01, 0.0, 0.01};
+  std::vector<Direct> direct(points.size() * 3);
+  tbb::parallel_for(std::size_t{0}, direct.size(),
+                    [&](std::size_t i) { direct[i] = evaluate_direct(scene, points[i / 3], yaws[i % 3]); });
+  std::size_t checked = 0, moved = 0;
+  double odd = 0.0;  // largest |f(-yaw) - f(+yaw)| / max |f| over outputs with equal statuses
+  int odd_output = 0;
+  double odd_fz = 0.0;  // the same for the creep forces fx, fy over mu N
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    for (std::size_t j = 0; j < 3; ++j)
+      for (std::size_t w = 0; w < 2; ++w) {
+        const Direct& d = direct[i * 3 + j];
+        const lk::Result q = t.query(static_cast<lk::Wheel>(w), state_at(t, p.v[kY], yaws[j], p.v[kLoad], p.v[kXi], p.v[kEta], 0.1));
+        EXPECT_EQ(q.status, 0u);
+        for (std::size_t slot = 0; slot < kSlots; ++slot) {
+          // The warm chain's bound: the load split within 2e-4 F_z, the creep forces within that
+          // share of mu F_z plus 1e-4 mu N, the rest of the creep and wear parts 2e-4 relative;
+          // plus the float32 rounding (4 x 2^-20 of N for forces rebuilt from F / (mu N) and N).
+          const double fz = 78.5e3, mun = 0.3 * std::abs(d[w].value[lk::kNormalForce][slot]);
+          const double creep_tol = 2e-4 * fz * 0.3 + 1e-4 * mun;
+          for (int o = 0; o < lk::kNumOutputs; ++o) {
+            const double a = q.contact[slot].value[o], b = d[w].value[o][slot];
+            const bool creep = lk::output_part(static_cast<lk::Output>(o)) >= lk::kCreep || o == lk::kNormalForce;
+            const double warm = o == lk::kNormalForce ? 2e-4 * fz
+                                : o == lk::kFx || o == lk::kFy ? creep_tol
+                                : o == lk::kMz ? 0.01 * creep_tol : 0.0;
+            const double bound = creep ? warm + 2e-4 * std::abs(b) + 4.0 * kStoredRounding * (std::abs(b) + mun / 0.3)
+                                       : 1e-12 * std::abs(b) + 1e-15;
+            EXPECT_NEAR(a, b, bound) << label(o) << " y " << p.v[kY] << " yaw " << yaws[j] << " wheel " << w << " slot " << slot;
+            ++checked;
+            if (j != 1) {
+              const double zero = direct[i * 3 + 1][w].value[o][slot];
+              moved += std::abs(b - zero) > 1e-6 * std::max(std::abs(zero), 1e-3);
+            }
+            if (j == 0) {
+              bool same = true;
+              for (int part = 0; part < lk::kNumParts; ++part)
+                same &= d[w].status[part][slot] == direct[i * 3 + 2][w].status[part][slot];
+              const double c = direct[i * 3 + 2][w].value[o][slot], scale = std::max(std::abs(b), std::abs(c));
+              if (same && scale > 0.0 && std::abs(b - c) / scale > odd) odd = std::abs(b - c) / scale, odd_output = o;
+              if (same && mun > 0.0 && (o == lk::kFx || o == lk::kFy)) odd_fz = std::max(odd_fz, std::abs(b - c) / mun);
+            }
+          }
+        }
+      }
+  }
+  std::printf("exact model through a yaw table: %zu outputs checked at the nodes, %zu at +-10 mrad move by > 1e-6 from "
+              "yaw 0; largest |f(-yaw) - f(+yaw)| / |f| %.2e (%s), of fx and fy / (mu N) %.2e\n",
+              checked, moved, odd, label(odd_output).c_str(), odd_fz);
+  EXPECT_GT(moved, checked / 10);  // the yaw reaches the exact model
+}
+
 }  // namespace
 }  // namespace railtab::accuracy
