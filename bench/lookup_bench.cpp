@@ -223,6 +223,24 @@ void run_slot(benchmark::State& bench, Source source, Method method, bool cohere
   bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
 }
 
+// Table::query_slot_derivatives of the tread (slot 0) at the states of run_slot: one contact's
+// values and partial derivatives (report against BM_LookupSlot*, the plain one-slot query).
+void run_slot_derivatives(benchmark::State& bench, Method method, bool coherent) {
+  const Table& t = table(Source::kDefaultScene, method);
+  const auto q = coherent ? coherent_queries(t, 1 << 14) : random_queries(t, 1 << 14);
+  lk::Contact c;
+  lk::SlotDerivatives d;
+  std::size_t k = 0;
+  for (auto _ : bench) {
+    const Query& item = q[k];
+    t.query_slot_derivatives(item.wheel, item.state, 0, c, d);
+    benchmark::DoNotOptimize(c);
+    benchmark::DoNotOptimize(d);
+    k = (k + 1) & (q.size() - 1);
+  }
+  bench.SetItemsProcessed(static_cast<std::int64_t>(bench.iterations()));
+}
+
 // One contact, random states away from / near the contact jumps (random_queries_by_jumps).
 void run_slot_jumps(benchmark::State& bench, bool near) {
   const Table& t = table(Source::kDefaultScene, Method::kLinear);
@@ -346,6 +364,10 @@ void BM_LookupLinearCoherent(benchmark::State& s) { run_full(s, kDefault, Method
 void BM_LookupDerivativesLinearRandom(benchmark::State& s) { run_derivatives(s, Method::kLinear, false); }
 void BM_LookupDerivativesLinearCoherent(benchmark::State& s) { run_derivatives(s, Method::kLinear, true); }
 void BM_LookupDerivativesCubicRandom(benchmark::State& s) { run_derivatives(s, Method::kCubic, false); }
+void BM_LookupDerivativesCubicCoherent(benchmark::State& s) { run_derivatives(s, Method::kCubic, true); }
+void BM_LookupSlotDerivativesLinearRandom(benchmark::State& s) { run_slot_derivatives(s, Method::kLinear, false); }
+void BM_LookupSlotDerivativesLinearCoherent(benchmark::State& s) { run_slot_derivatives(s, Method::kLinear, true); }
+void BM_LookupSlotDerivativesCubicRandom(benchmark::State& s) { run_slot_derivatives(s, Method::kCubic, false); }
 void BM_LookupSlotCubicRandom(benchmark::State& s) { run_slot(s, kDefault, Method::kCubic, false); }
 void BM_LookupCubicRandom(benchmark::State& s) { run_full(s, kDefault, Method::kCubic, false); }
 void BM_LookupCubicCoherent(benchmark::State& s) { run_full(s, kDefault, Method::kCubic, true); }
@@ -396,6 +418,10 @@ BENCHMARK(BM_LookupSlotCubicRandom);
 BENCHMARK(BM_LookupCubicRandom);
 BENCHMARK(BM_LookupCubicCoherent);
 BENCHMARK(BM_LookupDerivativesCubicRandom);
+BENCHMARK(BM_LookupDerivativesCubicCoherent);
+BENCHMARK(BM_LookupSlotDerivativesLinearRandom);
+BENCHMARK(BM_LookupSlotDerivativesLinearCoherent);
+BENCHMARK(BM_LookupSlotDerivativesCubicRandom);
 BENCHMARK(BM_LookupMonotoneCubicRandom);
 BENCHMARK(BM_LookupLinearBatch)->Arg(8)->Arg(64);
 BENCHMARK(BM_FixtureSlotLinearRandom);

@@ -149,6 +149,11 @@ typedef struct railtab_lookup_derivatives {
   double d[RAILTAB_LOOKUP_MAX_SLOTS][RAILTAB_LOOKUP_NUM_OUTPUTS][RAILTAB_LOOKUP_NUM_VARS];
 } railtab_lookup_derivatives;
 
+/* One slot's derivatives (railtab_lookup_query_slot_derivatives): railtab_lookup_derivatives.d[slot]. */
+typedef struct railtab_lookup_slot_derivatives {
+  double d[RAILTAB_LOOKUP_NUM_OUTPUTS][RAILTAB_LOOKUP_NUM_VARS];
+} railtab_lookup_slot_derivatives;
+
 /* Forces of the rail on one wheel in track axes (x forward, y left, z up), from one query result
  * (railtab::lookup::TrackForces; docs/conventions.md, "Track-frame forces and Y/Q"). Per loaded
  * slot (normal force > 0), with g its contact angle: lateral = -N sin g + fy cos g, vertical =
@@ -208,6 +213,15 @@ RAILTAB_LOOKUP_API int railtab_lookup_query_slot(const railtab_lookup_table* tab
 RAILTAB_LOOKUP_API int railtab_lookup_query_derivatives(const railtab_lookup_table* table, int wheel,
                                      const railtab_lookup_state* state, railtab_lookup_result* result,
                                      railtab_lookup_derivatives* derivatives);
+
+/* One slot's twin of railtab_lookup_query_derivatives (as railtab_lookup_query_slot is
+ * railtab_lookup_query's): `contact` and `derivatives` receive its contact[slot] and d[slot],
+ * reading only that slot's records. RAILTAB_LOOKUP_ERROR_ARGUMENT for a slot outside
+ * 0 .. n_slots-1, a bad wheel or a RAILTAB_LOOKUP_MONOTONE_CUBIC table. */
+RAILTAB_LOOKUP_API int railtab_lookup_query_slot_derivatives(const railtab_lookup_table* table, int wheel,
+                                          const railtab_lookup_state* state, int slot,
+                                          railtab_lookup_contact* contact,
+                                          railtab_lookup_slot_derivatives* derivatives);
 
 /* The linear creep coefficients of `wheel` at the state's (y, roll, load) (its creepages are not
  * used). RAILTAB_LOOKUP_ERROR_NOT_IN_TABLE, nothing written, for a table without them (format 2.2

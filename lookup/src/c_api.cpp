@@ -63,6 +63,7 @@ static_assert(RAILTAB_LOOKUP_NUM_STATUS_BITS == lk::status::kNumBits);
 static_assert(RAILTAB_LOOKUP_WEAR == lk::kWear && RAILTAB_LOOKUP_NUM_PARTS == lk::kNumParts);
 
 static_assert(sizeof(railtab_lookup_derivatives) == sizeof(lk::Derivatives));
+static_assert(sizeof(railtab_lookup_slot_derivatives) == sizeof(lk::SlotDerivatives));
 static_assert(sizeof(railtab_lookup_track_forces) == sizeof(lk::TrackForces));
 static_assert(sizeof(railtab_lookup_creep_coefficients) == sizeof(lk::CreepCoefficients));
 static_assert(offsetof(railtab_lookup_creep_coefficients, status) == offsetof(lk::CreepCoefficients, status));
@@ -154,6 +155,28 @@ int railtab_lookup_query_derivatives(const railtab_lookup_table* table, int whee
   lk::Derivatives d;
   table->table.query_derivatives(static_cast<lk::Wheel>(wheel), to_state(*state), r, d);
   store(r, result);
+  std::memcpy(derivatives, &d, sizeof(*derivatives));
+  return RAILTAB_LOOKUP_OK;
+}
+
+int railtab_lookup_query_slot_derivatives(const railtab_lookup_table* table, int wheel,
+                                          const railtab_lookup_state* state, int slot,
+                                          railtab_lookup_contact* contact,
+                                          railtab_lookup_slot_derivatives* derivatives) {
+  if (!table || !state || !contact || !derivatives)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_slot_derivatives: null argument");
+  if (wheel != RAILTAB_LOOKUP_LEFT && wheel != RAILTAB_LOOKUP_RIGHT)
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_slot_derivatives: wheel must be 0 or 1");
+  if (slot < 0 || slot >= table->table.n_slots())
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_query_slot_derivatives: slot outside 0 .. n_slots-1");
+  if (!table->table.derivatives_supported())
+    return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT,
+                "railtab_lookup_query_slot_derivatives: derivatives need a table opened with RAILTAB_LOOKUP_LINEAR "
+                "or RAILTAB_LOOKUP_CUBIC, not RAILTAB_LOOKUP_MONOTONE_CUBIC");
+  lk::Contact c;
+  lk::SlotDerivatives d;
+  table->table.query_slot_derivatives(static_cast<lk::Wheel>(wheel), to_state(*state), slot, c, d);
+  std::memcpy(contact, &c, sizeof(*contact));
   std::memcpy(derivatives, &d, sizeof(*derivatives));
   return RAILTAB_LOOKUP_OK;
 }

@@ -30,6 +30,7 @@ struct Location {
   bool frozen[kNumVars] = {};    // clamped to the table's range
   bool cut = false;              // a located jump may cut the cell (one-sided, jump_side.hpp)
   Piece pieces[2][2];            // the cut cell's pieces (query_pieces)
+  int slot_begin = 0;            // first slot queried (Captured's slot 0)
 };
 
 void locate(const TableData& d, int w, const State& state, Location& at) noexcept {
@@ -71,7 +72,7 @@ const BlockGradient& block_gradient(const TableData& d, int w, int bi, const Loc
                                     int slot, const Captured& captured, BlockGradient& scratch) noexcept {
   if (at.cut) jump_gradient(d, w, bi, loc, at.pieces, slot, scratch);
   else if (d.method == Method::kLinear) linear_gradient(d.block[w][bi], d.axis, loc, slot, scratch);
-  else return captured[bi][slot];
+  else return captured[bi][slot - at.slot_begin];
   return scratch;
 }
 
@@ -161,50 +162,67 @@ const char* variable_name(int variable) noexcept { return detail::var_name(varia
 
 bool Table::derivatives_supported() const noexcept { return data_->method != Method::kMonotoneCubic; }
 
-bool Table::query_derivatives(Wheel wheel, const State& state, Result& result, Derivatives& derivatives) const noexcept {
-  using namespace detail;
-  const TableData& d = *data_;
-  const int wf = static_cast<int>(wheel);
-  if (d.fast.derivatives && (wf == 0 || wf == 1)) {  // fast_path.hpp; false: not finite, or a cut cell
-    StatusBits q = 0;
-    if (d.fast.derivatives(d, wf, state, result.contact, derivatives.d, q)) {
-      result.n_slots = d.n_slots;
-      result.status = q;
-      return true;
-    }
-  }
+namespace detail {
+namespace {
+
+// Values and derivatives of slots [slot_begin, slot_end) (valid) of wheel w into contact[0 ..]
+// and deriv[0 ..]; q gets the query bits. Returns false for a method without derivatives.
+bool slot_range_derivatives(const TableData& d, int w, const State& state, int slot_begin, int slot_end,
+                            Contact* contact, double (*deriv)[kNumOutputs][kNumVars], StatusBits& q) noexcept {
+  if (d.fast.derivatives && (w == 0 || w == 1) &&  // fast_path.hpp; false: not finite, or a cut cell
+      d.fast.derivatives(d, w, state, slot_begin, slot_end, contact, deriv, q))
+    return true;
   // The cubic kernel's derivatives come from the value pass itself (captured); the other
   // methods' from the block gradients below.
   Captured captured;
-  if (d.method == Method::kCubic) {
-    result.n_slots = d.n_slots;
-    result.status = query_generic(d, wf, state, 0, d.n_slots, result.contact, captured);
-  } else {
-    query(wheel, state, result);
-  }
-  const int ns = std::max(0, std::min(result.n_slots, kMaxSlots));
-  for (int s = 0; s < ns; ++s)
-    for (auto& row : derivatives.d[s])
+  q = query_generic(d, w, state, slot_begin, slot_end, contact, d.method == Method::kCubic ? captured : nullptr);
+  const int n = slot_end - slot_begin;
+  for (int s = 0; s < n; ++s)
+    for (auto& row : deriv[s])
       for (double& x : row) x = 0.0;  // parts the table does not hold, untabulated variables
-  if (!derivatives_supported()) return false;
-  if (result.status & status::kInvalidInput) return true;
-  const int w = static_cast<int>(wheel);
+  if (d.method == Method::kMonotoneCubic) return false;
+  if (q & status::kInvalidInput) return true;
   Location at;
   locate(d, w, state, at);
-  for (int s = 0; s < ns; ++s) {
+  at.slot_begin = slot_begin;
+  for (int s = 0; s < n; ++s) {
     SlotGradient g;
-    g.d = derivatives.d[s];
-    slot_gradient(d, w, at, s, captured, g);
+    g.d = deriv[s];
+    slot_gradient(d, w, at, slot_begin + s, captured, g);
     for (int var = 0; var < kNumVars; ++var)
       if (at.frozen[var])
-        for (int o = 0; o < kNumOutputs; ++o) derivatives.d[s][o][var] = 0.0;
+        for (int o = 0; o < kNumOutputs; ++o) deriv[s][o][var] = 0.0;
     // A table over |yaw|: d/d yaw = sign(yaw) d/d|yaw|, and 0 at yaw = 0 (an even function's).
     if (d.yaw_even && !(state.yaw > 0.0)) {
       const double sign = state.yaw < 0.0 ? -1.0 : 0.0;
-      for (int o = 0; o < kNumOutputs; ++o) derivatives.d[s][o][kVarYaw] *= sign;
+      for (int o = 0; o < kNumOutputs; ++o) deriv[s][o][kVarYaw] *= sign;
     }
   }
   return true;
+}
+
+}  // namespace
+}  // namespace detail
+
+bool Table::query_derivatives(Wheel wheel, const State& state, Result& result, Derivatives& derivatives) const noexcept {
+  const detail::TableData& d = *data_;
+  result.n_slots = d.n_slots;
+  return detail::slot_range_derivatives(d, static_cast<int>(wheel), state, 0, d.n_slots, result.contact,
+                                        derivatives.d, result.status);
+}
+
+bool Table::query_slot_derivatives(Wheel wheel, const State& state, int slot, Contact& contact,
+                                   SlotDerivatives& derivatives) const noexcept {
+  const detail::TableData& d = *data_;
+  if (slot < 0 || slot >= d.n_slots) {  // as query_slot: zeros and kInvalidInput
+    contact = Contact{};
+    contact.status = status::kInvalidInput;
+    derivatives = SlotDerivatives{};
+    return derivatives_supported();
+  }
+  StatusBits q = 0;
+  return detail::slot_range_derivatives(d, static_cast<int>(wheel), state, slot, slot + 1, &contact,
+                                        &derivatives.d, q);
 }
 
 }  // namespace railtab::lookup

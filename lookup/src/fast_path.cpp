@@ -78,7 +78,7 @@ inline void fold_status(const TableData& d, StatusBits q, Contact& c) noexcept {
 
 // What the derivative query adds to regular_slot: where the slot's derivatives go (rows by Output,
 // zeroed here) and the variables held at the table's edge (their columns stay 0).
-struct SlotDerivatives {
+struct DerivativeSink {
   double (*d)[kNumVars] = nullptr;
   unsigned frozen = 0;  // bit var: clamped
 };
@@ -142,7 +142,7 @@ inline void finish_creep_gradient(const TableData& d, const Block& cb, const Blo
 // and creepage cells found here once; the values are the plain query's, the same code.
 template <int NG, int NN, int NC, int NP, bool kAvx2, class TC, bool kGrad = false>
 void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, StatusBits q,
-                  int s, Contact& c, const SlotDerivatives* grad = nullptr) noexcept {
+                  int s, Contact& c, const DerivativeSink* grad = nullptr) noexcept {
   const FastPath& fp = d.fast;
   const Block& gb = d.block[w][fp.geometry];
   const Block& nb = d.block[w][fp.normal];
@@ -347,7 +347,7 @@ __attribute__((always_inline)) inline void cut_block_0(const Block& b, const Jum
 // creepage cell found here, the scales' from one_sided_scales_gradient.
 template <int NG, int NN, int NC, int NP, bool kAvx2, class TC, bool kGrad = false>
 void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, const Piece (*pieces)[2],
-              int s, Contact& c, const SlotDerivatives* grad = nullptr) noexcept {
+              int s, Contact& c, const DerivativeSink* grad = nullptr) noexcept {
   const FastPath& fp = d.fast;
   const JumpWheel& j = d.jumps[w];
   const CreepMap& map = d.creep_map;
@@ -494,8 +494,8 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
 }
 
 template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
-bool fast_derivatives(const TableData& d, int w, const State& state, Contact* contact,
-                      double (*deriv)[kNumOutputs][kNumVariables], StatusBits& q) noexcept {
+bool fast_derivatives(const TableData& d, int w, const State& state, int slot_begin, int slot_end,
+                      Contact* contact, double (*deriv)[kNumOutputs][kNumVariables], StatusBits& q) noexcept {
   AxisLoc loc[kVarLoad + 1];
   double creepage[3];
   unsigned clamped;
@@ -507,17 +507,18 @@ bool fast_derivatives(const TableData& d, int w, const State& state, Contact* co
   if (cut) {
     Piece pieces[2][2];
     query_pieces(d.jumps[w], d.axis[kVarY], loc, 2, pieces);
-    for (int s = 0; s < d.n_slots; ++s) {
-      const SlotDerivatives grad{deriv[s], clamped};
-      zero_absent(d, contact[s]);
-      cut_slot<NG, NN, NC, NP, kAvx2, TC, true>(d, w, loc, creepage, pieces, s, contact[s], &grad);
-      fold_status(d, q, contact[s]);
+    for (int s = slot_begin; s < slot_end; ++s) {
+      const DerivativeSink grad{deriv[s - slot_begin], clamped};
+      Contact& c = contact[s - slot_begin];
+      zero_absent(d, c);
+      cut_slot<NG, NN, NC, NP, kAvx2, TC, true>(d, w, loc, creepage, pieces, s, c, &grad);
+      fold_status(d, q, c);
     }
     return true;
   }
-  for (int s = 0; s < d.n_slots; ++s) {
-    const SlotDerivatives grad{deriv[s], clamped};
-    regular_slot<NG, NN, NC, NP, kAvx2, TC, true>(d, w, loc, creepage, q, s, contact[s], &grad);
+  for (int s = slot_begin; s < slot_end; ++s) {
+    const DerivativeSink grad{deriv[s - slot_begin], clamped};
+    regular_slot<NG, NN, NC, NP, kAvx2, TC, true>(d, w, loc, creepage, q, s, contact[s - slot_begin], &grad);
   }
   return true;
 }

@@ -21,13 +21,15 @@ struct TableData;
 using FastQuery = bool (*)(const TableData& d, int w, const State& state, int slot_begin,
                            int slot_end, Contact* contact, StatusBits& q) noexcept;
 
-// The same with the partial derivatives (Table::query_derivatives) of every slot: the values
-// query() gives, and into d[slot] those of derivatives.cpp's generic path (the same formulas on
+// The same with the partial derivatives (Table::query_derivatives) of slots [slot_begin,
+// slot_end): the values query() gives into contact[0 ..], and into deriv[slot - slot_begin] those
+// of derivatives.cpp's generic path (the same formulas on
 // the cell, scales and creepage cells the value pass found; the gradient of the creep cell from
 // its corners read once more). Returns false, writing nothing, when a variable is not finite or
 // a located jump cuts the cell and the cut cells are not fused (FastPath::cut: the generic path).
-using FastDerivatives = bool (*)(const TableData& d, int w, const State& state, Contact* contact,
-                                 double (*deriv)[kNumOutputs][kNumVariables], StatusBits& q) noexcept;
+using FastDerivatives = bool (*)(const TableData& d, int w, const State& state, int slot_begin, int slot_end,
+                                 Contact* contact, double (*deriv)[kNumOutputs][kNumVariables],
+                                 StatusBits& q) noexcept;
 
 struct FastPath {
   FastQuery query = nullptr;  // null: the table does not have the shape (generic path)

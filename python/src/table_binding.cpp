@@ -69,7 +69,8 @@ py::array_t<T> uninitialised(std::vector<py::ssize_t> shape) {
 // Queries n states. Inputs are 1-D arrays of length n or 1; `slot` < 0: every slot, else that
 // slot only (Table::query_slot, about half the cost). Returns (values [n, slots, outputs],
 // part_status [n, slots, parts], status [n, slots], derivatives) with slots = n_slots or 1;
-// `derivatives`: None, or with want_derivatives (Table::query_derivatives) d output / d variable
+// `derivatives`: None, or with want_derivatives (Table::query_derivatives, or with a slot
+// Table::query_slot_derivatives) d output / d variable
 // [n, slots, outputs, variables] (variables y, roll, load, xi, eta, phi, yaw); `track`: None, or with
 // want_track_forces (every slot only; lk::track_forces) the pair (per slot [n, slots, 3]: lateral,
 // vertical [N], contact angle [rad]; per wheel [n, 5]: wheel_lateral, wheel_vertical, Y, Q [N], Y/Q);
@@ -142,6 +143,7 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
     lk::Result r;
     lk::Contact c;
     lk::Derivatives d;
+    lk::SlotDerivatives sd;
     lk::CreepCoefficients cc;
     for (py::ssize_t k = 0; k < n; ++k) {
       s.y = in[0].at(k);
@@ -153,11 +155,15 @@ py::tuple query_arrays(const lk::Table& table, py::ssize_t n, const Ints& wheel,
       s.yaw = in[6].at(k);
       const auto w = static_cast<lk::Wheel>(wheels[k * wheel_step]);
       const lk::Contact* contacts = &c;
-      if (dv) {
+      if (dv && slot >= 0) {
+        table.query_slot_derivatives(w, s, slot, c, sd);
+        std::copy_n(&sd.d[0][0], lk::kNumOutputs * kVars, dv);
+        dv += lk::kNumOutputs * kVars;
+      } else if (dv) {
         table.query_derivatives(w, s, r, d);
-        contacts = r.contact + std::max(slot, 0);
+        contacts = r.contact;
         for (py::ssize_t j = 0; j < slots; ++j) {
-          std::copy_n(&d.d[std::max(slot, 0) + j][0][0], lk::kNumOutputs * kVars, dv);
+          std::copy_n(&d.d[j][0][0], lk::kNumOutputs * kVars, dv);
           dv += lk::kNumOutputs * kVars;
         }
       } else if (slot < 0) {

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Shared fixtures of the Python tests. CTest (python/CMakeLists.txt) sets the environment:
 PYTHONPATH (the built package), RAILTAB_PROGRAM (the railtab program), RAILTAB_WRITE_FIXTURE
-(tests/lookup's fixture table writer), RAILTAB_SOURCE_DIR, RAILTAB_TEST_TMP."""
+(tests/lookup's fixture table writer), RAILTAB_SOURCE_DIR, RAILTAB_TEST_TMP, and
+RAILTAB_DEFAULT_TABLE (the default table, generated once by the CTest fixture python.default_table)."""
 import os
 import subprocess
 from pathlib import Path
@@ -35,7 +36,13 @@ def fixture_table(tmp_path_factory):
 
 @pytest.fixture(scope="session")
 def default_table(tmp_path_factory, railtab_program):
-    """The default table (tables/default.toml), made by `railtab generate` (a few seconds)."""
+    """The default table (tables/default.toml), made by `railtab generate` (a few seconds): under
+    CTest once for all test files (RAILTAB_DEFAULT_TABLE, read only), else once per pytest run."""
+    shared = os.environ.get("RAILTAB_DEFAULT_TABLE")
+    if shared:
+        if not Path(shared).exists():
+            pytest.fail(f"RAILTAB_DEFAULT_TABLE={shared} does not exist: the CTest fixture python.default_table failed")
+        return Path(shared)
     path = tmp_path_factory.mktemp("default") / "default.h5"
     subprocess.run([railtab_program, "generate", str(SOURCE_DIR / "tables" / "default.toml"), "-o", str(path),
                     "--threads", "2"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

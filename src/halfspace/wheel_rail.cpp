@@ -458,7 +458,7 @@ constexpr double kKeepGridLoadChange = 0.1;
 bool resolve_on_kept_grid(WheelHalfspaceResult& r,
                           const std::vector<std::vector<PlaneSample>>& samples,
                           double load, const Material& material,
-                          const HalfspaceOptions& o, Workspace& ws) {
+                          const HalfspaceOptions& o, Workspace& ws, const EarlierPressure* earlier = nullptr) {
   if (r.patches.size() != 1 || samples.size() != 1 || !(load > 0.0)) return false;
   const HalfspacePatch& old = r.patches[0];
   if (!(old.normal.status & status::kConverged) || (old.normal.status & status::kAreaTooSmall) ||
@@ -468,6 +468,15 @@ bool resolve_on_kept_grid(WheelHalfspaceResult& r,
     return false;
   HalfspacePatch hp = old;  // reference, grid, gap; the pressure is the warm start
   const double c = std::cos(hp.contact_angle_side);
+  // With an earlier pressure on this grid at another load, the start is extrapolated linearly in
+  // the load from the two (clipped at zero), where it is no further than twice their distance.
+  if (earlier != nullptr && earlier->pressure.size() == hp.normal.pressure.size()) {
+    const double f = (load - r.carried_load) / (r.carried_load - earlier->load);
+    if (std::isfinite(f) && std::abs(f) <= 2.0)
+      for (std::size_t k = 0; k < hp.normal.pressure.size(); ++k)
+        hp.normal.pressure[k] =
+            std::max(0.0, hp.normal.pressure[k] + f * (hp.normal.pressure[k] - earlier->pressure[k]));
+  }
   solve_normal_for_force(hp.grid, hp.gap, load / c, material, o.normal, ws, hp.normal);
   if (hp.normal.status & (status::kAreaTooSmall | status::kInvalidInput)) return false;
   r.patches[0] = std::move(hp);
@@ -532,11 +541,17 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
     // solved (a warm pressure one solver check away), only the tangential one sees the new creepage.
     start = load - state->result.carried_load;
   }
+  // Warm: the kept grid's pressure at the load before the last change (a predictor's second point).
+  EarlierPressure earlier = warm ? state->earlier : EarlierPressure{};
   auto round = [&](double tz, bool loose) {
     const HalfspaceOptions& oo = loose ? first_round : o;
     const double normal_load = std::max(0.0, load - tz);  // the normal part's share
     // A later round: on the previous grid when it still fits (tractions warm-started there).
-    if (!r.patches.empty() && resolve_on_kept_grid(r, samples, normal_load, material, oo, ws)) {
+    EarlierPressure before;
+    const bool moved = warm && r.patches.size() == 1 && normal_load != r.carried_load;
+    if (moved) before = {r.patches[0].normal.pressure, r.carried_load};
+    if (!r.patches.empty() && resolve_on_kept_grid(r, samples, normal_load, material, oo, ws, warm ? &earlier : nullptr)) {
+      if (moved) earlier = std::move(before);
       solve_halfspace_tangential(r, creepage, mu, material, oo, ws);
       return tangential_vertical(r);
     }
@@ -566,6 +581,7 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
   if (state != nullptr) {
     if (converged && !r.patches.empty()) {  // a chain continues only from a converged solve
       state->result = r;
+      state->earlier = std::move(earlier);
       state->samples = std::make_shared<const PlaneSamples>(PlaneSamples{samples});
     } else {
       state->clear();

@@ -102,12 +102,13 @@ TEST(HalfspaceWheelRail, WearOnlyWhereSlipping) {
 // solve's tolerance: both meet the load balance to 1e-4 F_z, so their tangential vertical parts
 // (and with them N cos g) differ by at most 2e-4 F_z, and the creep forces by that change of N
 // times mu, plus the tangential solver's own tolerance. Tread (y = 2 mm) and flange contact
-// (y = 7 mm: the left wheel's flange, the right wheel's tread), spin of both signs.
+// (y = 7 mm: the left wheel's flange, the right wheel's tread), spin of both signs. On the tread
+// the later rounds start from a pressure extrapolated in the load (RollingState::earlier).
 TEST(HalfspaceWheelRail, WarmChainIsTheColdFixedPoint) {
   halfspace::Workspace ws;
   const Material m = steel();
   const double fz = 78.5e3;
-  int warm_solves = 0, flange = 0;
+  int warm_solves = 0, flange = 0, predicted = 0;
   for (const auto& [side, y] : {std::pair{Side::left, 0.002}, std::pair{Side::left, 0.007}, std::pair{Side::right, 0.007}}) {
     const auto g = solver().solve_wheel(side, {y, 0.0});
     halfspace::RollingState chain;
@@ -125,6 +126,7 @@ TEST(HalfspaceWheelRail, WarmChainIsTheColdFixedPoint) {
           ASSERT_EQ(w.patches.size(), cold.patches.size()) << where;
           ASSERT_FALSE(chain.result.patches.empty()) << "a converged solve continues the chain";
           warm_solves += warm;
+          predicted += warm && !chain.earlier.pressure.empty();
           for (std::size_t k = 0; k < w.patches.size(); ++k) {
             const auto& a = w.patches[k];
             const auto& b = cold.patches[k];
@@ -140,6 +142,7 @@ TEST(HalfspaceWheelRail, WarmChainIsTheColdFixedPoint) {
   }
   EXPECT_EQ(warm_solves, 3 * 11);  // all but the first of each chain started warm
   EXPECT_GT(flange, 0);            // the flange's chain (grid placed again each round) was compared
+  EXPECT_GT(predicted, 11);        // the tread's chains carried the predictor's second pressure
 }
 
 // Loose rounds along a warm chain (HalfspaceOptions::loose_round_residual: the rounds of the

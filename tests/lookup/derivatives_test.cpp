@@ -328,10 +328,22 @@ TEST(Derivatives, CApiGivesTheCppNumbers) {
     EXPECT_EQ(std::memcmp(&cr, &r, sizeof cr), 0);
     EXPECT_EQ(std::memcmp(&cd, &d, sizeof cd), 0);
     EXPECT_EQ(cd.d[1][RAILTAB_LOOKUP_FY][RAILTAB_LOOKUP_VAR_XI], d.d[1][kFy][kXi]);
+    for (int slot = 0; slot < t.n_slots(); ++slot) {  // the one-slot twin: that slot's bytes
+      railtab_lookup_contact cc;
+      railtab_lookup_slot_derivatives csd;
+      ASSERT_EQ(railtab_lookup_query_slot_derivatives(c, RAILTAB_LOOKUP_RIGHT, &cs, slot, &cc, &csd), RAILTAB_LOOKUP_OK);
+      EXPECT_EQ(std::memcmp(&cc, &r.contact[slot], sizeof cc), 0);
+      EXPECT_EQ(std::memcmp(csd.d, d.d[slot], sizeof csd.d), 0);
+    }
   }
   railtab_lookup_state cs{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   railtab_lookup_result cr;
   EXPECT_EQ(railtab_lookup_query_derivatives(c, 2, &cs, &cr, nullptr), RAILTAB_LOOKUP_ERROR_ARGUMENT);
+  railtab_lookup_contact cc;
+  railtab_lookup_slot_derivatives csd;
+  EXPECT_EQ(railtab_lookup_query_slot_derivatives(c, RAILTAB_LOOKUP_LEFT, &cs, t.n_slots(), &cc, &csd),
+            RAILTAB_LOOKUP_ERROR_ARGUMENT);
+  EXPECT_NE(std::string(railtab_lookup_last_error()).find("slot outside"), std::string::npos) << railtab_lookup_last_error();
   railtab_lookup_close(c);
 }
 

@@ -183,9 +183,8 @@ void check_jumps(const lk::Table& t, const char* name) {
 TEST(Derivatives, LinearBesideAJumpIsOneSided) { check_jumps(*tables().linear, "linear"); }
 TEST(Derivatives, CubicBesideAJumpIsOneSided) { check_jumps(*tables().cubic, "cubic"); }
 
-// The values query_derivatives returns are query()'s, to the byte: at random states and beside
-// every located jump (cut cells), both wheels, linear and cubic.
-void check_same_bytes(const lk::Table& t) {
+// Random states and states beside every located jump (cut cells).
+std::vector<lk::State> byte_check_states(const lk::Table& t) {
   const Tables& x = tables();
   std::vector<lk::State> states;
   for (const Point& p : random_states(x.scene, 2000, 7)) states.push_back(to_state(t, p));
@@ -199,6 +198,13 @@ void check_same_bytes(const lk::Table& t) {
           s.y = jump.y + side * 3e-5;
           states.push_back(s);
         }
+  return states;
+}
+
+// The values query_derivatives returns are query()'s, to the byte: at random states and beside
+// every located jump (cut cells), both wheels, linear and cubic.
+void check_same_bytes(const lk::Table& t) {
+  const std::vector<lk::State> states = byte_check_states(t);
   lk::Result r, plain;
   lk::Derivatives d;
   int nonzero = 0;
@@ -217,6 +223,38 @@ void check_same_bytes(const lk::Table& t) {
 
 TEST(Derivatives, LinearValuesAreTheQuerysBytesOnTheDefaultTable) { check_same_bytes(*tables().linear); }
 TEST(Derivatives, CubicValuesAreTheQuerysBytesOnTheDefaultTable) { check_same_bytes(*tables().cubic); }
+
+// The one-slot derivative query gives query_derivatives' contact[slot] and d[slot] to the byte
+// (the fast path's tables too: the linear default table takes it), at the same states; a slot
+// outside the table gives zeros and kInvalidInput.
+void check_one_slot(const lk::Table& t) {
+  lk::Result r;
+  lk::Derivatives d;
+  lk::Contact c;
+  lk::SlotDerivatives sd;
+  int loaded_flange = 0;
+  for (const lk::State& s : byte_check_states(t))
+    for (int w = 0; w < 2; ++w) {
+      const lk::Wheel wheel = static_cast<lk::Wheel>(w);
+      ASSERT_TRUE(t.query_derivatives(wheel, s, r, d));
+      for (int slot = 0; slot < t.n_slots(); ++slot) {
+        std::memset(static_cast<void*>(&c), 0xA5, sizeof c);
+        std::memset(static_cast<void*>(&sd), 0xA5, sizeof sd);
+        ASSERT_TRUE(t.query_slot_derivatives(wheel, s, slot, c, sd));
+        ASSERT_EQ(std::memcmp(&c, &r.contact[slot], sizeof c), 0) << "slot " << slot << " wheel " << w << " y " << s.y;
+        ASSERT_EQ(std::memcmp(sd.d, d.d[slot], sizeof sd.d), 0) << "slot " << slot << " wheel " << w << " y " << s.y;
+        loaded_flange += slot == 1 && c.value[lk::kNormalForce] > 0.0;
+      }
+    }
+  EXPECT_GT(loaded_flange, 100);  // the flange slot's derivatives compared where it carries load
+  ASSERT_TRUE(t.query_slot_derivatives(lk::Wheel::kLeft, t.default_state(), t.n_slots(), c, sd));
+  EXPECT_EQ(c.status, lk::status::kInvalidInput);
+  for (const auto& row : sd.d)
+    for (double x : row) EXPECT_EQ(x, 0.0);
+}
+
+TEST(Derivatives, LinearOneSlotIsTheWholeQuerysSlotOnTheDefaultTable) { check_one_slot(*tables().linear); }
+TEST(Derivatives, CubicOneSlotIsTheWholeQuerysSlotOnTheDefaultTable) { check_one_slot(*tables().cubic); }
 
 }  // namespace
 }  // namespace railtab::accuracy::derivatives_test

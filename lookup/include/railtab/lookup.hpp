@@ -157,6 +157,11 @@ struct Derivatives {
   double d[kMaxSlots][kNumOutputs][kNumVariables] = {};  // [slot][Output][Variable]
 };
 
+// The same for one slot (Table::query_slot_derivatives): Derivatives::d[slot].
+struct SlotDerivatives {
+  double d[kNumOutputs][kNumVariables] = {};  // [Output][Variable]
+};
+
 // Forces of the rail on one wheel in track axes (x forward, y left, z up; docs/conventions.md,
 // "Track-frame forces and Y/Q"), from one query result: the table stores each slot's normal force N
 // along the contact normal n = (0, -sin g, cos g) and its creep force fy along s = (0, cos g, sin g),
@@ -305,6 +310,13 @@ class RAILTAB_LOOKUP_API Table {
   bool query_derivatives(Wheel wheel, const State& state, Result& result,
                          Derivatives& derivatives) const noexcept;
   bool derivatives_supported() const noexcept;  // method() is kLinear or kCubic
+
+  // One slot's twin of query_derivatives (as query_slot is query's): `contact` and `derivatives`
+  // receive exactly query_derivatives' contact[slot] and d[slot], reading only that slot's
+  // records. A slot outside 0 .. n_slots()-1 or a bad wheel gives zeros and kInvalidInput. Returns
+  // false for kMonotoneCubic (derivatives all 0). Never throws, allocates nothing.
+  bool query_slot_derivatives(Wheel wheel, const State& state, int slot, Contact& contact,
+                              SlotDerivatives& derivatives) const noexcept;
 
   // The linear creep coefficients of `wheel` at the state's (y, roll, load); its creepages are
   // not used (the coefficients are at zero creepage). Returns false, with `out` zeroed, when the
