@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Cost of a yaw axis (format 2.4): the default scene (tables/default.toml) as it is and with a
-// 5-node yaw axis [grid] yaw = [-0.01, -0.005, 0, 0.005, 0.01] (rad), the rest unchanged.
+// 5-node yaw axis [grid] yaw = [-0.01, -0.005, 0, 0.005, 0.01] (rad), the rest unchanged. The list
+// is symmetric, so the table stores 0, 0.005, 0.01 and the lookup reads |yaw| (yaw_symmetry).
 // Targets (docs/validation/yaw-tables.md): generation time and table size at most 5x, a lookup
 // at most 1.3x the yaw-free table's.
 //   BM_Sweep/0, /1            the table sweep (run_sweep: geometry, normal, creep and wear of

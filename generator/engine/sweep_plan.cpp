@@ -98,6 +98,8 @@ Table make_skeleton(const Scene& scene, const SweepKernel& kernel, const SweepLa
   t.set_attribute("scene_name", scene.name);
   t.set_attribute("models", kernel.models.dump());
   t.set_attribute("fixed_axes", fixed_axes(scene).dump());
+  // The yaw axis holds the non-negative half of a symmetric list: the lookup folds yaw to |yaw|.
+  if (scene.grids.yaw_even) t.set_attribute("yaw_symmetry", "even");
   for (const auto& [name, text] : kernel.attributes) t.set_attribute(name, text);
   if (options.shard_count > 1) {
     // A shard is a valid table over its part of y; merge needs to know which part.

@@ -55,6 +55,8 @@ struct SceneGrids {
   std::vector<double> roll;  // roll angle [rad]
   std::vector<double> yaw;   // yaw angle (angle of attack) [rad]; empty: the scene has no yaw key
                              //   (the yaw-free table, format 2.3); one value: fixed; more: an axis
+  bool yaw_even = false;     // the scene's yaw list was symmetric about 0 and held 0: `yaw` keeps its
+                             //   non-negative half and the table records yaw_symmetry = "even"
   std::vector<double> load;  // vertical wheel load [N]
   std::vector<double> xi;    // longitudinal creepage [-]
   std::vector<double> eta;   // lateral creepage [-]

@@ -47,7 +47,8 @@ int variable_index(const std::string& name) {
 
 }  // namespace
 
-LookupContactModel::LookupContactModel(lk::Table table) : table_(std::move(table)), base_(table_.default_state()) {
+LookupContactModel::LookupContactModel(lk::Table table)
+    : table_(std::move(table)), base_(table_.default_state()), yaw_even_(table_.yaw_even()) {
   RAILTAB_CHECK(table_.n_slots() >= vehicle::kContactSlots, "{}: the table has {} contact slots, the simulation needs {}",
                 table_.path(), table_.n_slots(), vehicle::kContactSlots);
   RAILTAB_CHECK(table_.has_part(lk::kGeometry) && table_.has_part(lk::kNormal) && table_.has_part(lk::kCreep),
@@ -114,7 +115,7 @@ bool LookupContactModel::geometry_in_plane(int wheel, int slot, std::size_t plan
 bool LookupContactModel::geometry_at(int wheel, int slot, double y, double yaw, vehicle::SlotContact& out) const {
   std::size_t j = 0;
   double t = 0.0;
-  locate(yaw_nodes_, yaw, j, t);
+  locate(yaw_nodes_, yaw_even_ ? std::abs(yaw) : yaw, j, t);
   GeometryNode a, b;
   const bool has_a = geometry_in_plane(wheel, slot, j, y, a);
   const bool has_b = yaw_nodes_.size() > 1 && geometry_in_plane(wheel, slot, j + 1, y, b);
@@ -139,7 +140,8 @@ void LookupContactModel::count(const lk::State& state, lk::StatusBits query_bits
     ++counts_.out_of_range;
     for (std::size_t v = 0; v < kLookupVariables; ++v) {
       if (range_[v].empty()) continue;
-      const double x = variable(state, static_cast<int>(v));
+      double x = variable(state, static_cast<int>(v));
+      if (v == kYaw && yaw_even_) x = std::abs(x);  // the table reads |yaw|
       if (x < range_[v][0] || x > range_[v][1]) ++counts_.outside_axis[v];
     }
   }

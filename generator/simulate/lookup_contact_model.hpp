@@ -61,6 +61,7 @@ class LookupContactModel final : public vehicle::ContactModel {
   lookup::State base_;                        // fixed axes at their values
   std::vector<double> y_nodes_;               // the table's y axis [m]
   std::vector<double> yaw_nodes_;             // the table's yaw axis [rad]; empty: yaw is fixed
+  bool yaw_even_ = false;                     // the axis is the half yaw >= 0 of a symmetric one: read at |yaw|
   std::array<std::vector<double>, kLookupVariables> range_;  // per variable: {min, max} of its axis, empty if fixed
   // [wheel][slot][yaw node * y nodes + y node] (one yaw plane without a yaw axis): the geometry
   // part read at the nodes, so that a slot present at only one corner of a cell keeps that

@@ -121,7 +121,8 @@ bool Table::query_creep_coefficients(Wheel wheel, const State& state, CreepCoeff
   for (int s = 0; s < d.n_slots; ++s) out.status[s] = r.contact[s].part_status[kNormal];
   if (r.status & status::kInvalidInput) return true;
   AxisLoc loc[kNumVars];
-  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi, state.yaw};
+  double v[kNumVars];
+  table_variables(d, state, v);
   for (int k = 0; k < d.coefficients.n_dims; ++k) {
     const int var = d.coefficients.var[k];
     d.axis[var].locate_fast(v[var], loc[var]);

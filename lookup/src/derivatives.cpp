@@ -34,7 +34,8 @@ struct Location {
 };
 
 void locate(const TableData& d, int w, const State& state, Location& at) noexcept {
-  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi, state.yaw};
+  double v[kNumVars];
+  table_variables(d, state, v);
   const CreepMap& map = d.creep_map;
   for (int k = 0; k < d.n_located; ++k) {
     const int var = d.located_var[k];
@@ -191,6 +192,11 @@ bool slot_range_derivatives(const TableData& d, int w, const State& state, int s
     for (int var = 0; var < kNumVars; ++var)
       if (at.frozen[var])
         for (int o = 0; o < kNumOutputs; ++o) deriv[s][o][var] = 0.0;
+    // A table over |yaw|: d/d yaw = sign(yaw) d/d|yaw|, and 0 at yaw = 0 (an even function's).
+    if (d.yaw_even && !(state.yaw > 0.0)) {
+      const double sign = state.yaw < 0.0 ? -1.0 : 0.0;
+      for (int o = 0; o < kNumOutputs; ++o) deriv[s][o][kVarYaw] *= sign;
+    }
   }
   return true;
 }

@@ -43,7 +43,8 @@ namespace {
 StatusBits locate_state(const detail::TableData& d, const State& state, detail::AxisLoc* loc,
                         double* creepage) noexcept {
   using namespace detail;
-  const double v[kNumVars] = {state.y, state.roll, state.load, state.xi, state.eta, state.phi, state.yaw};
+  double v[kNumVars];
+  table_variables(d, state, v);
   const CreepMap& map = d.creep_map;
   // A variable the table neither tabulates nor fixes does not affect it: ignored.
   bool finite = true, out = false;

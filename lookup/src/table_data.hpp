@@ -23,6 +23,7 @@
 // and offsets are in bytes; the data start on a 64-byte boundary.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -118,6 +119,8 @@ struct TableData {
                                       // in fixed[] / fixed_list (a table computed at yaw 0)
   bool roll_equilibrium = false;      // roll follows the equilibrium (roll_mode): in fixed_var at 0,
                                       // not in fixed[] / fixed_list (not a fixed value of the table)
+  bool yaw_even = false;              // root attribute yaw_symmetry = "even": the yaw axis holds the
+                                      // non-negative half (every output is even in yaw); queried at |yaw|
   int n_absent = 0;                   // parts not in the table, and which (their outputs are 0)
   int absent_part[kNumParts] = {};
   bool has_part[kNumParts] = {};      // part present (for both wheels)
@@ -139,6 +142,13 @@ struct TableData {
     std::vector<ErrorStats> table_vs_model, model_vs_exact;  // [band * n_slots + slot]
   } error_map;
 };
+
+// The state's variables indexed by Var as the table's axes hold them: yaw folded to |yaw| on a
+// table that stores half of a symmetric yaw axis (yaw_even).
+inline void table_variables(const TableData& d, const State& s, double (&v)[kNumVars]) noexcept {
+  v[kVarY] = s.y, v[kVarRoll] = s.roll, v[kVarLoad] = s.load, v[kVarXi] = s.xi, v[kVarEta] = s.eta, v[kVarPhi] = s.phi;
+  v[kVarYaw] = d.yaw_even ? std::abs(s.yaw) : s.yaw;
+}
 
 // Reads /error_map when present (error_map.cpp); a table without one loads as before.
 void read_error_map(const Hdf5File& f, TableData& d);

@@ -65,4 +65,6 @@ const char* supported_format_version() noexcept { return "2.4"; }
 
 bool Table::checksums_verified() const { return data_->checksums_verified; }
 
+bool Table::yaw_even() const { return data_->yaw_even; }
+
 }  // namespace railtab::lookup

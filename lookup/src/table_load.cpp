@@ -218,6 +218,14 @@ void check_fixed_variables(const Hdf5File& f, TableData& d) {
   }
   // Yaw may be absent (a table of a scene without yaw, or older than format 2.4): computed at yaw 0.
   d.yaw_absent = !d.tabulated[kVarYaw] && !d.fixed[kVarYaw];
+  // A symmetric yaw axis stored as its non-negative half (every output even in yaw): queried at |yaw|.
+  if (const auto symmetry = f.string_attribute("/", "yaw_symmetry")) {
+    if (*symmetry != "even")
+      f.fail("root attribute yaw_symmetry is '" + *symmetry + "' (the only symmetry is \"even\")");
+    if (!d.tabulated[kVarYaw] || d.axis[kVarYaw].node_vector().front() != 0.0)
+      f.fail("yaw_symmetry = \"even\" needs a yaw axis starting at 0 (/axes/yaw holds the non-negative half)");
+    d.yaw_even = true;
+  }
   for (int var = 0; var < kNumVars; ++var)
     if (!d.tabulated[var] && !d.fixed[var] && !(var == kVarRoll && d.roll_equilibrium) && !(var == kVarYaw && d.yaw_absent))
       f.fail(std::string("state variable '") + var_name(var) + "' is neither an axis nor a fixed " +

@@ -15,8 +15,11 @@
 namespace railtab::accuracy {
 namespace {
 
-constexpr double kYawNodes[] = {-0.01, -0.005, 0.0, 0.005, 0.01};  // [rad]
-constexpr std::size_t kNyaw = 5, kZeroYaw = 2;
+constexpr double kYawNodes[] = {-0.01, -0.005, 0.0, 0.005, 0.01};  // the scene's list [rad]
+constexpr std::size_t kNyaw = 5;
+// The list is symmetric about 0: the table stores its non-negative half (yaw_symmetry = "even").
+constexpr double kStoredYaw[] = {0.0, 0.005, 0.01};
+constexpr std::size_t kNstored = 3;
 
 // The default scene's profiles, track and models with a small grid: y symmetric about 0 (the
 // mirror test needs -y for every y), tread and flange contact, two loads, three nodes per creepage.
@@ -88,15 +91,19 @@ std::string label(int o) { return lk::output_name(static_cast<lk::Output>(o)); }
 double core_floor(int o) { return o == lk::kArea || o == lk::kSemiAxisA || o == lk::kSemiAxisB ? 1e-3 : 1e-4; }
 
 // Every wheel group's dataset at the yaw = 0 node is the yaw-free table's, bit for bit: the sweep
-// passes yaw 0 to the geometry, which then takes the yaw-free path.
+// passes yaw 0 to the geometry, which then takes the yaw-free path. The symmetric list is stored
+// as its non-negative half.
 TEST(YawTable, ZeroYawNodeIsTheYawFreeTable) {
   const YawFixture& f = fixture();
   EXPECT_EQ(*f.table.attribute("format_version"), "2.4");
   EXPECT_EQ(*f.free_table.attribute("format_version"), "2.3");
+  ASSERT_TRUE(f.table.attribute("yaw_symmetry"));
+  EXPECT_EQ(*f.table.attribute("yaw_symmetry"), "even");
+  EXPECT_FALSE(f.free_table.attribute("yaw_symmetry"));
   const TableAxis* yaw = f.table.axis("yaw");
   ASSERT_NE(yaw, nullptr);
   EXPECT_EQ(yaw->units, "rad");
-  EXPECT_EQ(yaw->values, std::vector<double>(std::begin(kYawNodes), std::end(kYawNodes)));
+  EXPECT_EQ(yaw->values, std::vector<double>(std::begin(kStoredYaw), std::end(kStoredYaw)));
   EXPECT_EQ(f.free_table.axis("yaw"), nullptr);
   std::size_t compared = 0, differ_at_edge = 0;
   for (const TableGroup& free_group : f.free_table.groups) {
@@ -109,11 +116,11 @@ TEST(YawTable, ZeroYawNodeIsTheYawFreeTable) {
       ASSERT_GE(d->axes.size(), 2u);
       ASSERT_EQ(d->axes[1], "yaw");
       const std::size_t ny = d->shape[0], inner = free_d.size() / ny;
-      ASSERT_EQ(d->size(), ny * kNyaw * inner);
+      ASSERT_EQ(d->size(), ny * kNstored * inner);
       for (std::size_t iy = 0; iy < ny; ++iy)
         for (std::size_t k = 0; k < inner; ++k) {
-          const std::size_t a = (iy * kNyaw + kZeroYaw) * inner + k, b = iy * inner + k;
-          const std::size_t edge = (iy * kNyaw + kNyaw - 1) * inner + k;
+          const std::size_t a = iy * kNstored * inner + k, b = iy * inner + k;
+          const std::size_t edge = (iy * kNstored + kNstored - 1) * inner + k;
           if (free_d.is_status) {
             ASSERT_EQ(d->status[a], free_d.status[b]) << free_group.path << "/" << free_d.name << " y " << iy;
           } else {
@@ -272,29 +279,69 @@ TEST(YawTable, MirrorSwapsTheWheels) {
 
 // One wheel at given creepages does not see the sign of yaw: +-yaw put the contact at the same
 // place on the wheel's silhouette, only its lead (not a table output) changes sign
-// (docs/validation/yaw-tables.md), so every stored output is even in yaw, on and off the nodes.
+// (docs/validation/yaw-tables.md), so the contact kernel gives every stored output even in yaw.
+// What lets a symmetric yaw list be stored as its non-negative half: checked on the kernel itself
+// (the table would answer -yaw with +yaw's values by construction).
 TEST(YawTable, OutputsAreEvenInYaw) {
   const YawFixture& f = fixture();
-  const lk::Table& t = *f.lookup;
   Random rng(34);
-  std::size_t differ_from_zero = 0;
-  for (int k = 0; k < 200; ++k) {
-    const double y = rng.uniform(-0.009, 0.009), yaw = rng.uniform(0.0, 0.01), load = rng.uniform(60e3, 100e3);
-    const double xi = rng.uniform(-0.004, 0.004), eta = rng.uniform(-0.004, 0.004), phi = rng.uniform(-0.3, 0.3);
+  std::vector<Point> points(100);
+  std::vector<double> yaws(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    points[k].v[kY] = rng.uniform(-0.009, 0.009);
+    points[k].v[kLoad] = rng.uniform(60e3, 100e3);
+    points[k].v[kXi] = rng.uniform(-0.004, 0.004);
+    points[k].v[kEta] = rng.uniform(-0.004, 0.004);
+    points[k].v[kPhi] = rng.uniform(-0.3, 0.3);
+    yaws[k] = rng.uniform(0.0, 0.01);
+  }
+  std::vector<Direct> plus(points.size()), minus(points.size()), zero(points.size());
+  tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t k) {
+    plus[k] = evaluate_direct(f.scene, points[k], yaws[k]);
+    minus[k] = evaluate_direct(f.scene, points[k], -yaws[k]);
+    zero[k] = evaluate_direct(f.scene, points[k], 0.0);
+  });
+  std::size_t differ_from_zero = 0, compared = 0;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    for (std::size_t w = 0; w < 2; ++w)
+      for (std::size_t slot = 0; slot < kSlots; ++slot) {
+        for (int q = 0; q < lk::kNumParts; ++q) EXPECT_EQ(plus[k][w].status[q][slot], minus[k][w].status[q][slot]);
+        for (int o = 0; o < lk::kNumOutputs; ++o) {
+          const double a = plus[k][w].value[o][slot], b = minus[k][w].value[o][slot];
+          EXPECT_NEAR(a, b, 1e-9 * std::max(std::abs(a), std::abs(b)) + 1e-12)
+              << label(o) << " wheel " << w << " slot " << slot << " y " << points[k].v[kY] << " yaw " << yaws[k];
+          differ_from_zero += a != zero[k][w].value[o][slot];
+          ++compared;
+        }
+      }
+  std::printf("outputs even in yaw: %zu compared, %zu differ from yaw 0\n", compared, differ_from_zero);
+  EXPECT_GT(differ_from_zero, compared / 4);  // yaw changes the outputs, only not with its sign
+}
+
+// The table of a symmetric yaw list answers -yaw with +yaw's values, bytes and status (it stores
+// |yaw|); a list that is not symmetric keeps every node.
+TEST(YawTable, SymmetricListIsStoredAsItsNonNegativeHalf) {
+  const YawFixture& f = fixture();
+  const lk::Table& t = *f.lookup;
+  Random rng(35);
+  for (int k = 0; k < 50; ++k) {
+    const double y = rng.uniform(-0.009, 0.009), yaw = rng.uniform(0.0, 0.012), load = rng.uniform(60e3, 100e3);
     for (int w = 0; w < 2; ++w) {
       const auto wheel = static_cast<lk::Wheel>(w);
-      const lk::Result plus = t.query(wheel, state_at(t, y, yaw, load, xi, eta, phi));
-      const lk::Result minus = t.query(wheel, state_at(t, y, -yaw, load, xi, eta, phi));
-      const lk::Result zero = t.query(wheel, state_at(t, y, 0.0, load, xi, eta, phi));
-      for (std::size_t slot = 0; slot < kSlots; ++slot)
-        for (int o = 0; o < lk::kNumOutputs; ++o) {
-          const double a = plus.contact[slot].value[o], b = minus.contact[slot].value[o];
-          EXPECT_NEAR(a, b, 1e-9 * std::max(std::abs(a), std::abs(b)) + 1e-12) << label(o) << " y " << y << " yaw " << yaw;
-          differ_from_zero += a != zero.contact[slot].value[o];
-        }
+      const lk::Result a = t.query(wheel, state_at(t, y, yaw, load, 0.001, -0.002, 0.1));
+      const lk::Result b = t.query(wheel, state_at(t, y, -yaw, load, 0.001, -0.002, 0.1));
+      EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "y " << y << " yaw " << yaw;
     }
   }
-  EXPECT_GT(differ_from_zero, 1000u);  // yaw changes the outputs, only not with its sign
+  Scene asymmetric = parse_scene([] {
+    std::string s = scene_text(true);
+    s.replace(s.find("yaw = ["), std::string("yaw = [-0.01, -0.005, 0.0, 0.005, 0.01]").size(), "yaw = [-0.01, 0.0, 0.005]");
+    return s;
+  }(), "asymmetric yaw scene");
+  EXPECT_FALSE(asymmetric.grids.yaw_even);
+  EXPECT_EQ(asymmetric.grids.yaw, (std::vector<double>{-0.01, 0.0, 0.005}));
+  EXPECT_TRUE(f.scene.grids.yaw_even);
+  EXPECT_EQ(f.scene.grids.yaw, std::vector<double>(std::begin(kStoredYaw), std::end(kStoredYaw)));
 }
 
 // Continuity in yaw: the kernel at a yaw of 1e-9 rad either side of the yaw = 0 node gives that
@@ -380,6 +427,90 @@ TEST(YawTable, DerivativeAlongYaw) {
     }
   }
   EXPECT_GT(nonzero, 1000u);
+}
+
+// The exact half-space model through a yaw table: at its nodes the lookup gives the kernel run at
+// that yaw, the geometry and normal parts to round-off, the coupled creep part within the warm
+// chain's bound (the sweep starts each creepage from its neighbour's solution, the direct
+// evaluation from cold: HalfspaceDirect.AgreesWithTheTableAtAGridNode), and yaw moves it.
+// The exact model's list is stored whole (not folded): how far its outputs at -yaw are from those
+// at +yaw is printed (docs/validation/yaw-tables.md). A small grid at 0.5 mm elements (seconds).
+TEST(YawTable, ExactModelThroughTheTable) {
+  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  s = s.substr(0, s.find("[grid]"));
+  s.replace(s.find("element_size = 0.3e-3"), std::string("element_size = 0.3e-3").size(), "element_size = 0.5e-3");
+  s += "[grid]\ny = [0.003, 0.0075]\nequilibrium_roll = true\nyaw = [-0.01, 0.0, 0.01]\nload = 78.5e3\n"
+       "xi = [-0.002, 0.0, 0.002]\neta = [0.0, 0.001]\nphi = 0.1\n";
+  const Scene scene = parse_scene(s, "exact yaw scene");
+  ASSERT_FALSE(scene.grids.yaw_even);  // the exact model's list is kept whole
+  SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+  ASSERT_EQ(r.summary.failures, 0u) << r.summary.first_failure;
+  const std::filesystem::path path = temp_table_path("yaw_exact");
+  write_for_lookup(r.table, path);
+  const lk::Table t = lk::Table::load(path.string());
+  std::filesystem::remove(path);
+  std::vector<Point> points;
+  for (double y : scene.grids.y)
+    for (double xi : scene.grids.xi)
+      for (double eta : scene.grids.eta) {
+        Point p;
+        p.v[kY] = y, p.v[kLoad] = 78.5e3, p.v[kXi] = xi, p.v[kEta] = eta, p.v[kPhi] = 0.1;
+        points.push_back(p);
+      }
+  const double yaws[] = {-0.01, 0.0, 0.01};
+  std::vector<Direct> direct(points.size() * 3);
+  tbb::parallel_for(std::size_t{0}, direct.size(),
+                    [&](std::size_t i) { direct[i] = evaluate_direct(scene, points[i / 3], yaws[i % 3]); });
+  std::size_t checked = 0, moved = 0;
+  double odd = 0.0;  // largest |f(-yaw) - f(+yaw)| / max |f| over outputs with equal statuses
+  int odd_output = 0;
+  double odd_fz = 0.0;  // the same for the creep forces fx, fy over mu N
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    for (std::size_t j = 0; j < 3; ++j)
+      for (std::size_t w = 0; w < 2; ++w) {
+        const Direct& d = direct[i * 3 + j];
+        const lk::Result q = t.query(static_cast<lk::Wheel>(w), state_at(t, p.v[kY], yaws[j], p.v[kLoad], p.v[kXi], p.v[kEta], 0.1));
+        EXPECT_EQ(q.status, 0u);
+        for (std::size_t slot = 0; slot < kSlots; ++slot) {
+          // The warm chain's bound: the load split within 2e-4 F_z, the creep forces within that
+          // share of mu F_z plus 1e-4 mu N, the rest of the creep and wear parts 2e-4 relative;
+          // plus the float32 rounding (4 x 2^-20 of N for forces rebuilt from F / (mu N) and N).
+          const double fz = 78.5e3, mun = 0.3 * std::abs(d[w].value[lk::kNormalForce][slot]);
+          const double creep_tol = 2e-4 * fz * 0.3 + 1e-4 * mun;
+          for (int o = 0; o < lk::kNumOutputs; ++o) {
+            const double a = q.contact[slot].value[o], b = d[w].value[o][slot];
+            const bool creep = lk::output_part(static_cast<lk::Output>(o)) >= lk::kCreep || o == lk::kNormalForce;
+            const double warm = o == lk::kNormalForce ? 2e-4 * fz
+                                : o == lk::kFx || o == lk::kFy ? creep_tol
+                                : o == lk::kMz ? 0.01 * creep_tol : 0.0;
+            const double bound = creep ? warm + 2e-4 * std::abs(b) + 4.0 * kStoredRounding * (std::abs(b) + mun / 0.3)
+                                       : 1e-12 * std::abs(b) + 1e-15;
+            EXPECT_NEAR(a, b, bound) << label(o) << " y " << p.v[kY] << " yaw " << yaws[j] << " wheel " << w << " slot " << slot;
+            ++checked;
+            if (j != 1) {
+              const double zero = direct[i * 3 + 1][w].value[o][slot];
+              moved += std::abs(b - zero) > 1e-6 * std::max(std::abs(zero), 1e-3);
+            }
+            if (j == 0) {
+              bool same = true;
+              for (int part = 0; part < lk::kNumParts; ++part)
+                same &= d[w].status[part][slot] == direct[i * 3 + 2][w].status[part][slot];
+              const double c = direct[i * 3 + 2][w].value[o][slot], scale = std::max(std::abs(b), std::abs(c));
+              if (same && scale > 0.0 && std::abs(b - c) / scale > odd) odd = std::abs(b - c) / scale, odd_output = o;
+              if (same && mun > 0.0 && (o == lk::kFx || o == lk::kFy)) odd_fz = std::max(odd_fz, std::abs(b - c) / mun);
+            }
+          }
+        }
+      }
+  }
+  std::printf("exact model through a yaw table: %zu outputs checked at the nodes, %zu at +-10 mrad move by > 1e-6 from "
+              "yaw 0; largest |f(-yaw) - f(+yaw)| / |f| %.2e (%s), of fx and fy / (mu N) %.2e\n",
+              checked, moved, odd, label(odd_output).c_str(), odd_fz);
+  EXPECT_GT(moved, checked / 10);  // the yaw reaches the exact model
 }
 
 }  // namespace

@@ -351,6 +351,9 @@ class RAILTAB_LOOKUP_API Table {
   // but no dataset checksums (another tool's), which loads unverified unless
   // LoadOptions::require_checksums (format 1.0 is refused; docs/table-format.md, "Integrity").
   bool checksums_verified() const;
+  // Whether the yaw axis holds the non-negative half of a symmetric one (root attribute
+  // yaw_symmetry = "even", docs/table-format.md): axes() lists yaw from 0, a query reads |yaw|.
+  bool yaw_even() const;
 
  private:
   explicit Table(std::shared_ptr<const detail::TableData> data);

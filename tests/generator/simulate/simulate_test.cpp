@@ -215,6 +215,7 @@ TEST_F(SimulateTest, YawTableIsReadAtTheWheelsetYaw) {
   LookupContactModel yaw_lookup(lookup::Table::load(g.output.string()));
   DirectContactModel yaw_direct(load_scene(g.scene));
   ASSERT_TRUE(yaw_lookup.has_yaw_axis());
+  EXPECT_TRUE(yaw_lookup.table().yaw_even());  // a symmetric list: stored over yaw >= 0, read at |yaw|
   ASSERT_TRUE(yaw_direct.has_yaw_axis());
 
   const double load[vehicle::kWheels] = {40e3, 60e3};
