@@ -81,13 +81,15 @@ class FlagOnText : public std::streambuf {
 };
 
 // The interrupt reaches the contact-jump stages after the sweep: the flag, set when the jump
-// locator reports its end, stops the one-sided values (minutes of columns with the exact model)
-// at their first report instead of after them, and nothing is written.
+// locator reports its end (its 100 % line: an earlier line, printed when the locator outlasts one
+// report interval on a slow or loaded machine, would stop the locator instead), stops the
+// one-sided values (minutes of columns with the exact model) at their first report instead of
+// after them, and nothing is written.
 TEST(Generate, InterruptDuringTheContactJumpsStopsThem) {
   testing::TempDir dir{"gen_interrupt_jumps"};
   std::ofstream(dir / "scene.toml") << testing::kJumpScene;
   std::atomic<bool> stop{false};
-  FlagOnText buffer("locating contact jumps", stop);
+  FlagOnText buffer("locating contact jumps: 100.0%", stop);
   std::ostream log(&buffer);
   GenerateOptions o;
   o.scene = dir / "scene.toml";
