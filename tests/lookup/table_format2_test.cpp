@@ -193,6 +193,28 @@ TEST(TableFormat2, RollModeEquilibriumLoadsAndOtherModesAreRefused) {
   }
 }
 
+// A table that stores half of a symmetric yaw axis says so with yaw_symmetry = "even"; any other
+// symmetry, or the attribute without a yaw axis that starts at 0, is refused: the lookup would
+// fold a queried yaw onto nodes that are not there.
+TEST(TableFormat2, YawSymmetryNeedsEvenAndAYawAxisFromZero) {
+  {
+    TempFile file("v2yawodd");
+    FixtureSpec spec = v2_spec();
+    spec.extra_root_attributes = {{"yaw_symmetry", "odd"}};
+    testing::write_fixture(file.path, spec);
+    const std::string msg = load_error(file.path);
+    EXPECT_NE(msg.find("root attribute yaw_symmetry is 'odd'"), std::string::npos) << msg;
+  }
+  {
+    TempFile file("v2yawnoaxis");
+    FixtureSpec spec = v2_spec();
+    spec.extra_root_attributes = {{"yaw_symmetry", "even"}};
+    testing::write_fixture(file.path, spec);
+    const std::string msg = load_error(file.path);
+    EXPECT_NE(msg.find("needs a yaw axis starting at 0"), std::string::npos) << msg;
+  }
+}
+
 TEST(TableFormat2, VariableLengthStringArrayIsRefused) {
   TempFile file("v2vlenarray");
   testing::write_fixture(file.path, v2_spec());
