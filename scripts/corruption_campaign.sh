@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Corruption campaign (issue #19, docs/reliability.md): 1,000 copies of a small table, each with
+# Corruption campaign (docs/reliability.md): 1,000 copies of a small table, each with
 # one byte replaced by a different random value; each copy is loaded through the C API in a
 # child process under a memory limit (and given to `railtab inspect`), queried at fixed states
 # and compared with the pristine table. Pass = 0 crashes, 0 hangs, 0 silent different answers,

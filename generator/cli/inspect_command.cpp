@@ -26,7 +26,7 @@ void add_inspect_command(CLI::App& app) {
   cmd->callback([path, scene, json] {
     // The lookup's own checks first (docs/table-format.md, "What readers check"): inspect shows
     // only a table a simulation could load, and a corrupt or crafted file is refused before the
-    // summary reader touches it (issue #19).
+    // summary reader touches it (docs/reliability.md).
     bool verified = false;
     try {
       verified = lookup::Table::load(*path).checksums_verified();

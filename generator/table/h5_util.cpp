@@ -89,7 +89,7 @@ bool has_attribute(hid_t object, const std::string& name) {
 std::vector<std::string> read_vlen_strings(hid_t attr, std::size_t count, const std::string& file,
                                            const std::string& what) {
   // Not libhdf5's variable-length read: a corrupt heap reference makes that read out of bounds
-  // (issue #19: `railtab inspect` crashed on 2 in 1000 damaged format-1.0 tables). The lookup's
+  // (`railtab inspect` once crashed on 2 in 1000 damaged format-1.0 tables). The lookup's
   // bounded reader copies each string out of the file after checking every offset and size.
   namespace vlen = railtab::lookup::detail;
   vlen::RawFileLayout layout;

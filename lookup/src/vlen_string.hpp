@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Variable-length string attributes (legacy tables, h5py's default) read WITHOUT libhdf5's
 // variable-length read: a one-byte corruption of the heap reference or of the global heap makes
-// that read allocate gigabytes or read out of bounds (issue #19). Instead the attribute's raw
+// that read allocate gigabytes or read out of bounds (docs/reliability.md). Instead the attribute's raw
 // heap reference (length, collection address, object index) is taken from the attribute as
 // stored, and the string is copied out of the file's bytes after every offset and size in the
 // global heap collection has been checked against the collection and the file.
@@ -32,7 +32,7 @@ std::string raw_file_layout(hid_t object, RawFileLayout& out);
 // Tables whose HDF5 metadata carry no checksums (superblock version 0 or 1: railtab format 1.0,
 // or other writers' defaults) are refused BEFORE libhdf5 opens them: libhdf5 parses object
 // headers and attribute messages without bounds checks, so one corrupt byte in such a file can
-// make it read freed or out-of-bounds memory (issue #19, found by fuzz_table_load). From
+// make it read freed or out-of-bounds memory (found by fuzz_table_load). From
 // superblock 2 on, every metadata block is checksummed and verified before it is parsed.
 // Reads the superblock signature ("\211HDF\r\n\032\n" at byte 0, 512, 1024, 2048, ...) and the
 // version byte after it from the raw file. Returns "" if the version is >= 2 or no signature

@@ -140,7 +140,7 @@ TEST(CApi, RollOnAnEquilibriumRollTableIsFlagged) {
 namespace railtab::lookup {
 namespace {
 
-// Issue #16 item 5: every status bit of src/core/status.hpp in the C API (values checked at
+// Every status bit of src/core/status.hpp in the C API (values checked at
 // compile time in c_api.cpp and against the core in status_bits_test.cpp), and their names.
 TEST(CApiComplete, StatusBitNamesAndText) {
   const uint32_t bits[RAILTAB_LOOKUP_NUM_STATUS_BITS] = {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Corruption campaign (issue #19 item 5; run by scripts/corruption_campaign.sh): N copies of a
+// Corruption campaign (run by scripts/corruption_campaign.sh): N copies of a
 // table, each with one byte replaced by a different random value, each loaded through the C API
 // in a child process under a memory limit, then queried at fixed states and compared with the
 // pristine table. Counts per outcome:
@@ -100,7 +100,7 @@ std::vector<unsigned char> answers(railtab_lookup_table* t) {
   railtab_lookup_default_state(t, &base);
   std::vector<railtab_lookup_state> states{base};
 #ifndef RAILTAB_LOOKUP_ERROR_RANGE
-  // Built against a lookup without introspection (before issue #16): y across the fixture.
+  // Built against a lookup without introspection (an older lookup): y across the fixture.
   for (int k = 0; k < 21; ++k) {
     states.push_back(base);
     states.back().y = -0.0095 + 0.00095 * k;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Hostile and corrupt tables (issue #19 items 4, 5, 9): every one is a LoadError naming the file
+// Hostile and corrupt tables: every one is a LoadError naming the file
 // and the problem, before anything large is allocated; nothing reaches the query path.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -52,12 +52,12 @@ long max_rss_kib() {
   return u.ru_maxrss;
 }
 
-// The hostile files of issue #19 (tests/data/*.h5) are format-1.0 tables (superblock 0): since
+// The hostile files (tests/data/*.h5) are format-1.0 tables (superblock 0): since
 // the raw superblock check they are refused before libhdf5 sees them. The checks they once
 // reached are tested on checksummed tables written afresh.
 constexpr const char* kOldTable = "written by an old railtab (table format 1.0, no checksums)";
 
-// Regression (issue #19 item 4): a y axis of uniform subnormal spacing (1e-310) passed the load
+// Regression: a y axis of uniform subnormal spacing (1e-310) passed the load
 // checks, then 1/h = inf gave a negative cell index and a crash at query time.
 TEST(HostileTable, SubnormalAxisSpacingIsRefusedAtLoad) {
   const std::string msg = load_error(data_file("axis_subnormal_spacing.h5"));
@@ -82,7 +82,7 @@ TEST(HostileTable, AxisWhoseSpanOverflowsIsRefused) {
   EXPECT_NE(msg.find("axis /axes/y has a"), std::string::npos) << msg;
 }
 
-// Regression (issue #19 item 4): a 98 KB file whose /axes/eta declares 1e9 nodes made the loader
+// Regression: a 98 KB file whose /axes/eta declares 1e9 nodes made the loader
 // allocate 7.8 GB before rejecting it. Now the extent is refused before any allocation.
 TEST(HostileTable, AxisDeclaring1e9NodesIsRefusedBeforeAllocating) {
   const long before = max_rss_kib();
@@ -97,7 +97,7 @@ TEST(HostileTable, AxisDeclaring1e9NodesIsRefusedBeforeAllocating) {
   EXPECT_LT(max_rss_kib() - before, 64 * 1024) << "peak memory grew by more than 64 MiB";
 }
 
-// Regression (issue #19 item 5): one flipped byte in a variable-length string attribute's heap
+// Regression: one flipped byte in a variable-length string attribute's heap
 // reference crashed inside libhdf5's variable-length read. Now the reference is checked against
 // the global heap first.
 TEST(HostileTable, CorruptStringAttributeIsAnError) {
@@ -105,7 +105,7 @@ TEST(HostileTable, CorruptStringAttributeIsAnError) {
   EXPECT_NE(msg.find(kOldTable), std::string::npos) << msg;
 }
 
-// Issue #19 item 9: shard files, fixed_axes naming unknown variables or missing some, and
+// Shard files, fixed_axes naming unknown variables or missing some, and
 // malformed versions are refused with a message naming the file and the problem.
 TEST(HostileTable, ShardFilesAreRefused) {
   TempFile file("shard");
@@ -214,7 +214,7 @@ void flip_byte(const std::string& path, std::uint64_t offset) {
   io.put(static_cast<char>(c ^ 0x10));
 }
 
-// Issue #19 item 5: every dataset carries a Fletcher32 checksum; a flipped data byte is a load
+// Every dataset carries a Fletcher32 checksum; a flipped data byte is a load
 // error, not a different answer.
 TEST(TableIntegrity, FlippedDataByteFailsTheChecksum) {
   TempFile file("flip");

@@ -59,7 +59,7 @@ TEST(TableLoad, GoodTableLoadsWithEitherStringKind) {
 }
 
 // Format-1.0 tables (HDF5 superblock 0: metadata without checksums) are refused before libhdf5
-// parses them (a corrupt one made libhdf5 read freed memory, issue #19 fuzzing), whichever
+// parses them (a corrupt one made libhdf5 read freed memory, found by fuzzing), whichever
 // string kind they use, with a message naming the file, the cause and the command that
 // regenerates them.
 TEST(TableLoad, Format10TablesAreRefusedWithTheCommandThatRegeneratesThem) {

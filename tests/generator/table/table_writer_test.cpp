@@ -268,7 +268,7 @@ TEST(TableReader, RejectsMissingDatasetsAndForeignFiles) {
 namespace railtab {
 namespace {
 
-// Format integrity (since 1.1, issue #19 item 5): every dataset with HDF5's Fletcher32 checksum
+// Format integrity (since 1.1): every dataset with HDF5's Fletcher32 checksum
 // (a scalar: compact, inside its checksummed object header), the HDF5 1.10 file format (metadata
 // checksums) and fixed-length string attributes everywhere (string arrays of format 2 too).
 struct Failures {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Variable-length string attributes (format-1.0 tables, h5py's default) in the generator's table
 // reader (generator/table/h5_util.cpp, typed_attributes.cpp): read with the lookup's bounded
-// reader, never with libhdf5's variable-length read (issue #19: `railtab inspect` crashed inside
+// reader, never with libhdf5's variable-length read (`railtab inspect` once crashed inside
 // that read on 2 in 1000 damaged format-1.0 tables).
 #include <gtest/gtest.h>
 #include <hdf5.h>

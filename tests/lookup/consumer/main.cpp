@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     railtab_lookup_close(t);
     if (rc != RAILTAB_LOOKUP_OK || cr.contact[0].value[RAILTAB_LOOKUP_FX] != r.contact[0].value[railtab::lookup::kFx])
       return 1;
-    // The API added with issue #16: status names, introspection, versions.
+    // The newer part of the API: status names, introspection, versions.
     if (railtab::lookup::status::describe(railtab::lookup::status::kFailed) != "failed") return 1;
     if (table.axes().empty() || !table.checksums_verified()) return 1;
     std::printf("consumer: ok (fx = %g N, railtab lookup %s)\n",
