@@ -257,30 +257,22 @@ RAILTAB_CUBIC_CONTRACT(cubic_contract_avx2, SumsAvx2, RAILTAB_AVX2 inline)
 
 // The cubic contraction of one slot's stencil (first record at p, n >= 0 dimensions) into
 // out[c * NV + k]: channel c (0 the value, 1 + dim the derivative along dim when kGrad), value k.
-template <bool kGrad, int NV, class T>
-__attribute__((noinline)) void cubic_sum_sse2(RecordPtr p, const StencilWeights* sw, const std::size_t* stride,
-                                              int n, double* out) noexcept {
-  SumsSse2<NV, T> sums[kNumVars + 1];
-  if (n == 0) {
-    sums[0].zero();
-    sums[0].add(1.0, p);
-  } else {
-    cubic_contract_sse2<kGrad>(p, sw, stride, n, sums);
+#define RAILTAB_CUBIC_SUM(NAME, SUMS, CONTRACT, ATTRIBUTES)                                     \
+  template <bool kGrad, int NV, class T>                                                        \
+  ATTRIBUTES void NAME(RecordPtr p, const StencilWeights* sw, const std::size_t* stride, int n, \
+                       double* out) noexcept {                                                  \
+    SUMS<NV, T> sums[kNumVars + 1];                                                             \
+    if (n == 0) {                                                                               \
+      sums[0].zero();                                                                           \
+      sums[0].add(1.0, p);                                                                      \
+    } else {                                                                                    \
+      CONTRACT<kGrad>(p, sw, stride, n, sums);                                                  \
+    }                                                                                           \
+    for (int c = 0; c < (kGrad ? n + 1 : 1); ++c) sums[c].store(out + c * NV);                  \
   }
-  for (int c = 0; c < (kGrad ? n + 1 : 1); ++c) sums[c].store(out + c * NV);
-}
-template <bool kGrad, int NV, class T>
-__attribute__((noinline, target("avx2"))) void cubic_sum_avx2(RecordPtr p, const StencilWeights* sw,
-                                                             const std::size_t* stride, int n, double* out) noexcept {
-  SumsAvx2<NV, T> sums[kNumVars + 1];
-  if (n == 0) {
-    sums[0].zero();
-    sums[0].add(1.0, p);
-  } else {
-    cubic_contract_avx2<kGrad>(p, sw, stride, n, sums);
-  }
-  for (int c = 0; c < (kGrad ? n + 1 : 1); ++c) sums[c].store(out + c * NV);
-}
+RAILTAB_CUBIC_SUM(cubic_sum_sse2, SumsSse2, cubic_contract_sse2, __attribute__((noinline)))
+RAILTAB_CUBIC_SUM(cubic_sum_avx2, SumsAvx2, cubic_contract_avx2, __attribute__((noinline, target("avx2"))))
+#undef RAILTAB_CUBIC_SUM
 
 // One-sided sum of a jump cell (jump_side.cpp): per end (a grid node or a one-sided sample slice of
 // the query's side, in the caller's order) with weight end_w[e], the 2^NI creepage corners
