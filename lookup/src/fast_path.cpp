@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The fused query of fast_path.hpp. Every value is computed with the same operations in the same
 // order as the generic path: locate_state and interpolate_normalised_creep (table.cpp), the
-// linear kernels (interpolate.cpp, weighted_sum.hpp) and interpolate_scales (creep_map.cpp), so
+// linear kernels (interpolate_linear.cpp, weighted_sum.hpp) and interpolate_scales (creep_map.cpp), so
 // both paths give the same bytes (scripts/lookup_result_dump.cpp compares them; the test
 // FastPath.SameBytesAsTheGenericPath runs both on the default table's shape). The derivative
 // query (fast_derivatives) runs the same slot code with its gradients beside the values.

@@ -5,7 +5,7 @@
 // creep map and the law in one function without the generic per-variable and per-block loops,
 // with the long-latency work (the sine and cosine of the contact angle, the creep records'
 // loads) started early. Same operations in the same order as the generic path (table.cpp,
-// interpolate.cpp), so the same bytes; any other table takes the generic path. The derivative
+// interpolate_linear.cpp), so the same bytes; any other table takes the generic path. The derivative
 // query of the same shape too (FastDerivatives).
 #pragma once
 
