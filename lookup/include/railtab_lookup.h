@@ -232,6 +232,11 @@ RAILTAB_LOOKUP_API int railtab_lookup_query_creep_coefficients(const railtab_loo
                                             railtab_lookup_creep_coefficients* coefficients);
 RAILTAB_LOOKUP_API int railtab_lookup_has_creep_coefficients(const railtab_lookup_table* table);
 
+/* 1 when the table stores the non-negative half of a symmetric yaw axis (root attribute
+ * yaw_symmetry = "even", docs/table-format.md): railtab_lookup_axis lists yaw from 0 and a query
+ * reads |yaw| (-yaw gives +yaw's values). 0 otherwise (no yaw axis, a whole one) or a null table. */
+RAILTAB_LOOKUP_API int railtab_lookup_yaw_even(const railtab_lookup_table* table);
+
 /* Track-frame forces and Y/Q of `wheel` from `result` (a railtab_lookup_query of that wheel):
  * railtab::lookup::track_forces. RAILTAB_LOOKUP_ERROR_ARGUMENT for a null pointer or a bad wheel. */
 RAILTAB_LOOKUP_API int railtab_lookup_compute_track_forces(int wheel, const railtab_lookup_result* result,

@@ -2,7 +2,7 @@
 // Exact derivatives of one block's interpolant (Table::query_derivatives, derivatives.cpp): the
 // values of one slot and their partial derivatives with respect to the block's coordinates, for
 // the multilinear kernel of a cell no jump cuts and for the one-sided linear rule of a cut cell
-// (jump_side.hpp). Same cells and one-sided pieces as the value kernels (interpolate.cpp,
+// (jump_side.hpp). Same cells and one-sided pieces as the value kernels (interpolate_linear.cpp,
 // jump_side.cpp); nothing here changes a value the query returns. The cubic kernel gives its
 // derivatives itself, from its own pass (query_generic with a BlockGradient sink).
 #pragma once

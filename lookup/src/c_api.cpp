@@ -201,6 +201,10 @@ int railtab_lookup_has_creep_coefficients(const railtab_lookup_table* table) {
   return table && table->table.has_creep_coefficients() ? 1 : 0;
 }
 
+int railtab_lookup_yaw_even(const railtab_lookup_table* table) {
+  return table && table->table.yaw_even() ? 1 : 0;
+}
+
 int railtab_lookup_compute_track_forces(int wheel, const railtab_lookup_result* result,
                                         railtab_lookup_track_forces* forces) {
   if (!result || !forces) return fail(RAILTAB_LOOKUP_ERROR_ARGUMENT, "railtab_lookup_compute_track_forces: null argument");

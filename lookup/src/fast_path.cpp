@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The fused query of fast_path.hpp. Every value is computed with the same operations in the same
 // order as the generic path: locate_state and interpolate_normalised_creep (table.cpp), the
-// linear kernels (interpolate.cpp, weighted_sum.hpp) and interpolate_scales (creep_map.cpp), so
+// linear kernels (interpolate_linear.cpp, weighted_sum.hpp) and interpolate_scales (creep_map.cpp), so
 // both paths give the same bytes (scripts/lookup_result_dump.cpp compares them; the test
 // FastPath.SameBytesAsTheGenericPath runs both on the default table's shape). The derivative
 // query (fast_derivatives) runs the same slot code with its gradients beside the values.
@@ -157,11 +157,16 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   // rows with their variables' columns, the others 0.
   double (*dd)[kNumVars] = nullptr;
   double iw_y = 0.0, iw_load = 0.0;
+  bool empty = false;  // kGrad: the creep block is zero over the cell (FastPath::empty_creep)
   if constexpr (kGrad) {
     dd = grad->d;
     zero_absent_rows(d, dd);
     iw_y = inverse_width(d.axis[kVarY], ly);
     iw_load = inverse_width(d.axis[kVarLoad], ll);
+    const std::size_t y_cells = static_cast<std::size_t>(d.axis[kVarY].size() - 1);
+    const std::size_t load_cells = static_cast<std::size_t>(d.axis[kVarLoad].size() - 1);
+    empty = fp.empty_creep[w][(slot * y_cells + static_cast<std::size_t>(ly.i)) * load_cells +
+                              static_cast<std::size_t>(ll.i)];
   }
 
   // Geometry (y), first: its contact angle's sine and cosine (normal_from_share) are the longest
@@ -192,7 +197,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     const double* base = map.scale[w].data() + slot * map.nodes * 3;
     const std::size_t origin = static_cast<std::size_t>(ly.i) * map.stride[0] + static_cast<std::size_t>(ll.i) * map.stride[1];
     bilinear_node_values(base + origin * 3, map.stride[0], map.stride[1], 3, ly.t, ll.t, inv);
-    if constexpr (kGrad) {
+    if (kGrad && !empty) {
       const double* p00 = base + origin * 3;
       const double* p01 = p00 + map.stride[1] * 3;
       const double* p10 = p00 + map.stride[0] * 3;
@@ -213,7 +218,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
         creep_coordinate_normalised(x[k] * map.kinv[k], map.lo_k[k] * inv[k], map.hi_k[k] * inv[k]), l);
     t5[2 + k] = l.t;
     cell += static_cast<std::size_t>(l.i) * cb.stride[2 + k];
-    if constexpr (kGrad) {
+    if (kGrad && !empty) {
       iw_v[k] = inverse_width(d.axis[kVarXi + k], l);
       creepage_rows(map, k, creepage[k], inv[k], x[k], dinv[k], grad->frozen >> (kVarXi + k) & 1u, dxn[k], dv[k]);
     }
@@ -250,7 +255,10 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
     store_status_run<NP>(kCreep, cb, cr, c);
   }
-  if constexpr (kGrad) {
+  if (kGrad && empty) {
+    for (int k = 0; k < NC; ++k) set_row(dd[cb.output_of[k]], 0.0, 0.0, 0.0, 0.0, 0.0);
+    denormalise_creep(map, x, cos_angle, sin_angle, c.value);
+  } else if constexpr (kGrad) {
     // d / d t of the cell's 5 fractions per unit of y, load and v, chained.
     double ignored[NC], dt[NC][kMaxDims];
     multilinear_gradient<TC>(cr, 5, cb.stride, t5, NC, ignored, dt);
@@ -556,9 +564,37 @@ void pick(FastPath& fp, bool avx2, int np, bool single) noexcept {
   single ? pick<NG, NN, NC, float>(fp, avx2, np) : pick<NG, NN, NC, double>(fp, avx2, np);
 }
 
+// FastPath::empty_creep for the chosen blocks: a (y, load) node is empty when all its records
+// over the creepage axes are zero; a cell when its four nodes are.
+void mark_empty_creep_cells(TableData& d) {
+  const int ny = d.axis[kVarY].size(), nl = d.axis[kVarLoad].size();
+  for (int w = 0; w < 2; ++w) {
+    const Block& b = d.block[w][d.fast.creep];
+    const std::size_t inner = b.stride[1] / static_cast<std::size_t>(b.record);  // records per (y, load) node
+    std::vector<unsigned char> node(static_cast<std::size_t>(d.n_slots * ny * nl));
+    for (std::size_t n = 0; n < node.size(); ++n) {
+      RecordPtr r = b.data.data() + n * b.stride[1];  // slot grids follow each other: n counts (slot, y, load)
+      bool zero = true;
+      for (std::size_t k = 0; k < inner && zero; ++k, r += b.record)
+        for (int v = 0; v < b.n_values && zero; ++v)
+          zero = (b.value_bytes == sizeof(float) ? record_value<float>(r, v) : record_value<double>(r, v)) == 0.0;
+      node[n] = zero;
+    }
+    std::vector<unsigned char>& cell = d.fast.empty_creep[w];
+    cell.assign(static_cast<std::size_t>(d.n_slots * (ny - 1) * (nl - 1)), 0);
+    for (int s = 0; s < d.n_slots; ++s)
+      for (int i = 0; i + 1 < ny; ++i)
+        for (int j = 0; j + 1 < nl; ++j) {
+          auto at = [&](int a, int l) { return node[static_cast<std::size_t>((s * ny + a) * nl + l)]; };
+          cell[static_cast<std::size_t>((s * (ny - 1) + i) * (nl - 1) + j)] =
+              at(i, j) && at(i, j + 1) && at(i + 1, j) && at(i + 1, j + 1);
+        }
+  }
+}
+
 }  // namespace
 
-void prepare_fast_path(TableData& d) noexcept {
+void prepare_fast_path(TableData& d) {
   d.fast = FastPath{};
   // RAILTAB_LOOKUP_NO_FAST_PATH=1: the generic path for every table (to compare the two).
   if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_FAST_PATH"); env && *env && *env != '0') return;
@@ -609,6 +645,7 @@ void prepare_fast_path(TableData& d) noexcept {
   d.fast.geometry = g;
   d.fast.normal = n;
   d.fast.creep = c;
+  mark_empty_creep_cells(d);
   // Cut cells fused too when the blocks and their one-sided values have the layout cut_slot reads
   // (blocks written in the order geometry, normal, creep, as interpolate_jump_cell writes them).
   if (!d.has_jumps || !(g < n && n < c)) return;

@@ -5,9 +5,11 @@
 // creep map and the law in one function without the generic per-variable and per-block loops,
 // with the long-latency work (the sine and cosine of the contact angle, the creep records'
 // loads) started early. Same operations in the same order as the generic path (table.cpp,
-// interpolate.cpp), so the same bytes; any other table takes the generic path. The derivative
+// interpolate_linear.cpp), so the same bytes; any other table takes the generic path. The derivative
 // query of the same shape too (FastDerivatives).
 #pragma once
+
+#include <vector>
 
 #include "railtab/lookup.hpp"
 
@@ -36,9 +38,15 @@ struct FastPath {
   FastDerivatives derivatives = nullptr;  // set with query
   int geometry = -1, normal = -1, creep = -1;  // its blocks
   bool cut = false;  // cells a located jump cuts fused too (else interpolate_jump_cell)
+  // Per wheel, [(slot * y cells + y cell) * load cells + load cell]: 1 when every creep record on
+  // the cell's four (y, load) nodes is zero (no contact there: the generator writes an empty
+  // slot's records as zeros). The creep block's interpolant is then 0 over the whole cell, so the
+  // derivative query writes its rows as zeros without the gradient and the chain rule: exact, as
+  // every term of the chain is a product with a zero derivative or with N = 0.
+  std::vector<unsigned char> empty_creep[2];
 };
 
 // Chooses d.fast for a loaded table (table_load.cpp, last step).
-void prepare_fast_path(TableData& d) noexcept;
+void prepare_fast_path(TableData& d);
 
 }  // namespace railtab::lookup::detail

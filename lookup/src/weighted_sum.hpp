@@ -160,7 +160,7 @@ __attribute__((noinline, target("avx2"))) void corner_sum_avx2(RecordPtr p, cons
   sums.store(out);
 }
 
-// One axis of a tensor cubic stencil as weights on its 2-4 consecutive nodes (interpolate.cpp,
+// One axis of a tensor cubic stencil as weights on its 2-4 consecutive nodes (interpolate_cubic.cpp,
 // cubic_weights): value weights, and the weights of the derivative along the axis.
 struct StencilWeights {
   int first = 0;      // first stencil node (index on the axis)

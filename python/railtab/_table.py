@@ -91,6 +91,8 @@ class Table:
     memory_bytes = property(lambda self: self._t.memory_bytes)
     has_creep_coefficients = property(lambda self: self._t.has_creep_coefficients)  # format 2.3 tables
     has_error_map = property(lambda self: self._t.has_error_map, doc="the table carries an error map (2.3)")
+    yaw_even = property(lambda self: self._t.yaw_even,
+                        doc="the yaw axis is the non-negative half of a symmetric one: a query reads |yaw| (2.4)")
 
     def error_estimate(self, y, slot):
         """The table's stored error map where a query at lateral displacement y [m] lands in `slot`

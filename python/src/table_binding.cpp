@@ -250,6 +250,7 @@ void bind_table(py::module_& m) {
       .def_property_readonly("scene_name", &lk::Table::scene_name)
       .def_property_readonly("memory_bytes", &lk::Table::memory_bytes)
       .def_property_readonly("has_creep_coefficients", &lk::Table::has_creep_coefficients)
+      .def_property_readonly("yaw_even", &lk::Table::yaw_even)
       .def_property_readonly("has_error_map", &lk::Table::has_error_map)
       .def(
           "error_estimate",

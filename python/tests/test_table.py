@@ -197,7 +197,7 @@ def test_yaw_on_a_table_without_yaw_is_flagged(default_table):
     # The default table has no yaw: it was computed at yaw 0. A query with another yaw is
     # answered at yaw 0 and flagged out_of_range, never silently (docs/lookup.md, "Yaw").
     t = railtab.Table.load(default_table)
-    assert "yaw" not in t.axes and "yaw" not in t.fixed_axes
+    assert "yaw" not in t.axes and "yaw" not in t.fixed_axes and not t.yaw_even
     plain = t.query("left", y=0.003, load=78.5e3, as_xarray=False)
     yawed = t.query("left", y=0.003, load=78.5e3, yaw=[0.0, 0.004], as_xarray=False)
     assert list(railtab.has_flag(yawed["status"][:, 0], "out_of_range")) == [False, True]
@@ -216,7 +216,7 @@ def test_yaw_axis_from_python(tmp_path, railtab_program):
     subprocess.run([railtab_program, "generate", str(scene), "-o", str(table), "--threads", "2"], check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     t = railtab.Table.load(table)
-    assert t.format_version == "2.4" and list(t.axes["yaw"]) == [0.0, 0.01]
+    assert t.format_version == "2.4" and list(t.axes["yaw"]) == [0.0, 0.01] and t.yaw_even
     with pytest.raises(TypeError, match="yaw is an axis"):
         t.query("left", y=0.004)
     r = t.query("left", y=0.008, yaw=[-0.01, 0.0, 0.005, 0.01], as_xarray=False)
@@ -229,6 +229,15 @@ def test_yaw_axis_from_python(tmp_path, railtab_program):
     assert flange[2] == pytest.approx(0.5 * (flange[1] + flange[3]), rel=1e-12)  # linear between nodes
     for name in ("normal_force", "contact_angle", "fx", "status"):
         np.testing.assert_array_equal(r[name][0], r[name][3])  # -yaw reads +yaw's values
+    # A list that is not symmetric ([0, 0.01]) is stored whole: not even, -yaw is outside its axis.
+    scene.write_text(scene.read_text().replace("yaw = [-0.01, 0.0, 0.01]", "yaw = [0.0, 0.01]"))
+    whole = tmp_path / "yaw_whole.h5"
+    subprocess.run([railtab_program, "generate", str(scene), "-o", str(whole), "--threads", "2"], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    w = railtab.Table.load(whole)
+    assert list(w.axes["yaw"]) == [0.0, 0.01] and not w.yaw_even
+    rw = w.query("left", y=0.008, yaw=[-0.01, 0.01], as_xarray=False)
+    assert list(railtab.has_flag(rw["status"][:, 1], "out_of_range")) == [True, False]
 
 
 # The low_confidence bit on the default table (docs/lookup.md, "Low confidence").

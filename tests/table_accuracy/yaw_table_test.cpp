@@ -172,8 +172,33 @@ TEST(YawTable, YawOnATableWithoutYawIsFlagged) {
   const lk::Result r = t.query(lk::Wheel::kRight, s);
   EXPECT_EQ(std::memcmp(&cr, &r, sizeof r), 0);
   EXPECT_STREQ(railtab_lookup_var_name(RAILTAB_LOOKUP_VAR_YAW), "yaw");
+  // The stored half of the symmetric list: the C API says so, lists yaw from 0 and reads |yaw|.
+  EXPECT_EQ(railtab_lookup_yaw_even(c), 1);
+  EXPECT_EQ(railtab_lookup_yaw_even(nullptr), 0);
+  const char* name = nullptr;
+  std::size_t n_nodes = 0;
+  const double* nodes = nullptr;
+  bool listed = false;
+  for (int a = 0; railtab_lookup_axis(c, a, &name, nullptr, &n_nodes, &nodes) == RAILTAB_LOOKUP_OK; ++a)
+    if (std::strcmp(name, "yaw") == 0) {
+      listed = true;
+      EXPECT_EQ(std::vector<double>(nodes, nodes + n_nodes), std::vector<double>(std::begin(kStoredYaw), std::end(kStoredYaw)));
+    }
+  EXPECT_TRUE(listed);
+  railtab_lookup_state mirrored = cs;
+  mirrored.yaw = -cs.yaw;
+  railtab_lookup_result mr;
+  ASSERT_EQ(railtab_lookup_query(c, RAILTAB_LOOKUP_RIGHT, &mirrored, &mr), RAILTAB_LOOKUP_OK);
+  EXPECT_EQ(std::memcmp(&cr, &mr, sizeof mr), 0);
   railtab_lookup_close(c);
   std::filesystem::remove(path);
+  // The yaw-free table: not even.
+  const std::filesystem::path free_path = temp_table_path("yaw_c_free");
+  write_for_lookup(f.free_table, free_path);
+  ASSERT_EQ(railtab_lookup_open(free_path.string().c_str(), RAILTAB_LOOKUP_LINEAR, &c), RAILTAB_LOOKUP_OK);
+  EXPECT_EQ(railtab_lookup_yaw_even(c), 0);
+  railtab_lookup_close(c);
+  std::filesystem::remove(free_path);
 }
 
 // Off the yaw nodes (y, load and creepage on their nodes, so only yaw is interpolated) the lookup

@@ -1,66 +1,22 @@
 // SPDX-License-Identifier: Apache-2.0
-// The interpolators over one block's records (interpolate.hpp): linear, cubic and monotone cubic.
-#include "interpolate.hpp"
-
+// The cubic interpolators over one block's records (interpolate.hpp): the tensor cubic Hermite
+// (with its derivatives) and the monotone cubic.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
 #include <immintrin.h>
 #include <limits>
 #include <utility>
 
 #include "block_gradient.hpp"
+#include "interpolate.hpp"
+#include "interpolate_common.hpp"
 #include "part_spec.hpp"
 #include "weighted_sum.hpp"
 
 namespace railtab::lookup::detail {
 namespace {
-
-// Copies the cell's part statuses (query layout: n_parts uint32 after the values of the cell's
-// corner-0 record) into `c`.
-inline void store_status(const Block& b, RecordPtr cell_record, Contact& c) noexcept {
-  const unsigned char* st = cell_record + b.status_offset;
-  for (int p = 0; p < b.n_parts; ++p)
-    std::memcpy(&c.part_status[b.part[p]], st + p * sizeof(StatusBits), sizeof(StatusBits));
-}
-
-// Copies one slot's values (record order: parts, outputs) into `c` (Block::output_of).
-inline void store_values(const Block& b, const double* values, Contact& c) noexcept {
-  for (int k = 0; k < b.n_values; ++k) c.value[b.output_of[k]] = values[k];
-}
-
-// Multilinear over the cell's 2^D corners, the fractions once for all slots; the status is the
-// cell's, one read (query layout). kAvx2: the AVX2 corner sum (same results, chosen at load); T:
-// the records' value type.
-template <int D, int NV, bool kAvx2, class T>
-void linear_kernel(const Block& b, const AxisLoc* loc, int slot_begin, int slot_end,
-                   Contact* contact) noexcept {
-  double t[D > 0 ? D : 1], u[D > 0 ? D : 1];
-  std::size_t base = 0;
-#pragma GCC unroll 8
-  for (int d = 0; d < D; ++d) {
-    const AxisLoc& l = loc[b.var[d]];
-    base += static_cast<std::size_t>(l.i) * b.stride[d];
-    t[d] = l.t;
-    u[d] = 1.0 - l.t;
-  }
-  const auto sum = kAvx2 ? &corner_sum_avx2<D, NV, T> : &corner_sum_sse2<D, NV, T>;
-  for (int s = slot_begin; s < slot_end; ++s) {
-    RecordPtr data = b.data.data() + static_cast<std::size_t>(s) * b.slot_size + base;
-    Contact& c = contact[s - slot_begin];
-    if (b.first_output >= 0) {
-      sum(data, t, u, b.stride, c.value + b.first_output);
-    } else {
-      double values[NV];
-      sum(data, t, u, b.stride, values);
-      store_values(b, values, c);
-    }
-    store_status(b, data, c);
-  }
-}
 
 // Derivative at e of the parabola through (p[0], p[1], p[2]), as weights on the three values.
 void parabola_slope(const double p[3], double e, double w[3]) noexcept {
@@ -364,24 +320,6 @@ void monotone_recurse(const MonotoneContext& c, int d, std::size_t offset, doubl
 
 }  // namespace
 
-// Kernels for every (D, value count) pair, instruction set and value type (T), looked up once
-// at load.
-template <int D, bool kAvx2, class T, int... V>
-constexpr std::array<LinearKernel, sizeof...(V)> kernels_for_d(
-    std::integer_sequence<int, V...>) noexcept {
-  return {&linear_kernel<D, V + 1, kAvx2, T>...};
-}
-// Value counts 1..kMaxSlotValues for doubles, 1..kMaxFloatValues for floats.
-template <class T>
-constexpr int kMaxValues = sizeof(T) == sizeof(float) ? kMaxFloatValues : kMaxSlotValues;
-template <bool kAvx2, class T, int... D>
-constexpr std::array<std::array<LinearKernel, kMaxValues<T>>, sizeof...(D)> kernel_table(
-    std::integer_sequence<int, D...>) noexcept {
-  return {kernels_for_d<D, kAvx2, T>(std::make_integer_sequence<int, kMaxValues<T>>())...};
-}
-template <bool kAvx2, class T>
-constexpr auto kLinear = kernel_table<kAvx2, T>(std::make_integer_sequence<int, kMaxDims + 1>());
-
 template <bool kAvx2, class T, int... V>
 constexpr std::array<CubicKernel, sizeof...(V)> cubic_table(
     std::integer_sequence<int, V...>) noexcept {
@@ -389,42 +327,6 @@ constexpr std::array<CubicKernel, sizeof...(V)> cubic_table(
 }
 template <bool kAvx2, class T>
 constexpr auto kCubic = cubic_table<kAvx2, T>(std::make_integer_sequence<int, kMaxValues<T>>());
-
-template <int NI, bool kAvx2, class T, int... V>
-constexpr std::array<JumpKernel, sizeof...(V)> jump_kernels_for(
-    std::integer_sequence<int, V...>) noexcept {
-  if constexpr (kAvx2) return {&jump_sum_avx2<NI, V + 1, T>...};
-  else return {&jump_sum_sse2<NI, V + 1, T>...};
-}
-template <bool kAvx2, class T, int... NI>
-constexpr std::array<std::array<JumpKernel, kMaxValues<T>>, sizeof...(NI)> jump_table(
-    std::integer_sequence<int, NI...>) noexcept {
-  return {jump_kernels_for<NI, kAvx2, T>(std::make_integer_sequence<int, kMaxValues<T>>())...};
-}
-template <bool kAvx2, class T>
-constexpr auto kJump = jump_table<kAvx2, T>(std::make_integer_sequence<int, kMaxJumpInner + 1>());
-
-bool use_avx2() noexcept {
-  if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_AVX2"); env && *env && *env != '0')
-    return false;
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
-
-// The kernel of the table for this CPU (AVX2 or SSE2) and value type (value_bytes 4: float).
-LinearKernel linear_kernel_for(int n_dims, int n_values, int value_bytes) noexcept {
-  const bool avx2 = use_avx2();
-  if (value_bytes == sizeof(float))
-    return (avx2 ? kLinear<true, float> : kLinear<false, float>)[n_dims][n_values - 1];
-  return (avx2 ? kLinear<true, double> : kLinear<false, double>)[n_dims][n_values - 1];
-}
-
-JumpKernel jump_kernel_for(int n_inner, int n_values, int value_bytes) noexcept {
-  const bool avx2 = use_avx2();
-  if (value_bytes == sizeof(float))
-    return (avx2 ? kJump<true, float> : kJump<false, float>)[n_inner][n_values - 1];
-  return (avx2 ? kJump<true, double> : kJump<false, double>)[n_inner][n_values - 1];
-}
 
 CubicKernel cubic_kernel_for(int n_values, int value_bytes) noexcept {
   const bool avx2 = use_avx2();
