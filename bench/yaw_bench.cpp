@@ -14,6 +14,9 @@
 //                             at load): the generic query the yaw table takes, one axis fewer
 //   BM_LookupCoherent/0, /1   as BM_Lookup along a smooth path through the same ranges (a
 //                             simulation's consecutive states: neighbouring cells, warm caches)
+//   BM_LookupCurving/yaw:Y/coherent:C   as BM_Lookup (C = 0) and BM_LookupCoherent (C = 1) on
+//                             the curving scene's own table (tables/curving_r600.toml, yaw +-2 mrad
+//                             in 5 nodes, stored 0, 1, 2 mrad) with (Y = 1) and without (Y = 0) its yaw axis
 // Run: cmake --build --preset release --target yaw_bench &&
 //   build/release/bench/yaw_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -39,43 +42,51 @@ namespace {
 
 namespace lk = railtab::lookup;
 
-// The default scene, with the 5-node yaw axis when `yaw`.
-railtab::Scene scene(bool yaw) {
-  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+// The scenes: the default one (tables/default.toml) with the 5-node yaw axis when `yaw`; the
+// curving one (tables/curving_r600.toml, yaw +-2 mrad in 5 nodes) as it is when `yaw`, else
+// without its yaw line.
+enum Which { kDefault = 0, kCurving = 1 };
+
+railtab::Scene scene(bool yaw, Which which = kDefault) {
+  const char* file = which == kDefault ? "default.toml" : "curving_r600.toml";
+  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / file);
   std::stringstream text;
   text << in.rdbuf();
   std::string s = text.str();
-  if (yaw) s.insert(s.find("equilibrium_roll = true"), "yaw = [-0.01, -0.005, 0.0, 0.005, 0.01]\n");
-  return railtab::parse_scene(s, yaw ? "default + yaw" : "default", std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables");
+  if (which == kDefault && yaw) s.insert(s.find("equilibrium_roll = true"), "yaw = [-0.01, -0.005, 0.0, 0.005, 0.01]\n");
+  if (which == kCurving && !yaw) s.erase(s.find("yaw = ["), s.find('\n', s.find("yaw = [")) + 1 - s.find("yaw = ["));
+  return railtab::parse_scene(s, std::string(file) + (yaw ? " with yaw" : " without yaw"),
+                              std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables");
 }
 
-std::string temp_path(bool yaw) {
-  return (std::filesystem::temp_directory_path() /
-          ("railtab_yaw_bench_" + std::to_string(::getpid()) + (yaw ? "_yaw" : "_free") + ".h5"))
+std::string temp_path(bool yaw, Which which) {
+  return (std::filesystem::temp_directory_path() / ("railtab_yaw_bench_" + std::to_string(::getpid()) +
+                                                    (which == kDefault ? "" : "_curving") + (yaw ? "_yaw" : "_free") + ".h5"))
       .string();
 }
 
 // The table file of each scene, swept and written once per process; its size [B].
-const std::string& table_file(bool yaw, std::uintmax_t* bytes = nullptr) {
-  static std::string paths[2];
-  static std::uintmax_t sizes[2] = {};
-  std::string& path = paths[yaw];
+const std::string& table_file(bool yaw, std::uintmax_t* bytes = nullptr, Which which = kDefault) {
+  static std::string paths[2][2];
+  static std::uintmax_t sizes[2][2] = {};
+  std::string& path = paths[which][yaw];
   if (path.empty()) {
-    const railtab::Scene sc = scene(yaw);
+    const railtab::Scene sc = scene(yaw, which);
     railtab::SweepResult r = railtab::run_sweep(sc, railtab::make_contact_kernel(sc), railtab::SweepOptions{});
-    path = temp_path(yaw);
+    path = temp_path(yaw, which);
     railtab::write_table(r.table, path);
-    sizes[yaw] = std::filesystem::file_size(path);
+    sizes[which][yaw] = std::filesystem::file_size(path);
     static bool registered = false;
     if (!registered) {
       registered = true;
       std::atexit([] {
-        for (const std::string& p : paths)
-          if (!p.empty()) std::filesystem::remove(p);
+        for (const auto& pair : paths)
+          for (const std::string& p : pair)
+            if (!p.empty()) std::filesystem::remove(p);
       });
     }
   }
-  if (bytes) *bytes = sizes[yaw];
+  if (bytes) *bytes = sizes[which][yaw];
   return path;
 }
 
@@ -165,6 +176,15 @@ void BM_LookupCoherent(benchmark::State& st) {
   run_lookup(st, *tables[yaw], yaw, true);
 }
 BENCHMARK(BM_LookupCoherent)->Arg(0)->Arg(1);
+
+// The curving scene's own table with and without its yaw axis (swept at the first run: 14 + 5 s CPU).
+void BM_LookupCurving(benchmark::State& st) {
+  const bool yaw = st.range(0) != 0, coherent = st.range(1) != 0;
+  static std::unique_ptr<lk::Table> tables[2];
+  if (!tables[yaw]) tables[yaw] = std::make_unique<lk::Table>(lk::Table::load(table_file(yaw, nullptr, kCurving)));
+  run_lookup(st, *tables[yaw], yaw, coherent);
+}
+BENCHMARK(BM_LookupCurving)->ArgNames({"yaw", "coherent"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({1, 1});
 
 void BM_LookupGeneric(benchmark::State& st) {
   static std::unique_ptr<lk::Table> table;
