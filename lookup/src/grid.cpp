@@ -12,10 +12,23 @@ const char* var_name(int var) {
   return (var >= 0 && var < kNumVars) ? names[var] : "?";
 }
 
+void parabola_slope(const double p[3], double e, double w[3]) noexcept {
+  w[0] = ((e - p[1]) + (e - p[2])) / ((p[0] - p[1]) * (p[0] - p[2]));
+  w[1] = ((e - p[0]) + (e - p[2])) / ((p[1] - p[0]) * (p[1] - p[2]));
+  w[2] = ((e - p[0]) + (e - p[1])) / ((p[2] - p[0]) * (p[2] - p[1]));
+}
+
 Axis::Axis(std::vector<double> nodes) : x_(std::move(nodes)) {
   const std::size_t n = x_.size();
   inv_width_.resize(n - 1);
   for (std::size_t i = 0; i + 1 < n; ++i) inv_width_[i] = 1.0 / (x_[i + 1] - x_[i]);
+  slope_.assign(9 * n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    double* w = &slope_[9 * k];
+    if (k >= 1 && k + 1 < n) parabola_slope(&x_[k - 1], x_[k], w);
+    if (k + 2 < n) parabola_slope(&x_[k], x_[k], w + 3);
+    if (k >= 2) parabola_slope(&x_[k - 2], x_[k], w + 6);
+  }
   // Uniform when every spacing matches the mean to 1e-9 relative: then the cell index is one
   // multiply (generators write linspace grids), with a one-step correction for rounding below.
   const double h = (x_.back() - x_.front()) / static_cast<double>(n - 1);

@@ -29,6 +29,9 @@ struct AxisLoc {
   double t = 0.0;  // position in the cell, 0 .. 1 (after clamping)
 };
 
+// Derivative at e of the parabola through (p[0], p[1], p[2]), as weights on the three values.
+void parabola_slope(const double p[3], double e, double w[3]) noexcept;
+
 // One tabulated axis: strictly increasing nodes, length >= 2.
 class Axis {
  public:
@@ -98,11 +101,17 @@ class Axis {
   int size() const noexcept { return static_cast<int>(x_.size()); }
   const double* nodes() const noexcept { return x_.data(); }
   double inverse_width(int cell) const noexcept { return inv_width_[static_cast<std::size_t>(cell)]; }  // 1 / width
+  // The cubic stencils' node slopes as weights on three neighbouring values (the derivative at
+  // node k of the parabola through them), made once here instead of per query: 9 per node, the
+  // centred one on nodes k-1, k, k+1, then the one-sided ones on k, k+1, k+2 (forward) and on
+  // k-2, k-1, k (backward); zeros where the nodes do not exist.
+  const double* slope_weights(int node) const noexcept { return &slope_[static_cast<std::size_t>(node) * 9]; }
   const std::vector<double>& node_vector() const noexcept { return x_; }
 
  private:
   std::vector<double> x_;          // nodes (n)
   std::vector<double> inv_width_;  // 1 / (x[i+1] - x[i]) (n-1): a multiply instead of a divide
+  std::vector<double> slope_;      // slope_weights (9 n)
   bool uniform_ = false;           // equal spacing: the cell comes from one multiply, no search
   double inv_h_ = 0.0;             // 1 / spacing when uniform
   double front_ = 0.0, back_ = 0.0;  // first and last node

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// What the interpolation kernel files (interpolate_linear.cpp, interpolate_cubic.cpp,
+// What the interpolation kernel files (interpolate_linear*.cpp, interpolate_cubic.cpp,
 // interpolate_jump.cpp) share: storing one slot's results into a Contact, and how many values a
-// record of each value type may hold. The kernels live in three files so that a build compiles
+// record of each value type may hold. The kernels live in four files so that a build compiles
 // them on separate cores (each instantiates dozens of kernels; one file took minutes under ASan).
 #pragma once
 

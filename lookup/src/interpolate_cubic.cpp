@@ -18,13 +18,6 @@
 namespace railtab::lookup::detail {
 namespace {
 
-// Derivative at e of the parabola through (p[0], p[1], p[2]), as weights on the three values.
-void parabola_slope(const double p[3], double e, double w[3]) noexcept {
-  w[0] = ((e - p[1]) + (e - p[2])) / ((p[0] - p[1]) * (p[0] - p[2]));
-  w[1] = ((e - p[0]) + (e - p[2])) / ((p[1] - p[0]) * (p[1] - p[2]));
-  w[2] = ((e - p[0]) + (e - p[1])) / ((p[2] - p[0]) * (p[2] - p[1]));
-}
-
 // One axis of the cubic stencil: nodes j = 0..3 are i-1, i, i+1, i+2; 0 and 3 may be absent (a
 // table edge, or a located contact jump between them and the cell: AxisLoc::cut_stencil).
 struct CubicAxis {
@@ -54,24 +47,22 @@ CubicAxis make_cubic_axis(const Axis& axis, const AxisLoc& l, std::size_t stride
     a.x[j] = xs[node];
   }
   const double h = a.x[2] - a.x[1];
-  double w[3];
+  // The parabolas' weights come from the axis (Axis::slope_weights: centred, forward, backward).
+  const double* w0 = axis.slope_weights(i);
+  const double* w1 = axis.slope_weights(i + 1);
   // Slope at node i: centred on (i-1, i, i+1) if possible, else one-sided on (i, i+1, i+2).
   if (a.has_left) {
-    parabola_slope(&a.x[0], a.x[1], w);
-    a.c0[0] = w[0], a.c0[1] = w[1], a.c0[2] = w[2];
+    a.c0[0] = w0[0], a.c0[1] = w0[1], a.c0[2] = w0[2];
   } else if (a.has_right) {
-    parabola_slope(&a.x[1], a.x[1], w);
-    a.c0[1] = w[0], a.c0[2] = w[1], a.c0[3] = w[2];
+    a.c0[1] = w0[3], a.c0[2] = w0[4], a.c0[3] = w0[5];
   } else {
     a.c0[1] = -1.0 / h, a.c0[2] = 1.0 / h;
   }
   // Slope at node i+1: centred on (i, i+1, i+2) if possible, else one-sided on (i-1, i, i+1).
   if (a.has_right) {
-    parabola_slope(&a.x[1], a.x[2], w);
-    a.c1[1] = w[0], a.c1[2] = w[1], a.c1[3] = w[2];
+    a.c1[1] = w1[0], a.c1[2] = w1[1], a.c1[3] = w1[2];
   } else if (a.has_left) {
-    parabola_slope(&a.x[0], a.x[2], w);
-    a.c1[0] = w[0], a.c1[1] = w[1], a.c1[2] = w[2];
+    a.c1[0] = w1[6], a.c1[1] = w1[7], a.c1[2] = w1[8];
   } else {
     a.c1[1] = -1.0 / h, a.c1[2] = 1.0 / h;
   }

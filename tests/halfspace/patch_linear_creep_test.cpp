@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "geometry/contact_geometry.hpp"
 #include "halfspace/hertz_grid.hpp"
@@ -17,6 +18,7 @@
 #include "normal/hertz.hpp"
 #include "profile/standard/s1002.hpp"
 #include "profile/standard/uic60.hpp"
+#include "sanitizer.hpp"
 
 namespace railtab::patch_linear_creep_test {  // own namespace: unity builds compile several test files as one
 namespace {
@@ -28,11 +30,13 @@ Material steel(double nu) {
 }
 
 // Hertzian patches (quadratic gap), elements of about a/30 and b/30, against Kalker on Hertz's
-// ellipse; the equivalent ellipse read off the elements matches Hertz's.
+// ellipse; the equivalent ellipse read off the elements matches Hertz's. Under a sanitizer the
+// elongated patch only (the same code; a third of the time).
 TEST(PatchLinearCreep, ExactModelOnHertzPatchesIsKalkerWithinTwoPercent) {
   const Material m = steel(0.28);
   halfspace::Workspace ws;
-  for (const double B_over_A : {1.0, 3.0, 0.4}) {
+  const std::vector<double> ratios = test::kSanitized ? std::vector{3.0} : std::vector{1.0, 3.0, 0.4};
+  for (const double B_over_A : ratios) {
     const double A = 1.087, B = A * B_over_A;
     const HertzContact hz = hertz_for_force(A, B, 78e3, m);
     const halfspace::Grid grid = test::grid_around(hz.a, hz.b, std::min(0.2e-3, hz.a / 30.0), std::min(0.2e-3, hz.b / 30.0));
@@ -59,7 +63,8 @@ TEST(PatchLinearCreep, ExactModelOnHertzPatchesIsKalkerWithinTwoPercent) {
 
 // S1002 on UIC60 1:40, left wheel, 78.5 kN, roll 0, the exact model's own patches (0.15 mm
 // elements): slopes against Kalker's on the equivalent ellipse of the loaded elements. A
-// measurement; it asserts the signs.
+// measurement; it asserts the signs. Under a sanitizer the tread and the flange only (the same
+// code; two fifths of the time).
 TEST(PatchLinearCreep, WheelRailPatchesAgainstTheirEquivalentEllipse) {
   const Material m = steel(0.3);
   const ProfilePtr w = make_s1002_profile();
@@ -71,7 +76,9 @@ TEST(PatchLinearCreep, WheelRailPatchesAgainstTheirEquivalentEllipse) {
   options.element_size = 0.15e-3;
   std::printf("[measured] y_mm patch angle_rad area_mm2 a_mm b_mm C11/K C22/K C23/K (exact model on the "
               "equivalent ellipse's Kalker)\n");
-  for (double y : {0.0, 0.003, 0.005, 0.0065, 0.008}) {
+  const std::vector<double> ys =
+      test::kSanitized ? std::vector{0.0, 0.008} : std::vector{0.0, 0.003, 0.005, 0.0065, 0.008};
+  for (const double y : ys) {
     const WheelContactGeometry g = solver.solve_wheel(Side::left, WheelsetState{y, 0.0});
     const halfspace::WheelHalfspaceResult res = halfspace::solve_halfspace_for_load(g, 78.5e3, m, options, ws);
     for (std::size_t k = 0; k < res.patches.size(); ++k) {
