@@ -2,7 +2,7 @@
 """Shared fixtures of the Python tests. CTest (python/CMakeLists.txt) sets the environment:
 PYTHONPATH (the built package), RAILTAB_PROGRAM (the railtab program), RAILTAB_WRITE_FIXTURE
 (tests/lookup's fixture table writer), RAILTAB_SOURCE_DIR, RAILTAB_TEST_TMP, and
-RAILTAB_DEFAULT_TABLE (the default table, generated once by the CTest fixture python.default_table)."""
+RAILTAB_DEFAULT_TABLE (the default table, generated once by the CTest fixture table.default_table)."""
 import os
 import subprocess
 from pathlib import Path
@@ -41,7 +41,7 @@ def default_table(tmp_path_factory, railtab_program):
     shared = os.environ.get("RAILTAB_DEFAULT_TABLE")
     if shared:
         if not Path(shared).exists():
-            pytest.fail(f"RAILTAB_DEFAULT_TABLE={shared} does not exist: the CTest fixture python.default_table failed")
+            pytest.fail(f"RAILTAB_DEFAULT_TABLE={shared} does not exist: the CTest fixture table.default_table failed")
         return Path(shared)
     path = tmp_path_factory.mktemp("default") / "default.h5"
     subprocess.run([railtab_program, "generate", str(SOURCE_DIR / "tables" / "default.toml"), "-o", str(path),
