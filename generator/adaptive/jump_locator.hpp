@@ -82,7 +82,9 @@ void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, cons
 // One-sided values: every output of every part of the contact kernel at the ends of each jump's
 // final interval (side 0 = left end, 1 = right end), added as groups <root>/<wheel>/<part> with
 // datasets over ([load,] jump, side, the part's creepage axes, slot). add_jumps calls it. Each
-// column is computed for the jump's wheel only (ColumnState::wheels); progress counts columns.
+// column is computed for the jump's wheel only (ColumnState::wheels); an end that lies on a y node
+// of `table` is copied from the sweep's column there, and an end two jumps share is computed once
+// (the same bytes either way); progress counts the columns computed or copied.
 void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads = 0,
                       const StageProgress& progress = {}, const std::string& root = kJumpGroup);
 

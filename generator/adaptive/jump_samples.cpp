@@ -23,7 +23,8 @@ struct Column {
   std::vector<std::vector<StatusBits>> status;  // [wheel * parts + part]
 };
 
-Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std::size_t wheel) {
+// A column of zeros laid out as the sweep's (the other wheel's cells stay zero: not read).
+Column empty_column(const SweepKernel& kernel, const Scene& one) {
   Column c;
   for (const PartSpec& part : kernel.parts) {
     c.first_output.push_back(c.first_output.back() + part.outputs.size());
@@ -37,18 +38,22 @@ Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std
     }
     c.part_size.push_back(n);
   }
-  const std::size_t outputs = c.first_output.back(), parts = kernel.parts.size();
-  std::vector<double*> value_ptr;
-  std::vector<StatusBits*> status_ptr;
+  const std::size_t parts = kernel.parts.size();
   for (std::size_t w = 0; w < 2; ++w)
     for (std::size_t p = 0; p < parts; ++p)
       for (std::size_t o = c.first_output[p]; o < c.first_output[p + 1]; ++o) c.values.emplace_back(c.part_size[p], 0.0);
   for (std::size_t w = 0; w < 2; ++w)
     for (std::size_t p = 0; p < parts; ++p) c.status.emplace_back(c.part_size[p], 0u);
+  return c;
+}
+
+Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std::size_t wheel) {
+  Column c = empty_column(kernel, one);
+  std::vector<double*> value_ptr;
+  std::vector<StatusBits*> status_ptr;
   for (auto& v : c.values) value_ptr.push_back(v.data());
   for (auto& s : c.status) status_ptr.push_back(s.data());
-  (void)outputs;
-  ColumnOutput out(value_ptr, status_ptr, c.first_output, parts);
+  ColumnOutput out(value_ptr, status_ptr, c.first_output, kernel.parts.size());
   ColumnState state;
   state.y = y;
   state.wheels = 1u << wheel;  // the other wheel's cells stay zero (not read)
@@ -56,6 +61,39 @@ Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std
   state.yaw = fixed_yaw(one);
   kernel.compute(state, out);
   return c;
+}
+
+// The column at y node `iy` of load `l` of one wheel, copied from the sweep's datasets in `table`
+// into `c` (laid out by empty_column): the sweep computed it with the same kernel code for that
+// wheel, load and y, so the bytes are those compute_column would give. False (c unusable) when
+// the table does not hold that node in the expected layout (a shard's table, an axis more).
+bool column_from_table(const Table& table, const SweepKernel& kernel, std::size_t iy, std::size_t l,
+                       std::size_t n_load, std::size_t wheel, Column& c) {
+  const std::string name = wheel == 0 ? "left/" : "right/";
+  const bool load_axis = table.axis("load") != nullptr;
+  for (std::size_t p = 0; p < kernel.parts.size(); ++p) {
+    const PartSpec& part = kernel.parts[p];
+    const TableGroup* group = table.group(name + part.name);
+    if (!group) return false;
+    const bool per_load =
+        load_axis && std::find(part.inner_axes.begin(), part.inner_axes.end(), "load") != part.inner_axes.end();
+    const std::size_t block = c.part_size[p], per_y = block * (per_load ? n_load : 1);
+    const std::size_t at = iy * per_y + (per_load ? l : 0) * block;
+    auto fits = [&](const TableDataset* d, std::size_t size) {
+      return d && !d->shape.empty() && d->axes.front() == "y" && iy < d->shape.front() && size == d->shape.front() * per_y;
+    };
+    for (std::size_t o = 0; o < part.outputs.size(); ++o) {
+      const TableDataset* d = group->find(part.outputs[o].name);
+      if (!fits(d, d ? d->values.size() : 0)) return false;
+      std::vector<double>& v = c.values[wheel * c.first_output.back() + c.first_output[p] + o];
+      std::copy_n(d->values.begin() + static_cast<std::ptrdiff_t>(at), block, v.begin());
+    }
+    const TableDataset* st = group->find("status");
+    if (!fits(st, st ? st->status.size() : 0)) return false;
+    std::vector<StatusBits>& v = c.status[wheel * kernel.parts.size() + p];
+    std::copy_n(st->status.begin() + static_cast<std::ptrdiff_t>(at), block, v.begin());
+  }
+  return true;
 }
 
 }  // namespace
@@ -77,17 +115,39 @@ void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jump
     kernels.push_back(make_contact_kernel(one[l]));
   }
   const std::size_t tasks = 2 * n_load * count * 2;
+  auto y_of = [&](std::size_t t) {
+    const ContactJump& jump = jumps.wheel[t / (n_load * count * 2)][(t / (count * 2)) % n_load][(t / 2) % count];
+    return t % 2 == 0 ? jump.left : jump.right;
+  };
+  auto real = [&](std::size_t t) { return (t / 2) % count < jumps.wheel[t / (n_load * count * 2)][(t / (count * 2)) % n_load].size(); };
+  // Jumps a bisection step apart share an end (one's right is the next one's left, in the same
+  // (wheel, load)): that column is computed once, by the first task that has it (a column is a
+  // function of its wheel, load and y only, so the bytes are those of computing it twice).
+  std::vector<std::size_t> source(tasks);
+  std::vector<std::size_t> unique;  // tasks that compute their column
+  for (std::size_t t = 0; t < tasks; ++t) {
+    source[t] = t;
+    if (!real(t)) continue;
+    const std::size_t group = t / (count * 2);  // (wheel, load)
+    for (std::size_t u = group * count * 2; u < t && source[t] == t; ++u)
+      if (real(u) && y_of(u) == y_of(t)) source[t] = u;
+    if (source[t] == t) unique.push_back(t);
+  }
   std::vector<Column> columns(tasks);
-  std::size_t todo = 0;  // columns of real jumps (the rest is padding)
-  for (const auto& wheel : jumps.wheel)
-    for (const auto& l : wheel) todo += 2 * l.size();
-  TaskProgress ticks(progress, todo);
-  parallel_for_index(threads, tasks, [&](std::size_t t) {
-    const std::size_t w = t / (n_load * count * 2), l = (t / (count * 2)) % n_load, j = (t / 2) % count,
-                      side = t % 2;
-    if (j >= jumps.wheel[w][l].size()) return;
-    const ContactJump& jump = jumps.wheel[w][l][j];
-    columns[t] = compute_column(kernels[l], one[l], side == 0 ? jump.left : jump.right, w);
+  TaskProgress ticks(progress, unique.size());
+  // An end at a y node (a jump within one bisection step of the node) is the sweep's column there.
+  const TableAxis* y_axis = table.axis("y");
+  parallel_for_index(threads, unique.size(), [&](std::size_t k) {
+    const std::size_t t = unique[k], w = t / (n_load * count * 2), l = (t / (count * 2)) % n_load;
+    const double y = y_of(t);
+    const auto node = y_axis ? std::find(y_axis->values.begin(), y_axis->values.end(), y) : std::vector<double>::const_iterator{};
+    bool copied = false;
+    if (y_axis && node != y_axis->values.end()) {
+      columns[t] = empty_column(kernels[l], one[l]);
+      copied = column_from_table(table, kernels[l], static_cast<std::size_t>(node - y_axis->values.begin()), l, n_load, w,
+                                 columns[t]);
+    }
+    if (!copied) columns[t] = compute_column(kernels[l], one[l], y, w);
     ticks.tick();
   });
   ticks.finish();
@@ -119,7 +179,7 @@ void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jump
         for (std::size_t l = 0; l < n_load; ++l)
           for (std::size_t j = 0; j < count; ++j)
             for (std::size_t side = 0; side < 2; ++side) {
-              const Column& c = columns[((w * n_load + l) * count + j) * 2 + side];
+              const Column& c = columns[source[((w * n_load + l) * count + j) * 2 + side]];
               copy(c, ((l * count + j) * 2 + side) * block);
             }
       };

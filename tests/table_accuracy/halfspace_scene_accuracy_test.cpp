@@ -123,13 +123,23 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
   SlotStats stats[lk::kNumOutputs][kSlots];
   std::vector<double> creep_error[kSlots];  // smooth cells: |fx, fy error| / (mu N), both outputs
   std::vector<double> all_creep_error[kSlots];  // the same over every cell, jump cells included
+  // The worst values over every cell, printed with their state and cell: where the percentiles'
+  // tail comes from (jump cells or smooth, which y cell, which creepage).
+  struct Worst {
+    double error;  // / (mu N)
+    SlotError e;
+    std::size_t y_cell;
+  };
+  std::vector<Worst> worst[kSlots];
   for_each_slot_error(view, *f.lookup, points, direct, [&](const SlotError& e) {
     const int o = e.output;
     const std::size_t s = e.slot;
     const Point& p = points[e.state];
     SlotStats& st = stats[o][s];
-    if ((o == lk::kFx || o == lk::kFy) && e.normal_force > 0.0)
+    if ((o == lk::kFx || o == lk::kFy) && e.normal_force > 0.0) {
       all_creep_error[s].push_back(e.error / (mu * e.normal_force));
+      worst[s].push_back({e.error / (mu * e.normal_force), e, e.cell ? e.cell->lower.front() : 0});
+    }
     if (!st.add(e, p, mu)) return;
     // Normalised creep part: fx, fy, mz are stored as F / (mu N) minus a law, so the table's second
     // differences do not bound their error in N: judged against mu N (as the default scene's test).
@@ -188,6 +198,21 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
                 std::sqrt(sq / std::max<double>(1.0, static_cast<double>(all_creep_error[s].size()))),
                 percentile(all_creep_error[s], 0.5), percentile(all_creep_error[s], 0.9),
                 percentile(all_creep_error[s], 0.99), percentile(all_creep_error[s], 1.0), all_creep_error[s].size());
+  }
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    const std::size_t n = std::min<std::size_t>(worst[s].size(), 12);
+    std::partial_sort(worst[s].begin(), worst[s].begin() + static_cast<std::ptrdiff_t>(n), worst[s].end(),
+                      [](const Worst& a, const Worst& b) { return a.error > b.error; });
+    std::printf("worst %zu of slot %zu (%s), all cells:\n", n, s, s == 0 ? "tread" : "flange");
+    for (std::size_t k = 0; k < n; ++k) {
+      const Worst& w = worst[s][k];
+      const Point& p = points[w.e.state];
+      std::printf("  %.4f %s wheel %zu %s y %.5f mm creepage (%.2e, %.2e, %.3f) lookup %.1f direct %.1f N %.0f "
+                  "y cell %zu\n",
+                  w.error, lk::output_name(static_cast<lk::Output>(w.e.output)), w.e.wheel,
+                  w.e.kind == CellKind::kJump ? "jump" : "smooth", p.v[kY] * 1e3, p.v[kXi], p.v[kEta], p.v[kPhi],
+                  w.e.lookup, w.e.direct, w.e.normal_force, w.y_cell);
+    }
   }
   // The reduced table (78.5 kN, element 0.5 mm, 7 x 5 x 3 normalised nodes) measured rms 0.0096
   // tread, 0.0203 flange (p99 0.034 / 0.068; docs/validation/exact-tables.md); with the earlier 3 x 3

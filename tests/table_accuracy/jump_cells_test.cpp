@@ -549,6 +549,71 @@ TEST(JumpCells, CubicStencilsStayOnTheCellsSideOfAJump) {
   EXPECT_GE(cases, 4u);
 }
 
+// The one-sided values reuse what they can (jump_samples.cpp): an end at a y node is the sweep's
+// column there, and an end two jumps share (one bisection step apart) is computed once. Both must
+// be the bytes of computing each end on its own: three jumps a step apart around a y node, per
+// wheel and load, with the sweep's parts in the table (copied) and without them (computed), and
+// the last jump alone (its shared end computed for it).
+TEST(JumpCells, SharedAndNodeEndsAreTheComputedColumns) {
+  const DefaultSweep& d = default_sweep();
+  const std::vector<double>& y = d.scene.grids.y;
+  const double node = y[y.size() / 2 + 3], h = 1e-6;
+  ContactJumps jumps, last;
+  for (std::size_t w = 0; w < 2; ++w)
+    for (std::size_t l = 0; l < d.scene.grids.load.size(); ++l) {
+      jumps.wheel[w].push_back({{node - 0.5 * h, jump_kind::kPatchSlot1, node - h, node},
+                                {node + 0.5 * h, jump_kind::kPatchSlot1, node, node + h},
+                                {node + 1.5 * h, jump_kind::kPatchSlot1, node + h, node + 2 * h}});
+      last.wheel[w].push_back({jumps.wheel[w].back()[2]});
+    }
+  Table copied = d.table, computed = d.table, alone = d.table;
+  for (Table* t : {&computed, &alone})  // no sweep parts: every end is computed
+    t->groups.erase(std::remove_if(t->groups.begin(), t->groups.end(),
+                                   [](const TableGroup& g) { return g.path.rfind("left/", 0) == 0 || g.path.rfind("right/", 0) == 0; }),
+                    t->groups.end());
+  add_jumps(copied, d.scene, jumps);
+  add_jumps(computed, d.scene, jumps);
+  add_jumps(alone, d.scene, last);
+  std::size_t datasets = 0, compared = 0;
+  for (const TableGroup& g : copied.groups) {
+    if (g.path.rfind(std::string(kJumpGroup) + "/", 0) != 0) continue;
+    const TableGroup* c = computed.group(g.path);
+    const TableGroup* a = alone.group(g.path);
+    ASSERT_NE(c, nullptr) << g.path;
+    ASSERT_NE(a, nullptr) << g.path;
+    for (const TableDataset& ds : g.datasets) {
+      const TableDataset* cs = c->find(ds.name);
+      const TableDataset* as = a->find(ds.name);
+      ASSERT_NE(cs, nullptr) << g.path << "/" << ds.name;
+      ASSERT_NE(as, nullptr) << g.path << "/" << ds.name;
+      EXPECT_EQ(ds.values, cs->values) << g.path << "/" << ds.name;
+      EXPECT_EQ(ds.status, cs->status) << g.path << "/" << ds.name;
+      // [load,] jump, side, rest: jump 2 of `copied` is jump 0 of `alone`.
+      const bool status = ds.is_status;
+      const std::size_t n = status ? ds.status.size() : ds.values.size();
+      const std::size_t jump_axis = static_cast<std::size_t>(
+          std::find(ds.axes.begin(), ds.axes.end(), kJumpDimension) - ds.axes.begin());
+      ASSERT_LT(jump_axis, ds.axes.size());
+      std::size_t inner = 1, outer = 1;
+      for (std::size_t k = jump_axis + 1; k < ds.shape.size(); ++k) inner *= ds.shape[k];
+      for (std::size_t k = 0; k < jump_axis; ++k) outer *= ds.shape[k];
+      ASSERT_EQ(n, outer * 3 * inner);
+      for (std::size_t o = 0; o < outer; ++o)
+        for (std::size_t k = 0; k < inner; ++k) {
+          const std::size_t at = (o * 3 + 2) * inner + k, there = o * inner + k;
+          if (status)
+            EXPECT_EQ(ds.status[at], as->status[there]) << g.path << "/" << ds.name;
+          else
+            EXPECT_EQ(ds.values[at], as->values[there]) << g.path << "/" << ds.name;
+          ++compared;
+        }
+      ++datasets;
+    }
+  }
+  EXPECT_GT(datasets, 10u);
+  EXPECT_GT(compared, 1000u);
+}
+
 TEST(JumpCells, CreepForcesOnJumpCellsAtCreepageNodes) { creep_forces_on_jump_cells(true); }
 TEST(JumpCells, CreepForcesOnJumpCells) { creep_forces_on_jump_cells(false); }
 
