@@ -20,21 +20,24 @@ namespace {
 
 // One axis of the cubic stencil: nodes j = 0..3 are i-1, i, i+1, i+2; 0 and 3 may be absent (a
 // table edge, or a located contact jump between them and the cell: AxisLoc::cut_stencil).
+// No member initialisers: make_cubic_axis writes every field, and zeroing the struct first was a
+// rep stos on every call (a third of the function's time).
 struct CubicAxis {
-  std::size_t stride = 0;     // bytes between neighbouring nodes
-  std::size_t idx[4] = {};    // node indices (absent ones unused)
-  bool has_left = false;      // node i-1 exists
-  bool has_right = false;     // node i+2 exists
-  double x[4] = {};           // node coordinates
-  double c0[4] = {};          // slope at node i   = sum_j c0[j] f[j]
-  double c1[4] = {};          // slope at node i+1 = sum_j c1[j] f[j]
-  double h00 = 0, h01 = 0;    // Hermite value basis at t
-  double h10 = 0, h11 = 0;    // Hermite slope basis at t, times the cell width
-  double t = 0;               // fraction in the cell
+  std::size_t stride;    // bytes between neighbouring nodes
+  std::size_t idx[4];    // node indices (absent ones unused)
+  bool has_left;         // node i-1 exists
+  bool has_right;        // node i+2 exists
+  double x[4];           // node coordinates
+  double c0[4];          // slope at node i   = sum_j c0[j] f[j]
+  double c1[4];          // slope at node i+1 = sum_j c1[j] f[j]
+  double h00, h01;       // Hermite value basis at t
+  double h10, h11;       // Hermite slope basis at t, times the cell width
+  double t;              // fraction in the cell
 };
 
 CubicAxis make_cubic_axis(const Axis& axis, const AxisLoc& l, std::size_t stride) noexcept {
   CubicAxis a;
+  for (int j = 0; j < 4; ++j) a.c0[j] = a.c1[j] = 0.0;
   const int n = axis.size();
   const double* xs = axis.nodes();
   const int i = l.i;
@@ -124,23 +127,21 @@ double hermite(const CubicAxis& a, const double f[4], bool monotone) noexcept {
 }
 
 // The cubic Hermite of one axis as weights on the 2-4 consecutive nodes of its stencil and, with
-// `derivative`, the weights of its derivative (the basis differentiated; left 0 otherwise: the
-// value query does not pay for them).
-StencilWeights cubic_weights(const CubicAxis& a, bool derivative) noexcept {
-  StencilWeights out;
+// `derivative`, the weights of its derivative (the basis differentiated; left unset otherwise:
+// the value query does not pay for them), into `out`.
+void cubic_weights(const CubicAxis& a, bool derivative, StencilWeights& out) noexcept {
   const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
   out.first = static_cast<int>(a.idx[lo]);
   out.count = hi - lo + 1;
   for (int j = lo; j <= hi; ++j)
     out.w[j - lo] = (j == 1 ? a.h00 : 0.0) + (j == 2 ? a.h01 : 0.0) + a.h10 * a.c0[j] + a.h11 * a.c1[j];
-  if (!derivative) return out;
+  if (!derivative) return;
   // d/dx of the basis: d h00 / dt / h, d h01 / dt / h; the slope basis's width cancels.
   const double t = a.t, t2 = t * t, h = a.x[2] - a.x[1];
   const double d00 = (6 * t2 - 6 * t) / h, d01 = (-6 * t2 + 6 * t) / h;
   const double d10 = 3 * t2 - 4 * t + 1, d11 = 3 * t2 - 2 * t;
   for (int j = lo; j <= hi; ++j)
     out.dw[j - lo] = (j == 1 ? d00 : 0.0) + (j == 2 ? d01 : 0.0) + d10 * a.c0[j] + d11 * a.c1[j];
-  return out;
 }
 
 // Tensor cubic Hermite contracted one dimension at a time (cubic_contract in weighted_sum.hpp),
@@ -155,7 +156,7 @@ void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot
   StencilWeights sw[kMaxDims];
   for (int d = 0; d < n_dims; ++d) {
     const AxisLoc& l = loc[b.var[d]];
-    sw[d] = cubic_weights(make_cubic_axis(axes[b.var[d]], l, b.stride[d]), grad != nullptr);
+    cubic_weights(make_cubic_axis(axes[b.var[d]], l, b.stride[d]), grad != nullptr, sw[d]);
     base += static_cast<std::size_t>(sw[d].first) * b.stride[d];
     cell += static_cast<std::size_t>(l.i) * b.stride[d];
   }

@@ -161,12 +161,14 @@ __attribute__((noinline, target("avx2"))) void corner_sum_avx2(RecordPtr p, cons
 }
 
 // One axis of a tensor cubic stencil as weights on its 2-4 consecutive nodes (interpolate_cubic.cpp,
-// cubic_weights): value weights, and the weights of the derivative along the axis.
+// cubic_weights): value weights, and the weights of the derivative along the axis. No member
+// initialisers: cubic_weights writes the entries the contraction reads (an array of these zeroed
+// per block call was a rep stos of 560 bytes).
 struct StencilWeights {
-  int first = 0;      // first stencil node (index on the axis)
-  int count = 0;      // stencil nodes (2..4; 1 with weight 1 for a block without axes)
-  double w[4] = {};   // value weights
-  double dw[4] = {};  // derivative weights [1 / axis unit]
+  int first;      // first stencil node (index on the axis)
+  int count;      // stencil nodes (2..4)
+  double w[4];    // value weights, [0, count)
+  double dw[4];   // derivative weights [1 / axis unit], [0, count) (when asked for)
 };
 
 // The tensor cubic over a stencil, contracted one dimension at a time, depth first: dimension
