@@ -22,7 +22,10 @@ echo "ok: mpirun -n 3 gives the single-process datasets"
 # Kill a worker rank mid-run. Race-free: once rank 0 has created the checkpoint (every rank is past
 # MPI_Init), rank 2 is stopped (SIGSTOP); rank 0 cannot finish the table without it, so the run is
 # frozen short of completion while ranks 0 and 1 fill the checkpoint; then rank 2 gets SIGKILL.
-mpirun -n 3 "$railtab" generate "$scene" -o killed.h5 --threads 1 --quiet > run.log 2>&1 &
+# The ranks run at the lowest priority so that this script's polls are not starved by them (Open
+# MPI's ranks busy-wait) or by other load: on a loaded machine the whole sweep could otherwise pass
+# between two polls.
+nice -n 19 mpirun -n 3 "$railtab" generate "$scene" -o killed.h5 --threads 1 --quiet > run.log 2>&1 &
 launcher=$!
 rank_pid() {  # the pid of MPI rank $1 under the launcher
   local pid
@@ -33,10 +36,11 @@ rank_pid() {  # the pid of MPI rank $1 under the launcher
     fi
   done
 }
+victim=
+for _ in $(seq 1 3000); do victim=$(rank_pid 2); [ -n "$victim" ] && break; sleep 0.01; done
+[ -n "$victim" ] || fail "rank 2 not found under mpirun within 30 s"
 for _ in $(seq 1 3000); do [ -e killed.h5.partial ] && break; sleep 0.01; done
-victim=$(rank_pid 2)
-[ -n "$victim" ] || fail "rank 2 not found under mpirun (did the run end before the kill?)"
-kill -STOP "$victim"
+kill -STOP "$victim" 2> /dev/null || fail "rank 2 ended before it could be stopped; use a larger scene"
 [ ! -e killed.h5 ] || fail "the run completed before rank 2 could be stopped; use a larger scene"
 for _ in $(seq 1 3000); do
   [ "$(stat -c %s killed.h5.partial 2>/dev/null || echo 0)" -gt 4096 ] && break
