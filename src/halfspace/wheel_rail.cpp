@@ -559,12 +559,12 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
                                                r.patches.empty() ? nullptr : &r, &samples, warm);
     if (next.patches.size() == r.patches.size())  // warm start from the previous round
       for (size_t k = 0; k < next.patches.size(); ++k) {
-        const Grid& before = r.patches[k].grid;
+        const Grid& prior = r.patches[k].grid;
         TangentialSolution& t = r.patches[k].tangential;
-        if (warm && t.traction_x.size() == static_cast<size_t>(before.size())) {  // where they were
-          next.patches[k].tangential.traction_x = on_grid(before, t.traction_x, next.patches[k].grid);
-          next.patches[k].tangential.traction_y = on_grid(before, t.traction_y, next.patches[k].grid);
-        } else if (next.patches[k].grid.nx == before.nx && next.patches[k].grid.ny == before.ny) {
+        if (warm && t.traction_x.size() == static_cast<size_t>(prior.size())) {  // where they were
+          next.patches[k].tangential.traction_x = on_grid(prior, t.traction_x, next.patches[k].grid);
+          next.patches[k].tangential.traction_y = on_grid(prior, t.traction_y, next.patches[k].grid);
+        } else if (next.patches[k].grid.nx == prior.nx && next.patches[k].grid.ny == prior.ny) {
           next.patches[k].tangential = std::move(t);
         }
       }
