@@ -295,6 +295,7 @@ void generate_table_mpi(GenerateOptions options) {
     if (session.rank() != 0) options.log = nullptr;
     options.engine = run_sweep_mpi;
     options.always_checkpoint = true;
+    options.writes_files = session.rank() == 0;
     generate_table(options);
   } catch (const Interrupted&) {
     throw;  // every rank stops the same way; the checkpoint stays

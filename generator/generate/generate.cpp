@@ -168,7 +168,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
   sweep.max_bytes = options.max_bytes;
   const bool keep_checkpoint = options.resume || options.always_checkpoint;
   if (keep_checkpoint) sweep.checkpoint = checkpoint_path(options.output);
-  if (options.always_checkpoint && !options.resume) {
+  if (options.always_checkpoint && !options.resume && options.writes_files) {
     std::error_code ignored;  // a fresh run: an old checkpoint is not resumed
     std::filesystem::remove(sweep.checkpoint, ignored);
   }

@@ -33,6 +33,9 @@ struct GenerateOptions {
   // Keep finished blocks in OUTPUT.partial even without `resume` (a fresh run discards an old
   // one): MPI runs always do, so a rank that dies leaves a resumable checkpoint.
   bool always_checkpoint = false;
+  // False on MPI ranks other than 0: they neither write the table nor touch the checkpoint (a
+  // rank that removed a fresh run's old checkpoint could remove the one rank 0 has just begun).
+  bool writes_files = true;
   std::uint64_t max_points = kDefaultMaxPoints;  // refuse a larger table (--max-points) [-]
   std::uint64_t max_bytes = kDefaultMaxBytes;    // refuse a table needing more memory (--max-bytes) [B]
 };

@@ -30,17 +30,26 @@ launcher=$!
 rank_pid() {  # the pid of MPI rank $1 under the launcher
   local pid
   for pid in $(pgrep -P "$launcher"); do
-    if tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$1"; then
+    # grep reads the whole environment (no -q): with pipefail, a grep that exits at the match
+    # while tr still writes a large environment fails the pipe (SIGPIPE), and the rank is missed.
+    if tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -x "OMPI_COMM_WORLD_RANK=$1" > /dev/null; then
       echo "$pid"
       return
     fi
   done
 }
-victim=
-for _ in $(seq 1 3000); do victim=$(rank_pid 2); [ -n "$victim" ] && break; sleep 0.01; done
-[ -n "$victim" ] || fail "rank 2 not found under mpirun within 30 s"
 for _ in $(seq 1 3000); do [ -e killed.h5.partial ] && break; sleep 0.01; done
-kill -STOP "$victim" 2> /dev/null || fail "rank 2 ended before it could be stopped; use a larger scene"
+# Rank 2 looked up (again) until one is found and stopped: a lookup can miss a rank that is
+# still starting, and a pid found early may be gone by the time of the stop.
+victim=
+for _ in $(seq 1 3000); do
+  victim=$(rank_pid 2)
+  [ -n "$victim" ] && kill -STOP "$victim" 2> /dev/null && break
+  victim=
+  [ -e killed.h5 ] && break
+  sleep 0.01
+done
+[ -n "$victim" ] || fail "rank 2 could not be found and stopped under mpirun (did the run end first?)"
 [ ! -e killed.h5 ] || fail "the run completed before rank 2 could be stopped; use a larger scene"
 for _ in $(seq 1 3000); do
   [ "$(stat -c %s killed.h5.partial 2>/dev/null || echo 0)" -gt 4096 ] && break
