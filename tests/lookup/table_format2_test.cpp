@@ -197,21 +197,18 @@ TEST(TableFormat2, RollModeEquilibriumLoadsAndOtherModesAreRefused) {
 // symmetry, or the attribute without a yaw axis that starts at 0, is refused: the lookup would
 // fold a queried yaw onto nodes that are not there.
 TEST(TableFormat2, YawSymmetryNeedsEvenAndAYawAxisFromZero) {
-  {
-    TempFile file("v2yawodd");
+  struct Case {
+    const char* symmetry;  // the root attribute yaw_symmetry of a fixture without a yaw axis
+    const char* message;   // what the refusal must say
+  };
+  for (const Case& c : {Case{"odd", "root attribute yaw_symmetry is 'odd'"},
+                        Case{"even", "needs a yaw axis starting at 0"}}) {
+    TempFile file(std::string("v2yaw") + c.symmetry);
     FixtureSpec spec = v2_spec();
-    spec.extra_root_attributes = {{"yaw_symmetry", "odd"}};
+    spec.extra_root_attributes = {{"yaw_symmetry", c.symmetry}};
     testing::write_fixture(file.path, spec);
     const std::string msg = load_error(file.path);
-    EXPECT_NE(msg.find("root attribute yaw_symmetry is 'odd'"), std::string::npos) << msg;
-  }
-  {
-    TempFile file("v2yawnoaxis");
-    FixtureSpec spec = v2_spec();
-    spec.extra_root_attributes = {{"yaw_symmetry", "even"}};
-    testing::write_fixture(file.path, spec);
-    const std::string msg = load_error(file.path);
-    EXPECT_NE(msg.find("needs a yaw axis starting at 0"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(c.message), std::string::npos) << c.symmetry << ": " << msg;
   }
 }
 
