@@ -193,7 +193,11 @@ void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geom
     if (per_slot && !uncoupled_slots.occupied(pass)) continue;  // status 0, zeros: no contact
     halfspace::WheelHalfspaceResult result = uncoupled;  // holds the warm start without the coupling
     halfspace::RollingState chain;  // the coupled solves' warm start: the previous creepage's end
-    for (const std::size_t node : creepage_chain(k.grids.xi.size(), ne, np)) {
+    for (std::size_t node : creepage_chain(k.grids.xi.size(), ne, np)) {
+      // The right wheel walks the chain mirrored in eta and phi: its patch is the left wheel's
+      // mirror image (halfspace/wheel_rail.hpp), so at mirrored states both wheels solve the same
+      // sequence of warm-started problems, to the same bytes (engine/mirror.hpp).
+      if (geometry.side == Side::right) node = (node / (ne * np) * ne + ne - 1 - node / np % ne) * np + np - 1 - node % np;
       const std::size_t ix = node / (ne * np), ie = node / np % ne, iphi = node % np;
       const std::size_t cells = (il * k.creepages() + node) * kSlots;
       const Creepage creepage = node_creepage(k, ix, ie, iphi, per_slot ? &scales[pass] : nullptr);

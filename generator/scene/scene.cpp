@@ -114,7 +114,16 @@ void append_segment(const Section& s, const std::string& key, const toml::node& 
       fail(s.context(), n.source(), s.dotted(key), "range has too many points");
     }
     count = static_cast<std::size_t>(std::floor(intervals + 1e-9)) + 1;
-    for (std::size_t i = 0; i < count; ++i) out.push_back(start + static_cast<double>(i) * step);
+    // With start on the step's lattice the nodes are its points k * step, so that a range and its
+    // mirror image (-stop to -start) give the same nodes negated, bit for bit (a mirror-symmetric
+    // y grid lets the sweep fill y < 0 by the mirror, engine/mirror.hpp); start itself stays as
+    // written.
+    const double k0 = std::round(start / step);
+    const bool lattice = std::abs(start / step - k0) < 1e-9;
+    for (std::size_t i = 0; i < count; ++i) {
+      const double di = static_cast<double>(i);
+      out.push_back(i == 0 ? start : lattice ? (k0 + di) * step : start + di * step);
+    }
     // Snap the end point so that {start, stop, step} with stop on the lattice ends exactly at stop.
     if (std::abs(out.back() - stop) < 1e-9 * step) out.back() = stop;
   } else {

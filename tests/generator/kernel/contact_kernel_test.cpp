@@ -267,7 +267,8 @@ creep_coordinates = "normalised"
       for (const int ip : slots.patch[s]) {
         if (ip < 0) continue;
         const halfspace::HalfspacePatch& hp = free.patches[static_cast<std::size_t>(ip)];
-        const LinearCreep c = halfspace::patch_linear_creep(hp.grid, hp.normal.pressure, material, options.tangential, ws);
+        const LinearCreep c = halfspace::patch_linear_creep(hp.grid, hp.normal.pressure, material, options.tangential, ws,
+                                                                  hp.track_sign);
         kxx -= c.slope[0][0];
         kyy -= c.slope[1][1];
         kyp -= c.slope[1][2];
