@@ -119,14 +119,18 @@ inline void creepage_rows(const CreepMap& map, int q, double creepage, double in
 
 // The creep block's rows from its gradient g (y and load per SI unit, the v coordinates per unit
 // v) chained through dv, then the forces in N and their derivatives (denormalise_creep on c.value
-// and its gradient), the clamped variables' columns cleared.
+// and its gradient), the clamped variables' columns cleared. `block_values`: the creep block's
+// values the gradient's chain reads, in record order (the double sum of its walk, as the generic
+// derivatives read them; c.value may hold the float sum of float records).
 inline void finish_creep_gradient(const TableData& d, const Block& cb, const BlockGradient& g, const double (*dv)[kNumVars],
                                   const double* xn, const double (*dxn)[kNumVars], double cos_angle, double sin_angle,
-                                  unsigned frozen, Contact& c, double (*dd)[kNumVars]) noexcept {
+                                  unsigned frozen, const double* block_values, Contact& c,
+                                  double (*dd)[kNumVars]) noexcept {
   const CreepMap& map = d.creep_map;
   chain_creep_coordinates(cb, g, dv, dd);
   double stored[kNumOutputs];  // the values denormalise_creep_gradient reads
   for (int o : {kContactAngle, kNormalForce, kFx, kFy, kMz}) stored[o] = c.value[o];
+  for (int k = 0; k < cb.n_values; ++k) stored[cb.output_of[k]] = block_values[k];
   denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
   denormalise_creep_gradient(map, xn, dxn, stored, cos_angle, sin_angle, dd);
   if (frozen)
@@ -260,12 +264,12 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     denormalise_creep(map, x, cos_angle, sin_angle, c.value);
   } else if constexpr (kGrad) {
     // d / d t of the cell's 5 fractions per unit of y, load and v, chained.
-    double ignored[NC], dt[NC][kMaxDims];
-    multilinear_gradient<TC>(cr, 5, cb.stride, t5, NC, ignored, dt);
+    double walked[NC], dt[NC][kMaxDims];  // walked: the values in double (the chain's, as the generic path's)
+    multilinear_gradient<TC>(cr, 5, cb.stride, t5, NC, walked, dt);
     BlockGradient gc;
     for (int k = 0; k < NC; ++k)
       set_row(gc.d[k], dt[k][0] * iw_y, dt[k][1] * iw_load, dt[k][2] * iw_v[0], dt[k][3] * iw_v[1], dt[k][4] * iw_v[2]);
-    finish_creep_gradient(d, cb, gc, dv, x, dxn, cos_angle, sin_angle, grad->frozen, c, dd);
+    finish_creep_gradient(d, cb, gc, dv, x, dxn, cos_angle, sin_angle, grad->frozen, walked, c, dd);
   } else {
     denormalise_creep(map, x, cos_angle, sin_angle, c.value);
   }
@@ -429,7 +433,9 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
     jump_gradient(d, w, fp.normal, all, pieces, s, g);
     for (int k = 0; k < NN; ++k) set_row(dd[d.block[w][fp.normal].output_of[k]], g.d[k][kVarY], g.d[k][kVarLoad], 0.0, 0.0, 0.0);
     jump_gradient(d, w, fp.creep, all, pieces, s, g);
-    finish_creep_gradient(d, cb, g, dv, xn, dxn, cos_angle, sin_angle, grad->frozen, c, dd);
+    double block_values[NC];  // the one-sided sum's, in double
+    for (int k = 0; k < NC; ++k) block_values[k] = c.value[cb.output_of[k]];
+    finish_creep_gradient(d, cb, g, dv, xn, dxn, cos_angle, sin_angle, grad->frozen, block_values, c, dd);
   } else {
     denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
   }
