@@ -192,8 +192,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
               0.0, 0.0, 0.0, 0.0);
   double cos_angle = 0.0, sin_angle = 0.0;
   if (map.vertical_share) {
-    cos_angle = std::cos(c.value[kContactAngle]);
-    sin_angle = std::sin(c.value[kContactAngle]);
+    angle_cos_sin(c.value[kContactAngle], cos_angle, sin_angle);
   }
 
   // The slot's reciprocal scales at (y, load) (interpolate_scales, bilinear), the normalised
@@ -378,8 +377,7 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
   cut_block_0<NG>(d.block[w][fp.geometry], j.samples[fp.geometry], pieces[1], lc, weight, slot, c);
   double cos_angle = 0.0, sin_angle = 0.0;
   if (map.vertical_share) {
-    cos_angle = std::cos(c.value[kContactAngle]);
-    sin_angle = std::sin(c.value[kContactAngle]);
+    angle_cos_sin(c.value[kContactAngle], cos_angle, sin_angle);
   }
   cut_block_0<NN>(d.block[w][fp.normal], j.samples[fp.normal], pieces[0], lc, weight, slot, c);
 
