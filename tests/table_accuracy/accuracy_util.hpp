@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -562,6 +563,7 @@ struct SlotError {
   const TableView::Cell* cell;  // the slot's cell of the output's part
   double lookup, direct, error;  // error = |lookup - direct|
   double normal_force;           // the direct evaluation's N of the slot
+  StatusBits lookup_status;      // the lookup's status of the slot (low_confidence: counted apart)
 };
 
 // Queries the lookup at every state for both wheels and calls f(const SlotError&) for every
@@ -582,12 +584,52 @@ void for_each_slot_error(const TableView& view, const lk::Table& lookup, const s
           if (kind == CellKind::kEmpty) continue;
           const double value = r.contact[s].value[o], reference = direct[i][w].value[o][s];
           f(SlotError{i, w, s, o, kind, &kinds.cell[part][s], value, reference, std::abs(value - reference),
-                      direct[i][w].value[lk::kNormalForce][s]});
+                      direct[i][w].value[lk::kNormalForce][s], r.contact[s].status});
         }
       }
     }
   }
 }
+
+// Whether the lookup flags the slot low_confidence (docs/lookup.md, "Low confidence"): the issue's
+// accuracy targets count such slots apart, and they may be at most 2 % of the random states.
+inline bool flagged(const SlotError& e) { return (e.lookup_status & lk::status::kLowConfidence) != 0; }
+
+// Queries (state, wheel) of `points` whose answer has low_confidence in any slot: the flagged
+// states of the accuracy targets (python/tests/test_table.py counts them the same way).
+inline std::size_t flagged_queries(const lk::Table& lookup, const std::vector<Point>& points) {
+  std::size_t n = 0;
+  for (const Point& p : points)
+    for (std::size_t w = 0; w < 2; ++w) {
+      const lk::Result r = lookup.query(static_cast<lk::Wheel>(w), to_state(lookup, p));
+      bool any = false;
+      for (int s = 0; s < r.n_slots; ++s) any = any || (r.contact[s].status & lk::status::kLowConfidence) != 0;
+      n += any;
+    }
+  return n;
+}
+
+// RMS, median, 90th and 99th percentiles and maximum of a set of errors (nearest rank; all 0 for
+// none): the figures the accuracy targets are stated in.
+struct ErrorFigures {
+  std::size_t n = 0;
+  double rms = 0.0, median = 0.0, p90 = 0.0, p99 = 0.0, max = 0.0;
+  explicit ErrorFigures(std::vector<double> v) : n(v.size()) {
+    if (v.empty()) return;
+    std::sort(v.begin(), v.end());
+    double sq = 0.0;
+    for (double e : v) sq += e * e;
+    rms = std::sqrt(sq / static_cast<double>(n));
+    auto at = [&](double q) { return v[static_cast<std::size_t>(q * static_cast<double>(n - 1) + 0.5)]; };
+    median = at(0.5), p90 = at(0.9), p99 = at(0.99), max = v.back();
+  }
+  // One line: "rms .. median .. p90 .. p99 .. max .. (n values)", in % when `percent`.
+  void print(const char* label, bool percent = true) const {
+    const double k = percent ? 100.0 : 1.0;
+    std::printf("%s: rms %.3f median %.3f p90 %.3f p99 %.3f max %.3f%s (%zu values)\n", label, k * rms, k * median,
+                k * p90, k * p99, k * max, percent ? " %" : "", n);
+  }
+};
 
 // Error statistics of one output and slot over the states of an accuracy test.
 struct SlotStats {
