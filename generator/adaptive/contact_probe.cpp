@@ -78,7 +78,9 @@ ContactProbe::ContactProbe(const Scene& scene)
                      fixed_yaw(scene)}) {}
 ContactProbe::~ContactProbe() { delete data_; }
 
-double ContactProbe::roll_at(double y) const { return data_->equilibrium_roll ? data_->solver.equilibrium_roll(y) : data_->roll; }
+double ContactProbe::roll_at(double y) const {
+  return data_->equilibrium_roll ? table_equilibrium_roll(data_->solver, y) : data_->roll;
+}
 double ContactProbe::friction() const { return data_->creep.friction; }
 
 std::vector<std::vector<std::array<ContactProbe::Wheel, 2>>> ContactProbe::evaluate(

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "adaptive/contact_probe.hpp"
+#include "engine/mirror.hpp"
 #include "engine/parallel_for.hpp"
 #include "engine/progress.hpp"
 
@@ -157,16 +158,36 @@ ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options,
   // The configuration at the cells' nodes, per wheel and load (no creep forces: the signature has
   // none); node k is y[first + k].
   const std::size_t n_load = loads.size(), cells = last - first, span = cells + 1, tasks = 2 * n_load * cells;
-  std::vector<Signature> nodes(cells > 0 ? 2 * n_load * span : 0);  // [wheel][load][node]
+  // The mirror: the right wheel's cell i is the left wheel's cell n - 2 - i mirrored, where that
+  // one is among the cells (task index of the left wheel's cell, or `tasks`).
+  const bool mirrored = options.mirror && mirror_obstacle(scene).empty();
+  std::vector<std::size_t> image(tasks, tasks);
+  for (std::size_t task = n_load * cells; mirrored && task < tasks; ++task) {
+    const std::size_t l = (task / cells) % n_load, i = first + task % cells, c = y.size() - 2 - i;
+    if (c >= first && c < last) image[task] = l * cells + (c - first);
+  }
+  std::vector<std::size_t> computed;  // the cells bisected, and the nodes they start from
+  std::vector<char> node_used(cells > 0 ? 2 * n_load * span : 0, 0);  // [wheel][load][node]
+  for (std::size_t task = 0; task < tasks; ++task) {
+    if (image[task] != tasks) continue;
+    computed.push_back(task);
+    const std::size_t wheel = task / (n_load * cells), l = (task / cells) % n_load, k = task % cells;
+    node_used[(wheel * n_load + l) * span + k] = node_used[(wheel * n_load + l) * span + k + 1] = 1;
+  }
+  std::vector<std::size_t> used;
+  for (std::size_t t = 0; t < node_used.size(); ++t)
+    if (node_used[t]) used.push_back(t);
+  std::vector<Signature> nodes(node_used.size());
   std::vector<std::vector<ContactJump>> found(tasks);
   std::vector<std::size_t> spent(tasks, 0);
-  TaskProgress ticks(progress, nodes.size() + tasks);  // nodes, then cells (most without a jump)
-  parallel_for_index(threads, nodes.size(), [&](std::size_t t) {
-    const std::size_t wheel = t / (n_load * span), l = (t / span) % n_load, i = first + t % span;
+  TaskProgress ticks(progress, used.size() + computed.size());  // nodes, then cells (most without a jump)
+  parallel_for_index(threads, used.size(), [&](std::size_t u) {
+    const std::size_t t = used[u], wheel = t / (n_load * span), l = (t / span) % n_load, i = first + t % span;
     nodes[t] = signature(probe.configuration(y[i], wheel, loads[l]));
     ticks.tick();
   });
-  parallel_for_index(threads, tasks, [&](std::size_t task) {
+  parallel_for_index(threads, computed.size(), [&](std::size_t c) {
+    const std::size_t task = computed[c];
     const std::size_t wheel = task / (n_load * cells), l = (task / cells) % n_load, k = task % cells, i = first + k;
     const std::size_t node = (wheel * n_load + l) * span + k;
     Bisection bisection(probe, wheel, loads[l], options);
@@ -175,6 +196,11 @@ ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options,
     ticks.tick();
   });
   ticks.finish();
+  for (std::size_t task = 0; task < tasks; ++task) {
+    if (image[task] == tasks) continue;
+    const std::vector<ContactJump>& from = found[image[task]];
+    for (auto j = from.rbegin(); j != from.rend(); ++j) found[task].push_back({-j->y, j->kind, -j->right, -j->left});
+  }
   for (std::size_t wheel = 0; wheel < 2; ++wheel) {
     result.wheel[wheel].resize(n_load);
     for (std::size_t l = 0; l < n_load; ++l)
@@ -183,7 +209,7 @@ ContactJumps locate_jumps(const Scene& scene, const JumpLocatorOptions& options,
         result.wheel[wheel][l].insert(result.wheel[wheel][l].end(), f.begin(), f.end());
       }
   }
-  result.evaluations = nodes.size();
+  result.evaluations = used.size();
   for (std::size_t s : spent) result.evaluations += s;
   return result;
 }
@@ -218,7 +244,7 @@ void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, cons
     group.datasets.push_back(std::move(kind));
   }
   table.groups.push_back(std::move(group));
-  add_jump_samples(table, scene, jumps, threads, progress, root);
+  add_jump_samples(table, scene, jumps, threads, progress, root, options.mirror);
 }
 
 }  // namespace railtab

@@ -38,6 +38,9 @@ constexpr std::uint32_t kAll = 0x3FFu;
 struct JumpLocatorOptions {
   double tolerance = 1e-6;      // width of the final bisection interval [m]
   double radius_step = 5e-5;    // a rolling-radius change this large across `tolerance` is a jump [m]
+  bool mirror = true;           // on a mirror-symmetric scene (engine/mirror.hpp) the right wheel's
+                                //   jumps and one-sided values are the mirror images of the left
+                                //   wheel's; false: both computed (the reference of the mirror's tests)
 };
 
 struct ContactJump {
@@ -63,7 +66,10 @@ using StageProgress = std::function<void(const SweepProgress&)>;
 // supported (returns no jumps: the caller writes none). Each step evaluates the contact
 // configuration of one wheel at one load (ContactProbe::configuration: geometry and normal
 // contact, no creep forces; for the exact model the exact normal problem only in states with
-// two or more candidate patches). progress counts the y nodes and the cells.
+// two or more candidate patches). progress counts the y nodes and the cells evaluated. With
+// options.mirror on a mirror-symmetric scene (engine/mirror.hpp) the right wheel's jumps in a cell
+// whose mirror cell is among `cells` are the left wheel's there, mirrored (the same bisection
+// steps negated, so the same numbers).
 struct CellRange {
   std::size_t first = 0;                                      // first y cell [-]
   std::size_t last = std::numeric_limits<std::size_t>::max();  // one past the last (clamped to the grid) [-]
@@ -85,8 +91,10 @@ void add_jumps(Table& table, const Scene& scene, const ContactJumps& jumps, cons
 // column is computed for the jump's wheel only (ColumnState::wheels); an end that lies on a y node
 // of `table` is copied from the sweep's column there, and an end two jumps share is computed once
 // (the same bytes either way); progress counts the columns computed or copied.
+// With `mirror` on a mirror-symmetric scene, a right-wheel end whose mirror -y is a left-wheel
+// end at the same load is that column's mirror image (engine/mirror.hpp), not computed again.
 void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads = 0,
-                      const StageProgress& progress = {}, const std::string& root = kJumpGroup);
+                      const StageProgress& progress = {}, const std::string& root = kJumpGroup, bool mirror = true);
 
 // The names of the jump-list and side dimensions: plain dimensions, not axes (no coordinate).
 inline constexpr const char* kJumpDimension = "jump";

@@ -9,6 +9,7 @@
 
 #include "kernel/contact_kernel.hpp"
 #include "adaptive/jump_locator.hpp"
+#include "engine/mirror.hpp"
 #include "engine/parallel_for.hpp"
 #include "engine/progress.hpp"
 
@@ -47,13 +48,18 @@ Column empty_column(const SweepKernel& kernel, const Scene& one) {
   return c;
 }
 
-Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std::size_t wheel) {
-  Column c = empty_column(kernel, one);
+// Where the kernel writes into `c` (laid out by empty_column).
+ColumnOutput output_of(Column& c) {
   std::vector<double*> value_ptr;
   std::vector<StatusBits*> status_ptr;
   for (auto& v : c.values) value_ptr.push_back(v.data());
   for (auto& s : c.status) status_ptr.push_back(s.data());
-  ColumnOutput out(value_ptr, status_ptr, c.first_output, kernel.parts.size());
+  return ColumnOutput(value_ptr, status_ptr, c.first_output, c.status.size() / 2);
+}
+
+Column compute_column(const SweepKernel& kernel, const Scene& one, double y, std::size_t wheel) {
+  Column c = empty_column(kernel, one);
+  ColumnOutput out = output_of(c);
   ColumnState state;
   state.y = y;
   state.wheels = 1u << wheel;  // the other wheel's cells stay zero (not read)
@@ -99,7 +105,7 @@ bool column_from_table(const Table& table, const SweepKernel& kernel, std::size_
 }  // namespace
 
 void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jumps, int threads,
-                      const StageProgress& progress, const std::string& root) {
+                      const StageProgress& progress, const std::string& root, bool mirror) {
   const TableGroup* list = table.group(root);
   if (!list) return;  // no jumps
   const std::size_t n_load = scene.grids.load.size();
@@ -131,8 +137,20 @@ void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jump
     const std::size_t group = t / (count * 2);  // (wheel, load)
     for (std::size_t u = group * count * 2; u < t && source[t] == t; ++u)
       if (real(u) && y_of(u) == y_of(t)) source[t] = u;
-    if (source[t] == t) unique.push_back(t);
   }
+  // The mirror (engine/mirror.hpp): a right-wheel end whose -y is a left-wheel end at the same
+  // load is that column's mirror image (task index of the left end's column, or `tasks`).
+  std::vector<std::size_t> image(tasks, tasks);
+  if (mirror && mirror_obstacle(scene, kernels.front()).empty()) {
+    for (std::size_t t = n_load * count * 2; t < tasks; ++t) {
+      if (!real(t) || source[t] != t) continue;
+      const std::size_t left = ((t / (count * 2)) % n_load) * count * 2;
+      for (std::size_t u = left; u < left + count * 2 && image[t] == tasks; ++u)
+        if (real(u) && y_of(u) == -y_of(t)) image[t] = source[u];
+    }
+  }
+  for (std::size_t t = 0; t < tasks; ++t)
+    if (real(t) && source[t] == t && image[t] == tasks) unique.push_back(t);
   std::vector<Column> columns(tasks);
   TaskProgress ticks(progress, unique.size());
   // An end at a y node (a jump within one bisection step of the node) is the sweep's column there.
@@ -152,6 +170,12 @@ void add_jump_samples(Table& table, const Scene& scene, const ContactJumps& jump
   });
   ticks.finish();
   const SweepKernel& kernel = kernels.front();
+  const std::vector<std::vector<std::size_t>> cells = mirror_cells(one.front(), kernel);
+  for (std::size_t t = 0; t < tasks; ++t) {
+    if (image[t] == tasks) continue;
+    columns[t] = empty_column(kernel, one.front());
+    mirror_column(kernel, cells, output_of(columns[image[t]]), output_of(columns[t]));
+  }
   const bool load_axis = table.axis("load") != nullptr;
   const char* names[2] = {"left", "right"};
   for (std::size_t w = 0; w < 2; ++w) {

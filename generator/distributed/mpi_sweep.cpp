@@ -58,6 +58,12 @@ std::vector<BlockResult> compute_blocks(SweepPlan& plan, const std::vector<std::
   std::vector<BlockResult> results(blocks.size());
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     results[b].block = blocks[b];
+    // The block the mirror filled with it goes back too (its failures are counted here).
+    if (plan.mirror_target(blocks[b]) != SweepPlan::kNoBlock) {
+      BlockResult image;
+      image.block = plan.mirror_target(blocks[b]);
+      results.push_back(image);
+    }
     for (std::size_t r = 0; r < nroll; ++r) {
       const ColumnReport& report = reports[b * nroll + r];
       results[b].failures += report.failures;
@@ -157,13 +163,15 @@ std::optional<SweepResult> run_sweep_mpi(const Scene& scene, const SweepKernel& 
   summary.points_total = l.ny * plan.points_per_block();
   summary.threads = threads;
   summary.ranks = ranks;
+  summary.mirrored = plan.mirrored();
+  summary.full_sweep_reason = plan.full_sweep_reason();
 
   // Resume: blocks in the checkpoint are loaded, not computed (rank 0 alone touches the file).
   std::vector<char> block_done;
   std::unique_ptr<Checkpoint> checkpoint = plan.resume(options.checkpoint, block_done, summary);
   std::deque<std::size_t> todo;
   for (std::size_t b = 0; b < l.ny; ++b) {
-    if (!block_done[b]) todo.push_back(b);
+    if (!block_done[b] && plan.scheduled(b)) todo.push_back(b);
   }
   const std::size_t blocks_todo = todo.size();
   Dealer dealer(std::move(todo));
@@ -219,8 +227,10 @@ std::optional<SweepResult> run_sweep_mpi(const Scene& scene, const SweepKernel& 
           finished = local_finished;
           if (local_fatal) std::rethrow_exception(local_fatal);
         }
-        for (const BlockResult& r : done) record(r);
-        blocks_computed += done.size();
+        for (const BlockResult& r : done) {
+          record(r);
+          blocks_computed += plan.scheduled(r.block);
+        }
         busy = !done.empty();
         if (finished && workers_running == 0) break;
       }
@@ -256,7 +266,7 @@ std::optional<SweepResult> run_sweep_mpi(const Scene& scene, const SweepKernel& 
           std::vector<char> block_bytes(message.begin() + static_cast<std::ptrdiff_t>(sizeof header + header.message_bytes), message.end());
           unpack_block(plan.table(), l.ny, header.block, block_bytes);
           record({header.block, header.failures, header.first_column, std::string(text, header.message_bytes)});
-          ++blocks_computed;
+          blocks_computed += plan.scheduled(header.block);
         } else {
           throw Error(fmt::format("MPI: unexpected message tag {} from rank {}", status.MPI_TAG, status.MPI_SOURCE));
         }

@@ -53,11 +53,13 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
   };
   std::vector<Task> tasks;
   for (std::size_t b = 0; b < l.ny; ++b) {
-    if (block_done[b]) continue;
+    if (block_done[b] || !plan.scheduled(b)) continue;  // (a block the mirror fills: with its block +y)
     for (std::size_t c = 0; c < l.columns; ++c) tasks.push_back({b, c});
   }
   const std::size_t points_todo = tasks.size() * kernel.points_per_column;
   summary.threads = effective_threads(options.threads);
+  summary.mirrored = plan.mirrored();
+  summary.full_sweep_reason = plan.full_sweep_reason();
 
   std::atomic<std::size_t> points_done{0};
   std::vector<std::atomic<std::size_t>> remaining(l.ny);
@@ -84,6 +86,8 @@ SweepResult run_sweep(const Scene& scene, const SweepKernel& kernel, const Sweep
         summary.first_failure = out.first_failure;
       }
       if (block_complete) finished_blocks.push_back(task.block);
+      if (block_complete && plan.mirror_target(task.block) != SweepPlan::kNoBlock)
+        finished_blocks.push_back(plan.mirror_target(task.block));
     }
     if (block_complete) wake.notify_one();
   };

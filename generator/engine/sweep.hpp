@@ -36,6 +36,8 @@ struct OutputInfo {
   std::string name;         // dataset name
   std::string units;        // SI units ("1" for dimensionless)
   std::string description;  // one line
+  bool odd = false;         // changes sign under the mirror that swaps the wheels (lateral
+                            //   quantities: contact angle, fy, mz, ...; docs/conventions.md)
 };
 
 // A part of the table (a group per wheel): its state axes beyond (y, roll, yaw) and its float64
@@ -106,6 +108,11 @@ struct SweepKernel {
   // `fixed_axes`.
   std::vector<std::pair<std::string, std::string>> attributes;
   PointCost point_cost = kFastPointCost;  // run time per grid point, for the size check's message
+  // The kernel's model has no side of its own: (y, roll, yaw, eta, phi) -> (-y, -roll, -yaw, -eta,
+  // -phi) swaps the wheels exactly, with the `odd` outputs negated (docs/conventions.md, side
+  // frame), and equilibrium_roll is exactly odd in y. On a scene whose grids are mirror-symmetric
+  // too (engine/mirror.hpp) the sweep then computes the columns y >= 0 and fills y < 0 by the mirror.
+  bool mirror_symmetric = false;
   std::function<void(const ColumnState&, ColumnOutput&)> compute;
 };
 
@@ -127,6 +134,8 @@ struct SweepOptions {
   double progress_interval = 0.25;          // seconds between progress calls [s]
   std::uint64_t max_points = kDefaultMaxPoints;  // refuse a larger table (table_size.hpp) [-]
   std::uint64_t max_bytes = kDefaultMaxBytes;    // refuse a table needing more memory [B]
+  bool mirror = true;  // false: compute every column even where the mirror could fill it (the
+                       //   full sweep, the reference of the mirror's tests)
 };
 
 struct SweepSummary {
@@ -142,6 +151,8 @@ struct SweepSummary {
   double seconds = 0.0;             // wall time of the computation [s]
   bool interrupted = false;         // stopped by the interrupt flag: the table is incomplete
   bool checkpoint_discarded = false;  // a checkpoint of another scene/build was found and reset
+  bool mirrored = false;            // the columns y < 0 were filled by the mirror of y > 0
+  std::string full_sweep_reason;    // why not (empty when mirrored): for the log
 };
 
 struct SweepResult {

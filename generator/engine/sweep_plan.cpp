@@ -4,15 +4,29 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <limits>
 
 #include "core/check.hpp"
 #include "engine/checkpoint.hpp"
+#include "engine/mirror.hpp"
 #include "engine/shard_split.hpp"
 #include "engine/table_size.hpp"
 #include "table/version.hpp"
 
 namespace railtab {
+
+const std::vector<double>& grid_of(const Scene& scene, const std::string& name) {
+  const SceneGrids& g = scene.grids;
+  if (name == "y") return g.y;
+  if (name == "roll") return g.roll;
+  if (name == "yaw") return g.yaw;
+  if (name == "load") return g.load;
+  if (name == "xi") return g.xi;
+  if (name == "eta") return g.eta;
+  if (name == "phi") return g.phi;
+  throw Error(fmt::format("sweep: unknown state axis '{}'", name));
+}
 
 namespace {
 
@@ -30,18 +44,6 @@ constexpr AxisInfo kStateAxes[] = {
     {"eta", "1", "lateral creepage, wheel relative to rail, per rolling distance"},
     {"phi", "rad/m", "spin creepage, wheel relative to rail, per rolling distance"},
 };
-
-const std::vector<double>& grid_of(const Scene& scene, const std::string& name) {
-  const SceneGrids& g = scene.grids;
-  if (name == "y") return g.y;
-  if (name == "roll") return g.roll;
-  if (name == "yaw") return g.yaw;
-  if (name == "load") return g.load;
-  if (name == "xi") return g.xi;
-  if (name == "eta") return g.eta;
-  if (name == "phi") return g.phi;
-  throw Error(fmt::format("sweep: unknown state axis '{}'", name));
-}
 
 
 bool tabulated(const Scene& scene, const std::string& axis) {
@@ -225,18 +227,36 @@ SweepPlan::SweepPlan(const Scene& scene, const SweepKernel& kernel, const SweepO
   TableGroup* root = table_.group("");
   TableDataset* roll_dataset = root ? root->find("equilibrium_roll") : nullptr;
   equilibrium_roll_ = roll_dataset ? roll_dataset->values.data() : nullptr;
+  full_sweep_reason_ = options.mirror ? mirror_obstacle(scene, kernel) : "the full sweep was asked for";
+  mirrored_ = full_sweep_reason_.empty();
+  target_.assign(layout_.ny, kNoBlock);
+  filled_.assign(layout_.ny, 0);
+  if (!mirrored_) return;
+  mirror_cells_ = mirror_cells(scene, kernel);
+  const std::size_t ny = scene.grids.y.size();
+  for (std::size_t b = 0; b < layout_.ny; ++b) {
+    const std::size_t iy = layout_.y_begin + b, image = ny - 1 - iy;
+    if (scene.grids.y[iy] > 0.0 && image >= layout_.y_begin && image < layout_.y_end) {
+      target_[b] = image - layout_.y_begin;
+      filled_[image - layout_.y_begin] = 1;
+    }
+  }
 }
 
-ColumnReport SweepPlan::compute_column(std::size_t block, std::size_t column) {
+ColumnState SweepPlan::column_state(std::size_t iy, std::size_t column) const {
+  ColumnState state;
+  state.iy = iy;
+  state.iroll = column / layout_.nyaw;
+  state.iyaw = column % layout_.nyaw;
+  state.y = scene_.grids.y[iy];
+  state.yaw = scene_.grids.yaw.empty() ? 0.0 : scene_.grids.yaw[state.iyaw];
+  if (!scene_.equilibrium_roll) state.roll = scene_.grids.roll[state.iroll];
+  return state;
+}
+
+ColumnOutput SweepPlan::column_output(std::size_t block, std::size_t column) {
   const SweepLayout& l = layout_;
   const std::size_t parts = kernel_.parts.size();
-  const std::size_t iroll = column / l.nyaw;
-  ColumnState state;
-  state.iy = l.y_begin + block;
-  state.iroll = iroll;
-  state.iyaw = column % l.nyaw;
-  state.y = scene_.grids.y[state.iy];
-  state.yaw = scene_.grids.yaw.empty() ? 0.0 : scene_.grids.yaw[state.iyaw];
   std::vector<double*> values;
   std::vector<StatusBits*> status;
   for (std::size_t wheel = 0; wheel < 2; ++wheel) {
@@ -249,7 +269,63 @@ ColumnReport SweepPlan::compute_column(std::size_t block, std::size_t column) {
       status.push_back(group.datasets.back().status.data() + offset);
     }
   }
-  ColumnOutput out(std::move(values), std::move(status), l.first_output, parts);
+  return ColumnOutput(std::move(values), std::move(status), l.first_output, parts);
+}
+
+// A column's outputs in `values` and `status` (sized here), laid out as ColumnOutput reads them.
+ColumnOutput SweepPlan::aside_output(std::vector<double>& values, std::vector<StatusBits>& status) const {
+  const SweepLayout& l = layout_;
+  const std::size_t parts = kernel_.parts.size();
+  std::size_t value_count = 0, cell_count = 0;
+  for (std::size_t p = 0; p < parts; ++p) {
+    value_count += l.cells[p] * kernel_.parts[p].outputs.size();
+    cell_count += l.cells[p];
+  }
+  values.assign(2 * value_count, 0.0);
+  status.assign(2 * cell_count, 0u);
+  std::vector<double*> v;
+  std::vector<StatusBits*> st;
+  std::size_t next_value = 0, next_cell = 0;
+  for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+    for (std::size_t p = 0; p < parts; ++p) {
+      for (std::size_t o = 0; o < kernel_.parts[p].outputs.size(); ++o, next_value += l.cells[p])
+        v.push_back(values.data() + next_value);
+      st.push_back(status.data() + next_cell);
+      next_cell += l.cells[p];
+    }
+  }
+  return ColumnOutput(std::move(v), std::move(st), l.first_output, parts);
+}
+
+std::size_t SweepPlan::mirror_of(std::size_t column) const {
+  const SweepLayout& l = layout_;
+  return (l.nroll - 1 - column / l.nyaw) * l.nyaw + (l.nyaw - 1 - column % l.nyaw);
+}
+
+void SweepPlan::set_roll(std::size_t block, double roll) {
+  if (equilibrium_roll_) equilibrium_roll_[block] = roll;
+}
+
+// The equilibrium roll of the mirror image: odd in y (a failed search's NaN stays as it is).
+static double mirror_roll(double roll) { return std::isnan(roll) ? roll : -roll; }
+
+void SweepPlan::fill_mirror(std::size_t from_block, std::size_t to_block) {
+  for (std::size_t c = 0; c < layout_.columns; ++c)
+    mirror_column(kernel_, mirror_cells_, column_output(from_block, c), column_output(to_block, mirror_of(c)));
+  if (equilibrium_roll_) set_roll(to_block, mirror_roll(equilibrium_roll_[from_block]));
+}
+
+ColumnReport SweepPlan::compute_column(std::size_t block, std::size_t column) {
+  const SweepLayout& l = layout_;
+  const std::size_t iy = l.y_begin + block;
+  // A scheduled block y < 0 of a mirrored sweep is a shard's whose block +y lies in another
+  // shard: that column is computed aside and its mirror stored, so that every shard stores the
+  // bytes the whole table would.
+  const bool aside = mirrored_ && scene_.grids.y[iy] < 0.0;
+  std::vector<double> aside_values;
+  std::vector<StatusBits> aside_status;
+  ColumnState state = aside ? column_state(scene_.grids.y.size() - 1 - iy, mirror_of(column)) : column_state(iy, column);
+  ColumnOutput out = aside ? aside_output(aside_values, aside_status) : column_output(block, column);
   if (scene_.equilibrium_roll) {
     try {
       state.roll = kernel_.equilibrium_roll(state.y);
@@ -258,12 +334,22 @@ ColumnReport SweepPlan::compute_column(std::size_t block, std::size_t column) {
       state.roll = std::numeric_limits<double>::quiet_NaN();
       out.failure(fmt::format("equilibrium roll at y = {} m: {}", state.y, e.what()));
     }
-    equilibrium_roll_[block] = state.roll;
-  } else {
-    state.roll = scene_.grids.roll[iroll];
   }
   kernel_.compute(state, out);
-  return {out.failures(), out.first_failure()};
+  ColumnReport report{out.failures(), out.first_failure()};
+  if (aside) {
+    mirror_column(kernel_, mirror_cells_, out, column_output(block, column));
+    set_roll(block, mirror_roll(state.roll));
+    return report;
+  }
+  set_roll(block, state.roll);
+  const std::size_t target = mirrored_ ? target_[block] : kNoBlock;
+  if (target != kNoBlock) {
+    mirror_column(kernel_, mirror_cells_, out, column_output(target, mirror_of(column)));
+    set_roll(target, mirror_roll(state.roll));
+    report.failures *= 2;  // the mirror column holds the same failed points
+  }
+  return report;
 }
 
 std::unique_ptr<Checkpoint> SweepPlan::resume(const std::filesystem::path& path, std::vector<char>& block_done,
@@ -283,6 +369,18 @@ std::unique_ptr<Checkpoint> SweepPlan::resume(const std::filesystem::path& path,
                   path.string(), r.block, altered);
     block_done[r.block] = 1;
     ++summary.blocks_done;
+  }
+  for (std::size_t b = 0; b < ny; ++b) {
+    const std::size_t target = target_[b];
+    if (target == kNoBlock || block_done[b] == block_done[target]) continue;
+    if (block_done[b]) {
+      fill_mirror(b, target);
+      block_done[target] = 1;
+      ++summary.blocks_done;
+    } else {
+      block_done[target] = 0;
+      --summary.blocks_done;
+    }
   }
   summary.points_resumed = summary.blocks_done * points_per_block();
   return checkpoint;

@@ -9,6 +9,7 @@
 #include "core/check.hpp"
 #include "core/number_input.hpp"
 #include "scene/state_rules.hpp"
+#include "kernel/contact_kernel.hpp"
 #include "kernel/finite_status.hpp"
 #include "kernel/halfspace_contact.hpp"
 
@@ -116,7 +117,7 @@ StateEvaluation evaluate_state(const Scene& base, const StateEvalRequest& reques
     RAILTAB_CHECK(!request.equilibrium_roll, "--roll and --equilibrium-roll exclude each other");
     roll = *request.roll;
   } else if (request.equilibrium_roll || scene.equilibrium_roll) {
-    roll = solver.equilibrium_roll(request.y);
+    roll = table_equilibrium_roll(solver, request.y);  // as the table's (odd in y)
   } else if (!scene.grids.roll.empty()) {
     roll = scene.grids.roll.front();
   }

@@ -72,10 +72,12 @@ void add_contact_jumps(const GenerateOptions& options, const Scene& scene, Table
   ContactJumps jumps;
   auto t1 = t0;
   try {
-    jumps = locate_jumps(scene, {}, options.threads, locate_progress, cells);
+    JumpLocatorOptions locator;
+    locator.mirror = options.mirror;
+    jumps = locate_jumps(scene, locator, options.threads, locate_progress, cells);
     locating.finish();
     t1 = std::chrono::steady_clock::now();
-    add_jumps(table, scene, jumps, {}, options.threads, sample_progress, root);
+    add_jumps(table, scene, jumps, locator, options.threads, sample_progress, root);
   } catch (const Interrupted&) {
     throw;
   } catch (const Error& e) {
@@ -105,6 +107,12 @@ void log_generated(std::ostream& log, const GenerateOptions& options, const Swee
                      "{:.3g} ms per point per thread{}\n",
                      s.points_computed, s.seconds, s.threads, s.threads == 1 ? "" : "s", rate,
                      1e3 * per_point * s.ranks, s.ranks > 1 ? fmt::format(" (each of {} MPI ranks)", s.ranks) : "");
+  // Which sweep ran: the mirror (engine/mirror.hpp) computes the columns y >= 0 only.
+  if (s.mirrored) {
+    log << "mirrored sweep: the columns y < 0 are the mirror images of those at -y (the scene is mirror-symmetric)\n";
+  } else {
+    log << fmt::format("full sweep: {}\n", s.full_sweep_reason);
+  }
   if (s.points_resumed > 0) log << fmt::format("resumed {} points from the checkpoint\n", s.points_resumed);
   if (s.failures > 0) {
     log << fmt::format("{} point(s) failed and are flagged failed; first: {}\n", s.failures,
@@ -166,6 +174,7 @@ SweepSummary generate_table(const GenerateOptions& options) {
   sweep.interrupt = options.interrupt;
   sweep.max_points = options.max_points;
   sweep.max_bytes = options.max_bytes;
+  sweep.mirror = options.mirror;
   const bool keep_checkpoint = options.resume || options.always_checkpoint;
   if (keep_checkpoint) sweep.checkpoint = checkpoint_path(options.output);
   if (options.always_checkpoint && !options.resume && options.writes_files) {

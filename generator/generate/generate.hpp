@@ -38,6 +38,9 @@ struct GenerateOptions {
   bool writes_files = true;
   std::uint64_t max_points = kDefaultMaxPoints;  // refuse a larger table (--max-points) [-]
   std::uint64_t max_bytes = kDefaultMaxBytes;    // refuse a table needing more memory (--max-bytes) [B]
+  // A mirror-symmetric scene computes y >= 0 and the left wheel's jumps only (engine/mirror.hpp);
+  // false computes everything (the reference of the mirror's tests; the same bytes).
+  bool mirror = true;
 };
 
 // The checkpoint file of a table: OUTPUT.partial.

@@ -364,7 +364,7 @@ LinearCreep slot_linear_creep(const WheelContactGeometry& geometry, const WheelN
                     exact->patches.size());
       const halfspace::HalfspacePatch& hp = exact->patches[i];
       c = halfspace::patch_linear_creep(hp.grid, hp.normal.pressure, material, halfspace.tangential,
-                                        thread_halfspace_workspace());
+                                        thread_halfspace_workspace(), hp.track_sign);
     } else {
       c = fastsim_linear_creep(geometry, normal.patches[i], conditions, material, fastsim, thread_fastsim_workspace());
     }
@@ -412,6 +412,8 @@ nlohmann::json creep_map_attribute(const Scene& scene) {
     const double knee = scene.creep_knee[i];
     if (knee != 1.0) j[name + "_knee"] = knee;
   }
+  // Written only when not 0, so tables of scenes without creep_law_spin keep their bytes.
+  if (scene.creep_law_spin != 0.0) j["law_spin"] = scene.creep_law_spin;
   return j;
 }
 
@@ -432,7 +434,21 @@ std::vector<TableAxis> normalised_creep_axes(const Scene& scene) {
   return axes;
 }
 
+// Whether an output changes sign under the mirror that swaps the wheels: the lateral ones (an
+// angle about x, a force along s, a moment about n) and the creep coefficients that pair an odd
+// force with an even creepage or the reverse (xi is even, eta and phi are odd).
+bool mirror_odd(const std::string& name) {
+  for (const char* odd : {"contact_angle", "fy", "mz", "fy_normalised", "mz_normalised", "creep_coefficient_fx_eta",
+                          "creep_coefficient_fx_phi", "creep_coefficient_fy_xi", "creep_coefficient_mz_xi"})
+    if (name == odd) return true;
+  return false;
+}
+
 }  // namespace
+
+double table_equilibrium_roll(const ContactGeometrySolver& solver, double y) {
+  return y < 0.0 ? -solver.equilibrium_roll(-y) : solver.equilibrium_roll(y);
+}
 
 PointCost contact_point_cost(const Scene& scene) {
   return scene.normal.model == NormalModel::halfspace ? kExactPointCost : kFastPointCost;
@@ -459,7 +475,8 @@ SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver&
   auto data = std::make_shared<const KernelData>(KernelData{geometry, scene.grids, scene.material,
                                                             scene.normal, scene.tangential, creep, fastsim, wear,
                                                             coupled_load_options(scene), halfspace_options(scene),
-                                                            model_by_y, scene.creep_normalised, scene.creep_knee});
+                                                            model_by_y, scene.creep_normalised, scene.creep_knee,
+                                                            scene.creep_law_spin});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));
@@ -526,7 +543,17 @@ SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver&
     kernel.attributes.emplace_back("creep_map", creep_map_attribute(scene).dump());
   }
   kernel.point_cost = contact_point_cost(scene);
-  kernel.equilibrium_roll = [data](double y) { return data->solver.equilibrium_roll(y); };
+  // Both wheels are one code path on shared profiles (docs/conventions.md, side frame), so the
+  // mirror swaps them exactly (with the equilibrium roll exactly odd: table_equilibrium_roll),
+  // checked to the last bit for STRIPES, Linder, Kik-Piotrowski and the exact model (tests/
+  // generator/generate/mirror_test.cpp). Not for Hertz: its ellipse's FASTSIM at spin +-phi
+  // differs in the last bits.
+  kernel.mirror_symmetric = true;
+  for (NormalModel m : model_by_y.empty() ? std::vector<NormalModel>{n.model} : model_by_y)
+    kernel.mirror_symmetric = kernel.mirror_symmetric && m != NormalModel::hertz;
+  for (PartSpec& part : kernel.parts)
+    for (OutputInfo& o : part.outputs) o.odd = mirror_odd(o.name);
+  kernel.equilibrium_roll = [data](double y) { return table_equilibrium_roll(data->solver, y); };
   kernel.compute = [data](const ColumnState& state, ColumnOutput& out) {
     for (std::size_t wheel = 0; wheel < 2; ++wheel)
       if (state.wheels & (1u << wheel)) solve_wheel_column(*data, state, wheel, out);

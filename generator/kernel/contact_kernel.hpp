@@ -84,6 +84,11 @@ LinearCreep slot_linear_creep(const WheelContactGeometry& geometry, const WheelN
                               const CreepConditions& conditions, const Material& material,
                               const FastsimOptions& fastsim, const halfspace::HalfspaceOptions& halfspace);
 
+// The kinematic equilibrium roll at y as tables use it: exactly odd in y (the solver's at |y|,
+// negated for y < 0), so that the mirror (y, roll) -> (-y, -roll) swaps the wheels to the last
+// bit (engine/mirror.hpp); the solver's own search, run at each y, is odd only to its tolerance.
+double table_equilibrium_roll(const ContactGeometrySolver& solver, double y);
+
 // Run time per grid point of the scene's contact chain (the exact half-space model's or the fast
 // models'), for the table size check (engine/table_size.hpp).
 PointCost contact_point_cost(const Scene& scene);

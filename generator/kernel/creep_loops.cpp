@@ -47,7 +47,7 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
           SlotWear wear{k.wear, distribution, {}};
           FastsimResult creep = slot_creep(geometry, normal, slots, slot, creepage, k.creep,
                                            k.material, k.fastsim, workspace, &wear);
-          if (scales) creep = normalised_forces(creep, creepage, slot_force, k.creep.friction, scales[slot]);
+          if (scales) creep = normalised_forces(creep, creepage, slot_force, k.creep.friction, scales[slot], k.law_spin);
           auto where = [&] {
             return fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
                                to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi);
@@ -134,7 +134,7 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
             const double n = patch.normal_force;
             if (per_slot) {
               patch.normal_force = creep_map::vertical_share(n, creep.fy, slot_angle[s]);
-              creep = normalised_forces(creep, creepage, n, k.creep.friction, scales[s]);
+              creep = normalised_forces(creep, creepage, n, k.creep.friction, scales[s], k.law_spin);
             }
             const bool normal_finite =
                 store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where, std::size(kCreepOutputs));
@@ -193,7 +193,11 @@ void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geom
     if (per_slot && !uncoupled_slots.occupied(pass)) continue;  // status 0, zeros: no contact
     halfspace::WheelHalfspaceResult result = uncoupled;  // holds the warm start without the coupling
     halfspace::RollingState chain;  // the coupled solves' warm start: the previous creepage's end
-    for (const std::size_t node : creepage_chain(k.grids.xi.size(), ne, np)) {
+    for (std::size_t node : creepage_chain(k.grids.xi.size(), ne, np)) {
+      // The right wheel walks the chain mirrored in eta and phi: its patch is the left wheel's
+      // mirror image (halfspace/wheel_rail.hpp), so at mirrored states both wheels solve the same
+      // sequence of warm-started problems, to the same bytes (engine/mirror.hpp).
+      if (geometry.side == Side::right) node = (node / (ne * np) * ne + ne - 1 - node / np % ne) * np + np - 1 - node % np;
       const std::size_t ix = node / (ne * np), ie = node / np % ne, iphi = node % np;
       const std::size_t cells = (il * k.creepages() + node) * kSlots;
       const Creepage creepage = node_creepage(k, ix, ie, iphi, per_slot ? &scales[pass] : nullptr);
@@ -236,7 +240,7 @@ void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geom
           if (per_slot) {
             const double n = patch.normal_force;
             patch.normal_force = creep_map::vertical_share(n, creep.fy, slot_angle[s]);
-            creep = normalised_forces(creep, creepage, n, mu, scales[s]);
+            creep = normalised_forces(creep, creepage, n, mu, scales[s], k.law_spin);
           }
           bool normal_finite = true;
           if (k.coupling.couple)

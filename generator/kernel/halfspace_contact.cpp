@@ -24,7 +24,7 @@ halfspace::Workspace& thread_halfspace_workspace() {
 
 namespace {
 
-ContactPatch to_contact_patch(const halfspace::HalfspacePatch& hp, Side side) {
+ContactPatch to_contact_patch(const halfspace::HalfspacePatch& hp) {
   ContactPatch c;
   c.model = NormalModel::halfspace;
   c.pressure_shape = StripPressure::semi_elliptic;  // unused: no strips
@@ -38,8 +38,8 @@ ContactPatch to_contact_patch(const halfspace::HalfspacePatch& hp, Side side) {
   c.wheel_u = hp.wheel_u;
   c.rail_u = hp.rail_u;
   c.status = hp.status;
-  // Lateral extent of the elements in contact; the grid's y is the contact frame's lateral axis,
-  // y = sigma (s - band_s) to first order (halfspace/wheel_rail.hpp).
+  // Lateral extent of the elements in contact; the grid's y points towards the field side,
+  // y = s - band_s to first order (halfspace/wheel_rail.hpp).
   const halfspace::Grid& g = hp.grid;
   double y_min = 0.0, y_max = 0.0;
   bool any = false;
@@ -53,9 +53,8 @@ ContactPatch to_contact_patch(const halfspace::HalfspacePatch& hp, Side side) {
         any = true;
       }
     }
-  const double sigma = outward_sign(side);
-  c.s_start = hp.band_s + std::min(sigma * y_min, sigma * y_max);
-  c.s_end = hp.band_s + std::max(sigma * y_min, sigma * y_max);
+  c.s_start = hp.band_s + y_min;
+  c.s_end = hp.band_s + y_max;
   if (!(c.normal_force > 0.0)) c.status |= status::kLiftOff;
   return c;
 }
@@ -65,7 +64,7 @@ ContactPatch to_contact_patch(const halfspace::HalfspacePatch& hp, Side side) {
 WheelNormalResult to_normal_result(const halfspace::WheelHalfspaceResult& result,
                                    const WheelContactGeometry& geometry) {
   WheelNormalResult r;
-  for (const halfspace::HalfspacePatch& hp : result.patches) r.patches.push_back(to_contact_patch(hp, geometry.side));
+  for (const halfspace::HalfspacePatch& hp : result.patches) r.patches.push_back(to_contact_patch(hp));
   r.point_patch.assign(geometry.points.size(), -1);
   for (std::size_t i = 0; i < geometry.points.size(); ++i) {
     const double s = geometry.points[i].band_s;

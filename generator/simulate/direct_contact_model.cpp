@@ -27,7 +27,7 @@ void DirectContactModel::normal(double y, double yaw, const double (&load)[vehic
   double roll = 0.0;
   bool roll_ok = true;
   try {
-    roll = solver_.equilibrium_roll(y);  // as the sweep does for equilibrium-roll tables
+    roll = table_equilibrium_roll(solver_, y);  // as the sweep does for equilibrium-roll tables
   } catch (const std::exception&) {
     roll_ok = false;
   }

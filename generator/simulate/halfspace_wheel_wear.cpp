@@ -18,7 +18,7 @@ struct RowMap {  // one band sample in the patch's tangent plane
 };
 
 // The band samples seen in the tangent plane of patch `hp`, sorted by y: the transform of
-// halfspace::build_grid (y = sigma (P(s) - P_ref) . t_ref, t_ref = (cos g_ref, sin g_ref) in the
+// halfspace::build_grid (y = (P(s) - P_ref) . t_ref, t_ref = (cos g_ref, sin g_ref) in the
 // side frame), so a grid row's y finds the wheel point it belongs to.
 std::vector<RowMap> plane_map(const WheelContactGeometry& g, const halfspace::HalfspacePatch& hp) {
   std::vector<RowMap> out;
@@ -32,9 +32,8 @@ std::vector<RowMap> plane_map(const WheelContactGeometry& g, const halfspace::Ha
   const double q_ref = (1 - f) * b0.q + f * b1.q;
   const double z_ref = (1 - f) * b0.z + f * b1.z;
   const double tq = std::cos(hp.contact_angle_side), tz = std::sin(hp.contact_angle_side);
-  const double sigma = outward_sign(g.side);
   out.reserve(g.band.size());
-  for (const BandSample& b : g.band) out.push_back({sigma * ((b.q - q_ref) * tq + (b.z - z_ref) * tz), b.wheel_u});
+  for (const BandSample& b : g.band) out.push_back({(b.q - q_ref) * tq + (b.z - z_ref) * tz, b.wheel_u});
   std::sort(out.begin(), out.end(), [](const RowMap& a, const RowMap& b) { return a.y < b.y; });
   return out;
 }

@@ -10,7 +10,7 @@
 namespace railtab::halfspace {
 
 LinearCreep patch_linear_creep(const Grid& grid, const std::vector<double>& pressure, const Material& material,
-                               const TangentialSolverOptions& options, Workspace& workspace) {
+                               const TangentialSolverOptions& options, Workspace& workspace, double track_sign) {
   TangentialSolution solution;
   const CreepForces forces = [&](const Creepage& c) -> std::array<double, 3> {
     solve_tangential(grid, pressure, RollingCreepage{c.xi, c.eta, c.phi}, kFullAdhesionFriction, material, options,
@@ -19,7 +19,13 @@ LinearCreep patch_linear_creep(const Grid& grid, const std::vector<double>& pres
                   "patch_linear_creep: steady rolling did not converge at creepage ({}, {}, {})", c.xi, c.eta, c.phi);
     return {solution.fx, solution.fy, solution.mz};
   };
-  return linear_creep(forces, {1e-6, 1e-6, 1e-4});
+  // In the patch's axes (the same warm-started solves on both wheels), then in the contact frame:
+  // fy, mz, eta and phi change sign with track_sign.
+  LinearCreep out = linear_creep(forces, {1e-6, 1e-6, 1e-4});
+  const double sign[3] = {1.0, track_sign, track_sign};
+  for (int f = 0; f < 3; ++f)
+    for (int q = 0; q < 3; ++q) out.slope[f][q] *= sign[f] * sign[q];
+  return out;
 }
 
 std::array<double, 2> patch_equivalent_ellipse(const Grid& grid, const NormalSolution& normal) {

@@ -17,8 +17,10 @@ namespace railtab::halfspace {
 // Slopes of (fx, fy, mz at the grid origin) against (xi, eta, phi) of steady rolling on `grid`
 // under `pressure` (a normal solution on that grid) with friction kFullAdhesionFriction: no element
 // slips, the forces are linear in the creepage. Throws railtab::Error when a solve does not converge.
+// track_sign: the patch's (wheel_rail.hpp): creepages and forces in the contact frame.
 LinearCreep patch_linear_creep(const Grid& grid, const std::vector<double>& pressure, const Material& material,
-                               const TangentialSolverOptions& options, Workspace& workspace);
+                               const TangentialSolverOptions& options, Workspace& workspace,
+                               double track_sign = 1.0);
 
 // Equivalent ellipse {a, b} [m] of a normal solution on a grid: equal area (the solution's
 // area_estimate, the contact edge placed inside the boundary elements) and equal lateral extent (the

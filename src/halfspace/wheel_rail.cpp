@@ -30,7 +30,6 @@ namespace {
 // Band samples of [s_lo, s_hi] in the plane of the reference (index i_ref interpolated at s_ref).
 std::vector<PlaneSample> plane_samples(const WheelContactGeometry& g, double s_ref, double g_ref,
                                        double s_lo, double s_hi) {
-  const double sigma = outward_sign(g.side);
   const int nb = static_cast<int>(g.band.size());
   if (nb < 2) return {};
   // Reference point on the rail surface, interpolated in s.
@@ -46,7 +45,7 @@ std::vector<PlaneSample> plane_samples(const WheelContactGeometry& g, double s_r
   for (const BandSample& b : g.band) {
     if (b.s < s_lo || b.s > s_hi) continue;
     PlaneSample p;
-    p.y = sigma * ((b.q - q_ref) * tq + (b.z - z_ref) * tz);
+    p.y = (b.q - q_ref) * tq + (b.z - z_ref) * tz;  // towards the field side (wheel_rail.hpp)
     p.h = b.gap / std::cos(b.contact_angle_side - g_ref);
     p.A = std::cos(b.contact_angle_side - g.wheel_roll) / (2.0 * b.rolling_radius);
     p.angle = b.contact_angle_side;
@@ -215,10 +214,14 @@ double angle_spread(const HalfspacePatch& hp, const std::vector<PlaneSample>& sa
 
 // The tangential problem on the bounding box of the contact only (tractions vanish outside it,
 // and the slip matters only inside): a smaller FFT than the potential area's, the same numbers.
-// Results are copied back to the patch's grid; the warm start comes from there too.
-void solve_on_contact_box(HalfspacePatch& hp, const RollingCreepage& c, double mu,
+// Results are copied back to the patch's grid; the warm start comes from there too. `creepage`
+// in the contact frame: solved in the patch's axes (track_sign), fy and mz returned in the contact
+// frame.
+void solve_on_contact_box(HalfspacePatch& hp, const RollingCreepage& creepage, double mu,
                           const Material& material, const TangentialSolverOptions& o,
                           Workspace& ws) {
+  const double sign = hp.track_sign;
+  const RollingCreepage c{creepage.xi, sign * creepage.eta, sign * creepage.phi};
   const Grid& g = hp.grid;
   int i0 = g.nx, i1 = -1, j0 = g.ny, j1 = -1;
   for (int j = 0; j < g.ny; ++j)
@@ -233,6 +236,8 @@ void solve_on_contact_box(HalfspacePatch& hp, const RollingCreepage& c, double m
   const bool warm = full.traction_x.size() == static_cast<size_t>(g.size());
   if (i1 < 0) {  // no contact: no traction
     solve_tangential(g, hp.normal.pressure, c, mu, material, o, ws, full);
+    full.fy *= sign;
+    full.mz *= sign;
     return;
   }
   Grid box;
@@ -276,8 +281,8 @@ void solve_on_contact_box(HalfspacePatch& hp, const RollingCreepage& c, double m
         full.state[k] = part.state[b];
       }
   full.fx = part.fx;
-  full.fy = part.fy;
-  full.mz = part.mz;
+  full.fy = sign * part.fy;
+  full.mz = sign * part.mz;
   full.slip_area = part.slip_area;
   full.frictional_work = part.frictional_work;
   full.sweeps = part.sweeps;
@@ -363,6 +368,7 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
   for (size_t k = 0; k < first.patches.size(); ++k) {
     const ContactPatch& np = first.patches[k];
     HalfspacePatch hp;
+    hp.track_sign = track_sign(geometry.side);
     hp.band_s = np.band_s;
     hp.contact_angle = np.contact_angle;
     hp.contact_angle_side = sigma * np.contact_angle;

@@ -7,9 +7,12 @@
 // interpenetration-weighted contact angle g_ref, as CONTACT places its reference) and a first
 // vertical approach. Each patch is then solved on its own grid in the tangent plane at the
 // reference point (x rolling, y = contact frame lateral, origin at the reference point):
-//  - lateral coordinate of band sample s: y = sigma (P(s) - P_ref) . t_ref, t_ref the tangent
-//    of the reference plane towards the field side, sigma = +1 left / -1 right wheel (the
-//    contact frame's s axis, docs/conventions.md);
+//  - lateral coordinate of band sample s: y = (P(s) - P_ref) . t_ref, t_ref the tangent of the
+//    reference plane towards the field side: y points towards the field side on both wheels,
+//    so the right wheel's patch is the left wheel's mirror image, one discrete problem for both
+//    (the mirror of docs/conventions.md holds to the last bit). On the left wheel y is the
+//    contact frame's s axis (docs/conventions.md); on the right wheel -s, and its lateral and
+//    spin creepages, fy and mz change sign between the patch and the contact frame (track_sign);
 //  - undeformed gap along the reference normal: h(x, y) = gap(s) / cos(g(s) - g_ref)
 //    + A(s) x^2, A(s) = cos(g(s) - wheel_roll) / (2 r(s)) (the wheel's rolling-direction
 //    curvature, Meusnier), interpolated linearly between band samples;
@@ -64,7 +67,13 @@ struct HalfspaceOptions {
   TangentialSolverOptions tangential;
 };
 
+// The sign of the patch's lateral axis y against the contact frame's s (wheel_rail.hpp, top): +1
+// on the left wheel, -1 on the right. The patch's tractions and slips along y (traction_y,
+// slip_y) are in its own axis; its creepages, fy and mz are converted by this sign.
+inline double track_sign(Side side) { return side == Side::left ? 1.0 : -1.0; }
+
 struct HalfspacePatch {
+  double track_sign = 1.0;      // of the wheel the patch is on (track_sign(side))
   // Reference point (the overlap reference of the normal layer's patch).
   double band_s = 0.0;          // [m]
   double contact_angle = 0.0;   // track frame (ISO sign) [rad]

@@ -85,7 +85,7 @@ TEST(PatchLinearCreep, WheelRailPatchesAgainstTheirEquivalentEllipse) {
       const halfspace::HalfspacePatch& p = res.patches[k];
       const auto [a, b] = halfspace::patch_equivalent_ellipse(p.grid, p.normal);
       if (!(a > 0.0)) continue;
-      const LinearCreep e = halfspace::patch_linear_creep(p.grid, p.normal.pressure, m, options.tangential, ws);
+      const LinearCreep e = halfspace::patch_linear_creep(p.grid, p.normal.pressure, m, options.tangential, ws, p.track_sign);
       const LinearCreep ke = kalker_linear_creep(a, b, m);
       std::printf("[measured] %+5.1f %zu %.3f %6.1f %.2f %.2f %.3f %.3f %.3f\n", y * 1e3, k, p.contact_angle,
                   p.normal.area_estimate * 1e6, a * 1e3, b * 1e3, e.slope[0][0] / ke.slope[0][0],

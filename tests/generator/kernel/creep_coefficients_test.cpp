@@ -155,7 +155,8 @@ xi = 0.0
     for (int ip : slots.patch[s]) {
       if (ip < 0) continue;
       const halfspace::HalfspacePatch& p = res.patches[static_cast<std::size_t>(ip)];
-      const LinearCreep c = halfspace::patch_linear_creep(p.grid, p.normal.pressure, scene.material, options.tangential, ws);
+      const LinearCreep c = halfspace::patch_linear_creep(p.grid, p.normal.pressure, scene.material, options.tangential, ws,
+                                                                  p.track_sign);
       for (int f = 0; f < 3; ++f)
         for (int q = 0; q < 3; ++q) direct.slope[f][q] += c.slope[f][q];
     }
