@@ -412,6 +412,8 @@ nlohmann::json creep_map_attribute(const Scene& scene) {
     const double knee = scene.creep_knee[i];
     if (knee != 1.0) j[name + "_knee"] = knee;
   }
+  // Written only when not 0, so tables of scenes without creep_law_spin keep their bytes.
+  if (scene.creep_law_spin != 0.0) j["law_spin"] = scene.creep_law_spin;
   return j;
 }
 
@@ -473,7 +475,8 @@ SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver&
   auto data = std::make_shared<const KernelData>(KernelData{geometry, scene.grids, scene.material,
                                                             scene.normal, scene.tangential, creep, fastsim, wear,
                                                             coupled_load_options(scene), halfspace_options(scene),
-                                                            model_by_y, scene.creep_normalised, scene.creep_knee});
+                                                            model_by_y, scene.creep_normalised, scene.creep_knee,
+                                                            scene.creep_law_spin});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));

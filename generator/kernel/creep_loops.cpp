@@ -47,7 +47,7 @@ void solve_creep(const KernelData& k, const WheelContactGeometry& geometry, cons
           SlotWear wear{k.wear, distribution, {}};
           FastsimResult creep = slot_creep(geometry, normal, slots, slot, creepage, k.creep,
                                            k.material, k.fastsim, workspace, &wear);
-          if (scales) creep = normalised_forces(creep, creepage, slot_force, k.creep.friction, scales[slot]);
+          if (scales) creep = normalised_forces(creep, creepage, slot_force, k.creep.friction, scales[slot], k.law_spin);
           auto where = [&] {
             return fmt::format("creep/wear, {} wheel, y = {} m, load = {} N, creepage ({}, {}, {})",
                                to_string(geometry.side), state.y, k.grids.load[il], xi, eta, phi);
@@ -134,7 +134,7 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
             const double n = patch.normal_force;
             if (per_slot) {
               patch.normal_force = creep_map::vertical_share(n, creep.fy, slot_angle[s]);
-              creep = normalised_forces(creep, creepage, n, k.creep.friction, scales[s]);
+              creep = normalised_forces(creep, creepage, n, k.creep.friction, scales[s], k.law_spin);
             }
             const bool normal_finite =
                 store_values(kCreepNormalOutputs, patch, out, wheel, kCreepPart, cell, where, std::size(kCreepOutputs));
@@ -240,7 +240,7 @@ void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geom
           if (per_slot) {
             const double n = patch.normal_force;
             patch.normal_force = creep_map::vertical_share(n, creep.fy, slot_angle[s]);
-            creep = normalised_forces(creep, creepage, n, mu, scales[s]);
+            creep = normalised_forces(creep, creepage, n, mu, scales[s], k.law_spin);
           }
           bool normal_finite = true;
           if (k.coupling.couple)

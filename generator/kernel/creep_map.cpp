@@ -50,9 +50,9 @@ double coordinate(double q, double lo, double hi, double s) {
   return -1.0 + 2.0 * (m(q / s) - mlo) / (mhi - mlo);
 }
 
-std::array<double, 2> law(double xi_n, double eta_n, double psi_n) {
-  const double x = xi_n, y = eta_n + psi_n / 3.0;
-  const double r = std::sqrt(x * x + y * y);  // the lookup's formula (lookup/src/creep_map.cpp)
+std::array<double, 2> law(double xi_n, double eta_n, double psi_n, double spin) {
+  const double x = xi_n, y = eta_n + psi_n / 3.0, z = spin * psi_n;
+  const double r = std::sqrt(x * x + y * y + z * z);  // the lookup's formula (lookup/src/creep_map.hpp)
   if (!(r > 0.0)) return {0.0, 0.0};
   const double w = 1.0 - std::min(r, 1.0);
   const double g = 1.0 - w * w * w;

@@ -45,9 +45,13 @@ double coordinate(double q, double lo, double hi, double s);
 
 // The saturation law subtracted from F / (mu N): with x = xi', y = eta' + psi' / 3 (Kalker's
 // linear theory: F / (mu N) = -(3 xi', 3 eta' + psi') for small creepage, forces on the wheel),
-// r = |(x, y)|, g = 1 - (1 - min(r, 1))^3: law = -g (x, y) / r. Exact for FASTSIM on an ellipse
-// under pure longitudinal or lateral creepage with a parabolic bound; the table holds the rest.
-std::array<double, 2> law(double xi_n, double eta_n, double psi_n);
+// r = |(x, y, spin psi')|, g = 1 - (1 - min(r, 1))^3: law = -g (x, y) / r. With spin = 0 (every
+// table before the `law_spin` key) exact for FASTSIM on an ellipse under pure longitudinal or
+// lateral creepage with a parabolic bound. spin > 0 (`[grid] creep_law_spin`) lets spin use up
+// adhesion without a force of its own: in the exact model fx falls with |phi| at constant xi,
+// about quadratically, which linear interpolation between few phi nodes misses; the small-creepage
+// slope stays Kalker's. The table holds the rest.
+std::array<double, 2> law(double xi_n, double eta_n, double psi_n, double spin);
 
 // The slot's vertical load share N cos(angle) + fy sin(angle) [N] (angle: the geometry part's
 // contact angle of the slot, track frame) that normalised tables store as the creep part's

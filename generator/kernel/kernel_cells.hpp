@@ -189,6 +189,7 @@ struct KernelData {
   std::vector<NormalModel> model_by_y;  // per node of the scene's y grid (planned model choice); empty = normal.model
   bool normalised = false;              // format 2.1 normalised creep coordinates (creep_map.hpp)
   std::array<double, 3> knee = {1.0, 1.0, 1.0};  // node map knee per creepage axis (scene.creep_knee)
+  double law_spin = 0.0;  // the saturation law's spin weight (scene.creep_law_spin, creep_map.hpp)
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
 
@@ -211,11 +212,11 @@ inline Creepage node_creepage(const KernelData& k, std::size_t ix, std::size_t i
 // normalised creepage, mz as mz / (mu N) [m] (creep_map.hpp); N is the creep point's own normal
 // force. Zeros stay zeros (no load).
 inline FastsimResult normalised_forces(const FastsimResult& r, const Creepage& c, double normal_force, double friction,
-                                const creep_map::Scales& s) {
+                                const creep_map::Scales& s, double law_spin) {
   FastsimResult out = r;
   if (!(normal_force > 0.0)) return out;
   const double mun = friction * normal_force;
-  const std::array<double, 2> law = creep_map::law(c.xi / s.xi, c.eta / s.eta, c.phi / s.phi);
+  const std::array<double, 2> law = creep_map::law(c.xi / s.xi, c.eta / s.eta, c.phi / s.phi, law_spin);
   out.fx = r.fx / mun - law[0];
   out.fy = r.fy / mun - law[1];
   out.mz = r.mz / mun;

@@ -411,7 +411,7 @@ std::vector<double> grid_axis(const Section& gr, const std::string& key, const t
   return values;
 }
 
-// grid.creep_coordinates and grid.creep_knee.
+// grid.creep_coordinates, grid.creep_knee and grid.creep_law_spin.
 void parse_creep_coordinates(const Section& gr, Scene& scene) {
   const Context& ctx = gr.context();
   if (const auto coordinates = gr.string("creep_coordinates")) {
@@ -433,6 +433,15 @@ void parse_creep_coordinates(const Section& gr, Scene& scene) {
         fail(ctx, n->source(), "grid.creep_knee", "every knee must be a number > 0 (and < 1e6)");
       scene.creep_knee[i] = *v;
     }
+  }
+  if (const toml::node* n = gr.node("creep_law_spin")) {
+    // >= 0: the spin weight of the saturation law (scene.hpp, creep_map.hpp).
+    if (!scene.creep_normalised)
+      fail(ctx, n->source(), "grid.creep_law_spin", "needs creep_coordinates = \"normalised\"");
+    const std::optional<double> v = n->value<double>();
+    if (!v || !(*v >= 0.0) || !(*v < 1e6))
+      fail(ctx, n->source(), "grid.creep_law_spin", "must be a number >= 0 (and < 1e6)");
+    scene.creep_law_spin = *v;
   }
 }
 
@@ -558,7 +567,8 @@ const std::vector<SceneSection>& scene_sections() {
        {"creep_force", "contact_angle", "rolling_radius", "normal_force", "models", "model_tolerance"},
        parse_accuracy},
       {"grid",
-       {"y", "roll", "yaw", "load", "xi", "eta", "phi", "equilibrium_roll", "creep_coordinates", "creep_knee"},
+       {"y", "roll", "yaw", "load", "xi", "eta", "phi", "equilibrium_roll", "creep_coordinates", "creep_knee",
+        "creep_law_spin"},
        parse_grid},
   };
   return sections;

@@ -117,6 +117,9 @@ struct Scene {
   // each axis's node map m(x) = x / (k + |x|), x the normalised creepage (creep_map.hpp); a larger
   // k spreads the nodes more evenly over the range (an axis that does not saturate inside it).
   std::array<double, 3> creep_knee = {1.0, 1.0, 1.0};
+  // [grid] creep_law_spin (normalised coordinates only, default 0): the spin weight of the
+  // saturation law subtracted from the stored forces (creep_map.hpp, law).
+  double creep_law_spin = 0.0;
   SceneGrids grids;              // adaptive axes hold their starting grid until build_adaptive_grids
   AccuracyTargets accuracy;      // [accuracy]; enabled = false without the section
 };

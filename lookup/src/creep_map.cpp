@@ -70,19 +70,21 @@ void coordinate_partials(double x, double a, double b, double out[3]) noexcept {
 }
 
 // The saturation law (creep_law) and its Jacobian with respect to (xi', eta', psi'):
-// law = -q(r) (x, y), x = xi', y = eta' + psi' / 3, q = g / r = 3 - 3 r + r^2 below r = 1, 1 / r above.
-void law_jacobian(const double xn[3], double law[2], double jac[2][3]) noexcept {
-  const double x = xn[0], y = xn[1] + xn[2] / 3.0;
-  const double r = std::sqrt(x * x + y * y);
+// law = -q(r) (x, y), x = xi', y = eta' + psi' / 3, z = spin psi', r = |(x, y, z)|,
+// q = g / r = 3 - 3 r + r^2 below r = 1, 1 / r above.
+void law_jacobian(const double xn[3], double spin, double law[2], double jac[2][3]) noexcept {
+  const double x = xn[0], y = xn[1] + xn[2] / 3.0, z = spin * xn[2];
+  const double r = std::sqrt(x * x + y * y + z * z);
   const double q = r < 1.0 ? 3.0 - 3.0 * r + r * r : 1.0 / r;
   const double dq = r < 1.0 ? -3.0 + 2.0 * r : -1.0 / (r * r);
   // The law is 0 at r = 0 (creep_law); its derivative there is the limit -3 I.
   law[0] = r > 0.0 ? -q * x : 0.0;
   law[1] = r > 0.0 ? -q * y : 0.0;
-  const double cx = r > 0.0 ? x / r : 0.0, cy = r > 0.0 ? y / r : 0.0;
+  const double cx = r > 0.0 ? x / r : 0.0, cy = r > 0.0 ? y / r : 0.0, cz = r > 0.0 ? spin * z / r : 0.0;
   const double dxx = -(q + dq * x * cx), dxy = -dq * x * cy, dyx = -dq * y * cx, dyy = -(q + dq * y * cy);
-  jac[0][0] = dxx, jac[0][1] = dxy, jac[0][2] = dxy / 3.0;
-  jac[1][0] = dyx, jac[1][1] = dyy, jac[1][2] = dyy / 3.0;
+  // d r / d psi' = cy / 3 + cz: through y and, with a spin weight, through z.
+  jac[0][0] = dxx, jac[0][1] = dxy, jac[0][2] = dxy / 3.0 - dq * x * cz;
+  jac[1][0] = dyx, jac[1][1] = dyy, jac[1][2] = dyy / 3.0 - dq * y * cz;
 }
 
 }  // namespace
@@ -99,7 +101,7 @@ void denormalise_creep_gradient(const CreepMap& map, const double xn[3], const d
                                 const double* stored, double cos_angle, double sin_angle,
                                 double (*dd)[kNumVars]) noexcept {
   double law[2], jac[2][3], dlaw[2][kNumVars];
-  law_jacobian(xn, law, jac);
+  law_jacobian(xn, map.law_spin, law, jac);
   for (int c = 0; c < 2; ++c)
     for (int var = 0; var < kNumVars; ++var)
       dlaw[c][var] = jac[c][0] * dxn[0][var] + jac[c][1] * dxn[1][var] + jac[c][2] * dxn[2][var];

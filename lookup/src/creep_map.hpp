@@ -67,6 +67,7 @@ struct CreepMap : NodeGrid {      // on the normal part's grid
   // with k = 1 the same numbers as before the knee).
   double kinv[3] = {1.0, 1.0, 1.0};
   bool vertical_share = false;    // the creep part's normal_force is N cos(angle) + Fy sin(angle)
+  double law_spin = 0.0;          // the law's spin weight (creep_map `law_spin`, 0 when absent)
   double lo_k[3] = {}, hi_k[3] = {};
   // Reciprocal scales 1/s_xi, 1/s_eta, 1/s_phi per node of the normal part's grid and slot:
   // scale[wheel][(slot * nodes + node) * 3 + k]. The query interpolates the reciprocals (the
@@ -105,10 +106,11 @@ inline double normal_from_share(double share, double angle, double mu_ry) noexce
 }
 
 // The saturation law of the stored forces: F / (mu N) = stored + law(xi', eta', psi'), with
-// x = xi', y = eta' + psi' / 3, r = |(x, y)|, g = 1 - (1 - min(r, 1))^3, law = -g (x, y) / r.
-inline void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) noexcept {
-  const double x = xi_n, y = eta_n + psi_n / 3.0;
-  const double r = std::sqrt(x * x + y * y);  // O(1) values: no need for hypot's care (or cost)
+// x = xi', y = eta' + psi' / 3, r = |(x, y, spin psi')|, g = 1 - (1 - min(r, 1))^3,
+// law = -g (x, y) / r; spin the table's law_spin (0: the law of tables before it, same numbers).
+inline void creep_law(double xi_n, double eta_n, double psi_n, double spin, double out[2]) noexcept {
+  const double x = xi_n, y = eta_n + psi_n / 3.0, z = spin * psi_n;
+  const double r = std::sqrt(x * x + y * y + z * z);  // O(1) values: no need for hypot's care (or cost)
   if (!(r > 0.0)) {
     out[0] = out[1] = 0.0;
     return;
@@ -126,7 +128,7 @@ inline void creep_law(double xi_n, double eta_n, double psi_n, double out[2]) no
 inline void denormalise_creep(const CreepMap& map, const double xn[3], double cos_angle, double sin_angle,
                               double* value) noexcept {
   double law[2];
-  creep_law(xn[0], xn[1], xn[2], law);
+  creep_law(xn[0], xn[1], xn[2], map.law_spin, law);
   if (map.vertical_share)
     value[kNormalForce] = normal_from_share(value[kNormalForce], cos_angle, sin_angle, map.friction * (value[kFy] + law[1]));
   const double mun = map.friction * value[kNormalForce];

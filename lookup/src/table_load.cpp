@@ -338,6 +338,9 @@ void read_creep_map(const Hdf5File& f, TableData& d) {
   CreepMap& m = d.creep_map;
   m.friction = number("friction");
   if (!(m.friction > 0.0)) f.fail("root attribute creep_map: friction must be > 0");
+  for (const FlatJsonEntry& e : entries)  // optional: the law's spin weight (absent in tables before it: 0)
+    if (e.key == "law_spin") m.law_spin = number(e.key);
+  if (!(m.law_spin >= 0.0)) f.fail("root attribute creep_map: law_spin must be >= 0");
   bool any = false;
   for (int k = 0; k < 3; ++k) {
     const int var = kVarXi + k;

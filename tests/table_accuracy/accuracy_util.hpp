@@ -302,6 +302,7 @@ class TableView {
       const nlohmann::json j = nlohmann::json::parse(*text);
       normalised_ = true;
       friction_ = j.at("friction").get<double>();
+      law_spin_ = j.value("law_spin", 0.0);
       for (int k = 0; k < 3; ++k) {
         const std::string name = kVarNames[kXi + k];
         if (!j.contains(name + "_min")) continue;
@@ -345,7 +346,7 @@ class TableView {
         const double v = (*pc.nodes[a])[idx[a]];
         x[k] = creep_map::physical(v, lo_[k], hi_[k], scale * knee_[k]) / scale;
       }
-      const double ry = fy[i] + creep_map::law(x[0], x[1], x[2])[1];
+      const double ry = fy[i] + creep_map::law(x[0], x[1], x[2], law_spin_)[1];
       const double a = angle[idx[0] * kSlots + s];
       n[i] = share[i] / (std::cos(a) + friction_ * ry * std::sin(a));
     }
@@ -497,6 +498,7 @@ class TableView {
   double lo_[3] = {}, hi_[3] = {};
   double knee_[3] = {1.0, 1.0, 1.0};  // creep_map <axis>_knee
   double friction_ = 0.0;             // creep_map friction
+  double law_spin_ = 0.0;             // creep_map law_spin
   std::vector<double> n_creep_[2];    // creep part's N recovered from the vertical share
   const std::vector<double>* scale_values_[2][3] = {};
 };

@@ -5,6 +5,7 @@
 // docs/table-format.md says.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -34,14 +35,15 @@ TEST(CreepMap, GeneratorAndLookupAgree) {
   }
   for (double x : {-3.0, -0.7, 0.0, 1e-4, 0.3, 0.99, 1.0, 2.5})
     for (double y : {-1.2, 0.0, 0.4})
-      for (double p : {-0.5, 0.0, 2.0}) {
-        const std::array<double, 2> g = creep_map::law(x, y, p);
-        double l[2];
-        lookup::detail::creep_law(x, y, p, l);
-        EXPECT_EQ(g[0], l[0]);
-        EXPECT_EQ(g[1], l[1]);
-        EXPECT_LE(std::hypot(g[0], g[1]), 1.0 + 1e-15);  // |F| <= mu N
-      }
+      for (double p : {-0.5, 0.0, 2.0})
+        for (double spin : {0.0, 1.0}) {
+          const std::array<double, 2> g = creep_map::law(x, y, p, spin);
+          double l[2];
+          lookup::detail::creep_law(x, y, p, spin, l);
+          EXPECT_EQ(g[0], l[0]);
+          EXPECT_EQ(g[1], l[1]);
+          EXPECT_LE(std::hypot(g[0], g[1]), 1.0 + 1e-15);  // |F| <= mu N
+        }
 }
 
 // Nodes uniform in v are dense near zero creepage and sparse in saturation: on a range reaching
@@ -57,12 +59,67 @@ TEST(CreepMap, NodesFollowTheSaturation) {
 }
 
 // The law is Kalker's linear theory at small creepage: F / (mu N) = -(3 xi', 3 eta' + psi').
+// With a spin weight too: spin then uses up adhesion only beyond the linear range.
 TEST(CreepMap, LawIsLinearTheoryAtSmallCreepage) {
   const double e = 1e-6;
-  EXPECT_NEAR(creep_map::law(e, 0, 0)[0], -3 * e, 1e-11);
-  EXPECT_NEAR(creep_map::law(0, e, 0)[1], -3 * e, 1e-11);
-  EXPECT_NEAR(creep_map::law(0, 0, e)[1], -e, 1e-11);
-  EXPECT_DOUBLE_EQ(creep_map::law(5.0, 0, 0)[0], -1.0);  // full slip
+  for (double spin : {0.0, 1.0}) {
+    EXPECT_NEAR(creep_map::law(e, 0, 0, spin)[0], -3 * e, 1e-11);
+    EXPECT_NEAR(creep_map::law(0, e, 0, spin)[1], -3 * e, 1e-11);
+    EXPECT_NEAR(creep_map::law(0, 0, e, spin)[1], -e, 1e-11);
+    EXPECT_NEAR(creep_map::law(e, 0, e, spin)[0], -3 * e, 1e-11);
+    EXPECT_DOUBLE_EQ(creep_map::law(5.0, 0, 0, spin)[0], -1.0);  // full slip
+  }
+}
+
+// The spin weight lowers the longitudinal law under spin (the exact model's fx falls with |phi|
+// at constant xi), evenly in the sign of spin, and leaves it unchanged without spin.
+TEST(CreepMap, SpinWeightUsesUpAdhesion) {
+  const double x = 0.4, p = 0.6;
+  EXPECT_EQ(creep_map::law(x, 0, 0, 1.0)[0], creep_map::law(x, 0, 0, 0.0)[0]);
+  EXPECT_GT(creep_map::law(x, -p / 3, p, 1.0)[0], creep_map::law(x, -p / 3, p, 0.0)[0] + 0.05);
+  EXPECT_EQ(creep_map::law(x, p / 3, -p, 1.0)[0], creep_map::law(x, -p / 3, p, 1.0)[0]);
+}
+
+// The derivatives of the forces in N (denormalise_creep_gradient, the lookup's query_derivatives)
+// against central differences of denormalise_creep along each normalised creepage, with and
+// without the spin weight, below and beyond saturation (r = 1), with the vertical share.
+TEST(CreepMap, LawGradientMatchesDifferences) {
+  using namespace lookup::detail;
+  CreepMap map;
+  map.friction = 0.3;
+  map.vertical_share = true;
+  const double angle = 0.05, stored[3] = {0.02, -0.03, 1e-4};  // fx, fy residuals, mz / (mu N)
+  auto forces = [&](const double xn[3], double out[lookup::kNumOutputs]) {
+    for (int o = 0; o < lookup::kNumOutputs; ++o) out[o] = 0.0;
+    out[lookup::kContactAngle] = angle;
+    out[lookup::kNormalForce] = 7e4;  // the vertical share
+    out[lookup::kFx] = stored[0], out[lookup::kFy] = stored[1], out[lookup::kMz] = stored[2];
+    denormalise_creep(map, xn, std::cos(angle), std::sin(angle), out);
+  };
+  for (double spin : {0.0, 1.0})
+    for (const auto& x : {std::array<double, 3>{0.3, -0.2, 0.5}, std::array<double, 3>{1.2, 0.4, -0.9},
+                          std::array<double, 3>{-0.1, 0.05, -0.6}}) {
+      map.law_spin = spin;
+      double dxn[3][kNumVars] = {};
+      for (int k = 0; k < 3; ++k) dxn[k][kVarXi + k] = 1.0;  // d xn / d variable: identity on the creepages
+      // The stored values (before denormalise_creep), constant: only the law moves.
+      double st[lookup::kNumOutputs] = {};
+      st[lookup::kContactAngle] = angle, st[lookup::kNormalForce] = 7e4;
+      st[lookup::kFx] = stored[0], st[lookup::kFy] = stored[1], st[lookup::kMz] = stored[2];
+      double d2[lookup::kNumOutputs][kNumVars] = {};
+      denormalise_creep_gradient(map, x.data(), dxn, st, std::cos(angle), std::sin(angle), d2);
+      for (int k = 0; k < 3; ++k) {
+        const double h = 1e-6;
+        std::array<double, 3> p = x, m = x;
+        p[static_cast<std::size_t>(k)] += h, m[static_cast<std::size_t>(k)] -= h;
+        double fp[lookup::kNumOutputs], fm[lookup::kNumOutputs];
+        forces(p.data(), fp);
+        forces(m.data(), fm);
+        for (int o : {lookup::kNormalForce, lookup::kFx, lookup::kFy})
+          EXPECT_NEAR(d2[o][kVarXi + k], (fp[o] - fm[o]) / (2 * h), 1e-5 * 7e4)
+              << "spin " << spin << " output " << o << " creepage " << k << " at " << x[0] << ", " << x[1] << ", " << x[2];
+      }
+    }
 }
 
 // The vertical load share the generator stores (creep part normal_force, "vertical_share") gives

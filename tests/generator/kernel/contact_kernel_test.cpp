@@ -293,7 +293,7 @@ creep_coordinates = "normalised"
         for (const int ip : rs.patch[s])
           if (ip >= 0) fx += r.patches[static_cast<std::size_t>(ip)].tangential.fx, fy += r.patches[static_cast<std::size_t>(ip)].tangential.fy;
         const double n = slot_normal(rn, rs, s).normal_force;
-        const std::array<double, 2> law = creep_map::law(c.xi / sc.xi, c.eta / sc.eta, c.phi / sc.phi);
+        const std::array<double, 2> law = creep_map::law(c.xi / sc.xi, c.eta / sc.eta, c.phi / sc.phi, 0.0);
         const std::size_t cell = (iy * ncreep + node) * kSlots + s;
         const std::string where = "y " + std::to_string(y) + " slot " + std::to_string(s) + " node " + std::to_string(node);
         EXPECT_TRUE(creep.find("status")->status[cell] & status::kConverged) << where;

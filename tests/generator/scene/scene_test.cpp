@@ -164,6 +164,9 @@ TEST(Scene, ErrorsNameFileKeyAndLine) {
       {"negative load", m.substr(0, m.find("load")) + "load = [-1.0, 2.0]\n", "grid.load", "> 0"},
       {"syntax", m + "xi = [0.0,\n", "bad.toml", "TOML syntax error"},
       {"bad creep coordinates", m + "creep_coordinates = \"polar\"\n", "grid.creep_coordinates", "polar"},
+      {"law spin without normalised", m + "creep_law_spin = 1.0\n", "grid.creep_law_spin", "normalised"},
+      {"negative law spin", m + "creep_coordinates = \"normalised\"\ncreep_law_spin = -1.0\n", "grid.creep_law_spin",
+       ">= 0"},
   };
   expect_errors(cases);
 }
