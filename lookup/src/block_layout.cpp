@@ -133,7 +133,10 @@ void prepare_query_layout(Block& b, const std::vector<double>& values, const std
 void narrow_exact_blocks(TableData& d) {
   if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS"); env && *env && *env != '0') return;
   for (int bi = 0; bi < d.n_blocks; ++bi) {
-    bool exact = d.block[0][bi].n_values <= kMaxFloatValues;  // interpolate.hpp
+    // Only the creep and wear block (what format 2.2 stores as float32): float records are summed
+    // in float (weighted_sum.hpp), which is within the stored rounding there but would cost
+    // digits in a geometry or normal block whose values merely happen to be floats.
+    bool exact = bi == d.creep_block && d.block[0][bi].n_values <= kMaxFloatValues;  // interpolate.hpp
     for (int w = 0; w < 2 && exact; ++w) {
       const Block& b = d.block[w][bi];
       exact = b.value_bytes == sizeof(double) && exact_floats(b.data, b.n_values, b.record) &&

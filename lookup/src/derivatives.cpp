@@ -134,7 +134,9 @@ void normalised_creep(const TableData& d, int w, int bi, const Location& at, int
   chain_creep_coordinates(b, g, dv, out.d);
   if (!d.has_part[kCreep]) return;
   const double angle = out.value[kContactAngle];
-  denormalise_creep_gradient(map, xn, dxn, out.value, std::cos(angle), std::sin(angle), out.d);
+  double cos_angle, sin_angle;
+  angle_cos_sin(angle, cos_angle, sin_angle);
+  denormalise_creep_gradient(map, xn, dxn, out.value, cos_angle, sin_angle, out.d);
 }
 
 void slot_gradient(const TableData& d, int w, const Location& at, int slot, const Captured& captured,

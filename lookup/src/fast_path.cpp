@@ -119,14 +119,18 @@ inline void creepage_rows(const CreepMap& map, int q, double creepage, double in
 
 // The creep block's rows from its gradient g (y and load per SI unit, the v coordinates per unit
 // v) chained through dv, then the forces in N and their derivatives (denormalise_creep on c.value
-// and its gradient), the clamped variables' columns cleared.
+// and its gradient), the clamped variables' columns cleared. `block_values`: the creep block's
+// values the gradient's chain reads, in record order (the double sum of its walk, as the generic
+// derivatives read them; c.value may hold the float sum of float records).
 inline void finish_creep_gradient(const TableData& d, const Block& cb, const BlockGradient& g, const double (*dv)[kNumVars],
                                   const double* xn, const double (*dxn)[kNumVars], double cos_angle, double sin_angle,
-                                  unsigned frozen, Contact& c, double (*dd)[kNumVars]) noexcept {
+                                  unsigned frozen, const double* block_values, Contact& c,
+                                  double (*dd)[kNumVars]) noexcept {
   const CreepMap& map = d.creep_map;
   chain_creep_coordinates(cb, g, dv, dd);
   double stored[kNumOutputs];  // the values denormalise_creep_gradient reads
   for (int o : {kContactAngle, kNormalForce, kFx, kFy, kMz}) stored[o] = c.value[o];
+  for (int k = 0; k < cb.n_values; ++k) stored[cb.output_of[k]] = block_values[k];
   denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
   denormalise_creep_gradient(map, xn, dxn, stored, cos_angle, sin_angle, dd);
   if (frozen)
@@ -158,15 +162,18 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   double (*dd)[kNumVars] = nullptr;
   double iw_y = 0.0, iw_load = 0.0;
   bool empty = false;  // kGrad: the creep block is zero over the cell (FastPath::empty_creep)
+  const std::size_t empty_cell =
+      (slot * static_cast<std::size_t>(d.axis[kVarY].size() - 1) + static_cast<std::size_t>(ly.i)) *
+          static_cast<std::size_t>(d.axis[kVarLoad].size() - 1) +
+      static_cast<std::size_t>(ll.i);
+  // The value query over an empty cell with one set of creep statuses: no creepage cell, no sum.
+  const bool skip = !kGrad && fp.empty_creep[w][empty_cell] == 2;
   if constexpr (kGrad) {
     dd = grad->d;
     zero_absent_rows(d, dd);
     iw_y = inverse_width(d.axis[kVarY], ly);
     iw_load = inverse_width(d.axis[kVarLoad], ll);
-    const std::size_t y_cells = static_cast<std::size_t>(d.axis[kVarY].size() - 1);
-    const std::size_t load_cells = static_cast<std::size_t>(d.axis[kVarLoad].size() - 1);
-    empty = fp.empty_creep[w][(slot * y_cells + static_cast<std::size_t>(ly.i)) * load_cells +
-                              static_cast<std::size_t>(ll.i)];
+    empty = fp.empty_creep[w][empty_cell] != 0;
   }
 
   // Geometry (y), first: its contact angle's sine and cosine (normal_from_share) are the longest
@@ -185,8 +192,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
               0.0, 0.0, 0.0, 0.0);
   double cos_angle = 0.0, sin_angle = 0.0;
   if (map.vertical_share) {
-    cos_angle = std::cos(c.value[kContactAngle]);
-    sin_angle = std::sin(c.value[kContactAngle]);
+    angle_cos_sin(c.value[kContactAngle], cos_angle, sin_angle);
   }
 
   // The slot's reciprocal scales at (y, load) (interpolate_scales, bilinear), the normalised
@@ -213,6 +219,7 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   std::size_t cell = static_cast<std::size_t>(ly.i) * cb.stride[0] + static_cast<std::size_t>(ll.i) * cb.stride[1];
   for (int k = 0; k < 3; ++k) {
     x[k] = creepage[k] * inv[k];
+    if (skip) continue;
     AxisLoc l;
     d.axis[kVarXi + k].locate_fast(
         creep_coordinate_normalised(x[k] * map.kinv[k], map.lo_k[k] * inv[k], map.hi_k[k] * inv[k]), l);
@@ -247,7 +254,10 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   }
 
   // Creep and wear (y, load, v_xi, v_eta, v_phi): 32 corners.
-  {
+  if (skip) {
+    for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = 0.0;
+    std::memcpy(&c.part_status[kCreep], &fp.empty_status[w][2 * empty_cell], NP * sizeof(StatusBits));
+  } else {
     double values[NC];
     if constexpr (kAvx2) corner_sum_avx2<5, NC, TC>(cr, t5, u5, cb.stride, values);
     else corner_sum_sse2<5, NC, TC>(cr, t5, u5, cb.stride, values);
@@ -260,12 +270,12 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     denormalise_creep(map, x, cos_angle, sin_angle, c.value);
   } else if constexpr (kGrad) {
     // d / d t of the cell's 5 fractions per unit of y, load and v, chained.
-    double ignored[NC], dt[NC][kMaxDims];
-    multilinear_gradient<TC>(cr, 5, cb.stride, t5, NC, ignored, dt);
+    double walked[NC], dt[NC][kMaxDims];  // walked: the values in double (the chain's, as the generic path's)
+    multilinear_gradient<TC>(cr, 5, cb.stride, t5, NC, walked, dt);
     BlockGradient gc;
     for (int k = 0; k < NC; ++k)
       set_row(gc.d[k], dt[k][0] * iw_y, dt[k][1] * iw_load, dt[k][2] * iw_v[0], dt[k][3] * iw_v[1], dt[k][4] * iw_v[2]);
-    finish_creep_gradient(d, cb, gc, dv, x, dxn, cos_angle, sin_angle, grad->frozen, c, dd);
+    finish_creep_gradient(d, cb, gc, dv, x, dxn, cos_angle, sin_angle, grad->frozen, walked, c, dd);
   } else {
     denormalise_creep(map, x, cos_angle, sin_angle, c.value);
   }
@@ -367,8 +377,7 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
   cut_block_0<NG>(d.block[w][fp.geometry], j.samples[fp.geometry], pieces[1], lc, weight, slot, c);
   double cos_angle = 0.0, sin_angle = 0.0;
   if (map.vertical_share) {
-    cos_angle = std::cos(c.value[kContactAngle]);
-    sin_angle = std::sin(c.value[kContactAngle]);
+    angle_cos_sin(c.value[kContactAngle], cos_angle, sin_angle);
   }
   cut_block_0<NN>(d.block[w][fp.normal], j.samples[fp.normal], pieces[0], lc, weight, slot, c);
 
@@ -429,7 +438,9 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
     jump_gradient(d, w, fp.normal, all, pieces, s, g);
     for (int k = 0; k < NN; ++k) set_row(dd[d.block[w][fp.normal].output_of[k]], g.d[k][kVarY], g.d[k][kVarLoad], 0.0, 0.0, 0.0);
     jump_gradient(d, w, fp.creep, all, pieces, s, g);
-    finish_creep_gradient(d, cb, g, dv, xn, dxn, cos_angle, sin_angle, grad->frozen, c, dd);
+    double block_values[NC];  // the one-sided sum's, in double
+    for (int k = 0; k < NC; ++k) block_values[k] = c.value[cb.output_of[k]];
+    finish_creep_gradient(d, cb, g, dv, xn, dxn, cos_angle, sin_angle, grad->frozen, block_values, c, dd);
   } else {
     denormalise_creep(map, xn, cos_angle, sin_angle, c.value);
   }
@@ -581,13 +592,34 @@ void mark_empty_creep_cells(TableData& d) {
       node[n] = zero;
     }
     std::vector<unsigned char>& cell = d.fast.empty_creep[w];
+    std::vector<StatusBits>& status = d.fast.empty_status[w];
     cell.assign(static_cast<std::size_t>(d.n_slots * (ny - 1) * (nl - 1)), 0);
+    status.assign(2 * cell.size(), 0);
+    const int n_xi = d.axis[kVarXi].size(), n_eta = d.axis[kVarEta].size(), n_phi = d.axis[kVarPhi].size();
     for (int s = 0; s < d.n_slots; ++s)
       for (int i = 0; i + 1 < ny; ++i)
         for (int j = 0; j + 1 < nl; ++j) {
           auto at = [&](int a, int l) { return node[static_cast<std::size_t>((s * ny + a) * nl + l)]; };
-          cell[static_cast<std::size_t>((s * (ny - 1) + i) * (nl - 1) + j)] =
-              at(i, j) && at(i, j + 1) && at(i + 1, j) && at(i + 1, j + 1);
+          const std::size_t k = static_cast<std::size_t>((s * (ny - 1) + i) * (nl - 1) + j);
+          cell[k] = at(i, j) && at(i, j + 1) && at(i + 1, j) && at(i + 1, j + 1);
+          if (!cell[k]) continue;
+          // The statuses the query would copy: those of each creepage cell's first record.
+          RecordPtr base = b.data.data() + static_cast<std::size_t>(s) * b.slot_size +
+                           static_cast<std::size_t>(i) * b.stride[0] + static_cast<std::size_t>(j) * b.stride[1];
+          StatusBits first[2] = {};
+          std::memcpy(first, base + b.status_offset, static_cast<std::size_t>(b.n_parts) * sizeof(StatusBits));
+          bool uniform = true;
+          for (int a = 0; a + 1 < n_xi && uniform; ++a)
+            for (int e = 0; e + 1 < n_eta && uniform; ++e)
+              for (int f = 0; f + 1 < n_phi && uniform; ++f) {
+                StatusBits here[2] = {};
+                std::memcpy(here, base + a * b.stride[2] + e * b.stride[3] + f * b.stride[4] + b.status_offset,
+                            static_cast<std::size_t>(b.n_parts) * sizeof(StatusBits));
+                uniform = std::memcmp(here, first, sizeof here) == 0;
+              }
+          if (!uniform) continue;
+          cell[k] = 2;
+          std::memcpy(&status[2 * k], first, sizeof first);
         }
   }
 }

@@ -44,6 +44,11 @@ struct FastPath {
   // derivative query writes its rows as zeros without the gradient and the chain rule: exact, as
   // every term of the chain is a product with a zero derivative or with N = 0.
   std::vector<unsigned char> empty_creep[2];
+  // The same cells, 2 when moreover every creepage cell over them carries the same part statuses
+  // (empty_status[w][cell * 2 + p], parts p of the creep block): the value query then skips the
+  // creepage cell search and the corner sum, writing the sum's zeros and those statuses (the
+  // float sum of zero records is +0.0, so the same bytes). Mostly the flange slot without contact.
+  std::vector<StatusBits> empty_status[2];
 };
 
 // Chooses d.fast for a loaded table (table_load.cpp, last step).

@@ -478,16 +478,14 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
         c.part_status[b.part[p]] = (any[p] & ~kEveryCorner) | (all[p] & kEveryCorner);
       if (map.vertical_share && b.n_parts > 0 && b.part[0] == kGeometry) {
         // The contact angle is final: its sine and cosine now, off the creep block's critical path.
-        cos_angle[s] = std::cos(c.value[kContactAngle]);
-        sin_angle[s] = std::sin(c.value[kContactAngle]);
+        angle_cos_sin(c.value[kContactAngle], cos_angle[s], sin_angle[s]);
         have_angle = true;
       }
       if (!normalised || !d.has_part[kCreep]) continue;
       // F / (mu N) minus the law, plus the law at the query's normalised creepages, times mu N (the
       // creep point's own N, already in kNormalForce), as interpolate_normalised_creep (table.cpp).
       if (map.vertical_share && !have_angle) {  // no geometry part: its angle, 0
-        cos_angle[s] = std::cos(c.value[kContactAngle]);
-        sin_angle[s] = std::sin(c.value[kContactAngle]);
+        angle_cos_sin(c.value[kContactAngle], cos_angle[s], sin_angle[s]);
       }
       denormalise_creep(map, xn[s], cos_angle[s], sin_angle[s], c.value);
     }

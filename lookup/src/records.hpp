@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // Storage of the query records (layout in table_data.hpp): bytes, cache-line aligned, holding
-// each value as a double, or as a float when every value of the block is exactly a float (format
-// 2.2 stores the creep and wear outputs as float32, docs/table-format.md "Storage precision"):
-// half the bytes per record, and float -> double is exact, so every sum gives the same bits.
+// each value as a double, or as a float in the creep and wear block when every value of it is
+// exactly a float (format 2.2 stores the creep and wear outputs as float32, docs/table-format.md
+// "Storage precision"): half the bytes per record. The multilinear sums of float records run in
+// float (weighted_sum.hpp); the others convert to double (exact).
 // Values are read through memcpy (records are bytes, whatever type they hold).
 #pragma once
 

@@ -116,8 +116,9 @@ void interpolate_normalised_creep(const detail::TableData& d, const detail::Bloc
   interpolate_block(d, block, slot_loc, slot, slot + 1, &c, grad);
   if (!d.has_part[kCreep]) return;
   const double angle = c.value[kContactAngle];
-  if (map.vertical_share) denormalise_creep(map, x, std::cos(angle), std::sin(angle), c.value);
-  else denormalise_creep(map, x, 1.0, 0.0, c.value);
+  double cos_angle = 1.0, sin_angle = 0.0;
+  if (map.vertical_share) angle_cos_sin(angle, cos_angle, sin_angle);
+  denormalise_creep(map, x, cos_angle, sin_angle, c.value);
 }
 
 // Interpolates slots [slot_begin, slot_end) of wheel w into contact[0 .. slot_end-slot_begin-1]

@@ -89,11 +89,13 @@ void prepare_query_layout(Block& block, const std::vector<double>& values, const
                           int n_slots);
 
 struct TableData;
-// After the blocks and their one-sided values at the jumps are read (as doubles): every block
-// whose values, both wheels and jump samples, are all exactly floats is rewritten with float
-// values (Block::value_bytes 4, the same statuses, strides scaled, kernels chosen again). Results
-// stay bit-identical (records.hpp). RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1 keeps every block double
-// (to compare the two). block_layout.cpp.
+// After the blocks and their one-sided values at the jumps are read (as doubles): the creep and
+// wear block, when its values, both wheels and jump samples, are all exactly floats (format 2.2
+// stores them as float32), is rewritten with float values (Block::value_bytes 4, the same
+// statuses, strides scaled, kernels chosen again). Its multilinear sums then run in float
+// (weighted_sum.hpp): within a few float roundings of the double sums, far below the stored
+// rounding of 2^-20. RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1 keeps every block double (to compare the
+// two). block_layout.cpp.
 void narrow_exact_blocks(TableData& d);
 
 struct TableData {

@@ -4,8 +4,8 @@
 // arithmetic: SSE2 (the x86-64 baseline, pairs of doubles) and AVX2 (quads, chosen at load when
 // the CPU has it, no FMA). Every lane does the same multiplies and adds in the same order in both,
 // so the results are bit-identical whichever runs. The records hold T = double or float
-// (records.hpp); floats are converted to double as they are loaded (exact), so the arithmetic and
-// its bits are the same for both.
+// (records.hpp); floats are converted to double as they are loaded (exact), except in the
+// multilinear corner sums (corner_sum_*), which sum float records in float.
 #pragma once
 
 #include <cstddef>
@@ -136,17 +136,116 @@ RAILTAB_WALK_CORNERS(walk_corners_avx2, RAILTAB_AVX2)
 #undef RAILTAB_WALK_CORNERS
 
 
+// ---- Float records in float arithmetic (the multilinear sums of corner_sum_*): a record of NV
+// <= 8 floats is one vector of 4 (NV <= 4) or 8 lanes (two of 4 with SSE2), read whole (a float
+// record is at least 16 bytes, or 32 when NV > 4: records.hpp), its status lanes cleared before
+// any arithmetic (status bits read as floats are denormals, slow and meaningless). The cell is
+// reduced one axis at a time, last axis first: lerp(a, b) = a + t (b - a), 2^D - 1 of them, in
+// float. Both instruction sets do the same operations per lane in the same order (no FMA), so
+// their results are the same bits. Against the double sum of the same records: within a few
+// float roundings of the cell's largest |value| (D + 1 roundings of 2^-24 per level at most;
+// test StoragePrecision.FloatArithmeticStaysWithinItsBound).
+typedef float F4 __attribute__((vector_size(16)));
+typedef int I4 __attribute__((vector_size(16)));
+
+// The lanes of a float record as two halves of 4 (hi unused when NV <= 4).
+template <int NV>
+struct FloatLanes {
+  static constexpr bool kTwo = NV > 4;
+  F4 lo, hi;
+};
+template <int NV>
+__attribute__((always_inline)) inline FloatLanes<NV> lerp(const FloatLanes<NV>& a, const FloatLanes<NV>& b,
+                                                        F4 t) noexcept {
+  FloatLanes<NV> r;
+  r.lo = a.lo + t * (b.lo - a.lo);
+  if constexpr (FloatLanes<NV>::kTwo) r.hi = a.hi + t * (b.hi - a.hi);
+  return r;
+}
+// Lanes [first, first + 4) of NV values: all bits where the lane holds a value, 0 elsewhere.
+template <int NV>
+constexpr I4 value_mask(int first) noexcept {
+  return I4{first + 0 < NV ? -1 : 0, first + 1 < NV ? -1 : 0, first + 2 < NV ? -1 : 0, first + 3 < NV ? -1 : 0};
+}
+template <int NV>
+__attribute__((always_inline)) inline FloatLanes<NV> load_lanes(RecordPtr p) noexcept {
+  FloatLanes<NV> r;
+  I4 x;
+  std::memcpy(&x, p, sizeof x);
+  r.lo = reinterpret_cast<F4>(x & value_mask<NV>(0));
+  if constexpr (FloatLanes<NV>::kTwo) {
+    std::memcpy(&x, p + sizeof x, sizeof x);
+    r.hi = reinterpret_cast<F4>(x & value_mask<NV>(4));
+  }
+  return r;
+}
+template <int D, int d, int NV>
+__attribute__((always_inline)) inline FloatLanes<NV> lerp_walk_sse2(RecordPtr p, const F4* t,
+                                                                  const std::size_t* stride) noexcept {
+  if constexpr (d == D) {
+    return load_lanes<NV>(p);
+  } else {
+    const FloatLanes<NV> a = lerp_walk_sse2<D, d + 1, NV>(p, t, stride);
+    const FloatLanes<NV> b = lerp_walk_sse2<D, d + 1, NV>(p + stride[d], t, stride);
+    return lerp(a, b, t[d]);
+  }
+}
+
+// The AVX2 form: a record of 5-8 values in one vector of 8 (the same lanes as lo, hi above).
+typedef float F8 __attribute__((vector_size(32)));
+typedef int I8 __attribute__((vector_size(32)));
+template <int NV>
+RAILTAB_AVX2 inline F8 load8(RecordPtr p) noexcept {
+  I8 x;
+  std::memcpy(&x, p, sizeof x);
+  const I4 lo = value_mask<NV>(0), hi = value_mask<NV>(4);
+  return reinterpret_cast<F8>(x & I8{lo[0], lo[1], lo[2], lo[3], hi[0], hi[1], hi[2], hi[3]});
+}
+template <int D, int d, int NV>
+RAILTAB_AVX2 inline F8 lerp_walk_avx2(RecordPtr p, const F8* t, const std::size_t* stride) noexcept {
+  if constexpr (d == D) {
+    return load8<NV>(p);
+  } else {
+    const F8 a = lerp_walk_avx2<D, d + 1, NV>(p, t, stride);
+    const F8 b = lerp_walk_avx2<D, d + 1, NV>(p + stride[d], t, stride);
+    return a + t[d] * (b - a);
+  }
+}
+
+// Stores lanes 0 .. NV-1 as doubles.
+template <int NV>
+__attribute__((always_inline)) inline void store_lanes(const float* lanes, double* out) noexcept {
+#pragma GCC unroll 8
+  for (int k = 0; k < NV; ++k) out[k] = static_cast<double>(lanes[k]);
+}
+
 // Multilinear sum over the cell's 2^D corners (corner 0 at `p`; t = fractions, u = 1 - t) into
 // out[0..NV-1]: the corner walk unrolls completely and the sums stay in registers. Not inlined
 // into the caller's slot loop on purpose: inlined, GCC hoists all 2^D corner addresses out of
-// it and spills them.
+// it and spills them. Double records: in double (weights by corner, one running sum); float
+// records: in float, axis by axis (above).
 template <int D, int NV, class T>
 __attribute__((noinline)) void corner_sum_sse2(RecordPtr p, const double* t, const double* u,
                                                const std::size_t* stride, double* out) noexcept {
-  SumsSse2<NV, T> sums;
-  sums.zero();
-  walk_corners_sse2<D, 0>(p, 1.0, t, u, stride, sums);
-  sums.store(out);
+  if constexpr (sizeof(T) == sizeof(float) && D > 0) {
+    (void)u;
+    F4 tf[D];
+#pragma GCC unroll 8
+    for (int d = 0; d < D; ++d) {
+      const float x = static_cast<float>(t[d]);
+      tf[d] = F4{x, x, x, x};
+    }
+    const FloatLanes<NV> r = lerp_walk_sse2<D, 0, NV>(p, tf, stride);
+    float lanes[8];
+    std::memcpy(lanes, &r.lo, sizeof r.lo);
+    if constexpr (FloatLanes<NV>::kTwo) std::memcpy(lanes + 4, &r.hi, sizeof r.hi);
+    store_lanes<NV>(lanes, out);
+  } else {
+    SumsSse2<NV, T> sums;
+    sums.zero();
+    walk_corners_sse2<D, 0>(p, 1.0, t, u, stride, sums);
+    sums.store(out);
+  }
 }
 
 template <int D, int NV, class T>
@@ -154,10 +253,36 @@ __attribute__((noinline, target("avx2"))) void corner_sum_avx2(RecordPtr p, cons
                                                                const double* u,
                                                                const std::size_t* stride,
                                                                double* out) noexcept {
-  SumsAvx2<NV, T> sums;
-  sums.zero();
-  walk_corners_avx2<D, 0>(p, 1.0, t, u, stride, sums);
-  sums.store(out);
+  if constexpr (sizeof(T) == sizeof(float) && D > 0 && NV > 4) {
+    (void)u;
+    F8 tf[D];
+#pragma GCC unroll 8
+    for (int d = 0; d < D; ++d) {
+      const float x = static_cast<float>(t[d]);
+      tf[d] = F8{x, x, x, x, x, x, x, x};
+    }
+    const F8 r = lerp_walk_avx2<D, 0, NV>(p, tf, stride);
+    float lanes[8];
+    std::memcpy(lanes, &r, sizeof r);
+    store_lanes<NV>(lanes, out);
+  } else if constexpr (sizeof(T) == sizeof(float) && D > 0) {  // one vector of 4: the SSE2 form
+    (void)u;
+    F4 tf[D];
+#pragma GCC unroll 8
+    for (int d = 0; d < D; ++d) {
+      const float x = static_cast<float>(t[d]);
+      tf[d] = F4{x, x, x, x};
+    }
+    const FloatLanes<NV> r = lerp_walk_sse2<D, 0, NV>(p, tf, stride);
+    float lanes[4];
+    std::memcpy(lanes, &r.lo, sizeof r.lo);
+    store_lanes<NV>(lanes, out);
+  } else {
+    SumsAvx2<NV, T> sums;
+    sums.zero();
+    walk_corners_avx2<D, 0>(p, 1.0, t, u, stride, sums);
+    sums.store(out);
+  }
 }
 
 // One axis of a tensor cubic stencil as weights on its 2-4 consecutive nodes (interpolate_cubic.cpp,

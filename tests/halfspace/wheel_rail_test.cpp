@@ -47,31 +47,35 @@ TEST(HalfspaceWheelRail, VerticalLoadIsCarried) {
   EXPECT_LT(p.normal.area, 300e-6);
 }
 
-// (y, roll) -> (-y, -roll) swaps the wheels: the right wheel's patch mirrors the left one's, so
-// normal results agree, fx agrees for the same creepages and fy, mz agree too (contact frames
-// are mirror images with s close to +y for both wheels, conventions.md) when eta and phi are
-// given in each wheel's own contact frame. The geometry layer mirrors to about 1e-8 rad (its
-// searches are not bit-symmetric), and the grid is placed at the edge of the rigid overlap, so
-// the two grids may differ by a row of elements: normal force within 1e-4, area within 2 %,
-// creep forces within 0.2 % of mu N.
+// (y, roll) -> (-y, -roll) swaps the wheels: the right wheel at -y with (xi, -eta, -phi) (each
+// wheel's own contact frame, s close to +y for both, conventions.md) is the left wheel at y
+// mirrored, on the tread (3 mm) and in flange contact (6.5, 8 mm). Both wheels lay their element
+// grids towards the field side, so the two solve the same problem: the same elements in contact
+// (area equal) and the same forces. The geometry layer mirrors to rounding (its searches are not
+// bit-symmetric; 1e-8 allowed). A grid laid along the track's y fell differently on the two
+// wheels: area 3.7 % apart at 6.5 mm, forces 0.2 % of mu N.
 TEST(HalfspaceWheelRail, LeftRightMirror) {
   halfspace::Workspace ws;
   const Material m = steel();
-  const auto gl = solver().solve_wheel(Side::left, {0.003, 0.0});
-  const auto gr = solver().solve_wheel(Side::right, {-0.003, 0.0});
-  auto l = halfspace::solve_halfspace_rolling(gl, 78.5e3, {0.001, 0.001, 0.1}, 0.3, m, {}, ws);
-  auto r = halfspace::solve_halfspace_rolling(gr, 78.5e3, {0.001, -0.001, -0.1}, 0.3, m, {}, ws);
-  ASSERT_EQ(l.patches.size(), 1u);
-  ASSERT_EQ(r.patches.size(), 1u);
-  const auto& a = l.patches[0];
-  const auto& b = r.patches[0];
-  EXPECT_NEAR(a.normal.normal_force, b.normal.normal_force, 1e-4 * a.normal.normal_force);
-  EXPECT_NEAR(a.normal.area, b.normal.area, 0.02 * a.normal.area);
-  EXPECT_NEAR(a.contact_angle, -b.contact_angle, 1e-7);
-  const double muN = 0.3 * a.normal.normal_force;
-  EXPECT_NEAR(a.tangential.fx, b.tangential.fx, 2e-3 * muN);
-  EXPECT_NEAR(a.tangential.fy, -b.tangential.fy, 2e-3 * muN);
-  EXPECT_GT(std::abs(a.tangential.fy), 0.05 * muN);
+  for (const double y : {0.003, 0.0065, 0.008}) {
+    const auto gl = solver().solve_wheel(Side::left, {y, 0.0});
+    const auto gr = solver().solve_wheel(Side::right, {-y, 0.0});
+    auto l = halfspace::solve_halfspace_rolling(gl, 78.5e3, {0.001, 0.001, 0.1}, 0.3, m, {}, ws);
+    auto r = halfspace::solve_halfspace_rolling(gr, 78.5e3, {0.001, -0.001, -0.1}, 0.3, m, {}, ws);
+    ASSERT_GE(l.patches.size(), 1u);
+    ASSERT_EQ(l.patches.size(), r.patches.size()) << "y " << y;
+    for (std::size_t k = 0; k < l.patches.size(); ++k) {
+      const auto& a = l.patches[k];
+      const auto& b = r.patches[k];
+      const double muN = 0.3 * a.normal.normal_force;
+      EXPECT_NEAR(a.normal.normal_force, b.normal.normal_force, 1e-8 * a.normal.normal_force) << "y " << y;
+      EXPECT_EQ(a.normal.area, b.normal.area) << "y " << y;
+      EXPECT_NEAR(a.contact_angle, -b.contact_angle, 1e-8) << "y " << y;
+      EXPECT_NEAR(a.tangential.fx, b.tangential.fx, 1e-8 * muN) << "y " << y;
+      EXPECT_NEAR(a.tangential.fy, -b.tangential.fy, 1e-8 * muN) << "y " << y;
+      EXPECT_GT(std::abs(a.tangential.fy), 0.05 * muN) << "y " << y;
+    }
+  }
 }
 
 // Archard/KTH wear per element: none in adhesion, more with more creepage, only where slipping.
@@ -213,7 +217,8 @@ TEST(HalfspaceWheelRail, LooseRoundsKeepTheFixedPoint) {
 // The stall stop (HalfspaceOptions::jump_bracket) ends only solves that cannot converge: along
 // warm chains in flange contact and on the tread, every solve converges or not as it does with all
 // 20 rounds, and a converged one has the same bits (a chain continues only from a converged solve,
-// so the chains stay the same). The stop fires: a stalled solve ends on an earlier round.
+// so the chains stay the same). The stop fires: a stalled solve ends on an earlier round (and on a
+// balance with a jump of its own, LoadFixedPointStopsAtAJump).
 TEST(HalfspaceWheelRail, StallStopEndsOnlyWhatCannotConverge) {
   halfspace::Workspace ws;
   const Material m = steel();
@@ -252,6 +257,36 @@ TEST(HalfspaceWheelRail, StallStopEndsOnlyWhatCannotConverge) {
   EXPECT_EQ(converged + stalled, 3 * 18);
   EXPECT_LE(stalled, 3);
   EXPECT_GT(stopped_earlier, 0);
+}
+
+// solve_load_fixed_point on a balance tz -> T(tz) that jumps across the fixed point by 2.4 times the
+// tolerance (a grid whose contact gains or loses a row of elements there): no round can meet it.
+// With jump_width 0.5 it stops as soon as two full rounds missed high and low within half the
+// tolerance; without, it runs all its rounds. On a continuous balance both converge, on the same
+// rounds.
+TEST(HalfspaceWheelRail, LoadFixedPointStopsAtAJump) {
+  const double load = 78.5e3, tolerance = 1e-4 * load, t_star = -20e3;
+  for (const bool jump : {true, false}) {
+    int rounds_stop = 0, rounds_all = 0;
+    auto balance = [&](int& rounds) {
+      return [&, jump](double tz, bool) {
+        ++rounds;
+        const double smooth = t_star + 0.6 * (tz - t_star);  // contraction towards t_star
+        return smooth + (jump ? (tz < t_star ? 1.2 : -1.2) * tolerance : 0.0);
+      };
+    };
+    const auto never = [] { return false; };
+    const bool ok_stop = halfspace::solve_load_fixed_point(load, balance(rounds_stop), never, 0.0, 1e9, 0.5);
+    const bool ok_all = halfspace::solve_load_fixed_point(load, balance(rounds_all), never, 0.0, 1e9, 0.0);
+    EXPECT_EQ(ok_stop, !jump);
+    EXPECT_EQ(ok_all, !jump);
+    if (jump) {
+      EXPECT_EQ(rounds_all, 20);
+      EXPECT_LT(rounds_stop, rounds_all);
+    } else {
+      EXPECT_EQ(rounds_stop, rounds_all);
+    }
+  }
 }
 
 TEST(HalfspaceWheelRail, BadLoadThrowsNamingIt) {

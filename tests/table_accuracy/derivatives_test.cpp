@@ -8,9 +8,17 @@
 // the difference points shows as different forward and backward differences: the derivative
 // then matches one of them (the cell the query is in) and the state is counted as a kink.
 //
+// The linear lookup sums the table's float records in float (lookup/src/weighted_sum.hpp): its
+// values move in steps of a float rounding (~1e-7 of a value), far above what the differences
+// below resolve, so the linear derivatives are differenced on the same table loaded with double
+// records (RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1: the same interpolant in double), and they must be
+// that table's derivatives to the byte (the chain reads the block's double sums). The float sums
+// themselves stay within a millionth of mu N of the double ones (test StoragePrecision.*).
+//
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='Derivatives*' (prints the numbers).
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 
@@ -24,6 +32,7 @@ struct Tables {
   Scene scene;
   ContactJumps jumps;
   std::optional<lk::Table> linear, cubic;
+  std::optional<lk::Table> linear_doubles;  // the linear table with double records (differenced)
 };
 
 const Tables& tables() {
@@ -38,6 +47,9 @@ const Tables& tables() {
     write_for_lookup(table, path);
     x.linear.emplace(lk::Table::load(path.string()));
     x.cubic.emplace(lk::Table::load(path.string(), {lk::Method::kCubic}));
+    ::setenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS", "1", 1);
+    x.linear_doubles.emplace(lk::Table::load(path.string()));
+    ::unsetenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS");
     std::filesystem::remove(path);
     return x;
   }();
@@ -62,7 +74,7 @@ double value(const lk::Table& t, lk::Wheel w, const lk::State& s, int slot, int 
   return t.query(w, s).contact[slot].value[o];
 }
 
-// Compares d output / d variable at s with differences of query() around s; true when it agrees.
+// Compares d output / d variable at s with differences of t.query() around s; true when it agrees.
 bool agrees(const lk::Table& t, lk::Wheel w, const lk::State& s, int slot, int o, int var, double derivative,
             Tally& tally, std::string& why) {
   const double h = kStep[var];
@@ -93,24 +105,28 @@ bool agrees(const lk::Table& t, lk::Wheel w, const lk::State& s, int slot, int o
   return false;
 }
 
-void check_random_states(const lk::Table& t, const char* name) {
+// t's derivatives against differences of `differenced` (t itself, or t with double records: then
+// the two tables' derivatives must be the same bytes).
+void check_random_states(const lk::Table& t, const char* name, const lk::Table& differenced) {
   const Tables& x = tables();
   const std::vector<Point> points = random_states(x.scene, 300, 20240611);
   Tally tally;
-  lk::Result r;
-  lk::Derivatives d;
+  lk::Result r, r_differenced;
+  lk::Derivatives d, d_differenced;
   for (const Point& p : points)
     for (int w = 0; w < 2; ++w) {
       const lk::Wheel wheel = static_cast<lk::Wheel>(w);
       const lk::State s = to_state(t, p);
       ASSERT_TRUE(t.query_derivatives(wheel, s, r, d));
+      ASSERT_TRUE(differenced.query_derivatives(wheel, s, r_differenced, d_differenced));
+      ASSERT_EQ(std::memcmp(&d, &d_differenced, sizeof d), 0) << name << ": float and double records' derivatives";
       for (int slot = 0; slot < r.n_slots; ++slot) {
         const bool flange = slot == 1 && r.contact[1].value[lk::kNormalForce] > 0.0;
         for (int o = 0; o < lk::kNumOutputs; ++o)
           for (int var = 0; var < kNumVars; ++var) {
             std::string why;
             const double derivative = d.d[slot][o][kLookupVar[var]];
-            ASSERT_TRUE(agrees(t, wheel, s, slot, o, var, derivative, tally, why))
+            ASSERT_TRUE(agrees(differenced, wheel, s, slot, o, var, derivative, tally, why))
                 << name << " wheel " << w << " slot " << slot << " y " << s.y << " load " << s.load << " xi " << s.xi
                 << " eta " << s.eta << " phi " << s.phi << ": d " << lk::output_name(static_cast<lk::Output>(o)) << " / d "
                 << kVarNames[var] << ": " << why;
@@ -129,17 +145,17 @@ void check_random_states(const lk::Table& t, const char* name) {
 }
 
 TEST(Derivatives, LinearAgreesWithCentralDifferencesOnTheDefaultTable) {
-  check_random_states(*tables().linear, "linear");
+  check_random_states(*tables().linear, "linear", *tables().linear_doubles);
 }
 
 TEST(Derivatives, CubicAgreesWithCentralDifferencesOnTheDefaultTable) {
-  check_random_states(*tables().cubic, "cubic");
+  check_random_states(*tables().cubic, "cubic", *tables().cubic);
 }
 
 // Beside every located jump (30 um either side, at each load node): the y derivative of every
 // output is the central difference on the query's side, and where the value steps across the jump
 // by more than the derivative could carry over 60 um, it differs from the secant across it.
-void check_jumps(const lk::Table& t, const char* name) {
+void check_jumps(const lk::Table& t, const char* name, const lk::Table& differenced) {
   const Tables& x = tables();
   const std::vector<double>& loads = x.scene.grids.load;
   Tally tally;
@@ -163,7 +179,7 @@ void check_jumps(const lk::Table& t, const char* name) {
             for (int o = 0; o < lk::kNumOutputs; ++o) {
               std::string why;
               const double derivative = d.d[slot][o][lk::kY];
-              ASSERT_TRUE(agrees(t, wheel, s, slot, o, kY, derivative, tally, why))
+              ASSERT_TRUE(agrees(differenced, wheel, s, slot, o, kY, derivative, tally, why))
                   << name << " wheel " << w << " load " << s.load << " jump at y " << jump.y << " side " << side << ": "
                   << lk::output_name(static_cast<lk::Output>(o)) << " slot " << slot << ": " << why;
               const double step = r.contact[slot].value[o] - other.contact[slot].value[o];
@@ -180,8 +196,8 @@ void check_jumps(const lk::Table& t, const char* name) {
   EXPECT_GT(distinct, 100);
 }
 
-TEST(Derivatives, LinearBesideAJumpIsOneSided) { check_jumps(*tables().linear, "linear"); }
-TEST(Derivatives, CubicBesideAJumpIsOneSided) { check_jumps(*tables().cubic, "cubic"); }
+TEST(Derivatives, LinearBesideAJumpIsOneSided) { check_jumps(*tables().linear, "linear", *tables().linear_doubles); }
+TEST(Derivatives, CubicBesideAJumpIsOneSided) { check_jumps(*tables().cubic, "cubic", *tables().cubic); }
 
 // Random states and states beside every located jump (cut cells).
 std::vector<lk::State> byte_check_states(const lk::Table& t) {

@@ -17,7 +17,8 @@
 // The geometry part and the normal part's outputs other than the normal force are float64 in
 // both tables: there the answers must be the same bits.
 // The lookup holds the 2.2 table's creep and wear records as floats (lookup/src/records.hpp):
-// half their memory, and every answer the same bits as with double records.
+// half their memory; its multilinear sums of them run in float (within a millionth of mu N of
+// the double sums), every other answer has the same bits as with double records.
 //
 // Run: build/<dir>/tests/test_table_accuracy --gtest_filter='StoragePrecision*' (prints the
 // numbers).
@@ -167,15 +168,22 @@ TEST(StoragePrecision, LookupHoldsTheFloat32OutputsAsFloats) {
   EXPECT_EQ(t.stored[1][0]->memory_bytes(), doubles) << "the float64 (2.1) table is held as doubles";
 }
 
-// Float records give the bytes of double records (float -> double is exact, the sums are the same),
-// every method, query and query_slot, both wheels, at random states in range and 5 % beyond
-// (jump cells included) and on grid nodes.
-TEST(StoragePrecision, FloatRecordsGiveTheBytesOfDoubleRecords) {
+// Float records against double records (RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1), every method, query
+// and query_slot, both wheels, at random states in range and 5 % beyond (jump cells included) and
+// on grid nodes. The cubic and monotone cubic sums convert the floats to double (exact), as do the
+// one-sided sums of jump cells: the same bytes. The multilinear corner sums of float records run
+// in float (weighted_sum.hpp): the same statuses, and every output within kFloatArithmetic of its
+// scale (fx, fy: mu x the largest normal force; the others their largest |value|), the bound the
+// lookup's float arithmetic is allowed (a millionth of mu N).
+constexpr double kFloatArithmetic = 1e-6;
+
+TEST(StoragePrecision, FloatRecordsGiveTheBytesOfDoubleRecordsOrStayWithinTheFloatArithmeticBound) {
   const Tables& t = tables();
   const Scene& s = t.scene;
   Random rng(kSeed + 7);
   const std::vector<double>* grids[5] = {&s.grids.y, &s.grids.load, &s.grids.xi, &s.grids.eta, &s.grids.phi};
-  std::size_t compared = 0, differing = 0;
+  std::size_t compared = 0, differing = 0, linear_differing = 0;
+  double diff[lk::kNumOutputs] = {}, scale[lk::kNumOutputs] = {};
   for (int m = 0; m < 3; ++m) {
     const lk::Table& single = *t.records[0][m];
     const lk::Table& full = *t.records[1][m];
@@ -192,16 +200,46 @@ TEST(StoragePrecision, FloatRecordsGiveTheBytesOfDoubleRecords) {
       for (int w = 0; w < 2; ++w) {
         const lk::Wheel wheel = static_cast<lk::Wheel>(w);
         const lk::Result a = single.query(wheel, st), b = full.query(wheel, st);
-        differing += std::memcmp(&a, &b, sizeof a) != 0;
+        lk::Contact ca[kSlots], cb[kSlots];
         for (int slot = 0; slot < static_cast<int>(kSlots); ++slot) {
-          const lk::Contact ca = single.query_slot(wheel, st, slot), cb = full.query_slot(wheel, st, slot);
-          differing += std::memcmp(&ca, &cb, sizeof ca) != 0;
+          ca[slot] = single.query_slot(wheel, st, slot);
+          cb[slot] = full.query_slot(wheel, st, slot);
+          ASSERT_EQ(std::memcmp(&ca[slot], &a.contact[slot], sizeof ca[slot]), 0) << "query_slot = query";
         }
         compared += 1 + kSlots;
+        if (m != 0) {
+          differing += std::memcmp(&a, &b, sizeof a) != 0;
+          for (std::size_t slot = 0; slot < kSlots; ++slot)
+            differing += std::memcmp(&ca[slot], &cb[slot], sizeof ca[slot]) != 0;
+          continue;
+        }
+        ASSERT_EQ(a.status, b.status);
+        linear_differing += std::memcmp(&a, &b, sizeof a) != 0;
+        for (std::size_t slot = 0; slot < kSlots; ++slot) {
+          ASSERT_EQ(a.contact[slot].status, b.contact[slot].status);
+          for (int o = 0; o < lk::kNumOutputs; ++o) {
+            ASSERT_EQ(a.contact[slot].part_status[lk::output_part(static_cast<lk::Output>(o))],
+                      b.contact[slot].part_status[lk::output_part(static_cast<lk::Output>(o))]);
+            const double va = a.contact[slot].value[o], vb = b.contact[slot].value[o];
+            diff[o] = std::max(diff[o], std::abs(va - vb));
+            const bool force = o == lk::kFx || o == lk::kFy;
+            scale[o] = std::max(scale[o], force ? s.tangential.friction * b.contact[slot].value[lk::kNormalForce]
+                                                : std::abs(vb));
+          }
+        }
       }
     }
   }
-  EXPECT_EQ(differing, 0u) << "of " << compared << " results";
+  EXPECT_EQ(differing, 0u) << "cubic and monotone cubic: of " << compared << " results";
+  std::printf("linear lookup, float arithmetic on float records: %zu of %zu results differ from double records; "
+              "max |difference| / scale (limit %.0e):\n", linear_differing, compared, kFloatArithmetic);
+  for (int o = 0; o < lk::kNumOutputs; ++o) {
+    if (scale[o] == 0.0) continue;
+    std::printf("  %-14s %.3g (max diff %.3g, scale %.3g)\n", lk::output_name(static_cast<lk::Output>(o)),
+                diff[o] / scale[o], diff[o], scale[o]);
+    EXPECT_LE(diff[o], kFloatArithmetic * scale[o]) << lk::output_name(static_cast<lk::Output>(o));
+  }
+  EXPECT_GT(linear_differing, 0u) << "the linear sums of float records should run in float";
 }
 
 }  // namespace

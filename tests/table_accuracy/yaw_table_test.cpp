@@ -4,6 +4,7 @@
 // The yaw = 0 node against the same scene without yaw, the lookup off the yaw nodes against the
 // contact kernel run directly, mirror symmetry (y, yaw) -> (-y, -yaw) between the wheels, outputs
 // even in yaw, continuity in yaw, derivatives along yaw, and a yaw query on a table without yaw.
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -46,6 +47,11 @@ struct YawFixture {
   Scene scene, free_scene;  // with the yaw axis; the same without yaw
   Table table, free_table;  // their sweeps
   std::optional<lk::Table> lookup, free_lookup;
+  // The yaw table with double records (RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1): the same interpolant
+  // summed in double. The linear lookup sums float records in float (lookup/src/weighted_sum.hpp),
+  // within a float rounding (~1e-7) of it: the symmetry and difference tests below, whose
+  // tolerances are double roundings, run on this one, and bound the float sums against it.
+  std::optional<lk::Table> lookup_doubles;
 };
 
 const YawFixture& fixture() {
@@ -63,6 +69,9 @@ const YawFixture& fixture() {
     write_for_lookup(x.free_table, free_path);
     x.lookup.emplace(lk::Table::load(path.string()));
     x.free_lookup.emplace(lk::Table::load(free_path.string()));
+    ::setenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS", "1", 1);
+    x.lookup_doubles.emplace(lk::Table::load(path.string()));
+    ::unsetenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS");
     std::filesystem::remove(path);
     std::filesystem::remove(free_path);
     return x;
@@ -276,10 +285,13 @@ TEST(YawTable, LookupAgainstDirectEvaluationOffTheYawNodes) {
 
 // Mirror symmetry: the left wheel at (y, yaw, eta, phi) is the right wheel at (-y, -yaw, -eta,
 // -phi), with the lateral quantities' signs flipped (contact angle, fy, mz; docs/conventions.md),
-// on and off the nodes.
+// on and off the nodes. On the double-record table (the float sums of the table as loaded are
+// within 1e-6 of each output's largest |value| of it, asserted here: the 6-D yaw cells too).
 TEST(YawTable, MirrorSwapsTheWheels) {
   const YawFixture& f = fixture();
-  const lk::Table& t = *f.lookup;
+  const lk::Table& t = *f.lookup_doubles;
+  const lk::Table& floats = *f.lookup;
+  double diff[lk::kNumOutputs] = {}, scale[lk::kNumOutputs] = {};
   Random rng(32);
   const auto flips = [](int o) { return o == lk::kContactAngle || o == lk::kFy || o == lk::kMz; };
   std::size_t flange = 0;
@@ -289,6 +301,14 @@ TEST(YawTable, MirrorSwapsTheWheels) {
     const lk::Result l = t.query(lk::Wheel::kLeft, state_at(t, y, yaw, load, xi, eta, phi));
     const lk::Result r = t.query(lk::Wheel::kRight, state_at(t, -y, -yaw, load, xi, -eta, -phi));
     ASSERT_EQ(l.status, 0u);
+    const lk::Result lf = floats.query(lk::Wheel::kLeft, state_at(t, y, yaw, load, xi, eta, phi));
+    for (std::size_t slot = 0; slot < kSlots; ++slot)
+      for (int o = 0; o < lk::kNumOutputs; ++o) {
+        const bool force = o == lk::kFx || o == lk::kFy;
+        diff[o] = std::max(diff[o], std::abs(lf.contact[slot].value[o] - l.contact[slot].value[o]));
+        scale[o] = std::max(scale[o], force ? f.scene.tangential.friction * l.contact[slot].value[lk::kNormalForce]
+                                            : std::abs(l.contact[slot].value[o]));
+      }
     for (std::size_t slot = 0; slot < kSlots; ++slot) {
       EXPECT_EQ(l.contact[slot].status, r.contact[slot].status) << "y " << y << " yaw " << yaw << " slot " << slot;
       flange += slot == 1 && l.contact[slot].value[lk::kNormalForce] > 0.0;
@@ -300,6 +320,8 @@ TEST(YawTable, MirrorSwapsTheWheels) {
     }
   }
   EXPECT_GT(flange, 50u);  // the flange contact is among the states
+  for (int o = 0; o < lk::kNumOutputs; ++o)
+    EXPECT_LE(diff[o], 1e-6 * scale[o]) << label(o) << ": float sums against double sums";
 }
 
 // One wheel at given creepages does not see the sign of yaw: +-yaw put the contact at the same
@@ -422,9 +444,12 @@ TEST(YawTable, ContinuousInYaw) {
 
 // d/d yaw of the interpolant against central differences of the query inside the cells (the
 // derivative code is generic over the axes; the normalised creep part's scales depend on yaw).
+// The derivatives of the table as loaded (float records) are the double-record table's to the byte
+// (the chain reads double sums), differenced on that one.
 TEST(YawTable, DerivativeAlongYaw) {
   const YawFixture& f = fixture();
-  const lk::Table& t = *f.lookup;
+  const lk::Table& t = *f.lookup_doubles;
+  const lk::Table& floats = *f.lookup;
   Random rng(33);
   std::size_t nonzero = 0;
   for (int k = 0; k < 100; ++k) {
@@ -435,6 +460,10 @@ TEST(YawTable, DerivativeAlongYaw) {
       lk::Result r, rp, rm;
       lk::Derivatives d;
       ASSERT_TRUE(t.query_derivatives(wheel, s, r, d));
+      lk::Result rf;
+      lk::Derivatives df;
+      ASSERT_TRUE(floats.query_derivatives(wheel, s, rf, df));
+      ASSERT_EQ(std::memcmp(&d, &df, sizeof d), 0) << "float and double records' derivatives";
       const double h = 1e-9;
       lk::State plus = s, minus = s;
       plus.yaw += h;
