@@ -42,7 +42,9 @@ double physical(double v, double lo, double hi, double s) {
   if (v <= -1.0) return lo;
   if (v >= 1.0) return hi;
   const double mlo = m(lo / s), mhi = m(hi / s);
-  return s * m_inverse(mlo + 0.5 * (v + 1.0) * (mhi - mlo));
+  // The middle of the range plus v times its half-width: odd in v when the range is symmetric
+  // (mlo = -mhi exactly), so mirrored nodes get mirrored creepages to the last bit.
+  return s * m_inverse(0.5 * (mlo + mhi) + 0.5 * v * (mhi - mlo));
 }
 
 double coordinate(double q, double lo, double hi, double s) {
@@ -65,9 +67,11 @@ double vertical_share(double normal_force, double fy, double angle) {
 
 std::vector<double> nodes(std::size_t count) {
   std::vector<double> v(count);
+  // (2 i - (n - 1)) / (n - 1): an integer over an integer, so node n - 1 - i is node i negated to
+  // the last bit (the mirrored sweep needs the eta and phi axes exactly symmetric).
   for (std::size_t i = 0; i < count; ++i)
-    v[i] = count > 1 ? -1.0 + 2.0 * static_cast<double>(i) / static_cast<double>(count - 1) : 0.0;
-  if (count > 1) v.back() = 1.0;
+    v[i] = count > 1 ? (2.0 * static_cast<double>(i) - static_cast<double>(count - 1)) / static_cast<double>(count - 1)
+                     : 0.0;
   return v;
 }
 

@@ -28,7 +28,8 @@ namespace {
 namespace mirror_sweep {
 
 // Reduced default scenes, y symmetric with flange contact and contact jumps on both sides, the
-// creepage lists symmetric in eta and phi (xi need not be), normalised creep coordinates.
+// creepage lists symmetric in eta and phi (xi need not be), normalised creep coordinates (7 eta
+// nodes: normalised nodes at +-1/3, +-2/3, which must mirror to the last bit).
 constexpr const char* kStripesScene = R"(
 [scene]
 name = "mirror_stripes"
@@ -44,7 +45,7 @@ y = [-0.008, -0.0065, -0.005, 0.0, 0.005, 0.0065, 0.008]
 equilibrium_roll = true
 load = [60e3, 90e3]
 xi = [-0.002, 0.0, 0.001, 0.002]
-eta = [-0.001, 0.0, 0.001]
+eta = [-0.001, -0.0005, -0.0002, 0.0, 0.0002, 0.0005, 0.001]
 phi = [-0.2, 0.0, 0.2]
 creep_coordinates = "normalised"
 creep_knee = [1.0, 3.0, 4.0]
@@ -139,6 +140,12 @@ TEST(Mirror, HalfspaceTableIsTheFullSweep) { expect_mirror_is_full(kHalfspaceSce
 // -phi that differ in the last bits (the full sweep's odd linear creep coefficients fx_phi and
 // mz_xi, rounding noise about 0, then keep their sign on both wheels). Its tables run the full
 // sweep.
+// The exact scene in tables/ (7 x 7 x 5 normalised creepages) is mirrored.
+TEST(Mirror, DefaultHalfspaceSceneIsMirrored) {
+  const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  EXPECT_EQ(mirror_obstacle(scene, make_contact_kernel(scene)), "");
+}
+
 TEST(Mirror, HertzTableRunsTheFullSweep) {
   Scene scene = parse_scene(std::string(testing::kJumpScene) + "phi = [-0.2, 0.0, 0.2]\n", "mirror");
   EXPECT_EQ(mirror_obstacle(scene), "");
