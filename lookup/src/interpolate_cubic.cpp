@@ -195,15 +195,40 @@ void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot
 }
 
 // The values of every slot interpolated together at one stencil node (lane k: slot k / n_values,
-// value k % n_values); 4 lanes more, as read_lanes stores whole vectors.
-using ValueLanes = double[kMaxSlots * kMaxSlotValues + 4];
+// value k % n_values).
+using ValueLanes = double[kMaxSlots * kMaxSlotValues];
+
+// Where a stencil line's values come from: the results of the inner axes' lines (lanes), or, on
+// the last axis, one slot's records themselves (no copy; floats converted to double, exact). Each
+// gives a value, a pair or a quad of consecutive lanes k.. at stencil node j.
+struct LaneSource {
+  const ValueLanes* sub;
+  double at(int j, int k) const noexcept { return sub[j][k]; }
+  __attribute__((always_inline)) V2 pair(int j, int k) const noexcept {
+    V2 v;
+    std::memcpy(&v, &sub[j][k], sizeof v);
+    return v;
+  }
+  RAILTAB_AVX2 V4 quad(int j, int k) const noexcept {
+    V4 v;
+    std::memcpy(&v, &sub[j][k], sizeof v);
+    return v;
+  }
+};
+template <class T>
+struct RecordSource {
+  RecordPtr rec[4];  // the stencil nodes' records (absent ones unused)
+  double at(int j, int k) const noexcept { return record_value<T>(rec[j], k); }
+  __attribute__((always_inline)) V2 pair(int j, int k) const noexcept { return load2<T>(rec[j] + k * sizeof(T)); }
+  RAILTAB_AVX2 V4 quad(int j, int k) const noexcept { return load4<T>(rec[j] + k * sizeof(T)); }
+};
 
 // hermite(a, f, true) over lanes of V (two or four doubles), with each select written on the
 // scalar function's own comparison and the same operations in the same order, so every lane gets
 // the scalar function's bytes (GCC leaves the scalar loop unvectorised, its selects staying
 // branches, and the limiter is most of a monotone cubic query). Defined twice, for each
-// instruction set (GCC inlines AVX2 code only into AVX2 functions).
-#define RAILTAB_HERMITE_LANES(NAME, V, ATTRIBUTES)                                                                              \
+// instruction set (GCC inlines AVX2 code only into AVX2 functions); LOAD: the source's reader.
+#define RAILTAB_HERMITE_LANES(NAME, V, LOAD, ATTRIBUTES)                                                                        \
 struct NAME {                                                                                                                   \
   typedef long long I __attribute__((vector_size(sizeof(V))));                                                                  \
   static ATTRIBUTES V splat(double x) noexcept { return V{} + x; }                                                              \
@@ -220,11 +245,11 @@ struct NAME {                                                                   
   }                                                                                                                             \
   /* Lanes [k, k + lanes of V) of the stencil's nodes lo .. hi into out; returns the largest |f| */                             \
   /* seen per lane (hermite's scaling test). */                                                                                 \
-  template <bool kLeft, bool kRight>                                                                                            \
-  static ATTRIBUTES V step(const CubicAxis& a, const ValueLanes* sub, int k, double* out) noexcept {                            \
+  template <bool kLeft, bool kRight, class Source>                                                                              \
+  static ATTRIBUTES V step(const CubicAxis& a, const Source& src, int k, double* out) noexcept {                                \
     constexpr int lo = kLeft ? 0 : 1, hi = kRight ? 3 : 2;                                                                      \
     V f[4];                                                                                                                     \
-    for (int j = lo; j <= hi; ++j) std::memcpy(&f[j], &sub[j][k], sizeof(V));                                                   \
+    for (int j = lo; j <= hi; ++j) f[j] = src.LOAD(j, k);                                                                       \
     V largest = abs(f[lo]);                                                                                                     \
     for (int j = lo + 1; j <= hi; ++j) largest = max(largest, abs(f[j]));                                                       \
     V m0 = splat(0.0), m1 = splat(0.0);                                                                                         \
@@ -242,54 +267,56 @@ struct NAME {                                                                   
     return largest;                                                                                                             \
   }                                                                                                                             \
 };
-RAILTAB_HERMITE_LANES(HermitePairs, V2, __attribute__((always_inline)))
-RAILTAB_HERMITE_LANES(HermiteQuads, V4, RAILTAB_AVX2)
+RAILTAB_HERMITE_LANES(HermitePairs, V2, pair, __attribute__((always_inline)))
+RAILTAB_HERMITE_LANES(HermiteQuads, V4, quad, RAILTAB_AVX2)
 #undef RAILTAB_HERMITE_LANES
 
-// Every lane of the stencil's nv values: whole vectors, an odd last lane through the scalar
-// function. Returns the largest |value| of the stencil (NaN ignored, as hermite's own std::max
-// does): above kScaleAbove the caller redoes the lanes with the scalar function, which scales them.
-template <bool kLeft, bool kRight>
-__attribute__((always_inline)) inline double hermite_tail(const CubicAxis& a, const ValueLanes* sub, int k, int nv,
+// Lanes k .. nv-1 one at a time through the scalar function. Returns the largest |value| of the
+// stencil (NaN ignored, as hermite's own std::max does): above kScaleAbove the caller redoes the
+// lanes with the scalar function, which scales them.
+template <bool kLeft, bool kRight, class Source>
+__attribute__((always_inline)) inline double hermite_tail(const CubicAxis& a, const Source& src, int k, int nv,
                                                           double largest, double* out) noexcept {
   for (; k < nv; ++k) {
-    double f[4] = {0.0, sub[1][k], sub[2][k], 0.0};
-    if (kLeft) f[0] = sub[0][k];
-    if (kRight) f[3] = sub[3][k];
+    double f[4] = {0.0, src.at(1, k), src.at(2, k), 0.0};
+    if (kLeft) f[0] = src.at(0, k);
+    if (kRight) f[3] = src.at(3, k);
     for (int j = kLeft ? 0 : 1; j <= (kRight ? 3 : 2); ++j) largest = std::max(largest, std::abs(f[j]));
     out[k] = hermite(a, f, true);
   }
   return largest;
 }
-template <bool kLeft, bool kRight>
-double limited_hermite_sse2(const CubicAxis& a, const ValueLanes* sub, int nv, double* out) noexcept {
+// Every lane of nv: pairs, then an odd last lane.
+template <bool kLeft, bool kRight, class Source>
+double limited_hermite_sse2(const CubicAxis& a, const Source& src, int nv, double* out) noexcept {
   using H = HermitePairs;
   V2 largest = H::splat(0.0);
   int k = 0;
-  for (; k + 2 <= nv; k += 2) largest = H::max(largest, H::step<kLeft, kRight>(a, sub, k, out));
-  return hermite_tail<kLeft, kRight>(a, sub, k, nv, std::max(largest[0], largest[1]), out);
+  for (; k + 2 <= nv; k += 2) largest = H::max(largest, H::step<kLeft, kRight>(a, src, k, out));
+  return hermite_tail<kLeft, kRight>(a, src, k, nv, std::max(largest[0], largest[1]), out);
 }
 // The same in quads, then a pair (AVX2, chosen at load: Block::monotone); the same bytes.
-template <bool kLeft, bool kRight>
-__attribute__((target("avx2"))) double limited_hermite_avx2(const CubicAxis& a, const ValueLanes* sub, int nv,
+template <bool kLeft, bool kRight, class Source>
+__attribute__((target("avx2"))) double limited_hermite_avx2(const CubicAxis& a, const Source& src, int nv,
                                                              double* out) noexcept {
   V4 largest = HermiteQuads::splat(0.0);
   int k = 0;
-  for (; k + 4 <= nv; k += 4) largest = HermiteQuads::max(largest, HermiteQuads::step<kLeft, kRight>(a, sub, k, out));
+  for (; k + 4 <= nv; k += 4) largest = HermiteQuads::max(largest, HermiteQuads::step<kLeft, kRight>(a, src, k, out));
   double m = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
   if (k + 2 <= nv) {
-    const V2 pair = HermitePairs::step<kLeft, kRight>(a, sub, k, out);
+    const V2 pair = HermitePairs::step<kLeft, kRight>(a, src, k, out);
     m = std::max(m, std::max(pair[0], pair[1]));
     k += 2;
   }
-  return hermite_tail<kLeft, kRight>(a, sub, k, nv, m, out);
+  return hermite_tail<kLeft, kRight>(a, src, k, nv, m, out);
 }
 
-template <bool kAvx2>
-void limited_hermite_lanes(const CubicAxis& a, const ValueLanes* sub, int nv, double* out) noexcept {
+// One stencil line along axis a: lanes [0, nv) of its 2-4 nodes (src) into out.
+template <bool kAvx2, class Source>
+void limited_hermite_lanes(const CubicAxis& a, const Source& src, int nv, double* out) noexcept {
   auto run = [&](auto left, auto right) {
-    if constexpr (kAvx2) return limited_hermite_avx2<left(), right()>(a, sub, nv, out);
-    else return limited_hermite_sse2<left(), right()>(a, sub, nv, out);
+    if constexpr (kAvx2) return limited_hermite_avx2<left(), right()>(a, src, nv, out);
+    else return limited_hermite_sse2<left(), right()>(a, src, nv, out);
   };
   using Yes = std::true_type;
   using No = std::false_type;
@@ -302,9 +329,9 @@ void limited_hermite_lanes(const CubicAxis& a, const ValueLanes* sub, int nv, do
   // Rare (huge or infinite values): every lane again through the scalar function, which scales
   // the lanes that need it.
   for (int k = 0; k < nv; ++k) {
-    double f[4] = {0.0, sub[1][k], sub[2][k], 0.0};
-    if (a.has_left) f[0] = sub[0][k];
-    if (a.has_right) f[3] = sub[3][k];
+    double f[4] = {0.0, src.at(1, k), src.at(2, k), 0.0};
+    if (a.has_left) f[0] = src.at(0, k);
+    if (a.has_right) f[3] = src.at(3, k);
     out[k] = hermite(a, f, true);
   }
 }
@@ -318,49 +345,32 @@ struct MonotoneContext {
   const CubicAxis* axes;    // per dimension
 };
 
-// The values of one record of each slot into lanes as doubles (exact), whole vectors: pairs of
-// doubles, quads of floats (a record is padded to 16 bytes, so these stay inside it; lanes past
-// a record's values are overwritten by the next slot's or never read).
-template <class T>
-void read_lanes(const MonotoneContext& c, std::size_t offset, double* out) noexcept {
-  for (int s = 0; s < c.n_slots; ++s) {
-    RecordPtr rec = c.data + static_cast<std::size_t>(s) * c.slot_size + offset;
-    double* lanes = out + s * c.n_values;
-    if constexpr (sizeof(T) == sizeof(float)) {
-      for (int k = 0; k < c.n_values; k += 4) {
-        // Lanes past the values cleared: status bits read as floats are denormals, slow to convert.
-        static const int kKeep[8] = {-1, -1, -1, -1, 0, 0, 0, 0};
-        const __m128 keep = _mm_loadu_ps(reinterpret_cast<const float*>(kKeep + 4 - std::min(c.n_values - k, 4)));
-        const __m128 x = _mm_and_ps(_mm_loadu_ps(reinterpret_cast<const float*>(rec) + k), keep);
-        _mm_storeu_pd(lanes + k, _mm_cvtps_pd(x));
-        _mm_storeu_pd(lanes + k + 2, _mm_cvtps_pd(_mm_movehl_ps(x, x)));
-      }
-    } else {
-      for (int k = 0; k < c.n_values; k += 2) std::memcpy(lanes + k, rec + k * sizeof(double), 2 * sizeof(double));
-    }
-  }
-}
-
 // Successive 1-D limited Hermite passes: interpolate the sub-grid of each stencil node along the
 // remaining axes, then combine the (up to) 4 results along this axis. All slots in one walk
-// (out[slot * n_values + k]), so the stencil recursion runs once per query. Depth <= 6, at most
-// 2.3 KB of stack per level.
+// (out[slot * n_values + k]), so the stencil recursion runs once per query; the last axis reads
+// each slot's records in place. Depth <= 6, at most 2.3 KB of stack per level.
 template <bool kAvx2, class T>
 void monotone_recurse(const MonotoneContext& c, int d, std::size_t offset, double* out) noexcept {
-  const int nv = c.n_values * c.n_slots;
   if (d == c.n_dims) {  // a table without axes: the one record
-    read_lanes<T>(c, offset, out);
+    for (int s = 0; s < c.n_slots; ++s)
+      for (int k = 0; k < c.n_values; ++k)
+        out[s * c.n_values + k] = record_value<T>(c.data + static_cast<std::size_t>(s) * c.slot_size + offset, k);
     return;
   }
   const CubicAxis& a = c.axes[d];
   const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
-  ValueLanes sub[4];
-  if (d + 1 == c.n_dims) {  // the last axis reads its stencil's records directly
-    for (int j = lo; j <= hi; ++j) read_lanes<T>(c, offset + a.idx[j] * a.stride, sub[j]);
-  } else {
-    for (int j = lo; j <= hi; ++j) monotone_recurse<kAvx2, T>(c, d + 1, offset + a.idx[j] * a.stride, sub[j]);
+  if (d + 1 == c.n_dims) {  // the last axis: each slot's stencil records
+    for (int s = 0; s < c.n_slots; ++s) {
+      RecordSource<T> src;
+      for (int j = lo; j <= hi; ++j)
+        src.rec[j] = c.data + static_cast<std::size_t>(s) * c.slot_size + offset + a.idx[j] * a.stride;
+      limited_hermite_lanes<kAvx2>(a, src, c.n_values, out + s * c.n_values);
+    }
+    return;
   }
-  limited_hermite_lanes<kAvx2>(a, sub, nv, out);
+  ValueLanes sub[4];
+  for (int j = lo; j <= hi; ++j) monotone_recurse<kAvx2, T>(c, d + 1, offset + a.idx[j] * a.stride, sub[j]);
+  limited_hermite_lanes<kAvx2>(a, LaneSource{sub}, c.n_values * c.n_slots, out);
 }
 
 template <bool kAvx2, class T>
