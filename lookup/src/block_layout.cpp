@@ -51,6 +51,7 @@ bool cell_presence_mixed(const StatusBits* node_status, std::size_t n_parts, std
 void choose_kernels(Block& b) {
   b.linear = linear_kernel_for(b.n_dims, b.n_values, b.value_bytes);
   b.cubic = cubic_kernel_for(b.n_values, b.value_bytes);
+  b.monotone = monotone_kernel_for(b.value_bytes);
 }
 
 // Whether value k of every record in `data` (records of `record` bytes, doubles) is a float.

@@ -43,7 +43,7 @@ JumpKernel jump_kernel_for(int n_inner, int n_values, int value_bytes) noexcept;
 // As the cubic with slopes limited per node so that 0 <= slope / secant <= 3 on both sides
 // (Fritsch-Carlson sufficient condition; zero slope at a data extremum), which keeps the result
 // C1 and free of overshoot. Nonlinear in the data: successive 1-D passes over the 4^D stencil.
-void interpolate_monotone_cubic(const Block& block, const Axis* axes, const AxisLoc* loc,
-                                int slot_begin, int slot_end, Contact* contact) noexcept;
+// Chosen at load by the value type (SSE2 or AVX2 lanes, the same bytes); no derivatives (grad unused).
+CubicKernel monotone_kernel_for(int value_bytes) noexcept;
 
 }  // namespace railtab::lookup::detail

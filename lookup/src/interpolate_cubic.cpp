@@ -33,6 +33,7 @@ struct CubicAxis {
   double h00, h01;       // Hermite value basis at t
   double h10, h11;       // Hermite slope basis at t, times the cell width
   double t;              // fraction in the cell
+  double inv_width[3];   // 1 / (x[j + 1] - x[j]), the secants' (monotone cubic only: set_secant_widths)
 };
 
 CubicAxis make_cubic_axis(const Axis& axis, const AxisLoc& l, std::size_t stride) noexcept {
@@ -78,6 +79,15 @@ CubicAxis make_cubic_axis(const Axis& axis, const AxisLoc& l, std::size_t stride
   return a;
 }
 
+// The monotone cubic's secant reciprocals (one multiply per secant at every stencil line, not a
+// division; the widths of absent neighbours unused).
+void set_secant_widths(CubicAxis& a) noexcept {
+  for (int j = 0; j < 3; ++j) {
+    const bool present = j == 1 || (j == 0 ? a.has_left : a.has_right);
+    a.inv_width[j] = present ? 1.0 / (a.x[j + 1] - a.x[j]) : 0.0;
+  }
+}
+
 // Limits a node slope m between secants s_left and s_right (equal at a table edge):
 // zero at a data extremum, else same sign as the secants and at most 3x the smaller one.
 // The bound depends on the node only, so neighbouring cells agree on it and the result stays C1.
@@ -117,9 +127,9 @@ double hermite(const CubicAxis& a, const double f[4], bool monotone) noexcept {
     m1 += a.c1[j] * f[j];
   }
   if (monotone) {
-    const double delta = (f[2] - f[1]) / (a.x[2] - a.x[1]);
-    const double left = a.has_left ? (f[1] - f[0]) / (a.x[1] - a.x[0]) : delta;
-    const double right = a.has_right ? (f[3] - f[2]) / (a.x[3] - a.x[2]) : delta;
+    const double delta = (f[2] - f[1]) * a.inv_width[1];
+    const double left = a.has_left ? (f[1] - f[0]) * a.inv_width[0] : delta;
+    const double right = a.has_right ? (f[3] - f[2]) * a.inv_width[2] : delta;
     m0 = limit_slope(m0, left, delta);
     m1 = limit_slope(m1, delta, right);
   }
@@ -188,82 +198,140 @@ void cubic_kernel(const Block& b, const Axis* axes, const AxisLoc* loc, int slot
 // value k % n_values).
 using ValueLanes = double[kMaxSlots * kMaxSlotValues];
 
-// std::min(a, b) / std::max(a, b) on two lanes, keeping their choice for NaN and equal values.
-inline __m128d select_min(__m128d a, __m128d b) noexcept { return _mm_min_pd(b, a); }  // std::min(a, b)
-inline __m128d select_max(__m128d a, __m128d b) noexcept { return _mm_max_pd(b, a); }  // std::max(a, b)
-
-// limit_slope on two lanes, each select on the scalar function's comparison.
-inline __m128d limit_slope_pair(__m128d m, __m128d s_left, __m128d s_right) noexcept {
-  const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), sign_bit = _mm_set1_pd(-0.0);
-  const __m128d positive = _mm_cmpgt_pd(s_right, zero);
-  const __m128d sign = _mm_or_pd(_mm_and_pd(positive, one), _mm_andnot_pd(positive, _mm_set1_pd(-1.0)));
-  const __m128d bound = _mm_mul_pd(_mm_set1_pd(3.0), select_min(_mm_andnot_pd(sign_bit, s_left),
-                                                                _mm_andnot_pd(sign_bit, s_right)));
-  const __m128d limited = _mm_mul_pd(sign, select_min(select_max(_mm_mul_pd(m, sign), zero), bound));
-  return _mm_andnot_pd(_mm_cmple_pd(_mm_mul_pd(s_left, s_right), zero), limited);
-}
-
-// hermite(a, f, true) of every lane, two lanes per SSE2 instruction: the same operations in the
-// same order per lane, so each lane gets the scalar function's bytes (GCC leaves the scalar loop
-// unvectorised, its selects staying branches, and the limiter is most of a monotone cubic query;
-// AVX2 measured no faster here). An odd last lane goes through the scalar function. Returns the
-// largest |value| of the stencil (NaN ignored, as hermite's own std::max does): above
-// kScaleAbove the caller redoes the lanes with the scalar function, which scales them.
-template <bool kLeft, bool kRight>
-double limited_hermite_loop(const CubicAxis& a, const ValueLanes* sub, int nv, double* out) noexcept {
-  constexpr int lo = kLeft ? 0 : 1, hi = kRight ? 3 : 2;
-  const __m128d h = _mm_set1_pd(a.x[2] - a.x[1]);
-  const __m128d h_left = _mm_set1_pd(a.x[1] - a.x[0]), h_right = _mm_set1_pd(a.x[3] - a.x[2]);
-  const __m128d sign_bit = _mm_set1_pd(-0.0);
-  __m128d largest = _mm_setzero_pd();
-  int k = 0;
-  for (; k + 2 <= nv; k += 2) {
-    __m128d f[4];
-    for (int j = lo; j <= hi; ++j) f[j] = _mm_loadu_pd(&sub[j][k]);
-    __m128d stencil_largest = _mm_andnot_pd(sign_bit, f[lo]);
-    for (int j = lo + 1; j <= hi; ++j) stencil_largest = select_max(stencil_largest, _mm_andnot_pd(sign_bit, f[j]));
-    largest = select_max(largest, stencil_largest);
-    __m128d m0 = _mm_setzero_pd(), m1 = _mm_setzero_pd();
-    for (int j = lo; j <= hi; ++j) {
-      m0 = _mm_add_pd(m0, _mm_mul_pd(_mm_set1_pd(a.c0[j]), f[j]));
-      m1 = _mm_add_pd(m1, _mm_mul_pd(_mm_set1_pd(a.c1[j]), f[j]));
-    }
-    const __m128d delta = _mm_div_pd(_mm_sub_pd(f[2], f[1]), h);
-    const __m128d left = kLeft ? _mm_div_pd(_mm_sub_pd(f[1], f[0]), h_left) : delta;
-    const __m128d right = kRight ? _mm_div_pd(_mm_sub_pd(f[3], f[2]), h_right) : delta;
-    m0 = limit_slope_pair(m0, left, delta);
-    m1 = limit_slope_pair(m1, delta, right);
-    __m128d v = _mm_add_pd(_mm_mul_pd(_mm_set1_pd(a.h00), f[1]), _mm_mul_pd(_mm_set1_pd(a.h01), f[2]));
-    v = _mm_add_pd(v, _mm_mul_pd(_mm_set1_pd(a.h10), m0));
-    v = _mm_add_pd(v, _mm_mul_pd(_mm_set1_pd(a.h11), m1));
-    _mm_storeu_pd(&out[k], v);
+// Where a stencil line's values come from: the results of the inner axes' lines (lanes), or, on
+// the last axis, one slot's records themselves (no copy; floats converted to double, exact). Each
+// gives a value, a pair or a quad of consecutive lanes k.. at stencil node j.
+struct LaneSource {
+  const ValueLanes* sub;
+  double at(int j, int k) const noexcept { return sub[j][k]; }
+  __attribute__((always_inline)) V2 pair(int j, int k) const noexcept {
+    V2 v;
+    std::memcpy(&v, &sub[j][k], sizeof v);
+    return v;
   }
-  double pair[2];
-  _mm_storeu_pd(pair, largest);
-  double magnitude = std::max(pair[0], pair[1]);
+  RAILTAB_AVX2 V4 quad(int j, int k) const noexcept {
+    V4 v;
+    std::memcpy(&v, &sub[j][k], sizeof v);
+    return v;
+  }
+};
+template <class T>
+struct RecordSource {
+  RecordPtr rec[4];  // the stencil nodes' records (absent ones unused)
+  double at(int j, int k) const noexcept { return record_value<T>(rec[j], k); }
+  __attribute__((always_inline)) V2 pair(int j, int k) const noexcept { return load2<T>(rec[j] + k * sizeof(T)); }
+  RAILTAB_AVX2 V4 quad(int j, int k) const noexcept { return load4<T>(rec[j] + k * sizeof(T)); }
+};
+
+// hermite(a, f, true) over lanes of V (two or four doubles), with each select written on the
+// scalar function's own comparison and the same operations in the same order, so every lane gets
+// the scalar function's bytes (GCC leaves the scalar loop unvectorised, its selects staying
+// branches, and the limiter is most of a monotone cubic query). Defined twice, for each
+// instruction set (GCC inlines AVX2 code only into AVX2 functions); LOAD: the source's reader.
+#define RAILTAB_HERMITE_LANES(NAME, V, LOAD, ATTRIBUTES)                                                                        \
+struct NAME {                                                                                                                   \
+  typedef long long I __attribute__((vector_size(sizeof(V))));                                                                  \
+  static ATTRIBUTES V splat(double x) noexcept { return V{} + x; }                                                              \
+  static ATTRIBUTES V abs(V x) noexcept { return reinterpret_cast<V>(reinterpret_cast<I>(x) & (I{} + 0x7fffffffffffffffLL)); }  \
+  static ATTRIBUTES V min(V a, V b) noexcept { return b < a ? b : a; }  /* std::min */                                          \
+  static ATTRIBUTES V max(V a, V b) noexcept { return a < b ? b : a; }  /* std::max */                                          \
+  /* limit_slope, lane by lane. */                                                                                              \
+  static ATTRIBUTES V limit(V m, V s_left, V s_right) noexcept {                                                                \
+    const V zero = splat(0.0);                                                                                                  \
+    const V sign = s_right > 0.0 ? splat(1.0) : splat(-1.0);                                                                    \
+    const V bound = 3.0 * min(abs(s_left), abs(s_right));                                                                       \
+    const V limited = sign * min(max(m * sign, zero), bound);                                                                   \
+    return s_left * s_right <= 0.0 ? zero : limited;                                                                            \
+  }                                                                                                                             \
+  /* Lanes [k, k + lanes of V) of the stencil's nodes lo .. hi into out; returns the largest |f| */                             \
+  /* seen per lane (hermite's scaling test). */                                                                                 \
+  template <bool kLeft, bool kRight, class Source>                                                                              \
+  static ATTRIBUTES V step(const CubicAxis& a, const Source& src, int k, double* out) noexcept {                                \
+    constexpr int lo = kLeft ? 0 : 1, hi = kRight ? 3 : 2;                                                                      \
+    V f[4];                                                                                                                     \
+    for (int j = lo; j <= hi; ++j) f[j] = src.LOAD(j, k);                                                                       \
+    V largest = abs(f[lo]);                                                                                                     \
+    for (int j = lo + 1; j <= hi; ++j) largest = max(largest, abs(f[j]));                                                       \
+    V m0 = splat(0.0), m1 = splat(0.0);                                                                                         \
+    for (int j = lo; j <= hi; ++j) {                                                                                            \
+      m0 += a.c0[j] * f[j];                                                                                                     \
+      m1 += a.c1[j] * f[j];                                                                                                     \
+    }                                                                                                                           \
+    const V delta = (f[2] - f[1]) * a.inv_width[1];                                                                             \
+    const V left = kLeft ? (f[1] - f[0]) * a.inv_width[0] : delta;                                                              \
+    const V right = kRight ? (f[3] - f[2]) * a.inv_width[2] : delta;                                                            \
+    m0 = limit(m0, left, delta);                                                                                                \
+    m1 = limit(m1, delta, right);                                                                                               \
+    const V v = a.h00 * f[1] + a.h01 * f[2] + a.h10 * m0 + a.h11 * m1;                                                          \
+    std::memcpy(&out[k], &v, sizeof v);                                                                                         \
+    return largest;                                                                                                             \
+  }                                                                                                                             \
+};
+RAILTAB_HERMITE_LANES(HermitePairs, V2, pair, __attribute__((always_inline)))
+RAILTAB_HERMITE_LANES(HermiteQuads, V4, quad, RAILTAB_AVX2)
+#undef RAILTAB_HERMITE_LANES
+
+// Lanes k .. nv-1 one at a time through the scalar function. Returns the largest |value| of the
+// stencil (NaN ignored, as hermite's own std::max does): above kScaleAbove the caller redoes the
+// lanes with the scalar function, which scales them.
+template <bool kLeft, bool kRight, class Source>
+__attribute__((always_inline)) inline double hermite_tail(const CubicAxis& a, const Source& src, int k, int nv,
+                                                          double largest, double* out) noexcept {
   for (; k < nv; ++k) {
-    double f[4] = {0.0, sub[1][k], sub[2][k], 0.0};
-    if (kLeft) f[0] = sub[0][k];
-    if (kRight) f[3] = sub[3][k];
-    for (int j = lo; j <= hi; ++j) magnitude = std::max(magnitude, std::abs(f[j]));
+    double f[4] = {0.0, src.at(1, k), src.at(2, k), 0.0};
+    if (kLeft) f[0] = src.at(0, k);
+    if (kRight) f[3] = src.at(3, k);
+    for (int j = kLeft ? 0 : 1; j <= (kRight ? 3 : 2); ++j) largest = std::max(largest, std::abs(f[j]));
     out[k] = hermite(a, f, true);
   }
-  return magnitude;
+  return largest;
+}
+// Every lane of nv: pairs, then an odd last lane.
+template <bool kLeft, bool kRight, class Source>
+double limited_hermite_sse2(const CubicAxis& a, const Source& src, int nv, double* out) noexcept {
+  using H = HermitePairs;
+  V2 largest = H::splat(0.0);
+  int k = 0;
+  for (; k + 2 <= nv; k += 2) largest = H::max(largest, H::step<kLeft, kRight>(a, src, k, out));
+  return hermite_tail<kLeft, kRight>(a, src, k, nv, std::max(largest[0], largest[1]), out);
+}
+// The same in quads, then a pair (AVX2, chosen at load: Block::monotone); the same bytes.
+template <bool kLeft, bool kRight, class Source>
+__attribute__((target("avx2"))) double limited_hermite_avx2(const CubicAxis& a, const Source& src, int nv,
+                                                             double* out) noexcept {
+  V4 largest = HermiteQuads::splat(0.0);
+  int k = 0;
+  for (; k + 4 <= nv; k += 4) largest = HermiteQuads::max(largest, HermiteQuads::step<kLeft, kRight>(a, src, k, out));
+  double m = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
+  if (k + 2 <= nv) {
+    const V2 pair = HermitePairs::step<kLeft, kRight>(a, src, k, out);
+    m = std::max(m, std::max(pair[0], pair[1]));
+    k += 2;
+  }
+  return hermite_tail<kLeft, kRight>(a, src, k, nv, m, out);
 }
 
-void limited_hermite_lanes(const CubicAxis& a, const ValueLanes* sub, int nv, double* out) noexcept {
+// One stencil line along axis a: lanes [0, nv) of its 2-4 nodes (src) into out.
+template <bool kAvx2, class Source>
+void limited_hermite_lanes(const CubicAxis& a, const Source& src, int nv, double* out) noexcept {
+  auto run = [&](auto left, auto right) {
+    if constexpr (kAvx2) return limited_hermite_avx2<left(), right()>(a, src, nv, out);
+    else return limited_hermite_sse2<left(), right()>(a, src, nv, out);
+  };
+  using Yes = std::true_type;
+  using No = std::false_type;
   double magnitude = 0.0;
-  if (a.has_left && a.has_right) magnitude = limited_hermite_loop<true, true>(a, sub, nv, out);
-  else if (a.has_left) magnitude = limited_hermite_loop<true, false>(a, sub, nv, out);
-  else if (a.has_right) magnitude = limited_hermite_loop<false, true>(a, sub, nv, out);
-  else magnitude = limited_hermite_loop<false, false>(a, sub, nv, out);
+  if (a.has_left && a.has_right) magnitude = run(Yes{}, Yes{});
+  else if (a.has_left) magnitude = run(Yes{}, No{});
+  else if (a.has_right) magnitude = run(No{}, Yes{});
+  else magnitude = run(No{}, No{});
   if (magnitude <= kScaleAbove) return;
   // Rare (huge or infinite values): every lane again through the scalar function, which scales
   // the lanes that need it.
   for (int k = 0; k < nv; ++k) {
-    double f[4] = {0.0, sub[1][k], sub[2][k], 0.0};
-    if (a.has_left) f[0] = sub[0][k];
-    if (a.has_right) f[3] = sub[3][k];
+    double f[4] = {0.0, src.at(1, k), src.at(2, k), 0.0};
+    if (a.has_left) f[0] = src.at(0, k);
+    if (a.has_right) f[3] = src.at(3, k);
     out[k] = hermite(a, f, true);
   }
 }
@@ -274,40 +342,56 @@ struct MonotoneContext {
   std::size_t slot_size;    // bytes per slot grid
   int n_dims;               // D
   int n_values;             // interpolated values per record
-  bool single;              // values are floats (Block::value_bytes 4), else doubles
   const CubicAxis* axes;    // per dimension
 };
 
 // Successive 1-D limited Hermite passes: interpolate the sub-grid of each stencil node along the
 // remaining axes, then combine the (up to) 4 results along this axis. All slots in one walk
-// (out[slot * n_values + k]), so the stencil recursion runs once per query. Depth <= 6, at most
-// 2.3 KB of stack per level.
-template <class T>
-void read_lanes(const MonotoneContext& c, std::size_t offset, double* out) noexcept {
-  for (int s = 0; s < c.n_slots; ++s) {
-    RecordPtr rec = c.data + static_cast<std::size_t>(s) * c.slot_size + offset;
-    for (int k = 0; k < c.n_values; ++k) out[s * c.n_values + k] = record_value<T>(rec, k);
-  }
-}
-
+// (out[slot * n_values + k]), so the stencil recursion runs once per query; the last axis reads
+// each slot's records in place. Depth <= 6, at most 2.3 KB of stack per level.
+template <bool kAvx2, class T>
 void monotone_recurse(const MonotoneContext& c, int d, std::size_t offset, double* out) noexcept {
-  const int nv = c.n_values * c.n_slots;
   if (d == c.n_dims) {  // a table without axes: the one record
-    c.single ? read_lanes<float>(c, offset, out) : read_lanes<double>(c, offset, out);
+    for (int s = 0; s < c.n_slots; ++s)
+      for (int k = 0; k < c.n_values; ++k)
+        out[s * c.n_values + k] = record_value<T>(c.data + static_cast<std::size_t>(s) * c.slot_size + offset, k);
     return;
   }
   const CubicAxis& a = c.axes[d];
   const int lo = a.has_left ? 0 : 1, hi = a.has_right ? 3 : 2;
-  ValueLanes sub[4];
-  if (d + 1 == c.n_dims) {  // the last axis reads its stencil's records directly
-    for (int j = lo; j <= hi; ++j) {
-      const std::size_t at = offset + a.idx[j] * a.stride;
-      c.single ? read_lanes<float>(c, at, sub[j]) : read_lanes<double>(c, at, sub[j]);
+  if (d + 1 == c.n_dims) {  // the last axis: each slot's stencil records
+    for (int s = 0; s < c.n_slots; ++s) {
+      RecordSource<T> src;
+      for (int j = lo; j <= hi; ++j)
+        src.rec[j] = c.data + static_cast<std::size_t>(s) * c.slot_size + offset + a.idx[j] * a.stride;
+      limited_hermite_lanes<kAvx2>(a, src, c.n_values, out + s * c.n_values);
     }
-  } else {
-    for (int j = lo; j <= hi; ++j) monotone_recurse(c, d + 1, offset + a.idx[j] * a.stride, sub[j]);
+    return;
   }
-  limited_hermite_lanes(a, sub, nv, out);
+  ValueLanes sub[4];
+  for (int j = lo; j <= hi; ++j) monotone_recurse<kAvx2, T>(c, d + 1, offset + a.idx[j] * a.stride, sub[j]);
+  limited_hermite_lanes<kAvx2>(a, LaneSource{sub}, c.n_values * c.n_slots, out);
+}
+
+template <bool kAvx2, class T>
+void monotone_kernel(const Block& block, const Axis* axes, const AxisLoc* loc, int slot_begin, int slot_end,
+                     Contact* contact, BlockGradient*) noexcept {
+  CubicAxis ax[kMaxDims];
+  std::size_t cell = 0;
+  for (int d = 0; d < block.n_dims; ++d) {
+    ax[d] = make_cubic_axis(axes[block.var[d]], loc[block.var[d]], block.stride[d]);
+    set_secant_widths(ax[d]);
+    cell += static_cast<std::size_t>(loc[block.var[d]].i) * block.stride[d];
+  }
+  const int n = slot_end - slot_begin;
+  RecordPtr first = block.data.data() + static_cast<std::size_t>(slot_begin) * block.slot_size;
+  const MonotoneContext c{first, n, block.slot_size, block.n_dims, block.n_values, ax};
+  ValueLanes values;
+  monotone_recurse<kAvx2, T>(c, 0, 0, values);
+  for (int s = 0; s < n; ++s) {
+    store_values(block, values + s * block.n_values, contact[s]);
+    store_status(block, first + static_cast<std::size_t>(s) * block.slot_size + cell, contact[s]);
+  }
 }
 
 }  // namespace
@@ -326,24 +410,10 @@ CubicKernel cubic_kernel_for(int n_values, int value_bytes) noexcept {
   return (avx2 ? kCubic<true, double> : kCubic<false, double>)[n_values - 1];
 }
 
-void interpolate_monotone_cubic(const Block& block, const Axis* axes, const AxisLoc* loc,
-                                int slot_begin, int slot_end, Contact* contact) noexcept {
-  CubicAxis ax[kMaxDims];
-  std::size_t cell = 0;
-  for (int d = 0; d < block.n_dims; ++d) {
-    ax[d] = make_cubic_axis(axes[block.var[d]], loc[block.var[d]], block.stride[d]);
-    cell += static_cast<std::size_t>(loc[block.var[d]].i) * block.stride[d];
-  }
-  const int n = slot_end - slot_begin;
-  RecordPtr first = block.data.data() + static_cast<std::size_t>(slot_begin) * block.slot_size;
-  const MonotoneContext c{first, n, block.slot_size, block.n_dims, block.n_values,
-                          block.value_bytes == sizeof(float), ax};
-  ValueLanes values;
-  monotone_recurse(c, 0, 0, values);
-  for (int s = 0; s < n; ++s) {
-    store_values(block, values + s * block.n_values, contact[s]);
-    store_status(block, first + static_cast<std::size_t>(s) * block.slot_size + cell, contact[s]);
-  }
+CubicKernel monotone_kernel_for(int value_bytes) noexcept {
+  const bool avx2 = use_avx2();
+  if (value_bytes == sizeof(float)) return avx2 ? &monotone_kernel<true, float> : &monotone_kernel<false, float>;
+  return avx2 ? &monotone_kernel<true, double> : &monotone_kernel<false, double>;
 }
 
 }  // namespace railtab::lookup::detail

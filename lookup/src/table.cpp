@@ -87,7 +87,7 @@ inline void interpolate_block(const detail::TableData& d, const detail::Block& b
   } else if (d.method == Method::kCubic) {
     block.cubic(block, d.axis, loc, slot_begin, slot_end, contact, grad);
   } else {
-    detail::interpolate_monotone_cubic(block, d.axis, loc, slot_begin, slot_end, contact);
+    block.monotone(block, d.axis, loc, slot_begin, slot_end, contact, nullptr);
   }
 }
 

@@ -78,6 +78,7 @@ struct Block {
   std::size_t slot_size = 0;          // bytes per slot grid (nodes x record)
   LinearKernel linear = nullptr;      // multilinear kernel
   CubicKernel cubic = nullptr;        // tensor cubic Hermite kernel
+  CubicKernel monotone = nullptr;     // monotone cubic kernel (no derivatives: grad unused)
   RecordBytes data;                   // n_slots grids, see the layout above
 };
 

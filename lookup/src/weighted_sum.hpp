@@ -219,6 +219,23 @@ __attribute__((always_inline)) inline void store_lanes(const float* lanes, doubl
   for (int k = 0; k < NV; ++k) out[k] = static_cast<double>(lanes[k]);
 }
 
+// The float form of corner_sum_* in vectors of 4 (SSE2; with AVX2 for records of at most 4 values).
+template <int D, int NV>
+__attribute__((always_inline)) inline void float_corner_sum_sse2(RecordPtr p, const double* t,
+                                                                 const std::size_t* stride, double* out) noexcept {
+  F4 tf[D];
+#pragma GCC unroll 8
+  for (int d = 0; d < D; ++d) {
+    const float x = static_cast<float>(t[d]);
+    tf[d] = F4{x, x, x, x};
+  }
+  const FloatLanes<NV> r = lerp_walk_sse2<D, 0, NV>(p, tf, stride);
+  float lanes[8];
+  std::memcpy(lanes, &r.lo, sizeof r.lo);
+  if constexpr (FloatLanes<NV>::kTwo) std::memcpy(lanes + 4, &r.hi, sizeof r.hi);
+  store_lanes<NV>(lanes, out);
+}
+
 // Multilinear sum over the cell's 2^D corners (corner 0 at `p`; t = fractions, u = 1 - t) into
 // out[0..NV-1]: the corner walk unrolls completely and the sums stay in registers. Not inlined
 // into the caller's slot loop on purpose: inlined, GCC hoists all 2^D corner addresses out of
@@ -229,17 +246,7 @@ __attribute__((noinline)) void corner_sum_sse2(RecordPtr p, const double* t, con
                                                const std::size_t* stride, double* out) noexcept {
   if constexpr (sizeof(T) == sizeof(float) && D > 0) {
     (void)u;
-    F4 tf[D];
-#pragma GCC unroll 8
-    for (int d = 0; d < D; ++d) {
-      const float x = static_cast<float>(t[d]);
-      tf[d] = F4{x, x, x, x};
-    }
-    const FloatLanes<NV> r = lerp_walk_sse2<D, 0, NV>(p, tf, stride);
-    float lanes[8];
-    std::memcpy(lanes, &r.lo, sizeof r.lo);
-    if constexpr (FloatLanes<NV>::kTwo) std::memcpy(lanes + 4, &r.hi, sizeof r.hi);
-    store_lanes<NV>(lanes, out);
+    float_corner_sum_sse2<D, NV>(p, t, stride, out);
   } else {
     SumsSse2<NV, T> sums;
     sums.zero();
@@ -267,16 +274,7 @@ __attribute__((noinline, target("avx2"))) void corner_sum_avx2(RecordPtr p, cons
     store_lanes<NV>(lanes, out);
   } else if constexpr (sizeof(T) == sizeof(float) && D > 0) {  // one vector of 4: the SSE2 form
     (void)u;
-    F4 tf[D];
-#pragma GCC unroll 8
-    for (int d = 0; d < D; ++d) {
-      const float x = static_cast<float>(t[d]);
-      tf[d] = F4{x, x, x, x};
-    }
-    const FloatLanes<NV> r = lerp_walk_sse2<D, 0, NV>(p, tf, stride);
-    float lanes[4];
-    std::memcpy(lanes, &r.lo, sizeof r.lo);
-    store_lanes<NV>(lanes, out);
+    float_corner_sum_sse2<D, NV>(p, t, stride, out);
   } else {
     SumsAvx2<NV, T> sums;
     sums.zero();
