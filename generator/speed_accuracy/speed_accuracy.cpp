@@ -19,6 +19,7 @@
 #include "core/check.hpp"
 #include "kernel/contact_kernel.hpp"
 #include "kernel/halfspace_contact.hpp"
+#include "adaptive/jump_locator.hpp"
 #include "engine/sweep.hpp"
 #include "table/table_io.hpp"
 
@@ -70,7 +71,13 @@ toml::array to_array(const std::vector<double>& v) {
 
 struct Grids {
   std::vector<double> y, xi, eta, phi;
+  // The scene's own creepage lists: keep its creep coordinates (normalised nodes, knees, law
+  // spin) so that the table is the one `railtab generate` makes of those lists.
+  bool scene_creep = false;
 };
+
+// The [grid] keys that define how a table stores its creepages (docs/scenes.md).
+constexpr const char* kCreepCoordinateKeys[] = {"creep_coordinates", "creep_knee", "creep_law_spin"};
 
 Scene derive_scene(const Scene& base, double load, double friction, bool contact_material, const Grids* grids,
                    const char* normal_model = nullptr) {
@@ -85,6 +92,10 @@ Scene derive_scene(const Scene& base, double load, double friction, bool contact
   t["contact"].as_table()->insert_or_assign("friction", friction);
   if (normal_model) t["contact"].as_table()->insert_or_assign("normal_model", normal_model);
   toml::table g;
+  if (grids && grids->scene_creep && t["grid"].as_table()) {
+    for (const char* key : kCreepCoordinateKeys)
+      if (const toml::node* n = t["grid"].as_table()->get(key)) g.insert(key, *n);
+  }
   g.insert("y", grids ? to_array(grids->y) : to_array({0.0}));
   g.insert("equilibrium_roll", false);
   g.insert("roll", 0.0);
@@ -441,10 +452,16 @@ Grids table_grids(const Scene& scene, const SaTableSetting& ts, const StateSpan&
     g.xi = covering(range(-0.004, 0.001, 0.0005), span.xlo, span.xhi);
     g.eta = covering(range(-0.001, 0.003, 0.0005), span.elo, span.ehi);
     g.phi = covering(range(-0.05, 0.15, 0.025), span.plo, span.phi_hi);
+  } else if (scene.creep_normalised) {
+    // Normalised nodes follow from each list's range and count: the scene's lists unchanged
+    // (the states lie inside the default scenes' ranges; outside, the lookup flags them).
+    g.xi = scene.grids.xi, g.eta = scene.grids.eta, g.phi = scene.grids.phi;
+    g.scene_creep = true;
   } else {
     g.xi = covering(scene.grids.xi, span.xlo, span.xhi);
     g.eta = covering(scene.grids.eta, span.elo, span.ehi);
     g.phi = covering(scene.grids.phi, span.plo, span.phi_hi);
+    g.scene_creep = true;
   }
   return g;
 }
@@ -553,7 +570,10 @@ void measure_tables(Measurement& m) {
     const Scene tscene = derive_scene(m.scene, m.load, m.friction, m.have_ref, &g, ts.exact ? "halfspace" : nullptr);
     SweepOptions so;
     so.threads = opt.table_threads;
-    const SweepResult sr = run_sweep(tscene, make_contact_kernel(tscene), so);
+    SweepResult sr = run_sweep(tscene, make_contact_kernel(tscene), so);
+    // Located contact jumps with their one-sided values, as `railtab generate` adds them: the
+    // lookup then does not blend across a jump (the product's tables, not a plainer kind).
+    add_jumps(sr.table, tscene, locate_jumps(tscene, {}, opt.table_threads), {}, opt.table_threads);
     const std::filesystem::path file = opt.work_dir / fmt::format("speed_accuracy_y{:g}mm{}{}.h5", ts.y_step * 1e3,
                                                                  ts.fine_creep ? "_fine" : "", ts.exact ? "_exact" : "");
     write_table(sr.table, file);

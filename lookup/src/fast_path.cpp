@@ -575,16 +575,35 @@ void pick(FastPath& fp, bool avx2, int np, bool single) noexcept {
   single ? pick<NG, NN, NC, float>(fp, avx2, np) : pick<NG, NN, NC, double>(fp, avx2, np);
 }
 
-// FastPath::empty_creep for the chosen blocks: a (y, load) node is empty when all its records
-// over the creepage axes are zero; a cell when its four nodes are.
+// FastPath::empty_creep of the creep block, when its creepage dimensions come last (after its
+// "outer" ones: y, load, and roll or yaw when tabulated): an outer node is empty when all its records
+// over the creepage axes are zero; an outer cell when its 2^outer nodes are.
 void mark_empty_creep_cells(TableData& d) {
-  const int ny = d.axis[kVarY].size(), nl = d.axis[kVarLoad].size();
+  const int c = d.creep_block;
+  if (c < 0) return;
+  auto creepage = [](int var) { return var == kVarXi || var == kVarEta || var == kVarPhi; };
+  const Block& b0 = d.block[0][c];
+  int outer = 0;
+  while (outer < b0.n_dims && !creepage(b0.var[outer])) ++outer;
+  for (int k = outer; k < b0.n_dims; ++k)
+    if (!creepage(b0.var[k])) return;
+  if (outer == 0 || outer == b0.n_dims || b0.n_parts > 2) return;
   for (int w = 0; w < 2; ++w) {
-    const Block& b = d.block[w][d.fast.creep];
-    const std::size_t inner = b.stride[1] / static_cast<std::size_t>(b.record);  // records per (y, load) node
-    std::vector<unsigned char> node(static_cast<std::size_t>(d.n_slots * ny * nl));
+    const Block& b = d.block[w][c];
+    if (b.n_dims != b0.n_dims || b.n_parts != b0.n_parts) return;
+    for (int k = 0; k < b.n_dims; ++k)
+      if (b.var[k] != b0.var[k] || b.size[k] != b0.size[k]) return;
+  }
+  std::size_t nodes = 1, cells = 1, inner_cells = 1;  // per slot: outer nodes, outer cells; creepage cells
+  for (int k = 0; k < outer; ++k) nodes *= static_cast<std::size_t>(b0.size[k]), cells *= static_cast<std::size_t>(b0.size[k] - 1);
+  for (int k = outer; k < b0.n_dims; ++k) inner_cells *= static_cast<std::size_t>(b0.size[k] - 1);
+  for (int w = 0; w < 2; ++w) {
+    const Block& b = d.block[w][c];
+    const std::size_t step = b.stride[outer - 1];  // bytes per outer node (its creepage records)
+    const std::size_t inner = step / static_cast<std::size_t>(b.record);
+    std::vector<unsigned char> node(static_cast<std::size_t>(d.n_slots) * nodes);
     for (std::size_t n = 0; n < node.size(); ++n) {
-      RecordPtr r = b.data.data() + n * b.stride[1];  // slot grids follow each other: n counts (slot, y, load)
+      RecordPtr r = b.data.data() + n * step;  // slot grids follow each other: n counts (slot, outer node)
       bool zero = true;
       for (std::size_t k = 0; k < inner && zero; ++k, r += b.record)
         for (int v = 0; v < b.n_values && zero; ++v)
@@ -593,35 +612,54 @@ void mark_empty_creep_cells(TableData& d) {
     }
     std::vector<unsigned char>& cell = d.fast.empty_creep[w];
     std::vector<StatusBits>& status = d.fast.empty_status[w];
-    cell.assign(static_cast<std::size_t>(d.n_slots * (ny - 1) * (nl - 1)), 0);
+    cell.assign(static_cast<std::size_t>(d.n_slots) * cells, 0);
     status.assign(2 * cell.size(), 0);
-    const int n_xi = d.axis[kVarXi].size(), n_eta = d.axis[kVarEta].size(), n_phi = d.axis[kVarPhi].size();
-    for (int s = 0; s < d.n_slots; ++s)
-      for (int i = 0; i + 1 < ny; ++i)
-        for (int j = 0; j + 1 < nl; ++j) {
-          auto at = [&](int a, int l) { return node[static_cast<std::size_t>((s * ny + a) * nl + l)]; };
-          const std::size_t k = static_cast<std::size_t>((s * (ny - 1) + i) * (nl - 1) + j);
-          cell[k] = at(i, j) && at(i, j + 1) && at(i + 1, j) && at(i + 1, j + 1);
-          if (!cell[k]) continue;
-          // The statuses the query would copy: those of each creepage cell's first record.
-          RecordPtr base = b.data.data() + static_cast<std::size_t>(s) * b.slot_size +
-                           static_cast<std::size_t>(i) * b.stride[0] + static_cast<std::size_t>(j) * b.stride[1];
-          StatusBits first[2] = {};
-          std::memcpy(first, base + b.status_offset, static_cast<std::size_t>(b.n_parts) * sizeof(StatusBits));
-          bool uniform = true;
-          for (int a = 0; a + 1 < n_xi && uniform; ++a)
-            for (int e = 0; e + 1 < n_eta && uniform; ++e)
-              for (int f = 0; f + 1 < n_phi && uniform; ++f) {
-                StatusBits here[2] = {};
-                std::memcpy(here, base + a * b.stride[2] + e * b.stride[3] + f * b.stride[4] + b.status_offset,
-                            static_cast<std::size_t>(b.n_parts) * sizeof(StatusBits));
-                uniform = std::memcmp(here, first, sizeof here) == 0;
-              }
-          if (!uniform) continue;
-          cell[k] = 2;
-          std::memcpy(&status[2 * k], first, sizeof first);
+    for (std::size_t k = 0; k < cell.size(); ++k) {
+      // The cell's first outer node (mixed radix over the outer cells, first dimension slowest).
+      std::size_t rest = k % cells, first = 0, node_stride = 1;
+      int idx[kMaxDims];
+      for (int dim = outer - 1; dim >= 0; --dim) {
+        idx[dim] = static_cast<int>(rest % static_cast<std::size_t>(b0.size[dim] - 1));
+        rest /= static_cast<std::size_t>(b0.size[dim] - 1);
+      }
+      std::size_t strides[kMaxDims];
+      for (int dim = outer - 1; dim >= 0; --dim) {
+        strides[dim] = node_stride;
+        first += static_cast<std::size_t>(idx[dim]) * node_stride;
+        node_stride *= static_cast<std::size_t>(b0.size[dim]);
+      }
+      const std::size_t slot_nodes = (k / cells) * nodes;
+      bool empty = true;
+      for (unsigned corner = 0; corner < (1u << outer) && empty; ++corner) {
+        std::size_t n = slot_nodes + first;
+        for (int dim = 0; dim < outer; ++dim)
+          if (corner >> dim & 1u) n += strides[dim];
+        empty = node[n];
+      }
+      cell[k] = empty;
+      if (!empty) continue;
+      // The statuses the query would copy: those of each creepage cell's first record.
+      const Block& b = d.block[w][c];
+      RecordPtr base = b.data.data() + (slot_nodes + first) * b.stride[outer - 1];
+      StatusBits first_bits[2] = {};
+      std::memcpy(first_bits, base + b.status_offset, static_cast<std::size_t>(b.n_parts) * sizeof(StatusBits));
+      bool uniform = true;
+      for (std::size_t ic = 0; ic < inner_cells && uniform; ++ic) {
+        std::size_t r = ic, at = 0;
+        for (int dim = b.n_dims - 1; dim >= outer; --dim) {
+          at += (r % static_cast<std::size_t>(b.size[dim] - 1)) * b.stride[dim];
+          r /= static_cast<std::size_t>(b.size[dim] - 1);
         }
+        StatusBits here[2] = {};
+        std::memcpy(here, base + at + b.status_offset, static_cast<std::size_t>(b.n_parts) * sizeof(StatusBits));
+        uniform = std::memcmp(here, first_bits, sizeof here) == 0;
+      }
+      if (!uniform) continue;
+      cell[k] = 2;
+      std::memcpy(&status[2 * k], first_bits, sizeof first_bits);
+    }
   }
+  d.fast.empty_outer = outer;
 }
 
 }  // namespace
@@ -631,7 +669,9 @@ void prepare_fast_path(TableData& d) {
   // RAILTAB_LOOKUP_NO_FAST_PATH=1: the generic path for every table (to compare the two).
   if (const char* env = std::getenv("RAILTAB_LOOKUP_NO_FAST_PATH"); env && *env && *env != '0') return;
   const CreepMap& map = d.creep_map;
-  if (d.method != Method::kLinear || !map.active || d.n_blocks != 3) return;
+  if (d.method != Method::kLinear || !map.active) return;
+  mark_empty_creep_cells(d);  // the generic linear query skips them too (table.cpp)
+  if (d.n_blocks != 3) return;
   if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll] && !d.tabulated[kVarYaw])) return;
   if (d.n_located != 2 || d.n_clamped != 3 || !map.swept[0] || !map.swept[1] || !map.swept[2]) return;
   if (map.n_dims != 2 || map.var[0] != kVarY || map.var[1] != kVarLoad) return;
@@ -677,7 +717,7 @@ void prepare_fast_path(TableData& d) {
   d.fast.geometry = g;
   d.fast.normal = n;
   d.fast.creep = c;
-  mark_empty_creep_cells(d);
+  if (d.fast.empty_outer != 2) d.fast.query = nullptr, d.fast.derivatives = nullptr;  // (y, load): always, by the shape
   // Cut cells fused too when the blocks and their one-sided values have the layout cut_slot reads
   // (blocks written in the order geometry, normal, creep, as interpolate_jump_cell writes them).
   if (!d.has_jumps || !(g < n && n < c)) return;

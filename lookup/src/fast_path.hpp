@@ -40,7 +40,10 @@ struct FastPath {
   bool cut = false;  // cells a located jump cuts fused too (else interpolate_jump_cell)
   // Per wheel, [(slot * y cells + y cell) * load cells + load cell]: 1 when every creep record on
   // the cell's four (y, load) nodes is zero (no contact there: the generator writes an empty
-  // slot's records as zeros). The creep block's interpolant is then 0 over the whole cell, so the
+  // slot's records as zeros). Made for any linear table with normalised creep coordinates whose
+  // creep block ends in its creepage dimensions, over its empty_outer leading dimensions (y,
+  // load, and roll or yaw when tabulated; the index is the same mixed radix): the generic query
+  // (table.cpp) skips those cells as the fused one does. The creep block's interpolant is then 0 over the whole cell, so the
   // derivative query writes its rows as zeros without the gradient and the chain rule: exact, as
   // every term of the chain is a product with a zero derivative or with N = 0.
   std::vector<unsigned char> empty_creep[2];
@@ -49,6 +52,7 @@ struct FastPath {
   // creepage cell search and the corner sum, writing the sum's zeros and those statuses (the
   // float sum of zero records is +0.0, so the same bytes). Mostly the flange slot without contact.
   std::vector<StatusBits> empty_status[2];
+  int empty_outer = 0;  // leading dimensions of the creep block the cells are over (0: not made)
 };
 
 // Chooses d.fast for a loaded table (table_load.cpp, last step).

@@ -103,17 +103,29 @@ void interpolate_normalised_creep(const detail::TableData& d, const detail::Bloc
   const CreepMap& map = d.creep_map;
   double inv_scale[3];
   interpolate_scales(map, w, slot, loc, inv_scale);
+  // A cell over which the block is zero with one set of statuses (FastPath::empty_creep; linear
+  // value queries only): its zeros and statuses, without the creepage cells and the sum (the same bytes).
+  const FastPath& fp = d.fast;
+  std::size_t empty_cell = static_cast<std::size_t>(slot);
+  for (int k = 0; k < fp.empty_outer; ++k)
+    empty_cell = empty_cell * static_cast<std::size_t>(block.size[k] - 1) + static_cast<std::size_t>(loc[block.var[k]].i);
+  const bool skip = fp.empty_outer > 0 && !grad && fp.empty_creep[w][empty_cell] == 2;
   AxisLoc slot_loc[kNumVars];
   for (int var = 0; var < kNumVars; ++var) slot_loc[var] = loc[var];
   double x[3];  // normalised creepages xi', eta', psi'
   for (int k = 0; k < 3; ++k) {
     const double inv = inv_scale[k];
     x[k] = creepage[k] * inv;
-    if (map.swept[k])
+    if (map.swept[k] && !skip)
       d.axis[kVarXi + k].locate_fast(creep_coordinate_normalised(x[k] * map.kinv[k], map.lo_k[k] * inv, map.hi_k[k] * inv),
                                      slot_loc[kVarXi + k]);
   }
-  interpolate_block(d, block, slot_loc, slot, slot + 1, &c, grad);
+  if (skip) {
+    for (int k = 0; k < block.n_values; ++k) c.value[block.output_of[k]] = 0.0;
+    for (int p = 0; p < block.n_parts; ++p) c.part_status[block.part[p]] = fp.empty_status[w][2 * empty_cell + p];
+  } else {
+    interpolate_block(d, block, slot_loc, slot, slot + 1, &c, grad);
+  }
   if (!d.has_part[kCreep]) return;
   const double angle = c.value[kContactAngle];
   double cos_angle = 1.0, sin_angle = 0.0;

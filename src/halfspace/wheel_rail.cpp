@@ -549,8 +549,14 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
   }
   // Warm: the kept grid's pressure at the load before the last change (a predictor's second point).
   EarlierPressure earlier = warm ? state->earlier : EarlierPressure{};
+  // A warm solve's full rounds: to the table's need (wheel_rail.hpp), a cold one's to o's.
+  HalfspaceOptions full_round = o;
+  if (warm) {
+    full_round.normal.tolerance = std::max(o.normal.tolerance, o.warm_normal_tolerance);
+    full_round.tangential.tolerance = std::max(o.tangential.tolerance, o.warm_tangential_tolerance);
+  }
   auto round = [&](double tz, bool loose) {
-    const HalfspaceOptions& oo = loose ? first_round : o;
+    const HalfspaceOptions& oo = loose ? first_round : full_round;
     const double normal_load = std::max(0.0, load - tz);  // the normal part's share
     // A later round: on the previous grid when it still fits (tractions warm-started there).
     EarlierPressure before;

@@ -63,6 +63,9 @@ struct HalfspaceOptions {
   double jump_bracket = 0.5;          // warm coupled solve: stop, not converged, when full rounds
                                       //   missing the balance on either side lie closer than this
                                       //   times the load tolerance in tz (0: never) [-]
+  double warm_normal_tolerance = 1e-5;     // warm coupled solve: its full rounds' normal and
+  double warm_tangential_tolerance = 1e-4; //   tangential solver tolerances, where looser than
+                                           //   normal's and tangential's (solve_halfspace_rolling) [-]
   NormalSolverOptions normal;
   TangentialSolverOptions tangential;
 };
@@ -153,7 +156,13 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
 // grid is placed again each round; the flange column of BM_CreepageColumnWarm/7: median of 3,
 // 3260 -> 2947 ms CPU). The result is the same fixed point to within the
 // tolerances (1e-4 F_z on the load balance, the solvers' own), not the same bytes as a cold solve;
-// it depends only on the chain of creepages, so a fixed order gives fixed bytes. On return `state`
+// it depends only on the chain of creepages, so a fixed order gives fixed bytes. Its full rounds stop
+// at `warm_normal_tolerance` and `warm_tangential_tolerance` (1e-5 and 1e-4, where a cold solve
+// uses 1e-9 and 1e-7): a table's nodes need their forces to within its interpolation error (0.2 to
+// 1.5 % of mu N), and the coupled balance's own tolerance already moves them by up to 2e-4 F_z mu.
+// On a tread and a flange column of tables/default_halfspace.toml (y = 2 and 7 mm, 78.5 kN, 245
+// creepages) these tolerances moved the stored F / (mu N) by at most 7e-5 and no status; the
+// column's CPU fell by 27-39 % (docs/validation/exact-tables.md, "Generation cost"). On return `state`
 // holds this solve's end (cleared when it did not converge). An empty `state` (or a null pointer)
 // solves from cold.
 struct PlaneSamples;  // the band samples of each patch in its plane (wheel_rail.cpp)

@@ -52,6 +52,9 @@ struct YawFixture {
   // within a float rounding (~1e-7) of it: the symmetry and difference tests below, whose
   // tolerances are double roundings, run on this one, and bound the float sums against it.
   std::optional<lk::Table> lookup_doubles;
+  // The yaw table without the generic path's shortcuts (RAILTAB_LOOKUP_NO_FAST_PATH=1): no skip of
+  // the cells where the creep block is zero (fast_path.hpp, FastPath::empty_creep).
+  std::optional<lk::Table> lookup_no_skip;
 };
 
 const YawFixture& fixture() {
@@ -72,6 +75,9 @@ const YawFixture& fixture() {
     ::setenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS", "1", 1);
     x.lookup_doubles.emplace(lk::Table::load(path.string()));
     ::unsetenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS");
+    ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);
+    x.lookup_no_skip.emplace(lk::Table::load(path.string()));
+    ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
     std::filesystem::remove(path);
     std::filesystem::remove(free_path);
     return x;
@@ -322,6 +328,26 @@ TEST(YawTable, MirrorSwapsTheWheels) {
   EXPECT_GT(flange, 50u);  // the flange contact is among the states
   for (int o = 0; o < lk::kNumOutputs; ++o)
     EXPECT_LE(diff[o], 1e-6 * scale[o]) << label(o) << ": float sums against double sums";
+}
+
+// The yaw table takes the generic query, which skips the creepage cells and the sum where the
+// creep block is zero over the (y, yaw, load) cell with one set of statuses (the flange slot out
+// of contact): the same bytes as the query without the skip, at states that reach such cells.
+TEST(YawTable, EmptyCellSkipGivesTheSameBytes) {
+  const YawFixture& f = fixture();
+  const lk::Table& t = *f.lookup;
+  const lk::Table& plain = *f.lookup_no_skip;
+  Random rng(33);
+  std::size_t empty = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const lk::State s = state_at(t, rng.uniform(-0.009, 0.009), rng.uniform(-0.01, 0.01), rng.uniform(60e3, 100e3),
+                                 rng.uniform(-0.004, 0.004), rng.uniform(-0.004, 0.004), rng.uniform(-0.3, 0.3));
+    const lk::Wheel w = static_cast<lk::Wheel>(k % 2);
+    const lk::Result a = t.query(w, s), b = plain.query(w, s);
+    ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "query " << k << " y " << s.y << " yaw " << s.yaw;
+    empty += a.contact[1].value[lk::kFx] == 0.0 && a.contact[1].value[lk::kFy] == 0.0 && a.contact[1].value[lk::kMz] == 0.0;
+  }
+  EXPECT_GT(empty, 200u);  // the flange slot out of contact is among the states
 }
 
 // One wheel at given creepages does not see the sign of yaw: +-yaw put the contact at the same

@@ -3,6 +3,7 @@
 // finite numbers, and a non-dominated Pareto front. Seconds, not minutes.
 #include "speed_accuracy/speed_accuracy.hpp"
 #include "generator/test_tables.hpp"
+#include "table/table_io.hpp"
 
 #include <gtest/gtest.h>
 
@@ -189,6 +190,31 @@ TEST(SpeedAccuracy, TinyRunWithoutContactUsesTheExactModel) {
     }
   }
   check_result(r, dir);
+}
+
+// The chart's tables are the kind `railtab generate` makes of the scene: its creep coordinates
+// (normalised nodes with the scene's knees, its whole creepage ranges) and located contact jumps,
+// so the chart measures the product, not a plainer table.
+TEST(SpeedAccuracy, TablesAreTheOnesGenerateMakes) {
+  const testing::TempDir tmp("speed_accuracy_product");  // per process: parallel suites do not share it
+  const fs::path& dir = tmp.path();
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  ASSERT_TRUE(scene.creep_normalised);
+  SpeedAccuracyOptions o = tiny(dir / "tables");
+  o.models = {{NormalModel::hertz, 0, 10}};
+  o.reference_csv = dir / "no-such-reference.csv";
+  o.keep_tables = true;
+  const SpeedAccuracyResult r = measure_speed_accuracy(scene, o);
+  ASSERT_EQ(r.rows.size(), 2u);
+  const Table t = read_table(dir / "tables" / "speed_accuracy_y2mm.h5");
+  const std::string* creep_map = t.attribute("creep_map");
+  ASSERT_NE(creep_map, nullptr) << "the chart's table lost the scene's normalised creep coordinates";
+  // The scene's whole ranges and knees (default.toml: xi -4e-3..4e-3, eta knee 3, phi knee 4).
+  EXPECT_NE(creep_map->find("\"xi_min\":-0.004"), std::string::npos) << *creep_map;
+  EXPECT_NE(creep_map->find("\"eta_knee\":3.0"), std::string::npos) << *creep_map;
+  EXPECT_NE(creep_map->find("\"phi_knee\":4.0"), std::string::npos) << *creep_map;
+  // The right wheel's flange onset lies between the tiny run's y nodes (-10..4 mm every 2 mm).
+  EXPECT_NE(t.group(kJumpGroup), nullptr) << "the chart's table has no located contact jumps";
 }
 
 }  // namespace
