@@ -67,7 +67,8 @@ struct SlotValues {
 std::vector<double> slot_errors(const SlotValues& value, const SlotValues& reference, double friction, double load);
 
 // The model of `scene` run directly at `sample` (the contact kernel's code path: the same slots,
-// sums and load control as the sweep) with the normal model `model`: [wheel][slot], the wheels of
+// sums and load control as the sweep, without the creep coefficients, which are not compared)
+// with the normal model `model`: [wheel][slot], the wheels of
 // `wheels` only (bit 0 left, bit 1 right; the others stay zero). `geometry` is
 // make_geometry_solver(scene), made once.
 using SampleValues = std::array<std::array<SlotValues, 2>, 2>;

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "core/check.hpp"
 #include "kernel/creep_map.hpp"
@@ -83,20 +84,40 @@ std::size_t first_coefficient_output(const KernelData& k) {
   return std::size(kNormalOutputs) + (k.normalised ? std::size(kCreepScaleOutputs) : 0);
 }
 
+// A slot's linear creep coefficients (slot_linear_creep), or the message of their failure.
+struct SlotCreep {
+  LinearCreep coefficients;
+  std::string error;  // empty: computed
+};
+SlotCreep slot_creep(const KernelData& k, const WheelContactGeometry& geometry, const WheelNormalResult& normal,
+                     const halfspace::WheelHalfspaceResult* exact, const PatchSlots& slots, std::size_t s) {
+  SlotCreep r;
+  try {
+    r.coefficients = slot_linear_creep(geometry, normal, exact, slots, s, k.creep, k.material, k.fastsim, k.halfspace);
+  } catch (const std::exception& e) {
+    r.error = e.what();
+  }
+  return r;
+}
+
 // The slot's linear creep coefficients into the normal part's cell (zeros for a slot without a
-// loaded patch). A failed computation stores zeros and marks the cell failed, with a message.
+// loaded patch): `known` when the caller has them already (the exact model's scales use the same),
+// else computed here. A failed computation stores zeros and marks the cell failed, with a message.
+// Without k.creep_coefficients the cell keeps zeros and nothing is computed.
 void store_creep_coefficients(const KernelData& k, const WheelContactGeometry& geometry, const WheelNormalResult& normal,
                               const halfspace::WheelHalfspaceResult* exact, const PatchSlots& slots, std::size_t s,
-                              ColumnOutput& out, std::size_t wheel, std::size_t cell, double y, double load) {
-  LinearCreep c;
-  try {
-    c = slot_linear_creep(geometry, normal, exact, slots, s, k.creep, k.material, k.fastsim, k.halfspace);
-  } catch (const std::exception& e) {
+                              ColumnOutput& out, std::size_t wheel, std::size_t cell, double y, double load,
+                              const SlotCreep* known = nullptr) {
+  if (!k.creep_coefficients) return;
+  const SlotCreep computed = known ? SlotCreep{} : slot_creep(k, geometry, normal, exact, slots, s);
+  const SlotCreep& r = known ? *known : computed;
+  if (!r.error.empty()) {
     out.failure(fmt::format("linear creep coefficients, {} wheel, y = {} m, load = {} N, slot {}: {}",
-                            to_string(geometry.side), y, load, s, e.what()));
+                            to_string(geometry.side), y, load, s, r.error));
     out.status(wheel, kNormalPart)[cell] = non_finite_status(out.status(wheel, kNormalPart)[cell]);
     return;
   }
+  const LinearCreep& c = r.coefficients;
   bool finite = true;
   for (const auto& row : c.slope)
     for (double v : row) finite = finite && std::isfinite(v);
@@ -115,23 +136,15 @@ void store_creep_coefficients(const KernelData& k, const WheelContactGeometry& g
 // adhesion on each of the slot's solved patches, the slopes summed over them), so the nodes
 // gather where the exact creep forces bend, for tread, flange and spin alike. Kalker's scale stays
 // where a slope is not positive or a solve fails (the creep points report their own failures).
-creep_map::Scales exact_slot_scales(const KernelData& k, const WheelContactGeometry& geometry,
-                                    const halfspace::WheelHalfspaceResult& exact, const WheelNormalResult& normal,
-                                    const PatchSlots& slots, std::size_t slot) {
+// `creep`: the slot's slot_creep on the exact result.
+creep_map::Scales exact_slot_scales(const KernelData& k, const WheelNormalResult& normal, const PatchSlots& slots,
+                                    std::size_t slot, const SlotCreep& creep) {
   const ContactPatch patch = slot_normal(normal, slots, slot);
   creep_map::Scales s = creep_map::scales(patch, k.material, k.creep.friction);
   const double mun = k.creep.friction * patch.normal_force;
-  if (!(mun > 0.0)) return s;
-  double kxx = 0.0, kyy = 0.0, kyp = 0.0;
-  try {
-    const LinearCreep c = slot_linear_creep(geometry, normal, &exact, slots, slot, k.creep, k.material, k.fastsim,
-                                            k.halfspace);
-    kxx = -c.slope[0][0];
-    kyy = -c.slope[1][1];
-    kyp = -c.slope[1][2];
-  } catch (const std::exception&) {
-    return s;
-  }
+  if (!(mun > 0.0) || !creep.error.empty()) return s;
+  const LinearCreep& c = creep.coefficients;
+  const double kxx = -c.slope[0][0], kyy = -c.slope[1][1], kyp = -c.slope[1][2];
   if (kxx > 0.0 && std::isfinite(kxx)) s.xi = 3.0 * mun / kxx;
   if (kyy > 0.0 && std::isfinite(kyy)) s.eta = 3.0 * mun / kyy;
   if (kyp > 0.0 && std::isfinite(kyp)) s.phi = mun / kyp;
@@ -191,12 +204,22 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
     const PatchSlots patch_slots = assign_patch_slots(normal, side, k.solver.settings().flange_angle);
     // Format 2.1: the saturation scales of each slot's creepage-free contact; an empty slot takes
     // the other slot's (or nominal ones), so that cells next to it map creepages sensibly.
+    // The exact model's scales come from its linear creep coefficients, which the normal part also
+    // stores: computed once per slot (each is six steady rolling solves per patch).
     creep_map::Scales scales[kSlots];
+    std::array<SlotCreep, kSlots> exact_creep;
+    std::array<bool, kSlots> exact_creep_known{};
     if (k.normalised) {
-      for (std::size_t s = 0; s < kSlots; ++s)
-        if (patch_slots.occupied(s))
-          scales[s] = exact ? exact_slot_scales(k, geometry, exact_result, normal, patch_slots, s)
-                            : slot_scales(k, geometry, normal, patch_slots, s);
+      for (std::size_t s = 0; s < kSlots; ++s) {
+        if (!patch_slots.occupied(s)) continue;
+        if (exact) {
+          exact_creep[s] = slot_creep(k, geometry, normal, &exact_result, patch_slots, s);
+          exact_creep_known[s] = true;
+          scales[s] = exact_slot_scales(k, normal, patch_slots, s, exact_creep[s]);
+        } else {
+          scales[s] = slot_scales(k, geometry, normal, patch_slots, s);
+        }
+      }
       for (std::size_t s = 0; s < kSlots; ++s)
         if (!patch_slots.occupied(s))
           scales[s] = patch_slots.occupied(1 - s) ? scales[1 - s] : creep_map::kNominal;
@@ -218,7 +241,8 @@ void solve_wheel_column(const KernelData& k, const ColumnState& state, std::size
                                    state.roll, k.grids.load[il]);
               });
         store_creep_coefficients(k, geometry, normal, exact ? &exact_result : nullptr, patch_slots, s, out, wheel,
-                                 il * kSlots + s, state.y, k.grids.load[il]);
+                                 il * kSlots + s, state.y, k.grids.load[il],
+                                 exact_creep_known[s] ? &exact_creep[s] : nullptr);
       }
       if (normal.patches.empty() || k.creepages() == 0) continue;
       if (exact)
@@ -396,7 +420,10 @@ namespace {
 // physical range of every swept creepage axis and the friction coefficient of F / (mu N).
 nlohmann::json creep_map_attribute(const Scene& scene) {
   nlohmann::json j;
-  j["coordinates"] = "normalised";
+  // "normalised", then "+<key>" for each key below that a reader must apply to read the forces
+  // right (docs/table-format.md): readers from before a key accept only "normalised" and so refuse
+  // the table instead of misreading it. Without such keys the attribute keeps its bytes.
+  j["coordinates"] = scene.creep_law_spin != 0.0 ? "normalised+law_spin" : "normalised";
   j["friction"] = scene.tangential.friction;
   // The creep part's normal_force is the vertical load share (creep_map.hpp, vertical_share).
   if (scene.tangential.load_coupling) j["normal_force"] = "vertical_share";
@@ -456,7 +483,7 @@ PointCost contact_point_cost(const Scene& scene) {
 
 SweepKernel make_contact_kernel(const Scene& scene) { return make_contact_kernel(scene, make_geometry_solver(scene)); }
 
-SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver& geometry) {
+SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver& geometry, bool creep_coefficients) {
   const FastsimOptions fastsim = fastsim_options(scene);
   const CreepConditions creep = creep_conditions(scene);
   const WearOptions wear = wear_options(scene);
@@ -476,7 +503,7 @@ SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver&
                                                             scene.normal, scene.tangential, creep, fastsim, wear,
                                                             coupled_load_options(scene), halfspace_options(scene),
                                                             model_by_y, scene.creep_normalised, scene.creep_knee,
-                                                            scene.creep_law_spin});
+                                                            scene.creep_law_spin, creep_coefficients});
   SweepKernel kernel;
   kernel.parts.push_back(part_spec("geometry", {}, kGeometryOutputs));
   kernel.parts.push_back(part_spec("normal", {"load"}, kNormalOutputs));

@@ -99,7 +99,12 @@ PointCost contact_point_cost(const Scene& scene);
 SweepKernel make_contact_kernel(const Scene& scene);
 // The same with the scene's geometry solver made once by the caller (make_geometry_solver(scene)):
 // for callers that build many one-state kernels of one scene (the error map), where making the
-// solver costs about 3 times solving the state.
-SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver& geometry);
+// solver costs about 3 times solving the state. `creep_coefficients` false: the normal part's
+// creep_coefficient_* outputs stay 0 and are not computed (a caller that reads only forces, normal
+// force, area and angle: the exact model's coefficients are six steady rolling solves in full
+// adhesion per patch, most of an exact-model state's cost); a normalised scene's creep scales are
+// still computed as in the table.
+SweepKernel make_contact_kernel(const Scene& scene, const ContactGeometrySolver& geometry,
+                                bool creep_coefficients = true);
 
 }  // namespace railtab

@@ -190,6 +190,7 @@ struct KernelData {
   bool normalised = false;              // format 2.1 normalised creep coordinates (creep_map.hpp)
   std::array<double, 3> knee = {1.0, 1.0, 1.0};  // node map knee per creepage axis (scene.creep_knee)
   double law_spin = 0.0;  // the saturation law's spin weight (scene.creep_law_spin, creep_map.hpp)
+  bool creep_coefficients = true;  // false: the normal part's creep_coefficient_* cells stay 0 (not computed)
   std::size_t creepages() const { return grids.xi.size() * grids.eta.size() * grids.phi.size(); }
 };
 
