@@ -45,7 +45,7 @@ namespace {
 constexpr std::uint64_t kSeed = 20261126;
 // Creep forces on smooth cells, |fx or fy error| / (mu N), RMS over both (limits below the test).
 constexpr double kTreadRmsLimit = 0.0055;
-constexpr double kFlangeRmsLimit = 0.0135;
+constexpr double kFlangeRmsLimit = 0.011;
 // Queries (state x wheel) the lookup flags low_confidence: the limit.
 constexpr double kFlaggedLimit = 0.02;
 
@@ -282,11 +282,11 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
                   w.e.lookup, w.e.direct, w.e.normal_force, w.y_cell);
     }
   }
-  // The reduced table (78.5 kN, element 0.5 mm, 7 x 7 x 7 normalised nodes, law spin weight 1)
-  // measured rms 0.0041 tread, 0.0103 flange (smooth cells, unflagged; docs/validation/exact-tables.md);
-  // with 7 x 7 x 5 nodes 0.0042 / 0.0169, with 7 x 5 x 3 nodes and the law without spin 0.0096 /
-  // 0.0203, with the earlier 3 x 3 x 3 physical nodes about 0.055 / 0.08. Both limits keep about
-  // 30 % margin; the flange's catches a return to five phi nodes.
+  // The reduced table (78.5 kN, element 0.5 mm, 7 x 7 x 7 normalised nodes, law spin weight 0.5)
+  // measured rms 0.0041 tread, 0.0084 flange (smooth cells, unflagged; docs/validation/exact-tables.md);
+  // with 7 x 7 x 5 nodes and weight 1 0.0042 / 0.0169, with 7 x 5 x 3 nodes and the law without
+  // spin 0.0096 / 0.0203, with the earlier 3 x 3 x 3 physical nodes about 0.055 / 0.08. Both limits
+  // keep about 30 % margin; the flange's catches a return to five phi nodes.
   EXPECT_LT(rms[0], kTreadRmsLimit);
   EXPECT_LT(rms[1], kFlangeRmsLimit);
   // Flagging is not a way around the targets: at most 2 % of the queries may be flagged.
