@@ -420,7 +420,10 @@ namespace {
 // physical range of every swept creepage axis and the friction coefficient of F / (mu N).
 nlohmann::json creep_map_attribute(const Scene& scene) {
   nlohmann::json j;
-  j["coordinates"] = "normalised";
+  // "normalised", then "+<key>" for each key below that a reader must apply to read the forces
+  // right (docs/table-format.md): readers from before a key accept only "normalised" and so refuse
+  // the table instead of misreading it. Without such keys the attribute keeps its bytes.
+  j["coordinates"] = scene.creep_law_spin != 0.0 ? "normalised+law_spin" : "normalised";
   j["friction"] = scene.tangential.friction;
   // The creep part's normal_force is the vertical load share (creep_map.hpp, vertical_share).
   if (scene.tangential.load_coupling) j["normal_force"] = "vertical_share";

@@ -9,7 +9,9 @@
 //   cuts are interpolated one-sided (jump_side.hpp) and do not read the cell's own status;
 // - per query (mark_unpaired_contact): the slot carries a normal force but its geometry holds no
 //   rigid point: the loaded patch crossed the flange angle before (or after)
-//   its rigid point did, so the slot's contact angle, radius and position are not the patch's.
+//   its rigid point did, so the slot's contact angle, radius and position are not the patch's;
+//   or the slot holds a touching rigid point but no normal force: its patch is in another slot at
+//   zero creepage, and may be back in this one at the query's creepage.
 #pragma once
 
 #include <cstddef>
@@ -58,12 +60,21 @@ bool mixed_presence(Status status, int n_parts, const std::size_t* corner_node, 
 }
 
 // Per query, after the slot's values and part statuses are set (every path of table.cpp and
-// fast_path.cpp): a slot that serves a normal force while its geometry part holds no rigid point
-// (not solved at some node of its cell or piece: an empty slot has status 0) gets kLowConfidence
-// in the geometry part's status.
+// fast_path.cpp), kLowConfidence in the geometry part's status of
+// - a slot that serves a normal force while its geometry part holds no rigid point (not solved at
+//   some node of its cell or piece: an empty slot has status 0);
+// - a slot whose geometry holds a touching rigid point (separation 0 at every node of its cell or
+//   piece) while it serves no normal force: its loaded patch sits in another slot, which the
+//   first case flags at zero creepage. With creepage the patch may be back in this slot (the
+//   coupled load moves its angle, and the hand-over with it; jumps are located at zero
+//   creepage), where the table holds nothing, so the slot's "no contact" is not the model's either.
+//   Example: left wheel of the exact table at y = 5.593 mm, creepage (-1.89e-3, 3.17e-3, -0.086):
+//   tread slot 0 kN read, 90.6 kN in the model. Both cases fire together at the hand-over, so the
+//   flagged queries (any slot) are the same; a query of one slot sees its own flag.
 inline void mark_unpaired_contact(bool has_geometry_and_normal, Contact& c) noexcept {
-  if (has_geometry_and_normal && c.value[kNormalForce] != 0.0 &&
-      (c.part_status[kGeometry] & (status::kConverged | status::kNotConverged)) == 0)
+  if (!has_geometry_and_normal) return;
+  const bool point = (c.part_status[kGeometry] & (status::kConverged | status::kNotConverged)) != 0;
+  if (c.value[kNormalForce] != 0.0 ? !point : point && c.value[kSeparation] == 0.0)
     c.part_status[kGeometry] |= status::kLowConfidence;
 }
 

@@ -308,6 +308,10 @@ PartArrays read_part(const Hdf5File& f, const TableData& d, const std::string& g
   return p;
 }
 
+// The creep_map keys this reader applies that a table may require (in creep_map's coordinates):
+// tables whose forces are wrong without them (docs/table-format.md, "Normalised creep part").
+constexpr const char* kRequirableCreepMapKeys[] = {"law_spin"};
+
 // Format 2.1 normalised creep coordinates (creep_map.hpp): the root attribute creep_map (flat
 // JSON: coordinates = "normalised", friction, <axis>_min/_max of every swept creepage axis), the
 // v axes ([-1, 1]) and the normal part's scales creep_scale_xi/_eta/_phi (finite, > 0).
@@ -325,10 +329,26 @@ void read_creep_map(const Hdf5File& f, TableData& d) {
       if (e.key == key && !e.is_text && std::isfinite(e.number)) return e.number;
     f.fail("root attribute creep_map has no finite number '" + key + "'");
   };
-  bool normalised = false;
+  // coordinates: "normalised", then "+<key>" for each key the reader must apply to read the forces
+  // right (a reader from before the key refuses the table instead of misreading it).
+  std::string coordinates;
   for (const FlatJsonEntry& e : entries)
-    if (e.key == "coordinates") normalised = e.is_text && e.text == "normalised";
-  if (!normalised) f.fail("root attribute creep_map: coordinates must be \"normalised\"");
+    if (e.key == "coordinates" && e.is_text) coordinates = e.text;
+  const std::string base = "normalised";
+  if (coordinates.compare(0, base.size(), base) != 0 || (coordinates.size() > base.size() && coordinates[base.size()] != '+'))
+    f.fail("root attribute creep_map: coordinates must be \"normalised\", optionally followed by +<key> for each "
+           "key the table requires");
+  for (std::size_t at = base.size(); at < coordinates.size();) {
+    const std::size_t end = std::min(coordinates.find('+', at + 1), coordinates.size());
+    const std::string key = coordinates.substr(at + 1, end - at - 1);
+    if (std::find(std::begin(kRequirableCreepMapKeys), std::end(kRequirableCreepMapKeys), key) ==
+        std::end(kRequirableCreepMapKeys))
+      f.fail("root attribute creep_map: the table requires key '" + key +
+             "', which this reader does not know (the table is newer than this railtab: read it with a newer one)");
+    if (std::none_of(entries.begin(), entries.end(), [&](const FlatJsonEntry& e) { return e.key == key; }))
+      f.fail("root attribute creep_map: coordinates require key '" + key + "', which is missing");
+    at = end;
+  }
   for (const FlatJsonEntry& e : entries)
     if (e.key == "normal_force") {
       if (!e.is_text || e.text != "vertical_share")

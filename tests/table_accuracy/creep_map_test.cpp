@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "accuracy_util.hpp"
 #include "creep_map.hpp"  // lookup/src
 #include "kernel/creep_map.hpp"
 #include "tangential/kalker_coefficients.hpp"
@@ -135,6 +136,72 @@ TEST(CreepMap, VerticalShareGivesBackTheNormalForce) {
   // Flange, 66 deg: the share changes far less than N when fy carries part of the load.
   EXPECT_NEAR(creep_map::vertical_share(100281.0, 0.7663 * 0.3 * 100281.0, 1.1585),
               creep_map::vertical_share(200158.0, -0.3556 * 0.3 * 200158.0, 1.1585), 0.015 * 61300.0);
+}
+
+// The reader guard of creep_map keys a reader must apply (docs/table-format.md, "Normalised creep
+// part"): a table whose law has spin (law_spin) names the key in coordinates, so readers from
+// before the key, which accept only "normalised", refuse it; one that requires a key this reader
+// does not know is refused with a message naming the key; a table without such keys keeps
+// coordinates "normalised" (its bytes).
+TEST(CreepMap, TableRequiringAnUnknownKeyIsRefused) {
+  auto table_with_spin = [](double spin) {
+    const Scene scene = parse_scene(R"(
+[scene]
+name = "required-keys"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[grid]
+y = [0.0, 0.002]
+roll = 0.0
+load = 78.5e3
+xi = [-0.004, 0.004]
+eta = [-0.004, 0.004]
+phi = [-0.3, 0.3]
+creep_coordinates = "normalised"
+)" + (spin != 0.0 ? "creep_law_spin = " + std::to_string(spin) + "\n" : std::string()),
+                                              "required-keys.toml");
+    SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+    EXPECT_EQ(r.summary.failures, 0u) << r.summary.first_failure;
+    return std::move(r.table);
+  };
+  auto load_error = [](const Table& table) -> std::string {
+    // The writer loads what it wrote through the lookup before it keeps it, so the lookup's
+    // refusal comes from either.
+    const std::filesystem::path path = accuracy::temp_table_path("required_keys");
+    std::string error;
+    try {
+      accuracy::write_for_lookup(table, path);
+      const lookup::Table t = lookup::Table::load(path.string());
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    std::filesystem::remove(path);
+    return error;
+  };
+  const std::string plain = *table_with_spin(0.0).attribute("creep_map");
+  EXPECT_NE(plain.find(R"("coordinates":"normalised",)"), std::string::npos) << plain;
+  Table spin = table_with_spin(1.0);
+  const std::string text = *spin.attribute("creep_map");
+  const std::string required = R"("coordinates":"normalised+law_spin")";
+  ASSERT_NE(text.find(required), std::string::npos) << text;
+  EXPECT_EQ(load_error(spin), "");
+  // A key this reader does not know.
+  std::string unknown = text;
+  unknown.replace(unknown.find(required), required.size(), R"("coordinates":"normalised+law_spin+slot_nodes")");
+  spin.set_attribute("creep_map", unknown);
+  const std::string error = load_error(spin);
+  EXPECT_NE(error.find("requires key 'slot_nodes', which this reader does not know"), std::string::npos) << error;
+  // A required key the map lacks, and a malformed list.
+  std::string missing = text;
+  missing.erase(missing.find(R"(,"law_spin")"), std::string(R"(,"law_spin":1.0)").size());
+  spin.set_attribute("creep_map", missing);
+  EXPECT_NE(load_error(spin).find("coordinates require key 'law_spin', which is missing"), std::string::npos)
+      << missing;
+  std::string malformed = text;
+  malformed.replace(malformed.find(required), required.size(), R"("coordinates":"normalised_law_spin")");
+  spin.set_attribute("creep_map", malformed);
+  EXPECT_NE(load_error(spin).find("coordinates must be \"normalised\""), std::string::npos);
 }
 
 // The scales of an elliptic patch are Kalker's: s_xi = 3 mu N / (G ab C11) etc.
