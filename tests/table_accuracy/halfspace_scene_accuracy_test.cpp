@@ -11,7 +11,7 @@
 // Table: tables/default_halfspace.toml reduced so that it generates in a few minutes of CPU:
 // the scene's y nodes from -3 to 8 mm (0.5 mm on the tread; 6.1, 6.2 mm where the flange root's
 // patch climbs towards the flange; 0.25 mm from 6.25 mm), the nominal load only (78.5 kN), the
-// scene's normalised 7 x 7 x 5 creepage nodes and its law (creep_law_spin),
+// scene's normalised 7 x 7 x 7 creepage nodes and its law (creep_law_spin),
 // element size 0.5 mm instead of 0.3 mm (the table and the direct evaluation use the same element
 // size: this measures interpolation, not discretisation; the model's element-size error is in
 // docs/validation/halfspace.md). Run: build/<dir>/tests/test_table_accuracy
@@ -45,7 +45,7 @@ namespace {
 constexpr std::uint64_t kSeed = 20261126;
 // Creep forces on smooth cells, |fx or fy error| / (mu N), RMS over both (limits below the test).
 constexpr double kTreadRmsLimit = 0.0055;
-constexpr double kFlangeRmsLimit = 0.025;
+constexpr double kFlangeRmsLimit = 0.0135;
 // Queries (state x wheel) the lookup flags low_confidence: the limit.
 constexpr double kFlaggedLimit = 0.02;
 
@@ -282,10 +282,11 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
                   w.e.lookup, w.e.direct, w.e.normal_force, w.y_cell);
     }
   }
-  // The reduced table (78.5 kN, element 0.5 mm, 7 x 7 x 5 normalised nodes, law spin weight 1)
-  // measured rms 0.0042 tread, 0.0177 flange (smooth cells, unflagged; docs/validation/exact-tables.md);
-  // with 7 x 5 x 3 nodes and the law without spin 0.0096 / 0.0203, with the earlier 3 x 3 x 3
-  // physical nodes about 0.055 / 0.08. The tread limit keeps about 30 % margin.
+  // The reduced table (78.5 kN, element 0.5 mm, 7 x 7 x 7 normalised nodes, law spin weight 1)
+  // measured rms 0.0041 tread, 0.0103 flange (smooth cells, unflagged; docs/validation/exact-tables.md);
+  // with 7 x 7 x 5 nodes 0.0042 / 0.0169, with 7 x 5 x 3 nodes and the law without spin 0.0096 /
+  // 0.0203, with the earlier 3 x 3 x 3 physical nodes about 0.055 / 0.08. Both limits keep about
+  // 30 % margin; the flange's catches a return to five phi nodes.
   EXPECT_LT(rms[0], kTreadRmsLimit);
   EXPECT_LT(rms[1], kFlangeRmsLimit);
   // Flagging is not a way around the targets: at most 2 % of the queries may be flagged.
