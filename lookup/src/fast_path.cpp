@@ -65,7 +65,7 @@ inline void zero_absent(const TableData& d, Contact& c) noexcept {
 
 // The slot's status from its part statuses and the query bits (as interpolate_slots).
 inline void fold_status(const TableData& d, StatusBits q, Contact& c) noexcept {
-  mark_unpaired_contact(true, c);  // the fast path's tables hold geometry and normal parts
+  mark_unpaired_contact(true, d.load_controlled, c);  // the fast path's tables hold geometry and normal parts
   StatusBits any = 0, all = ~0u;
   for (int p = 0; p < kNumParts; ++p) {
     if (!d.has_part[p]) continue;

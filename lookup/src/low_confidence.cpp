@@ -63,6 +63,7 @@ void mark_unbalanced_load(TableData& d) {
   const std::size_t dot = d.format_version.find('.');
   const int major = std::stoi(d.format_version.substr(0, dot)), minor = std::stoi(d.format_version.substr(dot + 1));
   if (major < 2 || (major == 2 && minor < 1)) return;
+  d.load_controlled = true;
   const int gb = block_with(d, kGeometry), nb = block_with(d, kNormal);
   if (gb < 0 || nb < 0 || d.n_slots > kMaxSlots) return;
   // Only the shape whose geometry depends on y alone and whose normal contact on y and load (roll

@@ -37,7 +37,8 @@ inline constexpr double kLoadBalanceLimit = 0.2;
 // Applies the load-balance rule to a loaded table (before narrow_exact_blocks: double records).
 // Only for tables of format 2.1 and later (railtab generate's, whose normal parts are solved under
 // load control) whose geometry block is over y alone and whose normal block over y (and load):
-// the shape railtab generate writes with roll following the equilibrium or fixed.
+// the shape railtab generate writes with roll following the equilibrium or fixed. Sets
+// TableData::load_controlled for format 2.1 and later.
 void mark_unbalanced_load(TableData& d);
 
 // Whether a node's (or a cell's) part status says the slot holds a contact: solved (converged or
@@ -63,18 +64,20 @@ bool mixed_presence(Status status, int n_parts, const std::size_t* corner_node, 
 // fast_path.cpp), kLowConfidence in the geometry part's status of
 // - a slot that serves a normal force while its geometry part holds no rigid point (not solved at
 //   some node of its cell or piece: an empty slot has status 0);
-// - a slot whose geometry holds a touching rigid point (separation 0 at every node of its cell or
-//   piece) while it serves no normal force: its loaded patch sits in another slot, which the
+// - in tables of format 2.1 and later (TableData::load_controlled: a touching rigid point carries
+//   load there; synthetic test tables need not hold physical values), a slot whose geometry holds
+//   a touching rigid point (separation 0 at every node of its cell or piece) while it serves no
+//   normal force: its loaded patch sits in another slot, which the
 //   first case flags at zero creepage. With creepage the patch may be back in this slot (the
 //   coupled load moves its angle, and the hand-over with it; jumps are located at zero
 //   creepage), where the table holds nothing, so the slot's "no contact" is not the model's either.
 //   Example: left wheel of the exact table at y = 5.593 mm, creepage (-1.89e-3, 3.17e-3, -0.086):
 //   tread slot 0 kN read, 90.6 kN in the model. Both cases fire together at the hand-over, so the
 //   flagged queries (any slot) are the same; a query of one slot sees its own flag.
-inline void mark_unpaired_contact(bool has_geometry_and_normal, Contact& c) noexcept {
+inline void mark_unpaired_contact(bool has_geometry_and_normal, bool load_controlled, Contact& c) noexcept {
   if (!has_geometry_and_normal) return;
   const bool point = (c.part_status[kGeometry] & (status::kConverged | status::kNotConverged)) != 0;
-  if (c.value[kNormalForce] != 0.0 ? !point : point && c.value[kSeparation] == 0.0)
+  if (c.value[kNormalForce] != 0.0 ? !point : load_controlled && point && c.value[kSeparation] == 0.0)
     c.part_status[kGeometry] |= status::kLowConfidence;
 }
 

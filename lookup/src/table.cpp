@@ -168,7 +168,7 @@ void interpolate_slots(const detail::TableData& d, int w, const detail::AxisLoc*
     interpolate_block(d, block, loc, slot_begin, slot_end, contact, grads ? grads[b] : nullptr);
   }
   for (int s = 0; s < n; ++s) {
-    mark_unpaired_contact(d.has_part[kGeometry] && d.has_part[kNormal], contact[s]);
+    mark_unpaired_contact(d.has_part[kGeometry] && d.has_part[kNormal], d.load_controlled, contact[s]);
     StatusBits any = 0, all = ~0u;
     for (int p = 0; p < kNumParts; ++p) {
       if (!d.has_part[p]) continue;
