@@ -15,19 +15,11 @@
 // with that law, as writing the table with it would give), WORST=1 (the ten worst values of the lookup).
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
-#include "accuracy_util.hpp"
+#include "creep_probe.hpp"
 using namespace railtab;
 using namespace railtab::accuracy;
 namespace {
-std::vector<double> lin(double lo, double hi, std::size_t n) {
-  std::vector<double> v(n);
-  for (std::size_t i = 0; i < n; ++i) v[i] = lo + (hi - lo) * double(i) / double(n - 1);
-  v.back() = hi;
-  return v;
-}
-double envd(const char* n, double d) { const char* s = std::getenv(n); return s ? std::atof(s) : d; }
 void stats(std::vector<double> v, const char* name) {
   if (v.empty()) { std::printf("%s: none\n", name); return; }
   std::sort(v.begin(), v.end());
@@ -40,8 +32,7 @@ void stats(std::vector<double> v, const char* name) {
 int main(int argc, char** argv) {
   const std::string cache = argc > 1 ? argv[1] : "flange_probe_direct.bin";
   const std::size_t M = argc > 2 ? std::stoul(argv[2]) : 200;
-  Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
-  scene.halfspace.element_size = 0.5e-3;
+  Scene scene = probe::probe_scene();
   std::vector<double> ys = {6.55e-3, 6.7e-3, 6.85e-3, 7.0e-3, 7.2e-3, 7.4e-3, 7.8e-3};
   if (const char* s = std::getenv("YS")) {
     ys.clear();
@@ -49,32 +40,15 @@ int main(int argc, char** argv) {
     for (std::string t; std::getline(in, t, ',');) ys.push_back(std::stod(t) * 1e-3);
   }
   const double load = 78.5e3;
-  std::vector<Point> pts;
-  Random rng(778);
-  for (double y : ys)
-    for (std::size_t i = 0; i < M; ++i) {
-      Point p; p.v[kY] = y; p.v[kLoad] = load;
-      p.v[kXi] = rng.uniform(scene.grids.xi.front(), scene.grids.xi.back());
-      p.v[kEta] = rng.uniform(scene.grids.eta.front(), scene.grids.eta.back());
-      p.v[kPhi] = rng.uniform(scene.grids.phi.front(), scene.grids.phi.back());
-      pts.push_back(p);
-    }
-  std::vector<Direct> direct(pts.size());
-  {
-    std::ifstream in(cache, std::ios::binary);
-    if (!(in && in.read(reinterpret_cast<char*>(direct.data()), std::streamsize(direct.size() * sizeof(Direct))))) {
-      direct = evaluate_direct(scene, pts);
-      std::ofstream(cache, std::ios::binary).write(reinterpret_cast<const char*>(direct.data()), std::streamsize(direct.size() * sizeof(Direct)));
-      std::printf("direct computed\n");
-    }
-  }
-  const std::size_t nx = std::size_t(envd("NX", double(scene.grids.xi.size()))), ne = std::size_t(envd("NE", double(scene.grids.eta.size()))),
-                    np = std::size_t(envd("NP", double(scene.grids.phi.size())));
-  scene.creep_knee = {envd("KX", scene.creep_knee[0]), envd("KE", scene.creep_knee[1]), envd("KP", scene.creep_knee[2])};
-  scene.grids.xi = lin(scene.grids.xi.front(), scene.grids.xi.back(), nx);
-  scene.grids.eta = lin(scene.grids.eta.front(), scene.grids.eta.back(), ne);
-  scene.grids.phi = lin(scene.grids.phi.front(), scene.grids.phi.back(), np);
-  const double mu = scene.tangential.friction, spin = scene.creep_law_spin, trial = envd("LA", spin);
+  const std::vector<Point> pts = probe::probe_states(scene, ys, load, M, 778);
+  const std::vector<Direct> direct = probe::cached_direct(scene, pts, cache);
+  const std::size_t nx = std::size_t(probe::env_number("NX", double(scene.grids.xi.size()))), ne = std::size_t(probe::env_number("NE", double(scene.grids.eta.size()))),
+                    np = std::size_t(probe::env_number("NP", double(scene.grids.phi.size())));
+  scene.creep_knee = {probe::env_number("KX", scene.creep_knee[0]), probe::env_number("KE", scene.creep_knee[1]), probe::env_number("KP", scene.creep_knee[2])};
+  scene.grids.xi = probe::even_nodes(scene.grids.xi.front(), scene.grids.xi.back(), nx);
+  scene.grids.eta = probe::even_nodes(scene.grids.eta.front(), scene.grids.eta.back(), ne);
+  scene.grids.phi = probe::even_nodes(scene.grids.phi.front(), scene.grids.phi.back(), np);
+  const double mu = scene.tangential.friction, spin = scene.creep_law_spin, trial = probe::env_number("LA", spin);
   constexpr int kForms = 4;
   const char* form_name[kForms] = {"share at the geometry angle", "N                          ",
                                    "1 / N                      ", "share at the fitted angle  "};

@@ -12,58 +12,32 @@
 // scene's creep_law_spin), LAW=1 LA=w (trial law: spin weight w), WORST=1 (the ten worst values).
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
-#include "accuracy_util.hpp"
+#include "creep_probe.hpp"
 using namespace railtab;
 using namespace railtab::accuracy;
 namespace {
-std::vector<double> lin(double lo, double hi, std::size_t n) {
-  std::vector<double> v(n);
-  for (std::size_t i = 0; i < n; ++i) v[i] = lo + (hi - lo) * double(i) / double(n - 1);
-  v.back() = hi;
-  return v;
-}
-double envd(const char* n, double d) { const char* s = std::getenv(n); return s ? std::atof(s) : d; }
 // A law: F / (mu N) (fx, fy) at the normalised creepages (xi', eta', psi').
 using Law = std::function<void(double, double, double, double*)>;
-void law_base(double x, double e, double p, double* o) { auto l = creep_map::law(x, e, p, envd("STORED_SPIN", 0.0)); o[0] = l[0]; o[1] = l[1]; }
+void law_base(double x, double e, double p, double* o) { auto l = creep_map::law(x, e, p, probe::env_number("STORED_SPIN", 0.0)); o[0] = l[0]; o[1] = l[1]; }
 }  // namespace
 int main(int argc, char** argv) {
   const std::string cache = argc > 1 ? argv[1] : "tread_probe_direct.bin";
   const std::size_t M = argc > 2 ? std::stoul(argv[2]) : 300;
-  Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
-  scene.halfspace.element_size = 0.5e-3;
+  Scene scene = probe::probe_scene();
   const std::vector<double> ys = {-2.3e-3, -0.6e-3, 0.3e-3, 0.6e-3, 0.85e-3, 2.7e-3, 4.4e-3};
   const double load = 78.5e3;
-  std::vector<Point> pts;
-  Random rng(777);
-  for (double y : ys)
-    for (std::size_t i = 0; i < M; ++i) {
-      Point p; p.v[kY] = y; p.v[kLoad] = load;
-      p.v[kXi] = rng.uniform(scene.grids.xi.front(), scene.grids.xi.back());
-      p.v[kEta] = rng.uniform(scene.grids.eta.front(), scene.grids.eta.back());
-      p.v[kPhi] = rng.uniform(scene.grids.phi.front(), scene.grids.phi.back());
-      pts.push_back(p);
-    }
-  std::vector<Direct> direct(pts.size());
-  {
-    std::ifstream in(cache, std::ios::binary);
-    if (!(in && in.read(reinterpret_cast<char*>(direct.data()), std::streamsize(direct.size() * sizeof(Direct))))) {
-      direct = evaluate_direct(scene, pts);
-      std::ofstream(cache, std::ios::binary).write(reinterpret_cast<const char*>(direct.data()), std::streamsize(direct.size() * sizeof(Direct)));
-      std::printf("direct computed\n");
-    }
-  }
-  const std::size_t nx = std::size_t(envd("NX", 7)), ne = std::size_t(envd("NE", 5)), np = std::size_t(envd("NP", 3));
-  scene.creep_law_spin = envd("STORED_SPIN", 0.0);
-  scene.creep_knee = {envd("KX", 1), envd("KE", 3), envd("KP", 4)};
-  scene.grids.xi = lin(scene.grids.xi.front(), scene.grids.xi.back(), nx);
-  scene.grids.eta = lin(scene.grids.eta.front(), scene.grids.eta.back(), ne);
-  scene.grids.phi = lin(scene.grids.phi.front(), scene.grids.phi.back(), np);
+  const std::vector<Point> pts = probe::probe_states(scene, ys, load, M, 777);
+  const std::vector<Direct> direct = probe::cached_direct(scene, pts, cache);
+  const std::size_t nx = std::size_t(probe::env_number("NX", 7)), ne = std::size_t(probe::env_number("NE", 5)), np = std::size_t(probe::env_number("NP", 3));
+  scene.creep_law_spin = probe::env_number("STORED_SPIN", 0.0);
+  scene.creep_knee = {probe::env_number("KX", 1), probe::env_number("KE", 3), probe::env_number("KP", 4)};
+  scene.grids.xi = probe::even_nodes(scene.grids.xi.front(), scene.grids.xi.back(), nx);
+  scene.grids.eta = probe::even_nodes(scene.grids.eta.front(), scene.grids.eta.back(), ne);
+  scene.grids.phi = probe::even_nodes(scene.grids.phi.front(), scene.grids.phi.back(), np);
   const double mu = scene.tangential.friction;
-  const int lawid = int(envd("LAW", 0));
-  const double A = envd("LA", 0.0);
+  const int lawid = int(probe::env_number("LAW", 0));
+  const double A = probe::env_number("LA", 0.0);
   Law law2 = law_base;
   if (lawid == 1) {  // spin adds to the magnitude: r_t = |(x, y, A p)|; direction (x, y)
     law2 = [A](double x, double e, double p, double* o) {
