@@ -57,13 +57,8 @@ bool unbalanced(const double* normal_force, const double* angle, int n_slots, do
 }  // namespace
 
 void mark_unbalanced_load(TableData& d) {
-  // Format 2.1 and later (load_checked has checked the MAJOR.MINOR form): written by railtab
-  // generate under load control, so the balance is the model's own (older tables and synthetic
-  // test tables need not hold physical values).
-  const std::size_t dot = d.format_version.find('.');
-  const int major = std::stoi(d.format_version.substr(0, dot)), minor = std::stoi(d.format_version.substr(dot + 1));
-  if (major < 2 || (major == 2 && minor < 1)) return;
-  d.load_controlled = true;
+  // Format 2.1 and later (TableData::load_controlled): the balance is the model's own.
+  if (!d.load_controlled) return;
   const int gb = block_with(d, kGeometry), nb = block_with(d, kNormal);
   if (gb < 0 || nb < 0 || d.n_slots > kMaxSlots) return;
   // Only the shape whose geometry depends on y alone and whose normal contact on y and load (roll

@@ -37,8 +37,7 @@ inline constexpr double kLoadBalanceLimit = 0.2;
 // Applies the load-balance rule to a loaded table (before narrow_exact_blocks: double records).
 // Only for tables of format 2.1 and later (railtab generate's, whose normal parts are solved under
 // load control) whose geometry block is over y alone and whose normal block over y (and load):
-// the shape railtab generate writes with roll following the equilibrium or fixed. Sets
-// TableData::load_controlled for format 2.1 and later.
+// the shape railtab generate writes with roll following the equilibrium or fixed.
 void mark_unbalanced_load(TableData& d);
 
 // Whether a node's (or a cell's) part status says the slot holds a contact: solved (converged or

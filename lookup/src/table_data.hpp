@@ -135,8 +135,9 @@ struct TableData {
   CreepMap creep_map;                 // format 2.1 normalised creep coordinates (creep_map.hpp)
   int creep_block = -1;               // block holding the creep part (-1: none)
   bool has_jumps = false;             // the file has /jumps (format 2.1): one-sided jump cells
-  bool load_controlled = false;       // format 2.1 or later: railtab generate's values under load
-                                      // control (the low_confidence rules that trust physics)
+  bool load_controlled = false;       // format 2.1 or later (set with format_version): railtab
+                                      // generate's values under load control (the low_confidence
+                                      // rules that trust physics)
   JumpWheel jumps[2];                 // per wheel (jump_side.hpp)
   FastPath fast;                      // the fused query when the table has its shape (fast_path.hpp)
   CreepCoefficientData coefficients;  // format 2.3 linear creep coefficients (creep_coefficients.hpp)

@@ -37,7 +37,7 @@ std::string without_spaces(const std::string& s) {
 }
 
 // "MAJOR.MINOR", both plain decimal numbers of at most 6 digits, nothing else.
-bool parse_version(const std::string& v, int& major) {
+bool parse_version(const std::string& v, int& major, int& minor) {
   const std::size_t dot = v.find('.');
   if (dot == std::string::npos || dot == 0 || dot > 6 || v.size() - dot - 1 == 0 ||
       v.size() - dot - 1 > 6)
@@ -45,6 +45,7 @@ bool parse_version(const std::string& v, int& major) {
   for (std::size_t i = 0; i < v.size(); ++i)
     if (i != dot && (v[i] < '0' || v[i] > '9')) return false;
   major = std::stoi(v.substr(0, dot));
+  minor = std::stoi(v.substr(dot + 1));
   return true;
 }
 
@@ -53,8 +54,8 @@ int read_version(const Hdf5File& f, TableData& d) {
   const auto v = f.string_attribute("/", "format_version");
   if (!v) f.fail("missing root attribute format_version (not a railtab table?)");
   d.format_version = *v;
-  int major = -1;
-  if (!parse_version(*v, major))
+  int major = -1, minor = -1;
+  if (!parse_version(*v, major, minor))
     f.fail("format_version '" + *v + "' is not of the form MAJOR.MINOR (e.g. \"1.1\")");
   if (major < kOldestMajor || major > kNewestMajor)
     f.fail("unsupported format_version '" + *v + "': this reader knows major versions " +
@@ -63,6 +64,9 @@ int read_version(const Hdf5File& f, TableData& d) {
   // Format 2 was never written without checksums: one without is damaged or crafted.
   if (major >= 2 && !d.checksums_verified)
     f.fail("format_version '" + *v + "' but no checksums (every format-2 table carries them)");
+  // Format 2.1 and later: written by railtab generate under load control, so the low_confidence
+  // rules that trust the physics apply (older and synthetic test tables need not hold physical values).
+  d.load_controlled = major > 2 || (major == 2 && minor >= 1);
   return major;
 }
 
