@@ -373,6 +373,8 @@ __attribute__((always_inline)) inline int cut_ends(const Block& b, const JumpSam
       end[n] = ends[e];
       end_w[n++] = we;
     }
+    if (p.spans)
+      for (StatusBits& v : st.any) v |= status::kLowConfidence;
     if (p.a.sample) st.fold(b, ends[0]);
     if (p.b.sample) st.fold(b, ends[1]);
     if (p.cell >= 0)

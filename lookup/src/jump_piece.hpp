@@ -34,6 +34,7 @@ struct Piece {
   End a, b;
   double t = 0.0;   // fraction from a to b, clamped to [0, 1]
   int cell = -1;    // y cell whose status the piece carries, -1: none
+  bool spans = false;  // spans_jump: the answer blends two sides of a jump (low confidence)
 };
 
 // Jumps of `list` left of the query at load node `node` of its cell (0 or 1), counted without a
@@ -115,6 +116,33 @@ inline Piece side_piece(const JumpWheel& j, const Axis& ya, int list, const Axis
   return p;
 }
 
+// Whether the query's answer blends two sides of a jump in a load cell whose nodes list different
+// kinds of jumps (JumpWheel::partner; e.g. the tread-flange hand-over passing the flange root's
+// point jump between two load nodes): a jump near the query's y cell (in either node's window)
+// lies on one side of the query at its node and its partner, of the same kind, on the other; or
+// it has no partner. The pieces pair the jumps by their order, which there pairs jumps of
+// different kinds, so such a query reads one node's values from one side of the change and the
+// other node's from the other: its slots' split and its angle are anywhere in between.
+inline bool spans_jump(const JumpWheel& j, int list, const AxisLoc* loc, double yq) noexcept {
+  const std::size_t l = static_cast<std::size_t>(loc[kVarLoad].i);
+  const std::vector<int>& partner = j.partner[list][l];
+  // On a load node (to the rounding of its located fraction) the query reads that node's sides.
+  const double t = loc[kVarLoad].t;
+  if (partner.empty() || t < 1e-9 || t > 1.0 - 1e-9) return false;
+  const std::vector<double>* ys[2] = {&j.y[list][l], &j.y[list][l + 1]};
+  for (std::size_t node = 0; node < 2; ++node) {
+    const int* w = j.window[list].data() +
+                   ((l + node) * static_cast<std::size_t>(j.y_cells) + static_cast<std::size_t>(loc[kVarY].i)) * 2;
+    const std::size_t first = node == 0 ? 0 : ys[0]->size();
+    for (int k = w[0]; k < w[1]; ++k) {
+      const int p = partner[first + static_cast<std::size_t>(k)];
+      if (p < 0 || (((*ys[node])[static_cast<std::size_t>(k)] <= yq) != ((*ys[1 - node])[static_cast<std::size_t>(p)] <= yq)))
+        return true;
+    }
+  }
+  return false;
+}
+
 // The pieces of both jump lists (0 every jump, 1 geometric only) at both load nodes of the
 // query's cell (nodes: 2 with a load axis, else 1), shared by the blocks of a query.
 inline void query_pieces(const JumpWheel& j, const Axis& ya, const AxisLoc* loc, int nodes, Piece pieces[2][2]) noexcept {
@@ -127,6 +155,9 @@ inline void query_pieces(const JumpWheel& j, const Axis& ya, const AxisLoc* loc,
       if (k == 0) m0 = m;
       pieces[list][k] = side_piece(j, ya, list, loc, yq, k, m);
     }
+  if (nodes == 2)
+    for (int list = 0; list < 2; ++list)
+      pieces[list][0].spans = pieces[list][1].spans = spans_jump(j, list, loc, yq);
 }
 
 // A field of `width` values per node of the normal part's grid g (creep_map.hpp: the creep scales,

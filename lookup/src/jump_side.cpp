@@ -37,6 +37,24 @@ bool cuts(const JumpWheel& j, int list, int l, double x0, double x1) {
   return false;
 }
 
+// JumpWheel::partner of one load cell: node a's jumps then node b's, each paired with the jump of
+// the same kind and rank (the k-th jump of that kind) at the other node, -1 where that has none.
+std::vector<int> kind_partners(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
+  std::vector<int> partner;
+  auto pair_into = [&](const std::vector<std::uint32_t>& from, const std::vector<std::uint32_t>& to) {
+    for (std::size_t k = 0; k < from.size(); ++k) {
+      const auto rank = std::count(from.begin(), from.begin() + static_cast<std::ptrdiff_t>(k), from[k]);
+      int found = -1;
+      for (std::size_t i = 0, seen = 0; i < to.size() && found < 0; ++i)
+        if (to[i] == from[k] && static_cast<std::ptrdiff_t>(seen++) == rank) found = static_cast<int>(i);
+      partner.push_back(found);
+    }
+  };
+  pair_into(a, b);
+  pair_into(b, a);
+  return partner;
+}
+
 // First creepage dimension of a block: after y and (when tabulated) load.
 int first_inner(const Block& b) {
   int d = 0;
@@ -211,9 +229,11 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
     f.fail("dataset " + name + "_y or _kind has no checksum but the table's other datasets have one");
   const std::size_t count = static_cast<std::size_t>(shape.back());
   const Axis& ya = d.axis[kVarY];
+  std::vector<std::vector<std::uint32_t>> kinds[2];  // [list][load node]: the jumps' kind bits
   for (int list = 0; list < 2; ++list) {
     j.y[list].assign(static_cast<std::size_t>(n_load), {});
     j.index[list].assign(static_cast<std::size_t>(n_load), {});
+    kinds[list].assign(static_cast<std::size_t>(n_load), {});
   }
   for (std::size_t l = 0; l < n_load; ++l) {
     bool ended = false;
@@ -232,19 +252,24 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
       last = v;
       j.y[0][l].push_back(v);
       j.index[0][l].push_back(static_cast<int>(k));
+      kinds[0][l].push_back(bits);
       if (bits & kGeometricJumps) {
         j.y[1][l].push_back(v);
         j.index[1][l].push_back(static_cast<int>(k));
+        kinds[1][l].push_back(bits);
       }
     }
   }
   j.load_cells = j.load_axis ? static_cast<int>(n_load) - 1 : 1;
   for (int list = 0; list < 2; ++list) {
     j.matched[list].assign(static_cast<std::size_t>(j.load_cells), 0);
+    j.partner[list].assign(static_cast<std::size_t>(j.load_cells), {});
     if (j.load_axis)
-      for (int l = 0; l < j.load_cells; ++l)
-        j.matched[list][static_cast<std::size_t>(l)] =
-            j.y[list][static_cast<std::size_t>(l)].size() == j.y[list][static_cast<std::size_t>(l) + 1].size();
+      for (int l = 0; l < j.load_cells; ++l) {
+        const std::size_t lo = static_cast<std::size_t>(l);
+        j.matched[list][lo] = j.y[list][lo].size() == j.y[list][lo + 1].size();
+        if (kinds[list][lo] != kinds[list][lo + 1]) j.partner[list][lo] = kind_partners(kinds[list][lo], kinds[list][lo + 1]);
+      }
   }
   const int y_cells = ya.size() - 1;
   j.cut.assign(static_cast<std::size_t>(y_cells) * static_cast<std::size_t>(j.load_cells), 0);
@@ -463,6 +488,8 @@ void interpolate_jump_cell(const TableData& d, int w, const AxisLoc* loc, const 
           end[n_ends] = ends[e] + cc.base;
           end_w[n_ends++] = we;
         }
+        if (piece.spans)
+          for (int p = 0; p < b.n_parts; ++p) any[p] |= status::kLowConfidence;
         if (piece.a.sample) fold(ends[0] + cc.base);
         if (piece.b.sample) fold(ends[1] + cc.base);
         if (piece.cell >= 0)

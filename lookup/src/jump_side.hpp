@@ -52,6 +52,12 @@ struct JumpWheel {
   // only (a block holding the geometry part alone). y[list][load node], sorted.
   std::vector<std::vector<double>> y[2];
   std::vector<unsigned char> matched[2];  // [list][load cell]: same jump count at both nodes
+  // [list][load cell]: empty where both nodes list the same kinds in the same order (each jump
+  // then moves with load, and the blended positions place the query: no jump crosses another).
+  // Else (two jumps of different kinds cross between the load nodes, or a node has a jump the
+  // other lacks) node l's jumps then node l+1's: the index, in the other node's list, of the jump
+  // of the same kind and rank, -1 where it has none (spans_jump, jump_piece.hpp).
+  std::vector<std::vector<int>> partner[2];
   std::vector<unsigned char> cut;         // [y cell * load_cells + load cell]: a jump may cut it
   // Per list and load node, for the segment right of m jumps (m = 0 .. jumps): its first grid
   // node above the jump m-1 and its last grid node below jump m (the binary searches of the

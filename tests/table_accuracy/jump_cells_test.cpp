@@ -477,6 +477,58 @@ TEST(JumpCells, Avx2AndSse2GiveTheSameBytesInCutCells) {
   EXPECT_GT(compared, 100u);
 }
 
+// Two jumps of different kinds that cross between two load nodes (on the default scene the
+// tread-flange hand-over of the normal patch passes the flange root's rigid-point jump between
+// 78.5 and 100 kN): the lookup pairs the jumps of the two nodes by their order, so between the
+// positions that one jump takes at the two nodes a query blends the values of one side of it at
+// one node with the other side's at the other (e.g. the patch's force split over both slots).
+// Such queries are low confidence in every slot (docs/lookup.md "Low confidence"), by the fused
+// and the generic path.
+TEST(JumpCells, QueriesBetweenTheLoadNodesPositionsOfACrossingJumpAreLowConfidence) {
+  const JumpFixture& f = fixture();
+  const std::vector<double>& loads = f.scene.grids.load;
+  const std::filesystem::path path = temp_table_path("jumps_crossing");
+  write_for_lookup(f.with_table, path);
+  ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);
+  const lk::Table generic = lk::Table::load(path.string());
+  ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
+  std::filesystem::remove(path);
+  std::size_t crossings = 0, checked = 0;
+  for (std::size_t w = 0; w < 2; ++w)
+    for (std::size_t l = 0; l + 1 < f.jumps.wheel[w].size(); ++l) {
+      const std::vector<ContactJump>& a = f.jumps.wheel[w][l];
+      const std::vector<ContactJump>& b = f.jumps.wheel[w][l + 1];
+      for (std::size_t k = 0; k < a.size(); ++k) {
+        // The jump of the same kind and rank at the other node; a crossing when its place in the
+        // list differs.
+        const auto rank = std::count_if(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k),
+                                        [&](const ContactJump& j) { return j.kind == a[k].kind; });
+        std::ptrdiff_t seen = 0;
+        const auto other = std::find_if(b.begin(), b.end(), [&](const ContactJump& j) {
+          return j.kind == a[k].kind && seen++ == rank;
+        });
+        if (other == b.end() || static_cast<std::size_t>(other - b.begin()) == k) continue;
+        ++crossings;
+        const double lo = std::min(a[k].y, other->y), hi = std::max(a[k].y, other->y);
+        for (int i = 1; i <= 4; ++i) {
+          lk::State s = f.with_jumps->default_state();
+          s.y = lo + (hi - lo) * i / 5.0;
+          s.load = 0.5 * (loads[l] + loads[l + 1]);
+          for (const lk::Table* t : {&*f.with_jumps, &generic}) {
+            const lk::Result r = t->query(static_cast<lk::Wheel>(w), s);
+            for (int slot = 0; slot < r.n_slots; ++slot)
+              EXPECT_TRUE(r.contact[slot].status & lk::status::kLowConfidence)
+                  << "wheel " << w << " y " << s.y << " load " << s.load << " slot " << slot
+                  << (t == &generic ? " (generic path)" : " (fused path)");
+            ++checked;
+          }
+        }
+      }
+    }
+  EXPECT_GT(crossings, 0u) << "the default scene's jumps no longer cross between load nodes: choose another case";
+  std::printf("crossing jumps: %zu, states checked: %zu\n", crossings, checked);
+}
+
 // Cubic methods next to a jump (docs/lookup.md "Contact jumps"): a cell no located jump cuts, with
 // a cut cell beside it, interpolates from its own side only: the cubic y stencil drops the node
 // across the cut cell (as at a table edge). Checked by changing that node's values (every part,
