@@ -107,7 +107,7 @@ struct SweepKernel {
   // Root attributes the kernel adds (name, JSON text; the creep map of format 2.1), written after
   // `fixed_axes`.
   std::vector<std::pair<std::string, std::string>> attributes;
-  PointCost point_cost = kFastPointCost;  // run time per grid point, for the size check's message
+  PointCost point_cost = kFastPointCost;  // run time per computed grid point, for the size check and the estimate
   // The kernel's model has no side of its own: (y, roll, yaw, eta, phi) -> (-y, -roll, -yaw, -eta,
   // -phi) swaps the wheels exactly, with the `odd` outputs negated (docs/conventions.md, side
   // frame), and equilibrium_roll is exactly odd in y. On a scene whose grids are mirror-symmetric

@@ -95,12 +95,27 @@ void check_table_size(const Scene& scene, std::uint64_t points, std::uint64_t by
                 scene.name, human_bytes(static_cast<double>(bytes)), bytes, human_bytes(static_cast<double>(max_bytes)));
 }
 
-std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads, PointCost cost) {
-  const double per_thread = static_cast<double>(points) / static_cast<double>(threads < 1 ? 1 : threads);
+std::uint64_t computed_points(const Scene& scene, std::size_t y_begin, std::size_t y_end, bool mirrored) {
+  const std::vector<double>& y = scene.grids.y;
+  RAILTAB_CHECK(y_begin < y_end && y_end <= y.size(), "computed_points: y range [{}, {}) of {} values", y_begin,
+                y_end, y.size());
+  std::uint64_t columns = 0;
+  for (std::size_t i = y_begin; i < y_end; ++i) {
+    const std::size_t image = y.size() - 1 - i;  // the mirror's column of -y (mirror.hpp: y symmetric)
+    if (!mirrored || y[i] >= 0.0 || image < y_begin || image >= y_end) ++columns;
+  }
+  return table_points(scene, columns);
+}
+
+std::string describe_table_size(std::uint64_t points, std::uint64_t computed, std::uint64_t bytes, int threads,
+                                PointCost cost) {
+  const double per_thread = static_cast<double>(computed) / static_cast<double>(threads < 1 ? 1 : threads);
   const double low = cost.low, high = cost.high;
-  return fmt::format("table: {} grid points, {} in memory (the file is smaller: compressed); estimated time {} to {} "
-                     "with {} thread{}\n",
-                     points, human_bytes(static_cast<double>(bytes)), human_seconds(per_thread * low),
+  const std::string mirrored =
+      computed < points ? fmt::format(" ({} computed, the others their mirror images)", computed) : std::string();
+  return fmt::format("table: {} grid points{}, {} in memory (the file is smaller: compressed); estimated time {} to "
+                     "{} with {} thread{}\n",
+                     points, mirrored, human_bytes(static_cast<double>(bytes)), human_seconds(per_thread * low),
                      human_seconds(per_thread * high), threads, threads == 1 ? "" : "s");
 }
 

@@ -5,6 +5,7 @@
 // (docs/reliability.md, "Limits").
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -14,7 +15,7 @@ namespace railtab {
 
 struct SweepKernel;
 
-inline constexpr std::uint64_t kDefaultMaxPoints = 20'000'000;       // about 30-70 min on 2 cores [-]
+inline constexpr std::uint64_t kDefaultMaxPoints = 20'000'000;       // fast models: 17-100 min on 2 cores [-]
 inline constexpr std::uint64_t kDefaultMaxBytes = 4ull << 30;        // table in memory [B]
 // Run time of one grid point (both wheels) per thread, as a range [s]. The engine does not know the
 // physics: the kernel states its cost (SweepKernel::point_cost; kernel/contact_kernel.hpp).
@@ -22,13 +23,17 @@ struct PointCost {
   double low = 0.0;
   double high = 0.0;
 };
-// The fast models, the range measured on the shipped scenes (docs/validation.md: 57 us for
-// tables/default.toml; flange-heavy scenes up to ~200 us).
-inline constexpr PointCost kFastPointCost{50e-6, 200e-6};
-// The exact half-space model (normal_model = "halfspace", load coupling on): two coupled solves
-// (both wheels) and the share of the contact jumps' one-sided values; measured 0.06 s CPU per point
-// on tables/default_halfspace.toml (2026-11-26), up to twice that on flange-heavy grids.
-inline constexpr PointCost kExactPointCost{0.04, 0.12};
+// The fast models, per computed point: the whole run of tables/default.toml (the sweep, the
+// one-sided values at its contact jumps and the error map, whose reference is the exact model)
+// took user 2.9 s CPU for 9135 computed points, 0.31 ms each (docs/reliability.md, "Limits").
+inline constexpr PointCost kFastPointCost{100e-6, 600e-6};
+// The exact half-space model (normal_model = "halfspace", load coupling on), per COMPUTED point
+// (a mirrored sweep computes the columns y >= 0 only): the sweep's coupled solves of both wheels
+// and the share of the contact jumps' one-sided values and of the error map. Measured on
+// tables/default_halfspace.toml (docs/validation/exact-tables.md, "Generation cost"): the sweep
+// 15.7 ms per computed point per thread, the whole run 22 ms CPU per computed point; the upper end
+// allows a machine twice as slow or a grid denser in flange-onset jumps.
+inline constexpr PointCost kExactPointCost{0.015, 0.045};
 
 // a * b, or railtab::Error naming `what` when the product does not fit in 64 bits.
 std::uint64_t checked_multiply(std::uint64_t a, std::uint64_t b, const std::string& what);
@@ -46,8 +51,14 @@ std::uint64_t table_bytes(const Scene& scene, const SweepKernel& kernel, std::ui
 void check_table_size(const Scene& scene, std::uint64_t points, std::uint64_t bytes, std::uint64_t max_points,
                       std::uint64_t max_bytes, PointCost cost);
 
-// One line for the log: points, memory and the run time range with `threads` threads at `cost`
-// per point.
-std::string describe_table_size(std::uint64_t points, std::uint64_t bytes, int threads, PointCost cost);
+// Grid points the sweep computes of the y range [y_begin, y_end) (y_begin < y_end <= the y count):
+// all of table_points, or with the mirror (`mirrored`: engine/mirror.hpp) those of the columns
+// y >= 0 and of the columns y < 0 whose mirror image -y lies outside the range (a shard's).
+std::uint64_t computed_points(const Scene& scene, std::size_t y_begin, std::size_t y_end, bool mirrored);
+
+// One line for the log: points (of which `computed` are solved, the rest mirror images), memory
+// and the run time range of the computed points with `threads` threads at `cost` per point.
+std::string describe_table_size(std::uint64_t points, std::uint64_t computed, std::uint64_t bytes, int threads,
+                                PointCost cost);
 
 }  // namespace railtab

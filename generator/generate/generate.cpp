@@ -18,6 +18,7 @@
 #include "adaptive/column_costs.hpp"
 #include "generate/error_map.hpp"
 #include "engine/shard_split.hpp"
+#include "engine/mirror.hpp"
 #include "engine/table_size.hpp"
 #include "table/interrupt.hpp"
 #include "table/table_io.hpp"
@@ -162,7 +163,10 @@ SweepSummary generate_table(const GenerateOptions& options) {
   const std::uint64_t bytes = table_bytes(scene, kernel, y_end - y_begin);
   check_table_size(scene, points, bytes, options.max_points, options.max_bytes, kernel.point_cost);
   if (log) {
-    *log << describe_table_size(points, bytes, effective_threads(options.threads), kernel.point_cost);
+    // The estimate counts what the sweep solves: a mirrored sweep about half the points.
+    const bool mirrored = options.mirror && mirror_obstacle(scene, kernel).empty();
+    *log << describe_table_size(points, computed_points(scene, y_begin, y_end, mirrored), bytes,
+                                effective_threads(options.threads), kernel.point_cost);
   }
 
   ProgressPrinter printer(log ? *log : std::cerr, options.terminal);

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <exception>
 #include <vector>
@@ -23,6 +24,35 @@ std::array<double, kSlots> slot_contact_angles(const WheelContactGeometry& geome
   for (std::size_t s = 0; s < kSlots; ++s)
     if (points.point[s] >= 0) out[s] = geometry.points[static_cast<std::size_t>(points.point[s])].contact_angle;
   return out;
+}
+
+// Normalised coordinates solve the wheel once per slot the creepage-free contact occupies (at
+// that slot's creepages, keeping that slot's cells). With the creepage the coupled load can move a
+// patch across the slots' boundary angle (the tread-flange hand-over at about 5.59 mm: the patch
+// stays on the tread side where the creepage-free one has passed to the flange), into a slot that
+// no pass solves: that slot's cells would hold nothing and the wheel's sum over the slots would
+// lose the patch. So `solved`'s patches in a slot the creepage-free contact leaves empty join slot
+// `pass`, two at most (the larger normal forces, as assign_patch_slots keeps them).
+PatchSlots keep_moved_patches(const WheelNormalResult& normal, const PatchSlots& solved, const PatchSlots& uncoupled,
+                              std::size_t pass) {
+  const std::size_t other = 1 - pass;
+  if (uncoupled.occupied(other) || !solved.occupied(other)) return solved;
+  PatchSlots kept = solved;
+  std::vector<int> patches;
+  for (std::size_t s : {pass, other})
+    for (int ip : solved.patch[s])
+      if (ip >= 0) patches.push_back(ip);
+  std::stable_sort(patches.begin(), patches.end(), [&](int a, int b) {
+    return normal.patches[static_cast<std::size_t>(a)].normal_force >
+           normal.patches[static_cast<std::size_t>(b)].normal_force;
+  });
+  for (std::size_t k = 0; k < kPatchesPerSlot; ++k) kept.patch[pass][k] = k < patches.size() ? patches[k] : -1;
+  kept.patch[other][0] = kept.patch[other][1] = -1;
+  kept.dropped[pass] = solved.dropped[pass] + solved.dropped[other] +
+                       static_cast<int>(patches.size() > kPatchesPerSlot ? patches.size() - kPatchesPerSlot : 0);
+  kept.extra[pass] = solved.extra[pass] | solved.extra[other] | (patches.size() > 1 ? status::kTwoPoint : 0u);
+  kept.extra[other] = 0;
+  return kept;
 }
 
 }  // namespace
@@ -169,7 +199,9 @@ void solve_creep_coupled(const KernelData& k, const WheelContactGeometry& geomet
 // (halfspace::RollingState: its grid, pressure and load split), and the creep part's
 // normal outputs are written. A node is then the cold solve of railtab eval to within the
 // solvers' tolerances, not to the byte. With normalised coordinates (`scales`) one chain per
-// occupied slot at that slot's creepages, as solve_creep_coupled. Without the coupling the tangential problem runs on
+// occupied slot at that slot's creepages, as solve_creep_coupled; a patch the creepage moves into
+// a slot the creepage-free contact leaves empty stays in the solved slot (keep_moved_patches), so
+// the sum over the slots keeps every loaded patch. Without the coupling the tangential problem runs on
 // `uncoupled` (the load's normal solution), each creepage warm-started from the previous one.
 // The creepage order is fixed and a column is computed by one thread, so the bytes do not depend
 // on the thread count.
@@ -211,8 +243,8 @@ void solve_creep_halfspace(const KernelData& k, const WheelContactGeometry& geom
           halfspace::solve_halfspace_tangential(result, creepage, mu, k.material, k.halfspace, workspace);
         }
         const WheelNormalResult normal = to_normal_result(result, geometry);
-        const PatchSlots slots =
-            k.coupling.couple ? assign_patch_slots(normal, geometry.side, flange_angle) : uncoupled_slots;
+        PatchSlots slots = k.coupling.couple ? assign_patch_slots(normal, geometry.side, flange_angle) : uncoupled_slots;
+        if (per_slot) slots = keep_moved_patches(normal, slots, uncoupled_slots, pass);
         for (std::size_t s = s_begin; s < s_end; ++s) {
           const std::size_t cell = cells + s;
           ContactPatch patch = slots.occupied(s) ? slot_normal(normal, slots, s) : ContactPatch{};

@@ -554,7 +554,8 @@ void measure_tables(Measurement& m) {
   RAILTAB_CHECK(!opt.work_dir.empty(), "speed-accuracy: tables need a work directory");
   std::filesystem::create_directories(opt.work_dir);
   const StateSpan span = state_span(states);
-  const std::vector<SaTableSetting> tables = opt.tables.empty() ? default_table_settings() : opt.tables;
+  const std::vector<SaTableSetting> tables =
+      opt.tables.empty() ? default_table_settings(m.scene.normal.model == NormalModel::halfspace) : opt.tables;
   // The tables' own model setting evaluated directly: separates interpolation from model error
   // (the scene's model, and the exact model for the exact tables).
   std::vector<SaOutcome> direct(ns), direct_exact;

@@ -73,7 +73,7 @@ struct SpeedAccuracyOptions {
   std::vector<double> dy_mm;                 // subset of dy (empty = all of the reference / -6..10)
   std::vector<std::string> creep_sets;       // subset of sets (empty = all five)
   std::vector<SaModelSetting> models;        // empty = default_model_settings()
-  std::vector<SaTableSetting> tables;        // empty = default_table_settings(); none: set no_tables
+  std::vector<SaTableSetting> tables;        // empty = default_table_settings(scene); none: set no_tables
   bool no_tables = false;
   bool cubic = true;                         // also time/measure cubic interpolation of each table
   std::filesystem::path work_dir;            // temporary tables go here (required for tables)
@@ -88,7 +88,7 @@ struct SpeedAccuracyOptions {
 };
 
 std::vector<SaModelSetting> default_model_settings();
-std::vector<SaTableSetting> default_table_settings();
+std::vector<SaTableSetting> default_table_settings(bool exact_scene);  // exact_scene: the scene's model is halfspace
 // A few settings only, for smoke runs (railtab chart --quick).
 std::vector<SaModelSetting> quick_model_settings();
 std::vector<SaTableSetting> quick_table_settings();

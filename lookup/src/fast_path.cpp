@@ -139,14 +139,22 @@ inline void finish_creep_gradient(const TableData& d, const Block& cb, const Blo
         for (int o = 0; o < kNumOutputs; ++o) dd[o][var] = 0.0;
 }
 
+// A yaw table's fused query keeps its yaw cell in the compact location array (fast_query locates
+// y, load and yaw only) at this index, after load: the slot of kVarXi, which the fused query never
+// locates (the creepage cells depend on the slot's scales).
+constexpr int kYawLoc = kVarLoad + 1;
+
 // One slot of a cell no jump cuts. NG, NN, NC: values per record of the geometry, normal and creep
 // blocks; NP: parts of the creep block (creep, or creep and wear); TC: the creep block's value
 // type (float for format 2.2, Block::value_bytes; the geometry and normal blocks hold doubles).
 // kGrad: also the partial derivatives (into grad), derivatives.cpp's formulas on the cell, scales
-// and creepage cells found here once; the values are the plain query's, the same code.
-template <int NG, int NN, int NC, int NP, bool kAvx2, class TC, bool kGrad = false>
+// and creepage cells found here once; the values are the plain query's, the same code. kYaw: the
+// blocks have a yaw dimension after y (geometry (y, yaw), normal and scales (y, yaw, load), creep
+// (y, yaw, load, creepages)), its cell at loc[kYawLoc]; value queries only.
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC, bool kGrad = false, bool kYaw = false>
 void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* creepage, StatusBits q,
                   int s, Contact& c, const DerivativeSink* grad = nullptr) noexcept {
+  static_assert(!(kGrad && kYaw), "a yaw table's derivative query takes the generic path");
   const FastPath& fp = d.fast;
   const Block& gb = d.block[w][fp.geometry];
   const Block& nb = d.block[w][fp.normal];
@@ -155,17 +163,24 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   const std::size_t slot = static_cast<std::size_t>(s);
   zero_absent(d, c);
   const AxisLoc ly = loc[kVarY], ll = loc[kVarLoad];
-  // t and 1 - t of y and load, in the generic kernels' order (first dimension first).
-  const double t2[2] = {ly.t, ll.t}, u2[2] = {1.0 - ly.t, 1.0 - ll.t};
+  // The creep block's outer dimensions (y, load, or y, yaw, load): their cells and t and 1 - t, in
+  // the generic kernels' order (first dimension first). The geometry block is over the first
+  // kOuter - 1 of them, the normal block and the scales over all.
+  constexpr int kOuter = kYaw ? 3 : 2;
+  AxisLoc outer[kOuter];
+  outer[0] = ly;
+  if constexpr (kYaw) outer[1] = loc[kYawLoc];
+  outer[kOuter - 1] = ll;
+  double t2[kOuter], u2[kOuter];
+  for (int k = 0; k < kOuter; ++k) t2[k] = outer[k].t, u2[k] = 1.0 - outer[k].t;
   // Every row of dd is written whole (no zeroing first: it costs as much as the rows): a block's
   // rows with their variables' columns, the others 0.
   double (*dd)[kNumVars] = nullptr;
   double iw_y = 0.0, iw_load = 0.0;
   bool empty = false;  // kGrad: the creep block is zero over the cell (FastPath::empty_creep)
-  const std::size_t empty_cell =
-      (slot * static_cast<std::size_t>(d.axis[kVarY].size() - 1) + static_cast<std::size_t>(ly.i)) *
-          static_cast<std::size_t>(d.axis[kVarLoad].size() - 1) +
-      static_cast<std::size_t>(ll.i);
+  std::size_t empty_cell = slot;  // mixed radix over the outer cells (mark_empty_creep_cells)
+  for (int k = 0; k < kOuter; ++k)
+    empty_cell = empty_cell * static_cast<std::size_t>(cb.size[k] - 1) + static_cast<std::size_t>(outer[k].i);
   // The value query over an empty cell with one set of creep statuses: no creepage cell, no sum.
   const bool skip = !kGrad && fp.empty_creep[w][empty_cell] == 2;
   if constexpr (kGrad) {
@@ -178,11 +193,12 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
 
   // Geometry (y), first: its contact angle's sine and cosine (normal_from_share) are the longest
   // computation of the query, and depend on nothing else, so they overlap with what follows.
-  RecordPtr g = gb.data.data() + slot * gb.slot_size + static_cast<std::size_t>(ly.i) * gb.stride[0];
+  RecordPtr g = gb.data.data() + slot * gb.slot_size;
+  for (int k = 0; k < kOuter - 1; ++k) g += static_cast<std::size_t>(outer[k].i) * gb.stride[k];
   {
     SumsSse2<NG, double> sums;
     sums.zero();
-    walk_corners_sse2<1, 0>(g, 1.0, t2, u2, gb.stride, sums);
+    walk_corners_sse2<kOuter - 1, 0>(g, 1.0, t2, u2, gb.stride, sums);
     store_values(gb, sums, c);
     store_status_run<1>(kGeometry, gb, g, c);
   }
@@ -201,8 +217,25 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
   double dinv[3][kNumVars], dxn[3][kNumVars], dv[3][kNumVars], iw_v[3];  // kGrad
   {
     const double* base = map.scale[w].data() + slot * map.nodes * 3;
-    const std::size_t origin = static_cast<std::size_t>(ly.i) * map.stride[0] + static_cast<std::size_t>(ll.i) * map.stride[1];
-    bilinear_node_values(base + origin * 3, map.stride[0], map.stride[1], 3, ly.t, ll.t, inv);
+    std::size_t origin = 0;
+    for (int k = 0; k < kOuter; ++k) origin += static_cast<std::size_t>(outer[k].i) * map.stride[k];
+    if constexpr (kYaw) {  // interpolate_node_values' corner loop, as the generic path
+      const double* p = base + origin * 3;
+      for (int k = 0; k < 3; ++k) inv[k] = 0.0;
+      for (int corner = 0; corner < 8; ++corner) {
+        double wc = 1.0;
+        std::size_t node = 0;
+        for (int dim = 0; dim < 3; ++dim) {
+          const bool upper = (corner >> dim) & 1;
+          wc *= upper ? t2[dim] : 1.0 - t2[dim];
+          node += upper ? map.stride[dim] : 0;
+        }
+        const double* v = p + node * 3;
+        for (int k = 0; k < 3; ++k) inv[k] += wc * v[k];
+      }
+    } else {
+      bilinear_node_values(base + origin * 3, map.stride[0], map.stride[1], 3, ly.t, ll.t, inv);
+    }
     if (kGrad && !empty) {
       const double* p00 = base + origin * 3;
       const double* p01 = p00 + map.stride[1] * 3;
@@ -215,31 +248,35 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
       }
     }
   }
-  double x[3], t5[5] = {ly.t, ll.t, 0.0, 0.0, 0.0};
-  std::size_t cell = static_cast<std::size_t>(ly.i) * cb.stride[0] + static_cast<std::size_t>(ll.i) * cb.stride[1];
+  constexpr int kDims = kOuter + 3;  // the creep block's
+  double x[3], t5[kDims];
+  std::size_t cell = 0;
+  for (int k = 0; k < kOuter; ++k) t5[k] = t2[k], cell += static_cast<std::size_t>(outer[k].i) * cb.stride[k];
+  for (int k = kOuter; k < kDims; ++k) t5[k] = 0.0;
   for (int k = 0; k < 3; ++k) {
     x[k] = creepage[k] * inv[k];
     if (skip) continue;
     AxisLoc l;
     d.axis[kVarXi + k].locate_fast(
         creep_coordinate_normalised(x[k] * map.kinv[k], map.lo_k[k] * inv[k], map.hi_k[k] * inv[k]), l);
-    t5[2 + k] = l.t;
-    cell += static_cast<std::size_t>(l.i) * cb.stride[2 + k];
+    t5[kOuter + k] = l.t;
+    cell += static_cast<std::size_t>(l.i) * cb.stride[kOuter + k];
     if (kGrad && !empty) {
       iw_v[k] = inverse_width(d.axis[kVarXi + k], l);
       creepage_rows(map, k, creepage[k], inv[k], x[k], dinv[k], grad->frozen >> (kVarXi + k) & 1u, dxn[k], dv[k]);
     }
   }
   RecordPtr cr = cb.data.data() + slot * cb.slot_size + cell;
-  const double u5[5] = {1.0 - t5[0], 1.0 - t5[1], 1.0 - t5[2], 1.0 - t5[3], 1.0 - t5[4]};
+  double u5[kDims];
+  for (int k = 0; k < kDims; ++k) u5[k] = 1.0 - t5[k];
 
   // Normal (y, load).
   {
-    RecordPtr n = nb.data.data() + slot * nb.slot_size + static_cast<std::size_t>(ly.i) * nb.stride[0] +
-                  static_cast<std::size_t>(ll.i) * nb.stride[1];
+    RecordPtr n = nb.data.data() + slot * nb.slot_size;
+    for (int k = 0; k < kOuter; ++k) n += static_cast<std::size_t>(outer[k].i) * nb.stride[k];
     SumsSse2<NN, double> sums;
     sums.zero();
-    walk_corners_sse2<2, 0>(n, 1.0, t2, u2, nb.stride, sums);
+    walk_corners_sse2<kOuter, 0>(n, 1.0, t2, u2, nb.stride, sums);
     store_values(nb, sums, c);
     store_status_run<1>(kNormal, nb, n, c);
     if constexpr (kGrad) {
@@ -253,14 +290,14 @@ void regular_slot(const TableData& d, int w, const AxisLoc* loc, const double* c
     }
   }
 
-  // Creep and wear (y, load, v_xi, v_eta, v_phi): 32 corners.
+  // Creep and wear (y, load, v_xi, v_eta, v_phi): 32 corners (64 with yaw).
   if (skip) {
     for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = 0.0;
     std::memcpy(&c.part_status[kCreep], &fp.empty_status[w][2 * empty_cell], NP * sizeof(StatusBits));
   } else {
     double values[NC];
-    if constexpr (kAvx2) corner_sum_avx2<5, NC, TC>(cr, t5, u5, cb.stride, values);
-    else corner_sum_sse2<5, NC, TC>(cr, t5, u5, cb.stride, values);
+    if constexpr (kAvx2) corner_sum_avx2<kDims, NC, TC>(cr, t5, u5, cb.stride, values);
+    else corner_sum_sse2<kDims, NC, TC>(cr, t5, u5, cb.stride, values);
     if (cb.first_output >= 0) std::memcpy(c.value + cb.first_output, values, sizeof values);
     else for (int k = 0; k < NC; ++k) c.value[cb.output_of[k]] = values[k];
     store_status_run<NP>(kCreep, cb, cr, c);
@@ -446,19 +483,26 @@ void cut_slot(const TableData& d, int w, const AxisLoc* loc, const double* creep
   }
 }
 
-// locate_state for this shape: y and load on their axes, the creepages clamped to their physical
-// ranges, the fixed variables compared with their values. Returns false when a variable is not
-// finite; else q gets kOutOfRange as locate_state sets it, and `clamped` bit var for each
-// variable held at the table's edge.
+// locate_state for this shape: y and load (and yaw, kYaw: into loc[kYawLoc], |yaw| when the table
+// stores half a symmetric axis) on their axes, the creepages clamped to their physical ranges, the
+// fixed variables compared with their values. Returns false when a variable is not finite; else q
+// gets kOutOfRange as locate_state sets it, and `clamped` bit var for each variable held at the
+// table's edge.
+template <bool kYaw = false>
 __attribute__((always_inline)) inline bool locate(const TableData& d, const State& state, AxisLoc* loc,
                                                   double* creepage, StatusBits& q, unsigned& clamped) noexcept {
   const double y = state.y, load = state.load;
   const double physical[3] = {state.xi, state.eta, state.phi};
   bool finite = std::isfinite(y) && std::isfinite(load) && std::isfinite(physical[0]) &&
                 std::isfinite(physical[1]) && std::isfinite(physical[2]);
+  if constexpr (kYaw) finite = finite && std::isfinite(state.yaw);
   for (int k = 0; k < d.n_fixed; ++k) finite = finite && std::isfinite(state_var(state, d.fixed_var[k]));
   if (!finite) return false;
   clamped = static_cast<unsigned>(d.axis[kVarY].locate_fast(y, loc[kVarY])) << kVarY;
+  if constexpr (kYaw) {
+    const double yaw = d.yaw_even ? std::abs(state.yaw) : state.yaw;  // table_variables
+    clamped |= static_cast<unsigned>(d.axis[kVarYaw].locate_fast(yaw, loc[kYawLoc])) << kVarYaw;
+  }
   clamped |= static_cast<unsigned>(d.axis[kVarLoad].locate_fast(load, loc[kVarLoad])) << kVarLoad;
   const CreepMap& map = d.creep_map;
   for (int c = 0; c < 3; ++c) {
@@ -480,17 +524,17 @@ inline bool cut_cell(const TableData& d, int w, const AxisLoc* loc) noexcept {
                                        static_cast<std::size_t>(loc[kVarLoad].i)];  // jump_cell, with a load axis
 }
 
-template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
+template <int NG, int NN, int NC, int NP, bool kAvx2, class TC, bool kYaw = false>
 bool fast_query(const TableData& d, int w, const State& state, int slot_begin, int slot_end, Contact* contact,
                 StatusBits& q) noexcept {
-  // Only y and load are located (kVarRoll between them stays zero): not the whole kNumVars array,
-  // whose zeroing GCC emits as a `rep stos` on every query.
-  static_assert(kVarY < kVarLoad && kVarRoll < kVarLoad);
-  AxisLoc loc[kVarLoad + 1];
+  // Only y and load (and yaw, at kYawLoc) are located (kVarRoll between them stays zero): not the
+  // whole kNumVars array, whose zeroing GCC emits as a `rep stos` on every query.
+  static_assert(kVarY < kVarLoad && kVarRoll < kVarLoad && kYawLoc < kNumVars);
+  AxisLoc loc[kYaw ? kYawLoc + 1 : kVarLoad + 1];
   double creepage[3];
   unsigned clamped;
-  if (!locate(d, state, loc, creepage, q, clamped)) return false;
-  if (cut_cell(d, w, loc)) {  // one-sided (jump_side.hpp), as interpolate_slots
+  if (!locate<kYaw>(d, state, loc, creepage, q, clamped)) return false;
+  if (!kYaw && cut_cell(d, w, loc)) {  // one-sided (jump_side.hpp), as interpolate_slots (a yaw table has no jumps)
     const int n = slot_end - slot_begin;
     for (int s = 0; s < n; ++s) zero_absent(d, contact[s]);
     if (d.fast.cut) {
@@ -508,7 +552,7 @@ bool fast_query(const TableData& d, int w, const State& state, int slot_begin, i
     return true;
   }
   for (int s = slot_begin; s < slot_end; ++s)
-    regular_slot<NG, NN, NC, NP, kAvx2, TC>(d, w, loc, creepage, q, s, contact[s - slot_begin]);
+    regular_slot<NG, NN, NC, NP, kAvx2, TC, false, kYaw>(d, w, loc, creepage, q, s, contact[s - slot_begin]);
   return true;
 }
 
@@ -558,21 +602,26 @@ bool block_over(const Block& b, std::initializer_list<int> vars) noexcept {
   return true;
 }
 
+// A yaw table's fused query has no derivative query (derivatives.cpp takes the generic path).
 template <int NG, int NN, int NC, int NP, bool kAvx2, class TC>
-void pick(FastPath& fp) noexcept {
+void pick(FastPath& fp, bool yaw) noexcept {
+  if (yaw) {
+    fp.query = &fast_query<NG, NN, NC, NP, kAvx2, TC, true>;
+    return;
+  }
   fp.query = &fast_query<NG, NN, NC, NP, kAvx2, TC>;
   fp.derivatives = &fast_derivatives<NG, NN, NC, NP, kAvx2, TC>;
 }
 
 template <int NG, int NN, int NC, class TC>
-void pick(FastPath& fp, bool avx2, int np) noexcept {
-  if (np == 2) avx2 ? pick<NG, NN, NC, 2, true, TC>(fp) : pick<NG, NN, NC, 2, false, TC>(fp);
-  else avx2 ? pick<NG, NN, NC, 1, true, TC>(fp) : pick<NG, NN, NC, 1, false, TC>(fp);
+void pick(FastPath& fp, bool avx2, int np, bool yaw) noexcept {
+  if (np == 2) avx2 ? pick<NG, NN, NC, 2, true, TC>(fp, yaw) : pick<NG, NN, NC, 2, false, TC>(fp, yaw);
+  else avx2 ? pick<NG, NN, NC, 1, true, TC>(fp, yaw) : pick<NG, NN, NC, 1, false, TC>(fp, yaw);
 }
 
 template <int NG, int NN, int NC>
-void pick(FastPath& fp, bool avx2, int np, bool single) noexcept {
-  single ? pick<NG, NN, NC, float>(fp, avx2, np) : pick<NG, NN, NC, double>(fp, avx2, np);
+void pick(FastPath& fp, bool avx2, int np, bool single, bool yaw) noexcept {
+  single ? pick<NG, NN, NC, float>(fp, avx2, np, yaw) : pick<NG, NN, NC, double>(fp, avx2, np, yaw);
 }
 
 // FastPath::empty_creep of the creep block, when its creepage dimensions come last (after its
@@ -639,7 +688,6 @@ void mark_empty_creep_cells(TableData& d) {
       cell[k] = empty;
       if (!empty) continue;
       // The statuses the query would copy: those of each creepage cell's first record.
-      const Block& b = d.block[w][c];
       RecordPtr base = b.data.data() + (slot_nodes + first) * b.stride[outer - 1];
       StatusBits first_bits[2] = {};
       std::memcpy(first_bits, base + b.status_offset, static_cast<std::size_t>(b.n_parts) * sizeof(StatusBits));
@@ -672,9 +720,14 @@ void prepare_fast_path(TableData& d) {
   if (d.method != Method::kLinear || !map.active) return;
   mark_empty_creep_cells(d);  // the generic linear query skips them too (table.cpp)
   if (d.n_blocks != 3) return;
-  if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll] && !d.tabulated[kVarYaw])) return;
-  if (d.n_located != 2 || d.n_clamped != 3 || !map.swept[0] || !map.swept[1] || !map.swept[2]) return;
-  if (map.n_dims != 2 || map.var[0] != kVarY || map.var[1] != kVarLoad) return;
+  // A yaw axis adds a dimension after y to every block (table-format.md); such a table has no
+  // jumps, so its fused query has no cut cells.
+  const bool yaw = d.tabulated[kVarYaw];
+  if (!(d.tabulated[kVarY] && d.tabulated[kVarLoad] && !d.tabulated[kVarRoll]) || (yaw && d.has_jumps)) return;
+  const int outer = yaw ? 3 : 2;  // the creep block's dimensions before its creepages
+  if (d.n_located != outer || d.n_clamped != 3 || !map.swept[0] || !map.swept[1] || !map.swept[2]) return;
+  if (map.n_dims != outer || map.var[0] != kVarY || map.var[outer - 1] != kVarLoad || (yaw && map.var[1] != kVarYaw))
+    return;
   if (!d.has_part[kGeometry] || !d.has_part[kNormal] || !d.has_part[kCreep]) return;
   const int g = block_of(d, kGeometry), n = block_of(d, kNormal), c = block_of(d, kCreep);
   if (g < 0 || n < 0 || c != d.creep_block || g == n || n == c || g == c) return;
@@ -682,8 +735,10 @@ void prepare_fast_path(TableData& d) {
     const Block& gb = d.block[w][g];
     const Block& nb = d.block[w][n];
     const Block& cb = d.block[w][c];
-    if (!block_over(gb, {kVarY}) || !block_over(nb, {kVarY, kVarLoad}) ||
-        !block_over(cb, {kVarY, kVarLoad, kVarXi, kVarEta, kVarPhi}))
+    if (yaw ? !block_over(gb, {kVarY, kVarYaw}) || !block_over(nb, {kVarY, kVarYaw, kVarLoad}) ||
+                  !block_over(cb, {kVarY, kVarYaw, kVarLoad, kVarXi, kVarEta, kVarPhi})
+            : !block_over(gb, {kVarY}) || !block_over(nb, {kVarY, kVarLoad}) ||
+                  !block_over(cb, {kVarY, kVarLoad, kVarXi, kVarEta, kVarPhi}))
       return;
     if (gb.first_output != 0 || gb.n_values != kPartSpecs[kGeometry].n_out) return;  // the angle at value 0
     // Geometry and normal as doubles (format 2.2 stores them so); the creep block of both wheels
@@ -709,15 +764,15 @@ void prepare_fast_path(TableData& d) {
   // The shapes railtab generate writes: creep with its per-creepage normal force (load coupling)
   // and wear, or without either.
   if (gb.n_values == 7 && nb.n_values == 6) {
-    if (cb.n_values == 6) pick<7, 6, 6>(d.fast, avx2, np, single);
-    else if (cb.n_values == 5) pick<7, 6, 5>(d.fast, avx2, np, single);
-    else if (cb.n_values == 4) pick<7, 6, 4>(d.fast, avx2, np, single);
+    if (cb.n_values == 6) pick<7, 6, 6>(d.fast, avx2, np, single, yaw);
+    else if (cb.n_values == 5) pick<7, 6, 5>(d.fast, avx2, np, single, yaw);
+    else if (cb.n_values == 4) pick<7, 6, 4>(d.fast, avx2, np, single, yaw);
   }
   if (!d.fast.query) return;
   d.fast.geometry = g;
   d.fast.normal = n;
   d.fast.creep = c;
-  if (d.fast.empty_outer != 2) d.fast.query = nullptr, d.fast.derivatives = nullptr;  // (y, load): always, by the shape
+  if (d.fast.empty_outer != outer) d.fast.query = nullptr, d.fast.derivatives = nullptr;  // always, by the shape
   // Cut cells fused too when the blocks and their one-sided values have the layout cut_slot reads
   // (blocks written in the order geometry, normal, creep, as interpolate_jump_cell writes them).
   if (!d.has_jumps || !(g < n && n < c)) return;

@@ -4,9 +4,10 @@
 // (y, load) and creep + wear (y, load, xi, eta, phi)): the cell search, the three blocks, the
 // creep map and the law in one function without the generic per-variable and per-block loops,
 // with the long-latency work (the sine and cosine of the contact angle, the creep records'
-// loads) started early. Same operations in the same order as the generic path (table.cpp,
-// interpolate_linear.cpp), so the same bytes; any other table takes the generic path. The derivative
-// query of the same shape too (FastDerivatives).
+// loads) started early. A yaw axis (format 2.4) is the same shape with yaw after y in every block
+// and in the creep scales (value queries; such a table has no jumps). Same operations in the same
+// order as the generic path (table.cpp, interpolate_linear.cpp), so the same bytes; any other table
+// takes the generic path. The derivative query of the yaw-free shape too (FastDerivatives).
 #pragma once
 
 #include <vector>
@@ -35,7 +36,7 @@ using FastDerivatives = bool (*)(const TableData& d, int w, const State& state, 
 
 struct FastPath {
   FastQuery query = nullptr;  // null: the table does not have the shape (generic path)
-  FastDerivatives derivatives = nullptr;  // set with query
+  FastDerivatives derivatives = nullptr;  // set with query (not for a yaw table)
   int geometry = -1, normal = -1, creep = -1;  // its blocks
   bool cut = false;  // cells a located jump cuts fused too (else interpolate_jump_cell)
   // Per wheel, [(slot * y cells + y cell) * load cells + load cell]: 1 when every creep record on

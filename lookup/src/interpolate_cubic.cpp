@@ -336,6 +336,148 @@ void limited_hermite_lanes(const CubicAxis& a, const Source& src, int nv, double
   }
 }
 
+// ---- The last two axes of float records in float arithmetic: a record is one vector of 8 floats
+// (AVX2; two of 4 with SSE2, or one of 4 for records of at most 4 values), its status lanes
+// cleared; each of the last axis' stencil lines runs hermite(a, f, true) on it lane by lane with
+// the axis' constants rounded to float, and the axis before it combines those lines' vectors the
+// same way, in registers: one limiter for all values of a record instead of a quad and a pair of
+// doubles, and no round trip through memory between the two axes (they hold 240 of the 256
+// stencil lines of the default table's creep block per slot). Both instruction sets do the same
+// float operations per lane in the same order (no FMA), so the same bits. Against the double
+// limiter on the same records: within a few float roundings of the stencil's largest |value|
+// (test StoragePrecision.FloatRecordsGiveTheBytesOfDoubleRecordsOrStayWithinTheFloatArithmeticBound).
+struct FloatAxis {
+  bool usable;  // every constant at most kFloatBelow (else the double limiter)
+  bool has_left, has_right;
+  std::size_t off[4];  // bytes from the stencil's node 0 to node j (absent nodes unused)
+  float c0[4], c1[4], h00, h01, h10, h11, inv_width[3];
+};
+// Constants and values up to 2^60: the limiter's products and sums stay below 2^123, far from
+// float's 2^128; a stencil with a larger |value| (or a NaN) is redone in double.
+constexpr float kFloatBelow = 0x1p60f;
+
+FloatAxis float_axis(const CubicAxis& a) noexcept {
+  FloatAxis f;
+  double largest = std::max({std::abs(a.h00), std::abs(a.h01), std::abs(a.h10), std::abs(a.h11)});
+  for (int j = 0; j < 4; ++j) {
+    f.c0[j] = static_cast<float>(a.c0[j]);
+    f.c1[j] = static_cast<float>(a.c1[j]);
+    f.off[j] = a.idx[j] * a.stride;
+    largest = std::max({largest, std::abs(a.c0[j]), std::abs(a.c1[j])});
+  }
+  for (int j = 0; j < 3; ++j) {
+    f.inv_width[j] = static_cast<float>(a.inv_width[j]);
+    largest = std::max(largest, std::abs(a.inv_width[j]));
+  }
+  f.h00 = static_cast<float>(a.h00), f.h01 = static_cast<float>(a.h01);
+  f.h10 = static_cast<float>(a.h10), f.h11 = static_cast<float>(a.h11);
+  f.has_left = a.has_left, f.has_right = a.has_right;
+  f.usable = largest <= kFloatBelow;  // false for a NaN too
+  return f;
+}
+
+// hermite(a, f, true) in float lanes of V, with each select written on the scalar function's own
+// comparison. The absent nodes' f are zero and their weights zero. Defined twice, for each
+// instruction set.
+#define RAILTAB_HERMITE_FLOAT(NAME, V, I, ATTRIBUTES)                                                                           \
+struct NAME {                                                                                                                   \
+  static ATTRIBUTES V splat(float x) noexcept { return V{} + x; }                                                               \
+  static ATTRIBUTES V abs(V x) noexcept { return reinterpret_cast<V>(reinterpret_cast<I>(x) & (I{} + 0x7fffffff)); }            \
+  static ATTRIBUTES V min(V a, V b) noexcept { return b < a ? b : a; }                                                          \
+  static ATTRIBUTES V max(V a, V b) noexcept { return a < b ? b : a; }                                                          \
+  static ATTRIBUTES V limit(V m, V s_left, V s_right) noexcept {                                                                \
+    const V zero = splat(0.0f);                                                                                                 \
+    const V sign = s_right > 0.0f ? splat(1.0f) : splat(-1.0f);                                                                \
+    const V bound = 3.0f * min(abs(s_left), abs(s_right));                                                                      \
+    const V limited = sign * min(max(m * sign, zero), bound);                                                                   \
+    return s_left * s_right <= 0.0f ? zero : limited;                                                                           \
+  }                                                                                                                             \
+  static ATTRIBUTES V hermite(const FloatAxis& a, const V* f) noexcept {                                                        \
+    V m0 = splat(0.0f), m1 = splat(0.0f);                                                                                       \
+    for (int j = 0; j < 4; ++j) {                                                                                               \
+      m0 += a.c0[j] * f[j];                                                                                                     \
+      m1 += a.c1[j] * f[j];                                                                                                     \
+    }                                                                                                                           \
+    const V delta = (f[2] - f[1]) * a.inv_width[1];                                                                             \
+    const V left = a.has_left ? (f[1] - f[0]) * a.inv_width[0] : delta;                                                         \
+    const V right = a.has_right ? (f[3] - f[2]) * a.inv_width[2] : delta;                                                       \
+    m0 = limit(m0, left, delta);                                                                                                \
+    m1 = limit(m1, delta, right);                                                                                               \
+    return a.h00 * f[1] + a.h01 * f[2] + a.h10 * m0 + a.h11 * m1;                                                               \
+  }                                                                                                                             \
+  /* Lanes [at, at + lanes of V) of one slot's stencil over the last two axes (p, then q; node 0 */                             \
+  /* of both at `base`) into out; largest gets the largest |value| per lane read or made. */                                    \
+  static ATTRIBUTES V two_axes(const FloatAxis& p, const FloatAxis& q, RecordPtr base, int at, int nv,                          \
+                               V& largest) noexcept {                                                                           \
+    constexpr int kLanes = sizeof(V) / sizeof(float);                                                                           \
+    I lane;                                                                                                                     \
+    for (int k = 0; k < kLanes; ++k) lane[k] = at + k;                                                                          \
+    const I keep = lane < nv;                                                                                                   \
+    base += static_cast<std::size_t>(at) * sizeof(float);                                                                       \
+    largest = splat(0.0f);                                                                                                      \
+    V g[4];                                                                                                                     \
+    for (int j = 0; j < 4; ++j) {                                                                                               \
+      g[j] = splat(0.0f);                                                                                                       \
+      if ((j == 0 && !p.has_left) || (j == 3 && !p.has_right)) continue;                                                        \
+      V f[4];                                                                                                                   \
+      for (int i = 0; i < 4; ++i) {                                                                                             \
+        f[i] = splat(0.0f);                                                                                                     \
+        if ((i == 0 && !q.has_left) || (i == 3 && !q.has_right)) continue;                                                      \
+        I x;                                                                                                                    \
+        std::memcpy(&x, base + p.off[j] + q.off[i], sizeof x);                                                                  \
+        f[i] = reinterpret_cast<V>(x & keep);                                                                                   \
+        largest = max(largest, abs(f[i]));                                                                                      \
+      }                                                                                                                         \
+      g[j] = hermite(q, f);                                                                                                     \
+      largest = max(largest, abs(g[j]));                                                                                        \
+    }                                                                                                                           \
+    return hermite(p, g);                                                                                                       \
+  }                                                                                                                             \
+};
+RAILTAB_HERMITE_FLOAT(FloatHermite4, F4, I4, __attribute__((always_inline)))
+RAILTAB_HERMITE_FLOAT(FloatHermite8, F8, I8, RAILTAB_AVX2)
+#undef RAILTAB_HERMITE_FLOAT
+
+// True when every lane of `largest` is at most kFloatBelow (a NaN lane fails).
+template <class V>
+__attribute__((always_inline)) inline bool float_lanes_in_range(const V& largest) noexcept {
+  constexpr int kLanes = sizeof(V) / sizeof(float);
+  bool ok = true;
+  for (int k = 0; k < kLanes; ++k) ok &= largest[k] <= kFloatBelow;
+  return ok;
+}
+template <class V>
+__attribute__((always_inline)) inline void store_float_lanes(const V& v, int at, int nv, double* out) noexcept {
+  constexpr int kLanes = sizeof(V) / sizeof(float);
+  for (int k = 0; k < kLanes && at + k < nv; ++k) out[at + k] = static_cast<double>(v[k]);
+}
+
+// One slot's stencil over the last two axes (p, q) of float records with nv values (16 bytes, or
+// a multiple of 32 when nv > 4: records.hpp), node 0 at base, in float into out[0, nv). False,
+// writing nothing, when a value is beyond 2^60 or NaN (the caller takes the double limiter).
+__attribute__((always_inline)) inline bool float_two_axes_sse2(const FloatAxis& p, const FloatAxis& q, RecordPtr base,
+                                                               int nv, double* out) noexcept {
+  F4 largest;
+  const F4 v0 = FloatHermite4::two_axes(p, q, base, 0, nv, largest);
+  if (!float_lanes_in_range(largest)) return false;
+  if (nv > 4) {
+    const F4 v1 = FloatHermite4::two_axes(p, q, base, 4, nv, largest);
+    if (!float_lanes_in_range(largest)) return false;
+    store_float_lanes(v1, 4, nv, out);
+  }
+  store_float_lanes(v0, 0, nv, out);
+  return true;
+}
+__attribute__((target("avx2"))) bool float_two_axes_avx2(const FloatAxis& p, const FloatAxis& q, RecordPtr base,
+                                                         int nv, double* out) noexcept {
+  if (nv <= 4) return float_two_axes_sse2(p, q, base, nv, out);  // a 16-byte record: one vector of 4
+  F8 largest;
+  const F8 v = FloatHermite8::two_axes(p, q, base, 0, nv, largest);
+  if (!float_lanes_in_range(largest)) return false;
+  store_float_lanes(v, 0, nv, out);
+  return true;
+}
+
 struct MonotoneContext {
   RecordPtr data;           // record of node 0 of the first slot's grid
   int n_slots;              // slots interpolated together, grids slot_size bytes apart
@@ -343,6 +485,7 @@ struct MonotoneContext {
   int n_dims;               // D
   int n_values;             // interpolated values per record
   const CubicAxis* axes;    // per dimension
+  const FloatAxis* last2;   // float records: the last two axes' constants in float (both usable: the float limiter)
 };
 
 // Successive 1-D limited Hermite passes: interpolate the sub-grid of each stencil node along the
@@ -368,6 +511,18 @@ void monotone_recurse(const MonotoneContext& c, int d, std::size_t offset, doubl
     }
     return;
   }
+  if constexpr (sizeof(T) == sizeof(float)) {
+    if (d + 2 == c.n_dims && c.last2[0].usable && c.last2[1].usable) {  // the last two axes in float, every slot
+      bool ok = true;
+      for (int s = 0; s < c.n_slots && ok; ++s) {
+        RecordPtr base = c.data + static_cast<std::size_t>(s) * c.slot_size + offset;
+        double* o = out + s * c.n_values;
+        if constexpr (kAvx2) ok = float_two_axes_avx2(c.last2[0], c.last2[1], base, c.n_values, o);
+        else ok = float_two_axes_sse2(c.last2[0], c.last2[1], base, c.n_values, o);
+      }
+      if (ok) return;  // else (rare: huge or NaN values) every slot again in double
+    }
+  }
   ValueLanes sub[4];
   for (int j = lo; j <= hi; ++j) monotone_recurse<kAvx2, T>(c, d + 1, offset + a.idx[j] * a.stride, sub[j]);
   limited_hermite_lanes<kAvx2>(a, LaneSource{sub}, c.n_values * c.n_slots, out);
@@ -385,7 +540,11 @@ void monotone_kernel(const Block& block, const Axis* axes, const AxisLoc* loc, i
   }
   const int n = slot_end - slot_begin;
   RecordPtr first = block.data.data() + static_cast<std::size_t>(slot_begin) * block.slot_size;
-  const MonotoneContext c{first, n, block.slot_size, block.n_dims, block.n_values, ax};
+  FloatAxis last2[2];
+  last2[0].usable = last2[1].usable = false;
+  if (sizeof(T) == sizeof(float) && block.n_dims >= 2)
+    for (int k = 0; k < 2; ++k) last2[k] = float_axis(ax[block.n_dims - 2 + k]);
+  const MonotoneContext c{first, n, block.slot_size, block.n_dims, block.n_values, ax, last2};
   ValueLanes values;
   monotone_recurse<kAvx2, T>(c, 0, 0, values);
   for (int s = 0; s < n; ++s) {

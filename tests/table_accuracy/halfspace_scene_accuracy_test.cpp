@@ -139,6 +139,40 @@ void expect_flange_root_follows_the_patch(const Fixture& f, const TableView& vie
   EXPECT_LT(figures.max, 0.06);
 }
 
+// The sum over the slots never drops a loaded contact: at the hand-over states of
+// expect_handover_misses_are_flagged the left wheel's normal force, fx and fy summed over the
+// slots, lookup against the direct model, within 5 % of the direct mu N (N within 5 % of N). The
+// generator stores a patch that the creepage moves into a slot the creepage-free contact leaves
+// empty in the slot it solves (kernel/creep_loops.cpp); before, the slot it solved read lift-off
+// there and the wheel's sum lost the patch (the known state: 26 of 91 kN).
+void expect_handover_keeps_the_wheel_force(const Fixture& f, const std::vector<Point>& points,
+                                           const std::vector<Direct>& direct) {
+  const double mu = f.scene.tangential.friction;
+  std::vector<double> force_error, normal_error;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const lk::Result r = f.lookup->query(lk::Wheel::kLeft, to_state(*f.lookup, points[i]));
+    double lookup[3] = {}, model[3] = {};
+    const int outputs[3] = {lk::kNormalForce, lk::kFx, lk::kFy};
+    for (int k = 0; k < 3; ++k) {
+      for (int s = 0; s < r.n_slots; ++s) lookup[k] += r.contact[s].value[outputs[k]];
+      for (std::size_t s = 0; s < kSlots; ++s) model[k] += direct[i][0].value[outputs[k]][s];
+    }
+    ASSERT_GT(model[0], 0.0) << "y " << points[i].v[kY];
+    const double n_error = std::abs(lookup[0] - model[0]) / model[0];
+    const double f_error = std::max(std::abs(lookup[1] - model[1]), std::abs(lookup[2] - model[2])) / (mu * model[0]);
+    normal_error.push_back(n_error);
+    force_error.push_back(f_error);
+    EXPECT_LE(n_error, 0.05) << "y " << points[i].v[kY] << " creepage (" << points[i].v[kXi] << ", "
+                             << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): N summed over the slots, lookup "
+                             << lookup[0] << ", direct " << model[0];
+    EXPECT_LE(f_error, 0.05) << "y " << points[i].v[kY] << " creepage (" << points[i].v[kXi] << ", "
+                             << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): fx, fy summed over the slots, "
+                             << "lookup " << lookup[1] << ", " << lookup[2] << ", direct " << model[1] << ", " << model[2];
+  }
+  ErrorFigures(force_error).print("hand-over, left wheel, fx and fy summed over the slots, error / (mu N)");
+  ErrorFigures(normal_error).print("hand-over, left wheel, N summed over the slots, error / N");
+}
+
 // The tread-flange hand-over of the left wheel's loaded patch, y 5.585 to 5.605 mm: at zero
 // creepage the patch moves from the tread slot to the flange slot at the jump located at 5.589 mm
 // (its rigid point follows at 5.602 mm), but with creepage the coupled load shifts the patch's
@@ -168,6 +202,7 @@ void expect_handover_misses_are_flagged(const Fixture& f, const TableView& view)
   std::printf("hand-over, left wheel y 5.585 to 5.605 mm: %zu fx, fy values off by more than 5 %% of mu N, all "
               "must be flagged\n", misses);
   EXPECT_GT(misses, 0u);  // the known state misses (the flag, not the value, is what is asserted)
+  expect_handover_keeps_the_wheel_force(f, points, direct);
 }
 
 TEST(HalfspaceTableAccuracy, RandomOffGrid) {

@@ -46,6 +46,8 @@ struct Tables {
   // The 2.2 table per method (kMethods): [0] as loaded (float records), [1] with double records
   // (RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1).
   std::optional<lk::Table> records[2][3];
+  // The 2.2 table's monotone cubic with float records and the SSE2 kernels (RAILTAB_LOOKUP_NO_AVX2=1).
+  std::optional<lk::Table> monotone_sse2;
 };
 
 const Tables& tables() {
@@ -74,6 +76,11 @@ const Tables& tables() {
         ::setenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS", "1", 1);
         x.records[1][m].emplace(lk::Table::load(path.string(), options));
         ::unsetenv("RAILTAB_LOOKUP_NO_FLOAT_RECORDS");
+      }
+      if (k == 0) {
+        ::setenv("RAILTAB_LOOKUP_NO_AVX2", "1", 1);
+        x.monotone_sse2.emplace(lk::Table::load(path.string(), lk::LoadOptions{lk::Method::kMonotoneCubic}));
+        ::unsetenv("RAILTAB_LOOKUP_NO_AVX2");
       }
       std::filesystem::remove(path);
     }
@@ -170,11 +177,13 @@ TEST(StoragePrecision, LookupHoldsTheFloat32OutputsAsFloats) {
 
 // Float records against double records (RAILTAB_LOOKUP_NO_FLOAT_RECORDS=1), every method, query
 // and query_slot, both wheels, at random states in range and 5 % beyond (jump cells included) and
-// on grid nodes. The cubic and monotone cubic sums convert the floats to double (exact), as do the
-// one-sided sums of jump cells: the same bytes. The multilinear corner sums of float records run
-// in float (weighted_sum.hpp): the same statuses, and every output within kFloatArithmetic of its
+// on grid nodes. The cubic sums convert the floats to double (exact), as do the one-sided sums of
+// jump cells: the same bytes. The multilinear corner sums of float records run in float
+// (weighted_sum.hpp), and so do the monotone cubic's limited Hermite passes over the last two axes
+// (interpolate_cubic.cpp): the same statuses, and every output within kFloatArithmetic of its
 // scale (fx, fy: mu x the largest normal force; the others their largest |value|), the bound the
-// lookup's float arithmetic is allowed (a millionth of mu N).
+// lookup's float arithmetic is allowed (a millionth of mu N). The monotone cubic's float passes
+// give the same bytes with the AVX2 and the SSE2 kernels.
 constexpr double kFloatArithmetic = 1e-6;
 
 TEST(StoragePrecision, FloatRecordsGiveTheBytesOfDoubleRecordsOrStayWithinTheFloatArithmeticBound) {
@@ -182,8 +191,8 @@ TEST(StoragePrecision, FloatRecordsGiveTheBytesOfDoubleRecordsOrStayWithinTheFlo
   const Scene& s = t.scene;
   Random rng(kSeed + 7);
   const std::vector<double>* grids[5] = {&s.grids.y, &s.grids.load, &s.grids.xi, &s.grids.eta, &s.grids.phi};
-  std::size_t compared = 0, differing = 0, linear_differing = 0;
-  double diff[lk::kNumOutputs] = {}, scale[lk::kNumOutputs] = {};
+  std::size_t compared = 0, differing = 0, float_differing[3] = {};
+  double diff[3][lk::kNumOutputs] = {}, scale[3][lk::kNumOutputs] = {};
   for (int m = 0; m < 3; ++m) {
     const lk::Table& single = *t.records[0][m];
     const lk::Table& full = *t.records[1][m];
@@ -207,39 +216,46 @@ TEST(StoragePrecision, FloatRecordsGiveTheBytesOfDoubleRecordsOrStayWithinTheFlo
           ASSERT_EQ(std::memcmp(&ca[slot], &a.contact[slot], sizeof ca[slot]), 0) << "query_slot = query";
         }
         compared += 1 + kSlots;
-        if (m != 0) {
+        if (m == 2) {
+          const lk::Result c = t.monotone_sse2->query(wheel, st);
+          ASSERT_EQ(std::memcmp(&a, &c, sizeof a), 0) << "monotone cubic: SSE2 = AVX2";
+        }
+        if (m == 1) {
           differing += std::memcmp(&a, &b, sizeof a) != 0;
           for (std::size_t slot = 0; slot < kSlots; ++slot)
             differing += std::memcmp(&ca[slot], &cb[slot], sizeof ca[slot]) != 0;
           continue;
         }
         ASSERT_EQ(a.status, b.status);
-        linear_differing += std::memcmp(&a, &b, sizeof a) != 0;
+        float_differing[m] += std::memcmp(&a, &b, sizeof a) != 0;
         for (std::size_t slot = 0; slot < kSlots; ++slot) {
           ASSERT_EQ(a.contact[slot].status, b.contact[slot].status);
           for (int o = 0; o < lk::kNumOutputs; ++o) {
             ASSERT_EQ(a.contact[slot].part_status[lk::output_part(static_cast<lk::Output>(o))],
                       b.contact[slot].part_status[lk::output_part(static_cast<lk::Output>(o))]);
             const double va = a.contact[slot].value[o], vb = b.contact[slot].value[o];
-            diff[o] = std::max(diff[o], std::abs(va - vb));
+            diff[m][o] = std::max(diff[m][o], std::abs(va - vb));
             const bool force = o == lk::kFx || o == lk::kFy;
-            scale[o] = std::max(scale[o], force ? s.tangential.friction * b.contact[slot].value[lk::kNormalForce]
-                                                : std::abs(vb));
+            scale[m][o] = std::max(scale[m][o], force ? s.tangential.friction * b.contact[slot].value[lk::kNormalForce]
+                                                      : std::abs(vb));
           }
         }
       }
     }
   }
-  EXPECT_EQ(differing, 0u) << "cubic and monotone cubic: of " << compared << " results";
-  std::printf("linear lookup, float arithmetic on float records: %zu of %zu results differ from double records; "
-              "max |difference| / scale (limit %.0e):\n", linear_differing, compared, kFloatArithmetic);
-  for (int o = 0; o < lk::kNumOutputs; ++o) {
-    if (scale[o] == 0.0) continue;
-    std::printf("  %-14s %.3g (max diff %.3g, scale %.3g)\n", lk::output_name(static_cast<lk::Output>(o)),
-                diff[o] / scale[o], diff[o], scale[o]);
-    EXPECT_LE(diff[o], kFloatArithmetic * scale[o]) << lk::output_name(static_cast<lk::Output>(o));
+  EXPECT_EQ(differing, 0u) << "cubic: of " << compared << " results";
+  for (int m : {0, 2}) {
+    const char* name = m == 0 ? "linear" : "monotone cubic";
+    std::printf("%s lookup, float arithmetic on float records: %zu results (query) differ from double records; "
+                "max |difference| / scale (limit %.0e):\n", name, float_differing[m], kFloatArithmetic);
+    for (int o = 0; o < lk::kNumOutputs; ++o) {
+      if (scale[m][o] == 0.0) continue;
+      std::printf("  %-14s %.3g (max diff %.3g, scale %.3g)\n", lk::output_name(static_cast<lk::Output>(o)),
+                  diff[m][o] / scale[m][o], diff[m][o], scale[m][o]);
+      EXPECT_LE(diff[m][o], kFloatArithmetic * scale[m][o]) << name << " " << lk::output_name(static_cast<lk::Output>(o));
+    }
+    EXPECT_GT(float_differing[m], 0u) << "the " << name << " lookup of float records should run in float";
   }
-  EXPECT_GT(linear_differing, 0u) << "the linear sums of float records should run in float";
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "accuracy_util.hpp"
@@ -52,9 +53,12 @@ struct YawFixture {
   // within a float rounding (~1e-7) of it: the symmetry and difference tests below, whose
   // tolerances are double roundings, run on this one, and bound the float sums against it.
   std::optional<lk::Table> lookup_doubles;
-  // The yaw table without the generic path's shortcuts (RAILTAB_LOOKUP_NO_FAST_PATH=1): no skip of
-  // the cells where the creep block is zero (fast_path.hpp, FastPath::empty_creep).
+  // The yaw table without the fused query and the generic path's shortcuts
+  // (RAILTAB_LOOKUP_NO_FAST_PATH=1): no skip of the cells where the creep block is zero
+  // (fast_path.hpp, FastPath::empty_creep).
   std::optional<lk::Table> lookup_no_skip;
+  // The fused query with the SSE2 kernels (RAILTAB_LOOKUP_NO_AVX2=1).
+  std::optional<lk::Table> lookup_sse2;
 };
 
 const YawFixture& fixture() {
@@ -78,6 +82,9 @@ const YawFixture& fixture() {
     ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);
     x.lookup_no_skip.emplace(lk::Table::load(path.string()));
     ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
+    ::setenv("RAILTAB_LOOKUP_NO_AVX2", "1", 1);
+    x.lookup_sse2.emplace(lk::Table::load(path.string()));
+    ::unsetenv("RAILTAB_LOOKUP_NO_AVX2");
     std::filesystem::remove(path);
     std::filesystem::remove(free_path);
     return x;
@@ -330,24 +337,41 @@ TEST(YawTable, MirrorSwapsTheWheels) {
     EXPECT_LE(diff[o], 1e-6 * scale[o]) << label(o) << ": float sums against double sums";
 }
 
-// The yaw table takes the generic query, which skips the creepage cells and the sum where the
-// creep block is zero over the (y, yaw, load) cell with one set of statuses (the flange slot out
-// of contact): the same bytes as the query without the skip, at states that reach such cells.
-TEST(YawTable, EmptyCellSkipGivesTheSameBytes) {
+// The yaw table takes the fused query (lookup/src/fast_path.cpp, the yaw dimension after y in
+// every block), which skips the creepage cells and the sum where the creep block is zero over the
+// (y, yaw, load) cell with one set of statuses (the flange slot out of contact): the same bytes as
+// the generic query without the skip, for query and query_slot of every slot, both wheels, AVX2
+// and SSE2 kernels, at states in range, beyond every axis (|yaw| up to 12 mrad against the
+// table's 10), on the yaw nodes and with a non-finite yaw, including states that reach empty cells.
+TEST(YawTable, FusedQueryAndEmptyCellSkipGiveTheGenericBytes) {
   const YawFixture& f = fixture();
   const lk::Table& t = *f.lookup;
+  const lk::Table& sse2 = *f.lookup_sse2;
   const lk::Table& plain = *f.lookup_no_skip;
   Random rng(33);
-  std::size_t empty = 0;
-  for (int k = 0; k < 2000; ++k) {
-    const lk::State s = state_at(t, rng.uniform(-0.009, 0.009), rng.uniform(-0.01, 0.01), rng.uniform(60e3, 100e3),
-                                 rng.uniform(-0.004, 0.004), rng.uniform(-0.004, 0.004), rng.uniform(-0.3, 0.3));
+  std::size_t empty = 0, out_of_range = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const bool beyond = k % 3 == 1;  // 5-20 % beyond the axes
+    lk::State s = beyond ? state_at(t, rng.uniform(-0.0095, 0.0095), rng.uniform(-0.012, 0.012), rng.uniform(55e3, 105e3),
+                                    rng.uniform(-0.005, 0.005), rng.uniform(-0.005, 0.005), rng.uniform(-0.36, 0.36))
+                         : state_at(t, rng.uniform(-0.009, 0.009), rng.uniform(-0.01, 0.01), rng.uniform(60e3, 100e3),
+                                    rng.uniform(-0.004, 0.004), rng.uniform(-0.004, 0.004), rng.uniform(-0.3, 0.3));
+    if (k % 3 == 2) s.yaw = (k / 3) % 2 ? kStoredYaw[(k / 6) % kNstored] : -kStoredYaw[(k / 6) % kNstored];
+    if (k % 97 == 0) s.yaw = std::numeric_limits<double>::quiet_NaN();
     const lk::Wheel w = static_cast<lk::Wheel>(k % 2);
-    const lk::Result a = t.query(w, s), b = plain.query(w, s);
+    const lk::Result a = t.query(w, s), b = plain.query(w, s), c = sse2.query(w, s);
     ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "query " << k << " y " << s.y << " yaw " << s.yaw;
+    ASSERT_EQ(std::memcmp(&c, &b, sizeof c), 0) << "SSE2 query " << k << " y " << s.y << " yaw " << s.yaw;
+    for (int slot = 0; slot < b.n_slots; ++slot) {
+      const lk::Contact one = t.query_slot(w, s, slot), one_sse2 = sse2.query_slot(w, s, slot);
+      ASSERT_EQ(std::memcmp(&one, &b.contact[slot], sizeof one), 0) << "query_slot " << k << " slot " << slot;
+      ASSERT_EQ(std::memcmp(&one_sse2, &b.contact[slot], sizeof one), 0) << "SSE2 query_slot " << k << " slot " << slot;
+    }
     empty += a.contact[1].value[lk::kFx] == 0.0 && a.contact[1].value[lk::kFy] == 0.0 && a.contact[1].value[lk::kMz] == 0.0;
+    out_of_range += (a.status & lk::status::kOutOfRange) != 0;
   }
-  EXPECT_GT(empty, 200u);  // the flange slot out of contact is among the states
+  EXPECT_GT(empty, 300u);         // the flange slot out of contact is among the states
+  EXPECT_GT(out_of_range, 500u);  // and states beyond the axes
 }
 
 // One wheel at given creepages does not see the sign of yaw: +-yaw put the contact at the same

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -215,6 +216,33 @@ TEST(SpeedAccuracy, TablesAreTheOnesGenerateMakes) {
   EXPECT_NE(creep_map->find("\"phi_knee\":4.0"), std::string::npos) << *creep_map;
   // The right wheel's flange onset lies between the tiny run's y nodes (-10..4 mm every 2 mm).
   EXPECT_NE(t.group(kJumpGroup), nullptr) << "the chart's table has no located contact jumps";
+}
+
+// A scene of the exact model makes every chart table an exact one (15-30 ms CPU per point): its
+// default tables stay within a few minutes of CPU (tables/default_halfspace.toml: one y 0.5 mm
+// table over block C's 16 mm, about 11,000 points), where the fast scenes' seven tables (fine
+// creepage grids of 891 creepages per y, y steps down to 0.25 mm) would be about 125,000 exact
+// points, hours.
+TEST(SpeedAccuracy, ExactSceneTablesAreCapped) {
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  ASSERT_EQ(scene.normal.model, NormalModel::halfspace);
+  const double span = 16e-3;  // block C: dy -6 to 10 mm
+  auto points = [&](const std::vector<SaTableSetting>& settings) {
+    double n = 0.0;
+    for (const SaTableSetting& ts : settings) {
+      const double creepages = ts.fine_creep ? 11.0 * 9.0 * 9.0
+                                             : static_cast<double>(scene.grids.xi.size() * scene.grids.eta.size() *
+                                                                   scene.grids.phi.size());
+      n += (span / ts.y_step + 2.0) * creepages;
+    }
+    return n;
+  };
+  const double exact = points(default_table_settings(true));
+  std::printf("exact scene: %.0f chart table points (fast scenes' settings: %.0f)\n", exact,
+              points(default_table_settings(false)));
+  EXPECT_GT(exact, 0.0);
+  EXPECT_LT(exact, 15000.0);
+  for (const SaTableSetting& ts : default_table_settings(true)) EXPECT_FALSE(ts.fine_creep) << ts.label();
 }
 
 }  // namespace
