@@ -3,7 +3,7 @@
 # Lookup against direct evaluation of the exact half-space model on the FULL default exact table
 # (tables/default_halfspace.toml), with the metric of tests/table_accuracy (exact-model tables). The test
 # suite runs the same check on a reduced table; this one needs the generated default table
-# (about 20 min CPU, docs/validation.md "Exact half-space model") and about 400 direct exact
+# (about 4 min CPU, docs/validation/exact-tables.md "The whole table") and about 400 direct exact
 # evaluations of both wheels (a few min CPU).
 # Usage: scripts/halfspace_table_accuracy.sh [TABLE.h5]   (build/release; generates TABLE if absent)
 set -euo pipefail

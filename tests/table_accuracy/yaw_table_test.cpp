@@ -545,7 +545,7 @@ TEST(YawTable, ExactModelThroughTheTable) {
   text << in.rdbuf();
   std::string s = text.str();
   s = s.substr(0, s.find("[grid]"));
-  s.replace(s.find("element_size = 0.3e-3"), std::string("element_size = 0.3e-3").size(), "element_size = 0.5e-3");
+  s.replace(s.find("element_size = 0.4e-3"), std::string("element_size = 0.4e-3").size(), "element_size = 0.5e-3");
   s += "[grid]\ny = [0.003, 0.0075]\nequilibrium_roll = true\nyaw = [-0.01, 0.0, 0.01]\nload = 78.5e3\n"
        "xi = [-0.002, 0.0, 0.002]\neta = [0.0, 0.001]\nphi = 0.1\n";
   const Scene scene = parse_scene(s, "exact yaw scene");
