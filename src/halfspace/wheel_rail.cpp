@@ -310,14 +310,24 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
                                     std::vector<std::vector<PlaneSample>>* samples_out = nullptr,
                                     bool remap = false);
 
+// The normal layer that finds the patches and places their references: STRIPES A&B with
+// CONTACT's patch combination.
+NormalOptions candidate_options() {
+  NormalOptions no;
+  no.model = NormalModel::stripes_ab;
+  no.combine_patches = true;
+  return no;
+}
+
+// Placements of the references at the solved approach (solve_for_load) before it gives up and
+// keeps the last: the secant takes 2-4 where the angle moves fastest (flange, 100-180 kN).
+constexpr int kReferenceRounds = 8;
+
 }  // namespace
 
 WheelNormalResult candidate_patches(const WheelContactGeometry& geometry, double load,
                                     const Material& material) {
-  NormalOptions no;
-  no.model = NormalModel::stripes_ab;
-  no.combine_patches = true;
-  return solve_normal_for_load(geometry, load, material, no);
+  return solve_normal_for_load(geometry, load, material, candidate_options());
 }
 
 WheelHalfspaceResult solve_halfspace_for_load(const WheelContactGeometry& geometry,
@@ -357,34 +367,43 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
   RAILTAB_CHECK(o.element_size > 0.0 && std::isfinite(o.element_size),
                 "halfspace: element_size must be > 0, got {}", o.element_size);
   WheelHalfspaceResult r;
-  const WheelNormalResult first = candidate_patches(geometry, load, material);
+  WheelNormalResult first = candidate_patches(geometry, load, material);
   r.vertical_approach = first.vertical_approach;
   if (first.patches.empty() || load == 0.0) {
     r.status = status::kLiftOff | (first.status & status::kInvalidInput);
     return r;
   }
   const double sigma = outward_sign(geometry.side);
+  // The reference point of each patch from the overlap runs of `first` (its band_s, angles, radius).
+  auto place_references = [&] {
+    for (size_t k = 0; k < first.patches.size(); ++k) {
+      const ContactPatch& np = first.patches[k];
+      HalfspacePatch& hp = r.patches[k];
+      hp.band_s = np.band_s;
+      hp.contact_angle = np.contact_angle;
+      hp.contact_angle_side = sigma * np.contact_angle;
+      hp.rolling_radius = np.rolling_radius;
+      hp.wheel_u = np.wheel_u;
+      hp.rail_u = np.rail_u;
+      if (geometry.wheel_yaw != 0.0) reference_x(geometry, np.band_s, hp);
+    }
+  };
   std::vector<std::vector<PlaneSample>> samples(first.patches.size());
   for (size_t k = 0; k < first.patches.size(); ++k) {
-    const ContactPatch& np = first.patches[k];
     HalfspacePatch hp;
     hp.track_sign = track_sign(geometry.side);
-    hp.band_s = np.band_s;
-    hp.contact_angle = np.contact_angle;
-    hp.contact_angle_side = sigma * np.contact_angle;
-    hp.rolling_radius = np.rolling_radius;
-    hp.wheel_u = np.wheel_u;
-    hp.rail_u = np.rail_u;
-    if (geometry.wheel_yaw != 0.0) reference_x(geometry, np.band_s, hp);
     if (previous && previous->patches.size() == first.patches.size()) {
       hp.grid = previous->patches[k].grid;  // kept (warm start) when the new grid is the same
       hp.normal.pressure = previous->patches[k].normal.pressure;
     }
     r.patches.push_back(std::move(hp));
   }
+  place_references();
   const int np = static_cast<int>(r.patches.size());
   // Solve every patch at the vertical approach dz (approach control), or the single patch for its
-  // share of the load; grow a grid whose edge the contact reaches.
+  // share of the load; grow a grid whose edge the contact reaches. keep_pressure: a pressure held
+  // on the patch starts the solve on the new grid at the same coordinates (from the reference).
+  bool keep_pressure = remap;
   auto solve_all = [&](double dz, bool single_load) {
     for (int k = 0; k < np; ++k) {
       HalfspacePatch& hp = r.patches[k];
@@ -393,7 +412,7 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
         const double grow = o.margin * std::pow(1.5, growth) + (growth > 0 ? 0.5 * growth : 0.0);
         const Grid before = hp.grid;
         build_grid(geometry, first.patches[k], dz * c, grow, o, hp, samples[k]);
-        if (remap && !hp.normal.pressure.empty()) {
+        if (keep_pressure && !hp.normal.pressure.empty()) {
           hp.normal.pressure = on_grid(before, hp.normal.pressure, hp.grid);
           if (std::none_of(hp.normal.pressure.begin(), hp.normal.pressure.end(), [](double v) { return v > 0.0; }))
             hp.normal.pressure.clear();
@@ -417,12 +436,15 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
       fz += hp.normal.normal_force * std::cos(hp.contact_angle_side);
     return fz;
   };
-  StatusBits solver = status::kConverged;
-  if (np == 1) {
-    solve_all(first.vertical_approach, true);
-    r.vertical_approach = r.patches[0].normal.approach / std::cos(r.patches[0].contact_angle_side);
-  } else {  // secant on the common vertical approach
-    double d0 = first.vertical_approach, d1 = 1.02 * first.vertical_approach;
+  // The load at the references placed: the vertical approach that carries it. One patch: its
+  // share; several: the secant on their common vertical approach, from `start`.
+  auto solve_load = [&](double start) {
+    if (np == 1) {
+      solve_all(start, true);
+      r.vertical_approach = r.patches[0].normal.approach / std::cos(r.patches[0].contact_angle_side);
+      return StatusBits{status::kConverged};
+    }
+    double d0 = start, d1 = 1.02 * start;
     solve_all(d0, false);
     double f0 = load_of() - load;
     solve_all(d1, false);
@@ -442,7 +464,37 @@ WheelHalfspaceResult solve_for_load(const WheelContactGeometry& geometry, double
       f1 = load_of() - load;
     }
     r.vertical_approach = d1;
-    if (!ok) solver = status::kNotConverged;
+    return StatusBits{ok ? status::kConverged : status::kNotConverged};
+  };
+  // The references at the approach solved for (wheel_rail.hpp, "Reference points"): placed again
+  // from the overlap runs at the exact vertical approach until the approach they give agrees with
+  // the one they were placed at (secant on the difference). A solve that follows another of the
+  // same patches (a later round of the coupled solve, the next creepage of a table's chain) places
+  // them first at that one's exact approach scaled to the new load as a Hertzian approach (load^2/3).
+  if (previous && previous->patches.size() == first.patches.size() && previous->carried_load > 0.0 &&
+      previous->vertical_approach > 0.0) {
+    WheelNormalResult at = solve_normal_for_approach(
+        geometry, previous->vertical_approach * std::pow(load / previous->carried_load, 2.0 / 3.0), material,
+        candidate_options());
+    if (at.patches.size() == first.patches.size()) {
+      first = std::move(at);
+      place_references();
+    }
+  }
+  StatusBits solver = solve_load(first.vertical_approach);
+  double x0 = 0.0, f0 = 0.0;  // the placement before and its miss (none yet: a plain step)
+  for (int it = 0; it < kReferenceRounds && solver == status::kConverged; ++it) {
+    const double x1 = first.vertical_approach, f1 = r.vertical_approach - x1;
+    if (std::abs(f1) <= o.reference_tolerance * r.vertical_approach) break;
+    const double x2 = std::clamp(it > 0 && f1 != f0 ? x1 - f1 * (x1 - x0) / (f1 - f0) : x1 + f1, 0.5 * x1, 2.0 * x1);
+    WheelNormalResult at = solve_normal_for_approach(geometry, x2, material, candidate_options());
+    if (at.patches.size() != first.patches.size()) break;  // the runs change here: keep the last
+    first = std::move(at);
+    place_references();
+    keep_pressure = true;
+    solver = solve_load(r.vertical_approach);
+    x0 = x1;
+    f0 = f1;
   }
   r.carried_load = load_of();
   finish_patches(r, samples, o, solver);
@@ -531,9 +583,11 @@ WheelHalfspaceResult solve_halfspace_rolling(const WheelContactGeometry& geometr
   // comes from a round at the full tolerances (solve_load_fixed_point accepts no loose round).
   constexpr double kFirstRoundTolerance = 1e-3;
   constexpr double kFirstRoundNormalTolerance = 1e-4;
+  constexpr double kFirstRoundReferenceTolerance = 1e-2;  // 0.1 degree in flange contact
   HalfspaceOptions first_round = o;
   first_round.tangential.tolerance = std::max(o.tangential.tolerance, kFirstRoundTolerance);
   first_round.normal.tolerance = std::max(o.normal.tolerance, kFirstRoundNormalTolerance);
+  first_round.reference_tolerance = std::max(o.reference_tolerance, kFirstRoundReferenceTolerance);
   std::vector<std::vector<PlaneSample>> samples;  // of the round that built the grids
   double start = 0.0;
   if (warm) {

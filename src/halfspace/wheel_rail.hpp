@@ -6,7 +6,13 @@
 // runs within 8 mm merged) finds the loaded overlap runs, their overlap reference (position and
 // interpenetration-weighted contact angle g_ref, as CONTACT places its reference) and a first
 // vertical approach. Each patch is then solved on its own grid in the tangent plane at the
-// reference point (x rolling, y = contact frame lateral, origin at the reference point):
+// reference point (x rolling, y = contact frame lateral, origin at the reference point).
+// Reference points: CONTACT places them from the rigid interpenetration at the approach it solves
+// for; the first approach is STRIPES's, which in flange contact lies far from the exact one (dy =
+// 7 mm of ../shared block C at 166 kN: 0.96 against 0.72 mm, g_ref 62.5 against 66.1 degrees, and
+// with it N 360 against 410 kN). So the references are placed again from the overlap runs at the
+// exact vertical approach until the two approaches agree within `reference_tolerance` (a secant on
+// their difference; it keeps the last placement where the runs change in between):
 //  - lateral coordinate of band sample s: y = (P(s) - P_ref) . t_ref, t_ref the tangent of the
 //    reference plane towards the field side: y points towards the field side on both wheels,
 //    so the right wheel's patch is the left wheel's mirror image, one discrete problem for both
@@ -58,6 +64,9 @@ struct HalfspaceOptions {
   int max_growth = 3;                 // enlargements when the contact reaches the edge [-]
   double planar_angle_limit = 0.2;    // contact-angle variation flagged kNotPlanar [rad]
   double load_tolerance = 1e-6;       // several patches: relative vertical-load tolerance [-]
+  double reference_tolerance = 1e-4;  // references placed at the solved vertical approach to
+                                      //   within this times it (top of this file; block C's
+                                      //   forces within 0.001 % of mu N of those at 1e-5) [-]
   double loose_round_residual = 0.01; // warm coupled solve: a round after one whose load balance
                                       //   missed by more than this times F_z is loose too [-]
   double jump_bracket = 0.5;          // warm coupled solve: stop, not converged, when full rounds
@@ -103,10 +112,11 @@ struct WheelHalfspaceResult {
 
 // The patches the exact model solves (the first step of solve_halfspace_for_load): the normal
 // layer's STRIPES A&B with CONTACT's patch combination at `load`. The exact result has
-// exactly these patches, in this order, with their reference points (band_s, contact_angle,
-// rolling_radius, wheel_u, rail_u); with one patch its normal force is the load's share
-// F_z / cos(g) > 0, so the patch configuration of a one-patch state is known without the exact
-// solve (the contact-jump locator uses this).
+// exactly these patches, in this order; their reference points (band_s, contact_angle,
+// rolling_radius, wheel_u, rail_u) are these placed again at the exact approach (top of this
+// file: in flange contact some degrees steeper, on the tread up to 0.1 degree); with one
+// patch its normal force is the load's share F_z / cos(g) > 0, so the patch configuration of a
+// one-patch state is known without the exact solve (the contact-jump locator uses this).
 WheelNormalResult candidate_patches(const WheelContactGeometry& geometry, double load,
                                     const Material& material);
 

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -121,13 +122,16 @@ namespace {
 // The contact-jump locator's configuration probe (ContactProbe::configuration: one wheel, no creep,
 // the exact normal problem only with two or more candidate patches) gives the signature the full
 // contact chain (ContactProbe::evaluate, which solves the exact normal and tangential problems at
-// every state) gives: the jumps it locates are those of the exact model, found cheaper. States
+// every state) gives: the jumps it locates are those of the exact model, found cheaper (the loaded
+// patch's reference near the exact one, which is placed again at the exact approach,
+// wheel_rail.hpp). States
 // across the default exact scene's y range, tread and flange, where one and two patches occur.
 TEST(HalfspaceSelectable, JumpConfigurationIsTheContactChains) {
   namespace pb = probe_slot_bits;
   constexpr std::uint32_t kConfig = pb::kGeometry | pb::kGeometryTwo | pb::kGeometryFirst | pb::kLoaded;
   int two_patch = 0, loaded = 0;
   std::size_t compared = 0;
+  double max_angle = 0.0, max_radius = 0.0;  // candidate against exact reference
   // The default exact scene every 0.7 mm at the nominal load (one candidate patch throughout: its
   // S1002/UIC60 contacts lie within the 8 mm that merge into one patch), and the worn pairs' scenes
   // with the exact model at the first states with two candidate patches (0.05 mm scan, no exact
@@ -163,8 +167,14 @@ TEST(HalfspaceSelectable, JumpConfigurationIsTheContactChains) {
           EXPECT_EQ(a.status & kConfig, b.status & kConfig) << where;
           EXPECT_EQ(a.contact_angle, b.contact_angle) << where;
           EXPECT_EQ(a.rolling_radius, b.rolling_radius) << where;
-          EXPECT_EQ(a.patch_angle, b.patch_angle) << where;
-          EXPECT_EQ(a.patch_radius, b.patch_radius) << where;
+          // The exact result's reference lies at the exact approach, the candidate's at STRIPES's
+          // (wheel_rail.hpp, "Reference points"): measured at most 3.1e-3 rad and 29 um apart at
+          // these creepage-free states (tread at 4.6 mm), below a jump's radius step
+          // (JumpLocatorOptions::radius_step, 50 um).
+          EXPECT_NEAR(a.patch_angle, b.patch_angle, 5e-3) << where;
+          EXPECT_NEAR(a.patch_radius, b.patch_radius, 4.5e-5) << where;
+          max_angle = std::max(max_angle, std::abs(a.patch_angle - b.patch_angle));
+          max_radius = std::max(max_radius, std::abs(a.patch_radius - b.patch_radius));
           EXPECT_EQ(b.fx, 0.0);
           if (a.loaded) ++loaded;
         }
@@ -173,8 +183,9 @@ TEST(HalfspaceSelectable, JumpConfigurationIsTheContactChains) {
       }
     }
   }
-  std::printf("%zu wheel states compared, %d with two candidate patches (the exact normal path)\n", compared,
-              two_patch);
+  std::printf("%zu wheel states compared, %d with two candidate patches (the exact normal path); candidate "
+              "against exact reference: angle %.2e rad, rolling radius %.2e m at most\n", compared, two_patch,
+              max_angle, max_radius);
   EXPECT_GT(loaded, 40);    // both wheels loaded nearly everywhere
   EXPECT_GT(two_patch, 0);  // the exact path was compared too
 }
