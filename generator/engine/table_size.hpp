@@ -32,8 +32,11 @@ inline constexpr PointCost kFastPointCost{100e-6, 600e-6};
 // and the share of the contact jumps' one-sided values and of the error map. Measured on
 // tables/default_halfspace.toml (docs/validation/exact-tables.md, "Generation cost"): the sweep
 // 15.7 ms per computed point per thread, the whole run 22 ms CPU per computed point; the upper end
-// allows a machine twice as slow or a grid denser in flange-onset jumps.
+// allows a machine twice as slow or a grid denser in flange-onset jumps. At element size
+// kExactPointCostElementSize; the kernel scales it by the elements per patch
+// (contact_point_cost: 0.4 mm elements cost 0.56 times as much, measured 11 ms CPU per point).
 inline constexpr PointCost kExactPointCost{0.015, 0.045};
+inline constexpr double kExactPointCostElementSize = 0.3e-3;  // [m]
 
 // a * b, or railtab::Error naming `what` when the product does not fit in 64 bits.
 std::uint64_t checked_multiply(std::uint64_t a, std::uint64_t b, const std::string& what);

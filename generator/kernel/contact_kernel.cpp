@@ -478,7 +478,10 @@ double table_equilibrium_roll(const ContactGeometrySolver& solver, double y) {
 }
 
 PointCost contact_point_cost(const Scene& scene) {
-  return scene.normal.model == NormalModel::halfspace ? kExactPointCost : kFastPointCost;
+  if (scene.normal.model != NormalModel::halfspace) return kFastPointCost;
+  // The exact model's solves scale with the elements of a patch, 1 / element_size^2.
+  const double ratio = kExactPointCostElementSize / scene.halfspace.element_size;
+  return {kExactPointCost.low * ratio * ratio, kExactPointCost.high * ratio * ratio};
 }
 
 SweepKernel make_contact_kernel(const Scene& scene) { return make_contact_kernel(scene, make_geometry_solver(scene)); }

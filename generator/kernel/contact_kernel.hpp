@@ -89,8 +89,9 @@ LinearCreep slot_linear_creep(const WheelContactGeometry& geometry, const WheelN
 // bit (engine/mirror.hpp); the solver's own search, run at each y, is odd only to its tolerance.
 double table_equilibrium_roll(const ContactGeometrySolver& solver, double y);
 
-// Run time per grid point of the scene's contact chain (the exact half-space model's or the fast
-// models'), for the table size check (engine/table_size.hpp).
+// Run time per computed grid point of the scene's contact chain (the exact half-space model's,
+// scaled to the scene's element size, or the fast models'), for the table size check and the
+// estimate (engine/table_size.hpp).
 PointCost contact_point_cost(const Scene& scene);
 
 // Builds the profiles and solver of the scene (throws railtab::Error for bad profiles/geometry).

@@ -226,10 +226,11 @@ TEST(TableSize, RefusalUsesTheModelsCostPerPoint) {
 }
 
 // The estimate counts the points the sweep solves: a mirrored sweep the columns y >= 0 (and a
-// shard's columns y < 0 whose image is in another shard). For tables/default_halfspace.toml on 2
-// threads its range holds the whole run's measured wall time (docs/validation/exact-tables.md,
-// "Generation cost": 6 min 05 s on a quiet 2-core machine), where counting every point at the
-// earlier cost per point printed 21 to 63 min.
+// shard's columns y < 0 whose image is in another shard), at the exact model's cost scaled to
+// the element size. Its range holds the measured whole runs of tables/default_halfspace.toml
+// (docs/validation/exact-tables.md, "Generation cost"): 0.3 mm elements, 31,899 computed points,
+// 6 min 05 s wall on a quiet 2-core machine (counting every point at the earlier cost printed 21
+// to 63 min); 0.4 mm elements, 22,638 computed points, 247 s CPU (loaded machine).
 TEST(TableSize, EstimateCountsTheComputedPoints) {
   const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
   const std::size_t ny = scene.grids.y.size();
@@ -246,10 +247,19 @@ TEST(TableSize, EstimateCountsTheComputedPoints) {
   // A shard holding y = 0 and its neighbours on both sides computes 0 and the positive side only.
   EXPECT_EQ(computed_points(scene, negative - 2, negative + 3, true), table_points(scene, 3));
 
-  const PointCost cost = contact_point_cost(scene);
-  const double measured_wall = 365.0;  // [s] the whole run, 2 threads (see above)
-  EXPECT_LE(static_cast<double>(computed) / 2.0 * cost.low, measured_wall);
-  EXPECT_GE(static_cast<double>(computed) / 2.0 * cost.high, measured_wall);
+  Scene fine = scene;
+  fine.halfspace.element_size = 0.3e-3;
+  const PointCost cost = contact_point_cost(fine);
+  const double wall_03 = 365.0, points_03 = 31899.0;  // [s], [-] 0.3 mm, 2 threads (see above)
+  EXPECT_LE(points_03 / 2.0 * cost.low, wall_03);
+  EXPECT_GE(points_03 / 2.0 * cost.high, wall_03);
+  Scene coarse = scene;
+  coarse.halfspace.element_size = 0.4e-3;
+  const PointCost cost_04 = contact_point_cost(coarse);
+  const double cpu_04 = 247.0, points_04 = 22638.0;  // [s], [-] 0.4 mm, CPU of both threads
+  EXPECT_LE(points_04 * cost_04.low, cpu_04);
+  EXPECT_GE(points_04 * cost_04.high, cpu_04);
+  EXPECT_NEAR(cost_04.low / cost.low, 0.5625, 1e-12);  // (0.3 / 0.4)^2
   const std::string line = describe_table_size(points, computed, 1000, 2, cost);
   EXPECT_NE(line.find(fmt::format("table: {} grid points ({} computed, the others their mirror images)", points,
                                   computed)),
