@@ -12,9 +12,9 @@
 //    exact model's more loaded slot. Normal force (% of N_exact) and the geometry's contact angle
 //    beside them;
 //  - random off-grid states (both wheels): per slot, |fx or fy error| / (mu N) of the slots the
-//    lookup does not flag low_confidence: the table against its own model (the second
-//    figure), that model against the exact model, and the table against the exact model.
-// The rule for these tables: within twice the exact table's targets (block C: tread median
+//    lookup does not flag low_confidence: the table against its own model (the exact table's
+//    second figure), that model against the exact model, and the table against the exact model.
+// The accuracy rule for these tables: within twice the exact table's targets (block C: tread median
 // / p90 / max 2 / 4 / 10, flange 6 / 12 / 20; random states: tread RMS / p99 1 / 4, flange 2 / 8).
 // Measured, not asserted (the STRIPES scenes do not meet them: docs/validation/worn-profiles.md);
 // asserted: every state is evaluated and the queries stay in range. A few minutes of CPU per scene,
