@@ -202,6 +202,19 @@ inline std::filesystem::path temp_table_path(const std::string& name) {
          ("railtab_table_accuracy_" + std::to_string(::getpid()) + "_" + name + ".h5");
 }
 
+// The scene's table as `railtab generate` makes it (sweep, located jumps with their one-sided
+// values), written to a temporary file (`name`) and loaded through the public lookup API.
+inline lk::Table generated_lookup(const Scene& scene, const std::string& name) {
+  SweepResult sweep = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
+  if (sweep.summary.failures) throw std::runtime_error(scene.name + ": " + sweep.summary.first_failure);
+  add_jumps(sweep.table, scene, locate_jumps(scene));
+  const std::filesystem::path file = temp_table_path(name);
+  write_for_lookup(sweep.table, file);
+  lk::Table table = lk::Table::load(file.string());
+  std::filesystem::remove(file);
+  return table;
+}
+
 // The default scene (tables/default.toml), its swept table (without jumps) and its located jumps,
 // computed once per process. The test files that measure the default table start from it (each
 // adds the jumps to its own copy, as `railtab generate` does), and CTest runs their suites in one

@@ -104,15 +104,7 @@ void table_against_contact(double fraction) {
     ASSERT_GT(std::min(s.y - lo, hi - s.y), 0.125 * (hi - lo)) << "dy " << s.dy_mm << " mm near a node";
   }
 
-  // The table as `railtab generate` makes it (sweep, located jumps with one-sided values), written
-  // and loaded through the public lookup API.
-  SweepResult sweep = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
-  ASSERT_EQ(sweep.summary.failures, 0u) << sweep.summary.first_failure;
-  add_jumps(sweep.table, scene, locate_jumps(scene));
-  const fs::path file = temp_table_path("contact_end_to_end");
-  write_for_lookup(sweep.table, file);
-  const lk::Table table = lk::Table::load(file.string());
-  fs::remove(file);
+  const lk::Table table = generated_lookup(scene, "contact_end_to_end");
 
   std::vector<Point> points(states.size());
   for (std::size_t i = 0; i < states.size(); ++i) {

@@ -84,13 +84,7 @@ void measure(const char* file) {
   exact.halfspace.element_size = 0.3e-3;
   const double mu = scene.tangential.friction;
 
-  SweepResult sweep = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
-  ASSERT_EQ(sweep.summary.failures, 0u) << sweep.summary.first_failure;
-  add_jumps(sweep.table, scene, locate_jumps(scene));
-  const fs::path path = temp_table_path("worn_scene_accuracy");
-  write_for_lookup(sweep.table, path);
-  const lk::Table table = lk::Table::load(path.string());
-  fs::remove(path);
+  const lk::Table table = generated_lookup(scene, "worn_scene_accuracy");
   const std::vector<double>& yn = scene.grids.y;
   std::printf("%s (%s), y nodes moved half a step (%zu, %.2f..%.2f mm), loads %zu, creepages %zu x %zu x %zu; "
               "reference: the exact model, %.1f mm elements\n",
