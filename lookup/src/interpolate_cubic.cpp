@@ -223,6 +223,24 @@ struct RecordSource {
   RAILTAB_AVX2 V4 quad(int j, int k) const noexcept { return load4<T>(rec[j] + k * sizeof(T)); }
 };
 
+// The lane primitives of the vector Hermite passes over lanes of V (scalar type S, I the integer
+// vector of V's width, MASK all bits of an S but the sign): splat, abs, std::min and std::max
+// lane by lane, and limit_slope with the scalar function's own comparisons. One definition for
+// the double lanes (RAILTAB_HERMITE_LANES) and the float lanes (RAILTAB_HERMITE_FLOAT).
+#define RAILTAB_LANE_LIMITER(V, I, S, MASK, ATTRIBUTES)                                                                         \
+  static ATTRIBUTES V splat(S x) noexcept { return V{} + x; }                                                                   \
+  static ATTRIBUTES V abs(V x) noexcept { return reinterpret_cast<V>(reinterpret_cast<I>(x) & (I{} + MASK)); }                  \
+  static ATTRIBUTES V min(V a, V b) noexcept { return b < a ? b : a; }  /* std::min */                                          \
+  static ATTRIBUTES V max(V a, V b) noexcept { return a < b ? b : a; }  /* std::max */                                          \
+  /* limit_slope, lane by lane. */                                                                                              \
+  static ATTRIBUTES V limit(V m, V s_left, V s_right) noexcept {                                                                \
+    const V zero = splat(S(0));                                                                                                 \
+    const V sign = s_right > S(0) ? splat(S(1)) : splat(S(-1));                                                                 \
+    const V bound = S(3) * min(abs(s_left), abs(s_right));                                                                      \
+    const V limited = sign * min(max(m * sign, zero), bound);                                                                   \
+    return s_left * s_right <= S(0) ? zero : limited;                                                                           \
+  }
+
 // hermite(a, f, true) over lanes of V (two or four doubles), with each select written on the
 // scalar function's own comparison and the same operations in the same order, so every lane gets
 // the scalar function's bytes (GCC leaves the scalar loop unvectorised, its selects staying
@@ -231,18 +249,7 @@ struct RecordSource {
 #define RAILTAB_HERMITE_LANES(NAME, V, LOAD, ATTRIBUTES)                                                                        \
 struct NAME {                                                                                                                   \
   typedef long long I __attribute__((vector_size(sizeof(V))));                                                                  \
-  static ATTRIBUTES V splat(double x) noexcept { return V{} + x; }                                                              \
-  static ATTRIBUTES V abs(V x) noexcept { return reinterpret_cast<V>(reinterpret_cast<I>(x) & (I{} + 0x7fffffffffffffffLL)); }  \
-  static ATTRIBUTES V min(V a, V b) noexcept { return b < a ? b : a; }  /* std::min */                                          \
-  static ATTRIBUTES V max(V a, V b) noexcept { return a < b ? b : a; }  /* std::max */                                          \
-  /* limit_slope, lane by lane. */                                                                                              \
-  static ATTRIBUTES V limit(V m, V s_left, V s_right) noexcept {                                                                \
-    const V zero = splat(0.0);                                                                                                  \
-    const V sign = s_right > 0.0 ? splat(1.0) : splat(-1.0);                                                                    \
-    const V bound = 3.0 * min(abs(s_left), abs(s_right));                                                                       \
-    const V limited = sign * min(max(m * sign, zero), bound);                                                                   \
-    return s_left * s_right <= 0.0 ? zero : limited;                                                                            \
-  }                                                                                                                             \
+  RAILTAB_LANE_LIMITER(V, I, double, 0x7fffffffffffffffLL, ATTRIBUTES)                                                          \
   /* Lanes [k, k + lanes of V) of the stencil's nodes lo .. hi into out; returns the largest |f| */                             \
   /* seen per lane (hermite's scaling test). */                                                                                 \
   template <bool kLeft, bool kRight, class Source>                                                                              \
@@ -381,17 +388,7 @@ FloatAxis float_axis(const CubicAxis& a) noexcept {
 // instruction set.
 #define RAILTAB_HERMITE_FLOAT(NAME, V, I, ATTRIBUTES)                                                                           \
 struct NAME {                                                                                                                   \
-  static ATTRIBUTES V splat(float x) noexcept { return V{} + x; }                                                               \
-  static ATTRIBUTES V abs(V x) noexcept { return reinterpret_cast<V>(reinterpret_cast<I>(x) & (I{} + 0x7fffffff)); }            \
-  static ATTRIBUTES V min(V a, V b) noexcept { return b < a ? b : a; }                                                          \
-  static ATTRIBUTES V max(V a, V b) noexcept { return a < b ? b : a; }                                                          \
-  static ATTRIBUTES V limit(V m, V s_left, V s_right) noexcept {                                                                \
-    const V zero = splat(0.0f);                                                                                                 \
-    const V sign = s_right > 0.0f ? splat(1.0f) : splat(-1.0f);                                                                \
-    const V bound = 3.0f * min(abs(s_left), abs(s_right));                                                                      \
-    const V limited = sign * min(max(m * sign, zero), bound);                                                                   \
-    return s_left * s_right <= 0.0f ? zero : limited;                                                                           \
-  }                                                                                                                             \
+  RAILTAB_LANE_LIMITER(V, I, float, 0x7fffffff, ATTRIBUTES)                                                                     \
   static ATTRIBUTES V hermite(const FloatAxis& a, const V* f) noexcept {                                                        \
     V m0 = splat(0.0f), m1 = splat(0.0f);                                                                                       \
     for (int j = 0; j < 4; ++j) {                                                                                               \
@@ -437,6 +434,7 @@ struct NAME {                                                                   
 RAILTAB_HERMITE_FLOAT(FloatHermite4, F4, I4, __attribute__((always_inline)))
 RAILTAB_HERMITE_FLOAT(FloatHermite8, F8, I8, RAILTAB_AVX2)
 #undef RAILTAB_HERMITE_FLOAT
+#undef RAILTAB_LANE_LIMITER
 
 // True when every lane of `largest` is at most kFloatBelow (a NaN lane fails).
 template <class V>
