@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Contact jumps (docs/validation/contact-jumps.md, docs/lookup.md "Contact jumps"): the generator
 // locates every jump along y per wheel and load node (jump_locator.hpp) and the lookup interpolates
-// a cell cut by one from the query's side only. Measured here on the default scene at the random
+// a cell cut by one from the query's side only. Measured here on the STRIPES scene at the random
 // states of default_scene_accuracy_test (same seed): the creep forces of every cell that is not
 // smooth, with the metric of the smooth cells, |F_lookup - F_direct| / (mu N), for the table with
 // its jumps (format 2.1) and the same table without them (the lookup of format 2.0), in two
@@ -113,7 +113,7 @@ TEST(JumpCells, LocatedJumpsSeparateTwoConfigurations) {
       EXPECT_TRUE(flange_onset) << "wheel " << w << " load " << f.scene.grids.load[l];
     }
   }
-  std::printf("default scene: %zu jumps located (both wheels, %zu loads), %zu evaluations; with the one-sided "
+  std::printf("STRIPES scene: %zu jumps located (both wheels, %zu loads), %zu evaluations; with the one-sided "
               "values %.2f s; table file %.0f KiB without jumps, %.0f KiB with\n",
               total, f.scene.grids.load.size(), f.jumps.evaluations, f.locate_seconds,
               static_cast<double>(f.bytes_without) / 1024.0, static_cast<double>(f.bytes_with) / 1024.0);
@@ -180,7 +180,7 @@ constexpr const char* kCategoryNames[kCategories] = {"jump cells (a located jump
 
 // `creepage_nodes`: xi, eta, phi on random values of the scene's creepage lists; else uniform like
 // y and load (the states of DefaultSceneRandomOffGrid). With normalised creep coordinates (format
-// 2.1, the default scene) the list values are NOT the table's creep nodes (those sit at each slot's
+// 2.1, the STRIPES scene) the list values are NOT the table's creep nodes (those sit at each slot's
 // own scale), so both variants carry the creepage interpolation error
 // (docs/validation/creep-interpolation.md); each miss is therefore re-measured at its cell's y node
 // on its side of the jump, which separates that error from the jump's and y's. Env
@@ -303,7 +303,7 @@ void creep_forces_on_jump_cells(bool creepage_nodes) {
   std::printf("%s\n", creepage_nodes ? "CREEPAGES AT THE SCENE'S LIST VALUES (y, load uniform; not the creep nodes of a "
                                                        "normalised table)"
                                       : "ALL UNIFORM (y, load, xi, eta, phi: with the creepage interpolation error)");
-  std::printf("default scene, creep forces: %zu random states x 2 wheels (seed %llu); wheel-states with a jump cell "
+  std::printf("STRIPES scene, creep forces: %zu random states x 2 wheels (seed %llu); wheel-states with a jump cell "
               "in a slot: %zu (%.1f %%), with a status-change cell: %zu (%.1f %%); error = max over fx, fy of "
               "|lookup - direct| / (mu N), N the slot's larger normal force of lookup and direct (the load where "
               "both are 0)\n",
@@ -385,7 +385,7 @@ void creep_forces_on_jump_cells(bool creepage_nodes) {
 // would put xi between v nodes and differ by the creep interpolation error (~1e-3 of mu N or more).
 TEST(JumpCells, NormalisedCreepTakesTheQuerysSideScales) {
   const JumpFixture& f = fixture();
-  if (!f.scene.creep_normalised) GTEST_SKIP() << "the default scene does not use normalised creep coordinates";
+  if (!f.scene.creep_normalised) GTEST_SKIP() << "the STRIPES scene does not use normalised creep coordinates";
   const double mu = f.scene.tangential.friction;
   const std::vector<double>& xi = f.scene.grids.xi;
   ASSERT_EQ(f.scene.grids.eta.front(), -f.scene.grids.eta.back());
@@ -477,7 +477,7 @@ TEST(JumpCells, Avx2AndSse2GiveTheSameBytesInCutCells) {
   EXPECT_GT(compared, 100u);
 }
 
-// Two jumps of different kinds that cross between two load nodes (on the default scene the
+// Two jumps of different kinds that cross between two load nodes (on the STRIPES scene the
 // tread-flange hand-over of the normal patch passes the flange root's rigid-point jump between
 // 78.5 and 100 kN): the lookup pairs the jumps of the two nodes by their order, so between the
 // positions that one jump takes at the two nodes a query blends the values of one side of it at
@@ -525,7 +525,7 @@ TEST(JumpCells, QueriesBetweenTheLoadNodesPositionsOfACrossingJumpAreLowConfiden
         }
       }
     }
-  EXPECT_GT(crossings, 0u) << "the default scene's jumps no longer cross between load nodes: choose another case";
+  EXPECT_GT(crossings, 0u) << "the STRIPES scene's jumps no longer cross between load nodes: choose another case";
   std::printf("crossing jumps: %zu, states checked: %zu\n", crossings, checked);
 }
 
