@@ -162,10 +162,10 @@ void expect_handover_keeps_the_wheel_force(const Fixture& f, const std::vector<P
     const double f_error = std::max(std::abs(lookup[1] - model[1]), std::abs(lookup[2] - model[2])) / (mu * model[0]);
     normal_error.push_back(n_error);
     force_error.push_back(f_error);
-    EXPECT_LE(n_error, 0.05) << "y " << points[i].v[kY] << " creepage (" << points[i].v[kXi] << ", "
+    EXPECT_LE(n_error, 0.05) << "y " << points[i].v[kY] << " load " << points[i].v[kLoad] << " creepage (" << points[i].v[kXi] << ", "
                              << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): N summed over the slots, lookup "
                              << lookup[0] << ", direct " << model[0];
-    EXPECT_LE(f_error, 0.05) << "y " << points[i].v[kY] << " creepage (" << points[i].v[kXi] << ", "
+    EXPECT_LE(f_error, 0.05) << "y " << points[i].v[kY] << " load " << points[i].v[kLoad] << " creepage (" << points[i].v[kXi] << ", "
                              << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): fx, fy summed over the slots, "
                              << "lookup " << lookup[1] << ", " << lookup[2] << ", direct " << model[1] << ", " << model[2];
   }
@@ -196,8 +196,10 @@ void expect_handover_misses_are_flagged(const Fixture& f, const TableView& view)
     if (e.wheel != 0 || (e.output != lk::kFx && e.output != lk::kFy) || !(e.normal_force > 0.0)) return;
     if (e.error <= 0.05 * mu * e.normal_force) return;
     ++misses;
+    const Point& p = points[e.state];
     EXPECT_TRUE(flagged(e)) << "slot " << e.slot << " " << lk::output_name(static_cast<lk::Output>(e.output)) << " at y "
-                            << points[e.state].v[kY] << ": lookup " << e.lookup << ", direct " << e.direct;
+                            << p.v[kY] << " load " << p.v[kLoad] << " creepage (" << p.v[kXi] << ", " << p.v[kEta]
+                            << ", " << p.v[kPhi] << "): lookup " << e.lookup << ", direct " << e.direct;
   });
   std::printf("hand-over, left wheel y 5.585 to 5.605 mm: %zu fx, fy values off by more than 5 %% of mu N, all "
               "must be flagged\n", misses);
