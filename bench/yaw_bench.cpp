@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Cost of a yaw axis (format 2.4): the default scene (tables/default.toml) as it is and with a
+// Cost of a yaw axis (format 2.4): the STRIPES scene (tables/default_stripes.toml) as it is and with a
 // 5-node yaw axis [grid] yaw = [-0.01, -0.005, 0, 0.005, 0.01] (rad), the rest unchanged. The list
 // is symmetric, so the table stores 0, 0.005, 0.01 and the lookup reads |yaw| (yaw_symmetry).
 // Targets (docs/validation/yaw-tables.md): generation time and table size at most 5x, a lookup
@@ -42,13 +42,13 @@ namespace {
 
 namespace lk = railtab::lookup;
 
-// The scenes: the default one (tables/default.toml) with the 5-node yaw axis when `yaw`; the
+// The scenes: the STRIPES one (tables/default_stripes.toml) with the 5-node yaw axis when `yaw`; the
 // curving one (tables/curving_r600.toml, yaw +-2 mrad in 5 nodes) as it is when `yaw`, else
 // without its yaw line.
 enum Which { kDefault = 0, kCurving = 1 };
 
 railtab::Scene scene(bool yaw, Which which = kDefault) {
-  const char* file = which == kDefault ? "default.toml" : "curving_r600.toml";
+  const char* file = which == kDefault ? "default_stripes.toml" : "curving_r600.toml";
   std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / file);
   std::stringstream text;
   text << in.rdbuf();

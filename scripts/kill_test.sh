@@ -16,8 +16,8 @@ work=$(mktemp -d /tmp/railtab_kill.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 fails=0
 fail() { echo "kill_test: FAIL: $*" >&2; fails=$((fails + 1)); }
-# The default scene on a coarser y grid (21 nodes): every stage of a run in a few seconds of CPU.
-sed -e '/^y = \[/,/^\]/c y = { start = -0.010, stop = 0.010, step = 0.001 }' tables/default.toml > "$work/scene.toml"
+# The STRIPES scene (the default track, fast models) on a coarser y grid (21 nodes): every stage of a run in a few seconds of CPU.
+sed -e '/^y = \[/,/^\]/c y = { start = -0.010, stop = 0.010, step = 0.001 }' tables/default_stripes.toml > "$work/scene.toml"
 
 same_datasets() {  # h5diff of everything but the root attributes (`created` differs by design)
   h5diff --exclude-attribute / "$work/ref.h5" "$1" > "$work/h5diff.txt" 2>&1

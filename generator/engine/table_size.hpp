@@ -23,14 +23,14 @@ struct PointCost {
   double low = 0.0;
   double high = 0.0;
 };
-// The fast models, per computed point: the whole run of tables/default.toml (the sweep, the
+// The fast models, per computed point: the whole run of tables/default_stripes.toml (the sweep, the
 // one-sided values at its contact jumps and the error map, whose reference is the exact model)
 // took user 2.9 s CPU for 9135 computed points, 0.31 ms each (docs/reliability.md, "Limits").
 inline constexpr PointCost kFastPointCost{100e-6, 600e-6};
 // The exact half-space model (normal_model = "halfspace", load coupling on), per COMPUTED point
 // (a mirrored sweep computes the columns y >= 0 only): the sweep's coupled solves of both wheels
 // and the share of the contact jumps' one-sided values and of the error map. Measured on
-// tables/default_halfspace.toml (docs/validation/exact-tables.md, "Generation cost"): the sweep
+// tables/default.toml (docs/validation/exact-tables.md, "Generation cost"): the sweep
 // 15.7 ms per computed point per thread, the whole run 22 ms CPU per computed point; the upper end
 // allows a machine twice as slow or a grid denser in flange-onset jumps. At element size
 // kExactPointCostElementSize; the kernel scales it by the elements per patch

@@ -21,19 +21,26 @@ namespace {
 constexpr hsize_t kMaxJumps = 4096;  // entries of one jump list, at most (limit checked at load)
 
 // Whether the jumps of one list may cut y cell [x0, x1] within load cell l (nodes l, l+1): a jump
-// of either node inside it, or, when the lists match, a jump whose interpolated position sweeps
-// across it.
+// of either node inside it, or a jump whose interpolated position sweeps across it (the jumps
+// paired as the query pairs them: in order where both nodes list the same kinds, else by kind,
+// JumpWheel::partner).
 bool cuts(const JumpWheel& j, int list, int l, double x0, double x1) {
   const auto& ys = j.y[list];
   const int nodes = j.load_axis ? 2 : 1;
   for (int k = 0; k < nodes; ++k)
     for (double y : ys[static_cast<std::size_t>(l + k)])
       if (y >= x0 && y <= x1) return true;
-  if (!j.load_axis || !j.matched[list][static_cast<std::size_t>(l)]) return false;
-  const auto& a = ys[static_cast<std::size_t>(l)];
-  const auto& b = ys[static_cast<std::size_t>(l + 1)];
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::min(a[i], b[i]) <= x1 && std::max(a[i], b[i]) >= x0) return true;
+  if (!j.load_axis) return false;
+  const std::size_t lo = static_cast<std::size_t>(l);
+  const auto& a = ys[lo];
+  const auto& b = ys[lo + 1];
+  const std::vector<int>& partner = j.partner[list][lo];
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const int p = partner.empty() ? static_cast<int>(i) : partner[i];  // empty: the same kinds in order
+    if (p < 0) continue;
+    const double other = b[static_cast<std::size_t>(p)];
+    if (std::min(a[i], other) <= x1 && std::max(a[i], other) >= x0) return true;
+  }
   return false;
 }
 
@@ -229,11 +236,10 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
     f.fail("dataset " + name + "_y or _kind has no checksum but the table's other datasets have one");
   const std::size_t count = static_cast<std::size_t>(shape.back());
   const Axis& ya = d.axis[kVarY];
-  std::vector<std::vector<std::uint32_t>> kinds[2];  // [list][load node]: the jumps' kind bits
   for (int list = 0; list < 2; ++list) {
     j.y[list].assign(static_cast<std::size_t>(n_load), {});
     j.index[list].assign(static_cast<std::size_t>(n_load), {});
-    kinds[list].assign(static_cast<std::size_t>(n_load), {});
+    j.kind[list].assign(static_cast<std::size_t>(n_load), {});
   }
   for (std::size_t l = 0; l < n_load; ++l) {
     bool ended = false;
@@ -252,11 +258,11 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
       last = v;
       j.y[0][l].push_back(v);
       j.index[0][l].push_back(static_cast<int>(k));
-      kinds[0][l].push_back(bits);
+      j.kind[0][l].push_back(bits);
       if (bits & kGeometricJumps) {
         j.y[1][l].push_back(v);
         j.index[1][l].push_back(static_cast<int>(k));
-        kinds[1][l].push_back(bits);
+        j.kind[1][l].push_back(bits);
       }
     }
   }
@@ -268,7 +274,7 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
       for (int l = 0; l < j.load_cells; ++l) {
         const std::size_t lo = static_cast<std::size_t>(l);
         j.matched[list][lo] = j.y[list][lo].size() == j.y[list][lo + 1].size();
-        if (kinds[list][lo] != kinds[list][lo + 1]) j.partner[list][lo] = kind_partners(kinds[list][lo], kinds[list][lo + 1]);
+        if (j.kind[list][lo] != j.kind[list][lo + 1]) j.partner[list][lo] = kind_partners(j.kind[list][lo], j.kind[list][lo + 1]);
       }
   }
   const int y_cells = ya.size() - 1;
@@ -305,6 +311,38 @@ void read_wheel(const Hdf5File& f, TableData& d, int w) {
             static_cast<int>(std::lower_bound(own.begin(), own.end(), x[c] - margin) - own.begin());
         j.window[list][at + 1] =
             static_cast<int>(std::upper_bound(own.begin(), own.end(), x[c + 1] + margin) - own.begin());
+      }
+    }
+  }
+  // The crossing windows (JumpWheel::cross_window): per load cell with partners, node and y cell,
+  // the jumps before the window lie, at both their positions, left of the cell by the margin (so
+  // left of every query in it), those from its end on right of it.
+  for (int list = 0; list < 2; ++list) {
+    j.cross_window[list].assign(static_cast<std::size_t>(j.load_cells) * 2 * static_cast<std::size_t>(y_cells) * 2, 0);
+    for (int l = 0; l < j.load_cells && j.load_axis; ++l) {
+      const std::vector<int>& partner = j.partner[list][static_cast<std::size_t>(l)];
+      if (partner.empty()) continue;
+      for (std::size_t node = 0; node < 2; ++node) {
+        const std::vector<double>& own = j.y[list][static_cast<std::size_t>(l) + node];
+        const std::vector<double>& other = j.y[list][static_cast<std::size_t>(l) + 1 - node];
+        const std::size_t first = node == 0 ? 0 : j.y[list][static_cast<std::size_t>(l)].size();
+        auto lo = [&](std::size_t k) {
+          const int p = partner[first + k];
+          return p < 0 ? own[k] : std::min(own[k], other[static_cast<std::size_t>(p)]);
+        };
+        auto hi = [&](std::size_t k) {
+          const int p = partner[first + k];
+          return p < 0 ? own[k] : std::max(own[k], other[static_cast<std::size_t>(p)]);
+        };
+        for (int c = 0; c < y_cells; ++c) {
+          std::size_t a = 0, b = own.size();
+          while (a < b && hi(a) < x[c] - margin) ++a;
+          while (b > a && lo(b - 1) > x[c + 1] + margin) --b;
+          const std::size_t at = ((static_cast<std::size_t>(l) * 2 + node) * static_cast<std::size_t>(y_cells) +
+                                  static_cast<std::size_t>(c)) * 2;
+          j.cross_window[list][at] = static_cast<int>(a);
+          j.cross_window[list][at + 1] = static_cast<int>(b);
+        }
       }
     }
   }

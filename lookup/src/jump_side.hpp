@@ -51,12 +51,13 @@ struct JumpWheel {
   // [0]: every jump (normal, creep, wear blocks and blocks holding them), [1]: geometric jumps
   // only (a block holding the geometry part alone). y[list][load node], sorted.
   std::vector<std::vector<double>> y[2];
+  std::vector<std::vector<std::uint32_t>> kind[2];  // [list][load node]: each jump's kind bits
   std::vector<unsigned char> matched[2];  // [list][load cell]: same jump count at both nodes
   // [list][load cell]: empty where both nodes list the same kinds in the same order (each jump
   // then moves with load, and the blended positions place the query: no jump crosses another).
   // Else (two jumps of different kinds cross between the load nodes, or a node has a jump the
   // other lacks) node l's jumps then node l+1's: the index, in the other node's list, of the jump
-  // of the same kind and rank, -1 where it has none (spans_jump, jump_piece.hpp).
+  // of the same kind and rank, -1 where it has none (crossing_pieces, jump_piece.hpp).
   std::vector<std::vector<int>> partner[2];
   std::vector<unsigned char> cut;         // [y cell * load_cells + load cell]: a jump may cut it
   // Per list and load node, for the segment right of m jumps (m = 0 .. jumps): its first grid
@@ -70,6 +71,10 @@ struct JumpWheel {
   // and those from window[..+ 1] on right of its last node by as much; only the ones between are
   // compared with the query (usually 0-2 of them instead of the whole list).
   std::vector<int> window[2];
+  // The same for a load cell whose nodes list different kinds (partner not empty), with each jump
+  // at both its positions (its own and its partner's): cross_window[list][((load cell * 2 + node)
+  // * y_cells + c) * 2], crossing_pieces compares only the jumps between.
+  std::vector<int> cross_window[2];
   int y_cells = 0;
   JumpSamples samples[kNumParts];          // per block of the wheel
   // Normalised creep coordinates (creep_map.hpp): the one-sided reciprocal creepage scales at the

@@ -12,8 +12,9 @@
 //   its rigid point did, so the slot's contact angle, radius and position are not the patch's;
 //   or the slot holds a touching rigid point but no normal force: its patch is in another slot at
 //   zero creepage, and may be back in this one at the query's creepage.
-// A third, per query in a cell a jump cuts, is the one-sided path's (spans_jump, jump_piece.hpp):
-// the query blends two sides of a jump that crosses another between the cell's load nodes.
+// A third, per query in a cell a jump cuts, is the one-sided path's (crossing_pieces,
+// jump_piece.hpp): between a crossing jump's positions at the cell's two load nodes, one node has
+// no segment on the query's side of every jump, so the slots' split of the force is blended.
 #pragma once
 
 #include <cstddef>

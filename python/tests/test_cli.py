@@ -11,7 +11,7 @@ from conftest import SOURCE_DIR
 
 COMMANDS = ["eval", "generate", "inspect", "query", "merge", "chart-geometry", "chart-pressure", "chart-stability",
             "chart", "simulate", "conicity", "export"]
-SCENE = str(SOURCE_DIR / "tables" / "default.toml")
+SCENE = str(SOURCE_DIR / "tables" / "default_stripes.toml")
 
 
 def run(program, *args, **kw):
@@ -36,13 +36,13 @@ def test_usage_error_is_exit_code_2(railtab_program):
     assert r.returncode == 2 and r.stdout == "" and "no-such-option" in r.stderr
 
 
-def test_results_on_stdout_diagnostics_on_stderr(railtab_program, default_table, tmp_path):
+def test_results_on_stdout_diagnostics_on_stderr(railtab_program, stripes_table, tmp_path):
     for args in (["eval", "--scene", SCENE, "--y", "0.002", "--json"],
-                 ["query", str(default_table), "--y", "0.002", "--load", "78500"],
-                 ["inspect", str(default_table)]):
+                 ["query", str(stripes_table), "--y", "0.002", "--load", "78500"],
+                 ["inspect", str(stripes_table)]):
         r = run(railtab_program, *args)
         assert r.returncode == 0 and r.stdout and r.stderr == "", args
-    scene = (SOURCE_DIR / "tables" / "default.toml").read_text().replace(
+    scene = (SOURCE_DIR / "tables" / "default_stripes.toml").read_text().replace(
         "phi = [-0.3, 0.0, 0.3]", "phi = [0.0]").replace("eta = [-0.004, -0.001, 0.0, 0.001, 0.004]", "eta = [0.0]")
     (tmp_path / "s.toml").write_text(scene)
     r = run(railtab_program, "generate", str(tmp_path / "s.toml"), "-o", str(tmp_path / "s.h5"), "--threads", "1")
@@ -95,8 +95,8 @@ def test_missing_input_is_error_1_naming_it_with_nothing_written(railtab_program
     ["query", "TABLE", "--y", "0", "--load", "78500", "--wheel", "middle"],
     ["eval", "--scene", SCENE, "--model", "hertzz"],
 ])
-def test_value_outside_a_list_is_usage_error_2(railtab_program, default_table, args):
-    r = run(railtab_program, *[str(default_table) if a == "TABLE" else a for a in args])
+def test_value_outside_a_list_is_usage_error_2(railtab_program, stripes_table, args):
+    r = run(railtab_program, *[str(stripes_table) if a == "TABLE" else a for a in args])
     assert r.returncode == 2 and r.stdout == "", (args, r.returncode, r.stderr)
     assert args[-1] in r.stderr, r.stderr
 
@@ -128,21 +128,21 @@ def test_generate_bad_thread_count_names_it(railtab_program, tmp_path, threads):
     assert not out.exists()
 
 
-def test_query_refuses_roll_on_an_equilibrium_roll_table(railtab_program, default_table):
-    # The default table's roll follows the equilibrium: --roll would be silently ignored.
-    r = run(railtab_program, "query", str(default_table), "--y", "0.001", "--load", "70000", "--roll", "0.005")
+def test_query_refuses_roll_on_an_equilibrium_roll_table(railtab_program, stripes_table):
+    # The STRIPES table's roll follows the equilibrium: --roll would be silently ignored.
+    r = run(railtab_program, "query", str(stripes_table), "--y", "0.001", "--load", "70000", "--roll", "0.005")
     assert r.returncode == 1 and r.stdout == "", (r.returncode, r.stdout)
-    assert "--roll" in r.stderr and str(default_table) in r.stderr and "equilibrium" in r.stderr, r.stderr
-    ok = run(railtab_program, "query", str(default_table), "--y", "0.001", "--load", "70000")
+    assert "--roll" in r.stderr and str(stripes_table) in r.stderr and "equilibrium" in r.stderr, r.stderr
+    ok = run(railtab_program, "query", str(stripes_table), "--y", "0.001", "--load", "70000")
     assert ok.returncode == 0 and "query status" in ok.stdout
 
 
-def test_conicity_json_from_scene_and_table(railtab_program, default_table):
-    # docs/conicity.md: JSON with amplitude_m and equivalent_conicity; the default table's 0.5 mm
+def test_conicity_json_from_scene_and_table(railtab_program, stripes_table):
+    # docs/conicity.md: JSON with amplitude_m and equivalent_conicity; the STRIPES table's 0.5 mm
     # tread grid gives the scene's value at 3 mm to 0.005 (docs/validation/conicity.md: 0.184 both)
     import json
     results = []
-    for source in (["--scene", SCENE], ["--table", str(default_table)]):
+    for source in (["--scene", SCENE], ["--table", str(stripes_table)]):
         r = run(railtab_program, "conicity", *source, "--amplitudes", "0.001,0.003", "--json", timeout=120)
         assert r.returncode == 0 and r.stderr == "", r.stderr
         j = json.loads(r.stdout)

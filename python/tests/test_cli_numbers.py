@@ -12,7 +12,7 @@ import pytest
 
 from conftest import SOURCE_DIR
 
-SCENE = str(SOURCE_DIR / "tables" / "default.toml")
+SCENE = str(SOURCE_DIR / "tables" / "default_stripes.toml")
 SIM = str(SOURCE_DIR / "tables" / "sim" / "r600.toml")
 
 
@@ -20,7 +20,7 @@ def run(program, *args, **kw):
     return subprocess.run([program, *args], capture_output=True, text=True, timeout=60, **kw)
 
 
-# (arguments after the command, the option the message must name). TABLE is the default table.
+# (arguments after the command, the option the message must name). TABLE is the STRIPES table.
 BAD = [
     (["query", "TABLE", "--y", "", "--load", "78500"], "--y"),
     (["query", "TABLE", "--y", "0.001,,0.002", "--load", "78500"], "--y"),
@@ -65,9 +65,9 @@ BAD = [
 
 
 @pytest.mark.parametrize("args,option", BAD, ids=[f"{a[0]}{option}-{k}" for k, (a, option) in enumerate(BAD)])
-def test_bad_number_is_a_usage_error_naming_the_option(railtab_program, default_table, tmp_path, args, option):
+def test_bad_number_is_a_usage_error_naming_the_option(railtab_program, stripes_table, tmp_path, args, option):
     out = tmp_path / "out"
-    args = [str(default_table) if a == "TABLE" else str(out) if a == "OUT" else a for a in args]
+    args = [str(stripes_table) if a == "TABLE" else str(out) if a == "OUT" else a for a in args]
     r = run(railtab_program, *args)
     assert r.returncode == 2, (r.returncode, r.stderr)
     assert r.stdout == ""
@@ -76,15 +76,15 @@ def test_bad_number_is_a_usage_error_naming_the_option(railtab_program, default_
     assert not out.exists()
 
 
-def test_good_numbers_are_read_in_every_spelling(railtab_program, default_table):
-    base = ["query", str(default_table), "--load", "78500", "--wheel", "left", "--json"]
+def test_good_numbers_are_read_in_every_spelling(railtab_program, stripes_table):
+    base = ["query", str(stripes_table), "--load", "78500", "--wheel", "left", "--json"]
     one = json.loads(run(railtab_program, *base, "--y", "0.001,-0.002", "--creepage", "0.001,0,0").stdout)
     two = json.loads(run(railtab_program, *base, "--y", "+1e-3", "-0.002", "--creepage", "1e-3", "0", "0").stdout)
     assert one == two and [q["state"]["y"] for q in one["queries"]] == [0.001, -0.002]
 
 
 def test_threads_at_the_bound_is_accepted(railtab_program, tmp_path):
-    scene = (SOURCE_DIR / "tables" / "default.toml").read_text().replace(
+    scene = (SOURCE_DIR / "tables" / "default_stripes.toml").read_text().replace(
         "phi = [-0.3, 0.0, 0.3]", "phi = [0.0]").replace("eta = [-0.004, -0.001, 0.0, 0.001, 0.004]", "eta = [0.0]")
     (tmp_path / "s.toml").write_text(scene)
     r = run(railtab_program, "generate", str(tmp_path / "s.toml"), "-o", str(tmp_path / "s.h5"), "--threads", "1024",
@@ -97,11 +97,11 @@ def test_threads_at_the_bound_is_accepted(railtab_program, tmp_path):
 
 # --- railtab query: states streamed -------------------------------------------------------------
 
-def test_states_file_and_stdin_give_the_output_of_y(railtab_program, default_table, tmp_path):
+def test_states_file_and_stdin_give_the_output_of_y(railtab_program, stripes_table, tmp_path):
     ys = ["0.003", "-0.0042", "0", "0.0071"]
     (tmp_path / "states.csv").write_text("# y only\ny\n" + "\n".join(ys) + "\n")
     for fmt in ([], ["--json"]):
-        base = ["query", str(default_table), "--load", "78500", "--creepage", "0.001,0,0", *fmt]
+        base = ["query", str(stripes_table), "--load", "78500", "--creepage", "0.001,0,0", *fmt]
         expected = run(railtab_program, *base, "--y", ",".join(ys))
         from_file = run(railtab_program, *base, "--states", str(tmp_path / "states.csv"))
         from_stdin = run(railtab_program, *base, "--states", "-", input="y\n" + "\n".join(ys))  # no final line end
@@ -110,9 +110,9 @@ def test_states_file_and_stdin_give_the_output_of_y(railtab_program, default_tab
     assert len(json.loads(expected.stdout)["queries"]) == 2 * len(ys)
 
 
-def test_states_file_columns_set_the_state(railtab_program, default_table, tmp_path):
+def test_states_file_columns_set_the_state(railtab_program, stripes_table, tmp_path):
     (tmp_path / "s.csv").write_text("y, load ,xi\n0.003,60000,0.001\n-0.002, 90000 ,0\n")
-    j = json.loads(run(railtab_program, "query", str(default_table), "--states", str(tmp_path / "s.csv"),
+    j = json.loads(run(railtab_program, "query", str(stripes_table), "--states", str(tmp_path / "s.csv"),
                        "--wheel", "left", "--json").stdout)
     assert [(q["state"]["y"], q["state"]["load"], q["state"]["xi"]) for q in j["queries"]] == \
         [(0.003, 60000.0, 0.001), (-0.002, 90000.0, 0.0)]
@@ -131,19 +131,19 @@ def test_states_file_columns_set_the_state(railtab_program, default_table, tmp_p
     ("y\n0.001\x00junk\n", "s.csv:2: column y: must be"),
     ("y\n" + "1" * 5000 + "\n", "s.csv:2: line longer than 4096 characters"),
 ])
-def test_states_file_errors_name_the_file_and_line(railtab_program, default_table, tmp_path, text, message):
+def test_states_file_errors_name_the_file_and_line(railtab_program, stripes_table, tmp_path, text, message):
     (tmp_path / "s.csv").write_text(text)
-    r = run(railtab_program, "query", str(default_table), "--states", str(tmp_path / "s.csv"), "--load", "78500")
+    r = run(railtab_program, "query", str(stripes_table), "--states", str(tmp_path / "s.csv"), "--load", "78500")
     if message is None:
         assert r.returncode == 0, r.stderr
     else:
         assert r.returncode == 1 and message in r.stderr, r.stderr
 
 
-def test_query_needs_y_or_states_and_not_both(railtab_program, default_table, tmp_path):
+def test_query_needs_y_or_states_and_not_both(railtab_program, stripes_table, tmp_path):
     (tmp_path / "s.csv").write_text("y\n0\n")
-    assert run(railtab_program, "query", str(default_table), "--load", "78500").returncode == 2
-    r = run(railtab_program, "query", str(default_table), "--load", "78500", "--y", "0", "--states",
+    assert run(railtab_program, "query", str(stripes_table), "--load", "78500").returncode == 2
+    r = run(railtab_program, "query", str(stripes_table), "--load", "78500", "--y", "0", "--states",
             str(tmp_path / "s.csv"))
     assert r.returncode == 2 and "excludes" in r.stderr
 
@@ -158,10 +158,10 @@ def peak_rss_kib(command, stdin_text):
     return int(r.stdout)
 
 
-def test_query_memory_does_not_grow_with_the_states(railtab_program, default_table):
+def test_query_memory_does_not_grow_with_the_states(railtab_program, stripes_table):
     # Each state's answer was kept until the end (about 12 KB each, 2.4 GB for 200k states); now
     # each is printed and dropped. 20x the states may not cost 20 MB more (it cost 230 MB).
-    command = [railtab_program, "query", str(default_table), "--load", "78500", "--states", "-", "--json"]
+    command = [railtab_program, "query", str(stripes_table), "--load", "78500", "--states", "-", "--json"]
     states = lambda n: "y\n" + "\n".join(f"{-0.009 + 0.018 * k / n:.6f}" for k in range(n)) + "\n"
     small = peak_rss_kib(command, states(1000))
     large = peak_rss_kib(command, states(20000))

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The worked example python/examples/critical_speed.py (docs/critical-speed.md): its closed forms
 against its eigenvalue search, railtab.kalker_coefficients against Kalker's tabulated values, and a
-reduced run on the default table whose linear bogie speed must fall inside the hunting bracket that
+reduced run on the STRIPES table whose linear bogie speed must fall inside the hunting bracket that
 `railtab simulate` finds (two runs, 1.5 s each)."""
 import importlib.util
 import json
@@ -56,8 +56,8 @@ def test_kalker_coefficients_reproduce_the_table():
         railtab.kalker_coefficients(-1.0, 0.3)
 
 
-def test_example_on_the_default_table_brackets_the_linear_speed(default_table, railtab_program, tmp_path, capsys):
-    example.main(["--table", str(default_table), "--scene", str(SOURCE_DIR / "tables" / "default.toml"),
+def test_example_on_the_stripes_table_brackets_the_linear_speed(stripes_table, railtab_program, tmp_path, capsys):
+    example.main(["--table", str(stripes_table), "--scene", str(SOURCE_DIR / "tables" / "default_stripes.toml"),
                   "--railtab", railtab_program, "--speeds", "20,40", "--duration", "1.5", "--bisections", "0",
                   "--workdir", str(tmp_path), "--json"])
     out = json.loads(capsys.readouterr().out)

@@ -32,10 +32,10 @@ def test_derivatives_of_the_fixture(fixture_table):
     assert res["d_fx_d_y"].shape == (3, table.n_slots)
 
 
-def test_derivatives_match_central_differences_on_the_default_table(default_table):
+def test_derivatives_match_central_differences_on_the_stripes_table(stripes_table):
     """Normalised creep coordinates: d fx / d xi and d fy / d y against central differences of the
     same query, cubic, both slots."""
-    table = railtab.Table.load(default_table, method="cubic")
+    table = railtab.Table.load(stripes_table, method="cubic")
     y = np.array([-0.0021, 0.0013, 0.0047])
     state = dict(load=81e3, xi=0.0007, eta=-0.0004, phi=0.03)
     res = table.query("left", y=y, derivatives=True, as_xarray=False, **state)
@@ -50,8 +50,8 @@ def test_derivatives_match_central_differences_on_the_default_table(default_tabl
             np.testing.assert_allclose(res[f"d_{name}_d_{axis}"], fd, rtol=1e-5, atol=1e-6 * np.abs(fd).max())
 
 
-def test_one_slot_and_xarray(default_table):
-    table = railtab.Table.load(default_table)
+def test_one_slot_and_xarray(stripes_table):
+    table = railtab.Table.load(stripes_table)
     both = table.query("left", y=0.004, load=78.5e3, xi=0.001, derivatives=True, as_xarray=False)
     one = table.query("left", y=0.004, load=78.5e3, xi=0.001, slot=1, derivatives=True, as_xarray=False)
     assert one["d_fy_d_y"].shape == (1,)
@@ -69,18 +69,18 @@ def test_monotone_cubic_is_refused(fixture_table):
         table.query("left", y=0.0, derivatives=True)
 
 
-def test_cli_derivatives_json(default_table, railtab_program):
-    out = subprocess.run([railtab_program, "query", str(default_table), "--y", "0.003", "--load", "78500",
+def test_cli_derivatives_json(stripes_table, railtab_program):
+    out = subprocess.run([railtab_program, "query", str(stripes_table), "--y", "0.003", "--load", "78500",
                           "--creepage", "0.001,0,0", "--wheel", "left", "--derivatives", "--json"],
                          check=True, capture_output=True, text=True).stdout
     contact = json.loads(out)["queries"][0]["contacts"][0]
     d = contact["derivatives"]
     assert set(d["fx"]) == {"y", "load", "xi", "eta", "phi"}
-    table = railtab.Table.load(default_table)
+    table = railtab.Table.load(stripes_table)
     res = table.query("left", y=0.003, load=78500, xi=0.001, derivatives=True, as_xarray=False)
     assert d["fx"]["xi"] == pytest.approx(res["d_fx_d_xi"][0], rel=1e-12)
     assert d["contact_angle"]["y"] == pytest.approx(res["d_contact_angle_d_y"][0], rel=1e-12)
-    bad = subprocess.run([railtab_program, "query", str(default_table), "--y", "0.003", "--load", "78500",
+    bad = subprocess.run([railtab_program, "query", str(stripes_table), "--y", "0.003", "--load", "78500",
                           "--method", "monotone-cubic", "--derivatives"], capture_output=True, text=True)
     assert bad.returncode != 0
     assert "--derivatives needs --method linear or cubic" in bad.stderr

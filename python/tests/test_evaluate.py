@@ -9,7 +9,7 @@ import pytest
 import railtab
 from conftest import SOURCE_DIR
 
-SCENE = SOURCE_DIR / "tables" / "default.toml"
+SCENE = SOURCE_DIR / "tables" / "default_stripes.toml"
 
 
 def eval_json(program, *args):
@@ -31,7 +31,7 @@ def test_same_as_railtab_eval_json(railtab_program, args, kwargs):
 
 def test_scene_object_and_vectorised_states():
     scene = railtab.Scene.load(SCENE)
-    assert scene.name == "default"
+    assert scene.name == "default_stripes"
     xi = np.array([0.0, 0.001, 0.002])
     many = railtab.evaluate(scene, y=0.003, load=78.5e3, creepage=np.c_[xi, 0 * xi, 0 * xi])
     assert len(many) == 3

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """`railtab export TABLE --csv`: the physical creep forces on the table's nodes (docs/lookup.md,
-"Export to CSV"). The CSV's values equal lookup queries at the rows' states; on the default table
+"Export to CSV"). The CSV's values equal lookup queries at the rows' states; on the STRIPES table
 (normalised creep coordinates) the rows' creepages span the scene's ranges and the rows agree with
 the direct model at the same state; bad inputs exit 1 naming the input."""
 import csv
@@ -13,7 +13,7 @@ import pytest
 import railtab
 from conftest import SOURCE_DIR
 
-SCENE = SOURCE_DIR / "tables" / "default.toml"
+SCENE = SOURCE_DIR / "tables" / "default_stripes.toml"
 COLUMNS = ["wheel", "y_m", "roll_rad", "load_N", "xi", "eta", "phi_rad_per_m", "slot", "fx_N", "fy_N", "mz_Nm",
            "normal_force_N", "contact_angle_rad", "track_lateral_N", "track_vertical_N", "status", "status_names"]
 
@@ -23,9 +23,9 @@ def run(program, *args):
 
 
 @pytest.fixture(scope="module")
-def exported(railtab_program, default_table, tmp_path_factory):
+def exported(railtab_program, stripes_table, tmp_path_factory):
     out = tmp_path_factory.mktemp("export") / "default.csv"
-    r = run(railtab_program, "export", default_table, "--csv", "-o", out)
+    r = run(railtab_program, "export", stripes_table, "--csv", "-o", out)
     assert r.returncode == 0, r.stderr
     with open(out, newline="") as f:
         rows = list(csv.reader(f))
@@ -35,11 +35,11 @@ def exported(railtab_program, default_table, tmp_path_factory):
     return header, cols, num
 
 
-def test_header_and_one_row_per_node_and_slot(exported, default_table):
+def test_header_and_one_row_per_node_and_slot(exported, stripes_table):
     header, cols, num = exported
     assert header == COLUMNS
     grid = tomllib.loads(SCENE.read_text())["grid"]
-    table = railtab.Table.load(default_table)
+    table = railtab.Table.load(stripes_table)
     nodes = len(table.axes["y"]) * len(grid["load"]) * len(grid["xi"]) * len(grid["eta"]) * len(grid["phi"])
     assert len(cols["wheel"]) == 2 * table.n_slots * nodes
     assert cols["wheel"].count("left") == table.n_slots * nodes
@@ -50,9 +50,9 @@ def test_header_and_one_row_per_node_and_slot(exported, default_table):
         assert per_node == len(grid[key]), name
 
 
-def test_values_equal_lookup_queries_at_the_rows_states(exported, default_table):
+def test_values_equal_lookup_queries_at_the_rows_states(exported, stripes_table):
     _, cols, num = exported
-    table = railtab.Table.load(default_table)
+    table = railtab.Table.load(stripes_table)
     wheel = np.array(cols["wheel"])
     res = table.query(wheel, y=num["y_m"], load=num["load_N"], xi=num["xi"], eta=num["eta"],
                       phi=num["phi_rad_per_m"], track_forces=True, as_xarray=False)
@@ -88,13 +88,13 @@ def test_rows_agree_with_the_direct_model(exported):
             assert abs(num[column][k] - contacts[0][key]) < 1e-4 * mun, (column, k, num[column][k], contacts[0][key])
 
 
-def test_stdout_without_output(railtab_program, default_table):
-    r = run(railtab_program, "export", default_table, "--csv")
+def test_stdout_without_output(railtab_program, stripes_table):
+    r = run(railtab_program, "export", stripes_table, "--csv")
     assert r.returncode == 0 and r.stdout.startswith(",".join(COLUMNS) + "\n"), r.stderr
 
 
 @pytest.mark.parametrize("case", ["missing", "unwritable", "no_csv", "input_as_output"])
-def test_bad_inputs(railtab_program, default_table, tmp_path, case):
+def test_bad_inputs(railtab_program, stripes_table, tmp_path, case):
     if case == "missing":
         missing = tmp_path / "no-such-table.h5"
         r = run(railtab_program, "export", missing, "--csv", "-o", tmp_path / "out.csv")
@@ -102,13 +102,13 @@ def test_bad_inputs(railtab_program, default_table, tmp_path, case):
         assert list(tmp_path.iterdir()) == []
     elif case == "unwritable":
         target = "/proc/railtab-not-writable/out.csv"
-        r = run(railtab_program, "export", default_table, "--csv", "-o", target)
+        r = run(railtab_program, "export", stripes_table, "--csv", "-o", target)
         assert r.returncode == 1 and target in r.stderr and "refused before starting" in r.stderr, r.stderr
     elif case == "no_csv":
-        r = run(railtab_program, "export", default_table)
+        r = run(railtab_program, "export", stripes_table)
         assert r.returncode == 2 and "--csv" in r.stderr, r.stderr
     else:
-        before = default_table.read_bytes()
-        r = run(railtab_program, "export", default_table, "--csv", "-o", default_table)
-        assert r.returncode == 1 and str(default_table) in r.stderr, r.stderr
-        assert default_table.read_bytes() == before
+        before = stripes_table.read_bytes()
+        r = run(railtab_program, "export", stripes_table, "--csv", "-o", stripes_table)
+        assert r.returncode == 1 and str(stripes_table) in r.stderr, r.stderr
+        assert stripes_table.read_bytes() == before

@@ -47,7 +47,7 @@ def test_slot_given_as_whole_float_or_numpy_int_works(fixture_table):
 
 
 def test_path_with_a_nul_is_refused_everywhere(fixture_table, tmp_path):
-    scene = SOURCE_DIR / "tables" / "default.toml"
+    scene = SOURCE_DIR / "tables" / "default_stripes.toml"
     rail = SOURCE_DIR / "tests" / "data" / "profiles" / "site_b_hr.prr"
     for call in (lambda: railtab.Table.load(str(fixture_table) + "\0junk"),
                  lambda: railtab.Table.load(str(fixture_table).encode() + b"\0junk"),
@@ -67,7 +67,7 @@ def test_path_with_a_nul_is_refused_everywhere(fixture_table, tmp_path):
                                      ({"y": 0.001, "mu": 1e300, "creepage": (0.001, 0, 0)}, "mu")])
 def test_evaluate_numbers_follow_the_command_line_ranges(kw, name):
     with pytest.raises(railtab.Error, match=rf"^{name}: must be a number in"):
-        railtab.evaluate(SOURCE_DIR / "tables" / "default.toml", **kw)
+        railtab.evaluate(SOURCE_DIR / "tables" / "default_stripes.toml", **kw)
 
 
 @pytest.mark.parametrize("step", [0.0, -1e-4, 1e-12, float("nan"), 1.0])

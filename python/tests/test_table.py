@@ -67,8 +67,8 @@ def test_constructor_loads_a_path_and_refuses_anything_else(tmp_path, fixture_ta
 
 
 def test_scene_constructor_loads_a_path_and_refuses_anything_else(tmp_path):
-    scene = railtab.Scene(SOURCE_DIR / "tables" / "default.toml")
-    assert scene.name == railtab.Scene.load(SOURCE_DIR / "tables" / "default.toml").name
+    scene = railtab.Scene(SOURCE_DIR / "tables" / "default_stripes.toml")
+    assert scene.name == railtab.Scene.load(SOURCE_DIR / "tables" / "default_stripes.toml").name
     with pytest.raises(railtab.Error, match=r"nothing\.toml"):
         railtab.Scene(tmp_path / "nothing.toml")
     with pytest.raises(TypeError, match=r"^path must be a file name"):
@@ -168,9 +168,9 @@ def test_status_names_match_the_core():
     assert railtab.decode_status(1 << 14 | 1 << 15) == "area_too_small,not_planar"
 
 
-def test_query_on_a_generated_table(default_table):
-    t = railtab.Table.load(default_table)
-    assert t.scene_name == "default"
+def test_query_on_a_generated_table(stripes_table):
+    t = railtab.Table.load(stripes_table)
+    assert t.scene_name == "default_stripes"
     y = np.linspace(-0.005, 0.005, 11)
     r = t.query("left", y=y, load=78.5e3, xi=0.0, as_xarray=False)
     # the tread carries the load near the centre; N cos(angle) ~ the wheel load
@@ -179,10 +179,10 @@ def test_query_on_a_generated_table(default_table):
     assert (railtab.has_flag(r["status"][:, 0], "converged")).all()
 
 
-def test_roll_on_an_equilibrium_roll_table_is_flagged(default_table):
-    # The default table's roll follows the kinematic equilibrium: roll is not an input. A query
+def test_roll_on_an_equilibrium_roll_table_is_flagged(stripes_table):
+    # The STRIPES table's roll follows the kinematic equilibrium: roll is not an input. A query
     # that gives one is answered at the equilibrium and flagged out_of_range, never silently.
-    t = railtab.Table.load(default_table)
+    t = railtab.Table.load(stripes_table)
     assert "roll" not in t.axes and "roll" not in t.fixed_axes
     plain = t.query("left", y=0.003, load=78.5e3, as_xarray=False)
     rolled = t.query("left", y=0.003, load=78.5e3, roll=[0.0, 0.002], as_xarray=False)
@@ -193,10 +193,10 @@ def test_roll_on_an_equilibrium_roll_table_is_flagged(default_table):
     assert railtab.has_flag(nan["status"], "invalid_input").all()
 
 
-def test_yaw_on_a_table_without_yaw_is_flagged(default_table):
-    # The default table has no yaw: it was computed at yaw 0. A query with another yaw is
+def test_yaw_on_a_table_without_yaw_is_flagged(stripes_table):
+    # The STRIPES table has no yaw: it was computed at yaw 0. A query with another yaw is
     # answered at yaw 0 and flagged out_of_range, never silently (docs/lookup.md, "Yaw").
-    t = railtab.Table.load(default_table)
+    t = railtab.Table.load(stripes_table)
     assert "yaw" not in t.axes and "yaw" not in t.fixed_axes and not t.yaw_even
     plain = t.query("left", y=0.003, load=78.5e3, as_xarray=False)
     yawed = t.query("left", y=0.003, load=78.5e3, yaw=[0.0, 0.004], as_xarray=False)
@@ -208,7 +208,7 @@ def test_yaw_axis_from_python(tmp_path, railtab_program):
     # A table of a scene with a yaw axis: Table.query(yaw=...) interpolates it, yaw must be given
     # (an axis), and the yaw = 0 node is railtab.evaluate's state at yaw 0. The symmetric list is
     # stored as its non-negative half and read at |yaw| (docs/table-format.md, yaw_symmetry).
-    text = (SOURCE_DIR / "tables" / "default.toml").read_text()
+    text = (SOURCE_DIR / "tables" / "default_stripes.toml").read_text()
     scene = tmp_path / "yaw.toml"
     scene.write_text(text[:text.index("[grid]")] + "[grid]\ny = [0.0, 0.004, 0.008]\nequilibrium_roll = true\n"
                      "yaw = [-0.01, 0.0, 0.01]\nload = 78.5e3\n")
@@ -240,7 +240,7 @@ def test_yaw_axis_from_python(tmp_path, railtab_program):
     assert list(railtab.has_flag(rw["status"][:, 1], "out_of_range")) == [True, False]
 
 
-# The low_confidence bit on the default table (docs/lookup.md, "Low confidence").
+# The low_confidence bit on the STRIPES table (docs/lookup.md, "Low confidence").
 
 
 def low(status):
@@ -248,8 +248,8 @@ def low(status):
     return railtab.has_flag(status, "low_confidence")
 
 
-def test_flange_state_past_the_point_jump_is_flagged(default_table):
-    table = railtab.Table.load(default_table)
+def test_flange_state_past_the_point_jump_is_flagged(stripes_table):
+    table = railtab.Table.load(stripes_table)
     # Left wheel, y = 6.3 mm: the table gives N = 129 kN, fy = 0.75 kN where the model gives
     # 181 kN and 16.9 kN (the loaded patch lags the rigid point that jumped up the flange at
     # 6.2515 mm); nothing flagged it before.
@@ -262,15 +262,15 @@ def test_flange_state_past_the_point_jump_is_flagged(default_table):
     assert low(m["status"][m["normal_force"] > 0]).all()
 
 
-def test_clean_tread_states_are_not_flagged(default_table):
-    table = railtab.Table.load(default_table)
+def test_clean_tread_states_are_not_flagged(stripes_table):
+    table = railtab.Table.load(stripes_table)
     y = np.linspace(-0.004, 0.004, 17)
     r = table.query("left", y=y, load=78.5e3, xi=1e-3, eta=-1e-3, phi=0.1, as_xarray=False)
     assert not low(r["status"]).any(), railtab.decode_status(r["status"])
 
 
-def test_hand_over_keeps_the_whole_load(default_table):
-    table = railtab.Table.load(default_table)
+def test_hand_over_keeps_the_whole_load(stripes_table):
+    table = railtab.Table.load(stripes_table)
     # Through the tread-to-flange hand-over (5.58 .. 5.61 mm at 78.5 kN) the loaded patch moves
     # from slot 0 to slot 1 before its rigid point does. Summed over the slots that carry a force
     # (skipping by force, not by status), the vertical load stays the wheel's.
@@ -291,8 +291,8 @@ def test_hand_over_keeps_the_whole_load(default_table):
         assert dropped.any()                              # what the old loop lost: still there
 
 
-def test_flagged_states_are_a_small_fraction(default_table):
-    table = railtab.Table.load(default_table)
+def test_flagged_states_are_a_small_fraction(stripes_table):
+    table = railtab.Table.load(stripes_table)
     rng = np.random.default_rng(32)
     n = 20000
     axes = table.axes
@@ -301,5 +301,5 @@ def test_flagged_states_are_a_small_fraction(default_table):
     r = table.query(wheel, **state, as_xarray=False)
     flagged = low(r["status"]).any(axis=1)
     fraction = flagged.mean()
-    print(f"[ info ] low_confidence on {fraction:.2%} of {n} random states of the default table")
+    print(f"[ info ] low_confidence on {fraction:.2%} of {n} random states of the STRIPES table")
     assert 0 < fraction <= 0.02

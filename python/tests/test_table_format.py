@@ -30,11 +30,11 @@ def text(value):
 
 
 @pytest.mark.parametrize("engine", ["h5netcdf", "netcdf4"])
-def test_xarray_opens_every_group_with_coordinates_and_units(default_table, engine):
+def test_xarray_opens_every_group_with_coordinates_and_units(stripes_table, engine):
     xr = pytest.importorskip("xarray")
     pytest.importorskip(engine if engine == "h5netcdf" else "netCDF4")
     for group in GROUPS:
-        ds = xr.open_dataset(default_table, group=group, engine=engine)
+        ds = xr.open_dataset(stripes_table, group=group, engine=engine)
         for dim in ds.dims:
             assert dim in ds.coords, f"{group}: dimension {dim} without coordinate"
             assert "units" in ds.coords[dim].attrs
@@ -43,10 +43,10 @@ def test_xarray_opens_every_group_with_coordinates_and_units(default_table, engi
                 assert ds[name].attrs["units"] == units
         assert ds["status"].attrs["flag_meanings"].split()[0] == "converged"
         ds.close()
-    creep = xr.open_dataset(default_table, group="left/creep", engine=engine)
-    with h5py.File(default_table) as f:
+    creep = xr.open_dataset(stripes_table, group="left/creep", engine=engine)
+    with h5py.File(stripes_table) as f:
         np.testing.assert_array_equal(creep["y"].values, f["axes/y"][()])
-        # The default table's creep part is normalised (format 2.1): fx / (mu N) minus the saturation
+        # The STRIPES table's creep part is normalised (format 2.1): fx / (mu N) minus the saturation
         # law over the coordinate v_xi in [-1, 1] (docs/table-format.md, "Normalised creep part").
         curve = creep.fx_normalised.sel(y=0.003, load=78.5e3, eta=0, phi=0, slot=0, method="nearest")
         iy = int(np.abs(f["axes/y"][()] - 0.003).argmin())
@@ -56,13 +56,13 @@ def test_xarray_opens_every_group_with_coordinates_and_units(default_table, engi
     # roll follows the equilibrium: roll(y) is a coordinate of the group, equal to /equilibrium_roll
     assert "roll" in creep.coords and creep.coords["roll"].dims == ("y",)
     assert creep.coords["roll"].attrs["units"] == "rad"
-    with h5py.File(default_table) as f:
+    with h5py.File(stripes_table) as f:
         np.testing.assert_array_equal(creep.coords["roll"].values, f["equilibrium_roll"][()])
     creep.close()
 
 
-def test_typed_attributes_and_status_flags(default_table):
-    with h5py.File(default_table) as f:
+def test_typed_attributes_and_status_flags(stripes_table):
+    with h5py.File(stripes_table) as f:
         assert text(f.attrs["format_version"]) == "2.3"
         assert "fixed_axes" not in f.attrs and "models" not in f.attrs   # no JSON strings
         models = f["models"].attrs
@@ -81,10 +81,10 @@ def test_typed_attributes_and_status_flags(default_table):
             assert np.all(np.bitwise_and(st[()], ~np.bitwise_or.reduce(masks)) == 0)
 
 
-def test_h5py_example_of_the_docs_runs_as_written(default_table, tmp_path):
+def test_h5py_example_of_the_docs_runs_as_written(stripes_table, tmp_path):
     text = (SOURCE_DIR / "docs" / "table-format.md").read_text()
     code = re.search(r"<!-- h5py-example -->\s*```python\n(.*?)```", text, re.S).group(1)
-    (tmp_path / "default.h5").symlink_to(default_table)
+    (tmp_path / "default.h5").symlink_to(stripes_table)
     old = os.getcwd()
     os.chdir(tmp_path)
     out = io.StringIO()
@@ -102,7 +102,7 @@ def test_h5py_example_of_the_docs_runs_as_written(default_table, tmp_path):
 
 
 def test_fixed_variables_are_scalar_datasets(railtab_program, tmp_path):
-    scene = (SOURCE_DIR / "tables" / "default.toml").read_text()
+    scene = (SOURCE_DIR / "tables" / "default_stripes.toml").read_text()
     scene = scene.replace("load = [60e3, 78.5e3, 100e3]", "load = [78.5e3]")
     scene = re.sub(r"y = \[\n.*?\n\]", "y = [{ start = -0.004, stop = 0.004, step = 0.002 }]", scene, flags=re.S)
     (tmp_path / "s.toml").write_text(scene)
@@ -119,9 +119,9 @@ def test_fixed_variables_are_scalar_datasets(railtab_program, tmp_path):
 
 def test_source_date_epoch_gives_identical_bytes(railtab_program, tmp_path):
     env = dict(os.environ, SOURCE_DATE_EPOCH="1700000000")
-    # The default scene on a 21-node y grid: every part of a table (sweep, contact jumps and their
-    # one-sided values, error map), in a third of the default table's time.
-    scene_text = (SOURCE_DIR / "tables" / "default.toml").read_text()
+    # The STRIPES scene on a 21-node y grid: every part of a table (sweep, contact jumps and their
+    # one-sided values, error map), in a third of the STRIPES table's time.
+    scene_text = (SOURCE_DIR / "tables" / "default_stripes.toml").read_text()
     scene_text = re.sub(r"y = \[\n.*?\n\]", "y = { start = -0.010, stop = 0.010, step = 0.001 }", scene_text,
                         flags=re.S)
     scene = tmp_path / "scene.toml"
@@ -139,21 +139,43 @@ def test_source_date_epoch_gives_identical_bytes(railtab_program, tmp_path):
     assert not (tmp_path / "c.h5").exists()
 
 
-def test_query_command_agrees_with_the_module_and_the_file(railtab_program, default_table):
+def test_exact_default_scene_gives_identical_bytes_for_one_and_two_threads(railtab_program, tmp_path):
+    # The exact default (tables/default.toml, Kalker's half-space model) cropped to the cell where
+    # the rigid point jumps up the flange (y 6.2 to 6.3 mm: 6 contact jumps over both wheels and
+    # loads) and the ends of each creepage range: its sweep, jumps, one-sided values and error map
+    # in about 4 s of CPU a run instead of the full table's minutes.
+    env = dict(os.environ, SOURCE_DATE_EPOCH="1700000000")
+    scene_text = (SOURCE_DIR / "tables" / "default.toml").read_text()
+    assert 'normal_model = "halfspace"' in scene_text
+    scene_text = re.sub(r"y = \[\n.*?\n\]", "y = [0.0062, 0.0063]", scene_text, flags=re.S)
+    for axis, end in (("xi", 0.004), ("eta", 0.004), ("phi", 0.3)):
+        scene_text = re.sub(rf"^{axis} = \[.*\]$", f"{axis} = [{-end}, {end}]", scene_text, flags=re.M)
+    scene = tmp_path / "scene.toml"
+    scene.write_text(scene_text)
+    for name, threads in (("a.h5", "1"), ("b.h5", "2")):
+        subprocess.run([railtab_program, "generate", str(scene), "-o", str(tmp_path / name), "--threads", threads,
+                        "--quiet"], check=True, env=env)
+    with h5py.File(tmp_path / "a.h5") as f:
+        assert text(f.attrs["scene_name"]) == "default"
+        assert np.isfinite(f["jumps/left_y"][()]).sum() > 0        # the cell's jumps and their sides are in it
+    assert (tmp_path / "a.h5").read_bytes() == (tmp_path / "b.h5").read_bytes()
+
+
+def test_query_command_agrees_with_the_module_and_the_file(railtab_program, stripes_table):
     import railtab
 
-    out = subprocess.run([railtab_program, "query", str(default_table), "--y", "0.003,-0.0042", "--load", "78500",
+    out = subprocess.run([railtab_program, "query", str(stripes_table), "--y", "0.003,-0.0042", "--load", "78500",
                           "--creepage", "0.001,0,0", "--json"], check=True, capture_output=True, text=True)
     j = json.loads(out.stdout)
     assert [q["wheel"] for q in j["queries"]] == ["left", "right", "left", "right"]
-    t = railtab.Table.load(default_table)
+    t = railtab.Table.load(stripes_table)
     r = t.query(["left", "right", "left", "right"], y=[0.003, 0.003, -0.0042, -0.0042], load=78500.0, xi=0.001,
                 as_xarray=False)
     for k, q in enumerate(j["queries"]):
         for slot, c in enumerate(q["contacts"]):
             assert c["fx"] == r["fx"][k, slot] and c["normal_force"] == r["normal_force"][k, slot]
             assert c["status"] == railtab.decode_status(r["status"][k, slot])
-    with h5py.File(default_table) as f:
+    with h5py.File(stripes_table) as f:
         for name, units in j["units"].items():
             if "creep_map" in f.attrs and name in ("fx", "fy", "mz"):
                 continue  # stored normalised (format 2.1): fx_normalised etc., units 1 and m
@@ -161,15 +183,15 @@ def test_query_command_agrees_with_the_module_and_the_file(railtab_program, defa
             assert text(f["left"][part][name].attrs["units"]) == units, name
 
 
-def test_inspect_json_describes_the_file(railtab_program, default_table):
-    out = subprocess.run([railtab_program, "inspect", str(default_table), "--json"], check=True,
+def test_inspect_json_describes_the_file(railtab_program, stripes_table):
+    out = subprocess.run([railtab_program, "inspect", str(stripes_table), "--json"], check=True,
                          capture_output=True, text=True)
     j = json.loads(out.stdout)
     assert j["attributes"]["format_version"] == "2.3"
     assert j["checksums_verified"] is True                             # format 2 always carries them
     assert j["attributes"]["models"]["normal"] == "stripes-ab"        # an object, not JSON text
     assert j["attributes"]["fixed_axes"] == {"roll": "equilibrium"}
-    with h5py.File(default_table) as f:
+    with h5py.File(stripes_table) as f:
         assert {a["name"]: a["size"] for a in j["axes"]} == {k: f["axes"][k].size for k in f["axes"]}
         group = next(g for g in j["groups"] if g["path"] == "/left/creep")
         status = next(d for d in group["datasets"] if d["name"] == "status")
@@ -179,11 +201,11 @@ def test_inspect_json_describes_the_file(railtab_program, default_table):
         assert status["status_counts"]["converged"] == int((bits & 1).astype(bool).sum())
 
 
-def test_error_map_is_stored_and_served(default_table, fixture_table):
-    """The default table's error map (format 2.3): every dataset has units, the lookup serves the
+def test_error_map_is_stored_and_served(stripes_table, fixture_table):
+    """The STRIPES table's error map (format 2.3): every dataset has units, the lookup serves the
     stored region of a query, and a table without a map (the format-2.0 fixture) gives None."""
     import railtab
-    with h5py.File(default_table) as f:
+    with h5py.File(stripes_table) as f:
         sampling = json.loads(text(f.attrs["error_map_sampling"]))
         assert sampling["model_vs_exact"] == "halfspace"
         g = f["error_map"]
@@ -195,7 +217,7 @@ def test_error_map_is_stored_and_served(default_table, fixture_table):
                 assert text(d.attrs["units"]) in ("% of mu N", "% of mu N c", "%", "rad", "1"), name
         fy_max = g["table_vs_model/fy_max"][()]
         samples = g["table_vs_model/samples"][()]
-    t = railtab.Table(default_table)
+    t = railtab.Table(stripes_table)
     assert t.has_error_map
     b = len(start) // 2
     e = t.error_estimate(0.5 * (start[b] + end[b]), 0)

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Table.query(..., track_forces=True): the forces of the rail on the wheel in track axes and Y/Q
 (docs/conventions.md, "Track-frame forces and Y/Q") against the same rotation computed here from
-the query's raw outputs (normal_force, fy, contact_angle per slot), on flange states of the default
+the query's raw outputs (normal_force, fy, contact_angle per slot), on flange states of the STRIPES
 table, both wheels."""
 import numpy as np
 import pytest
@@ -24,8 +24,8 @@ def by_hand(res, wheel):
 
 
 @pytest.mark.parametrize("wheel, sign", [("left", 1.0), ("right", -1.0)])
-def test_y_over_q_of_flange_states_equals_the_rotation_of_the_raw_outputs(default_table, wheel, sign):
-    table = railtab.Table.load(default_table)
+def test_y_over_q_of_flange_states_equals_the_rotation_of_the_raw_outputs(stripes_table, wheel, sign):
+    table = railtab.Table.load(stripes_table)
     # Tread, the tread-flange hand-over (5.5 .. 6.25 mm: a loaded slot may lack its rigid point) and
     # the flange, with lateral creepage and spin; the right wheel at the mirrored y.
     y = sign * np.array([0.002, 0.0057, 0.0059, 0.007, 0.0085, 0.0095])
@@ -47,11 +47,11 @@ def test_y_over_q_of_flange_states_equals_the_rotation_of_the_raw_outputs(defaul
     assert abs(res["y_over_q"][0]) < 0.35, res["y_over_q"]  # tread: at most mu + tan(g), g ~ 0.04 rad
 
 
-def test_the_wheels_mirror_and_q_carries_the_load(default_table):
+def test_the_wheels_mirror_and_q_carries_the_load(stripes_table):
     """Left at y and right at -y are mirror images: the same Y, Q and Y/Q. At zero creepage Q is the
     vertical load the slots carry with the table's angles (within the 20 % of the load balance rule,
     docs/lookup.md "Low confidence"; on the tread closely)."""
-    table = railtab.Table.load(default_table)
+    table = railtab.Table.load(stripes_table)
     y = np.array([0.0, 0.003, 0.008, 0.0095])
     left = table.query("left", y=y, load=78.5e3, track_forces=True, as_xarray=False)
     right = table.query("right", y=-y, load=78.5e3, track_forces=True, as_xarray=False)
@@ -62,8 +62,8 @@ def test_the_wheels_mirror_and_q_carries_the_load(default_table):
     np.testing.assert_allclose(left["q_force"], 78.5e3, rtol=0.2)
 
 
-def test_track_forces_needs_every_slot_and_names_units(default_table):
-    table = railtab.Table.load(default_table)
+def test_track_forces_needs_every_slot_and_names_units(stripes_table):
+    table = railtab.Table.load(stripes_table)
     with pytest.raises(ValueError, match="slot"):
         table.query("left", y=0.008, load=78.5e3, slot=1, track_forces=True)
     res = table.query("left", y=[0.0, 0.008], load=78.5e3, track_forces=True, as_xarray=False)

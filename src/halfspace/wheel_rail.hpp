@@ -170,7 +170,7 @@ void solve_halfspace_tangential(WheelHalfspaceResult& result, const Creepage& cr
 // at `warm_normal_tolerance` and `warm_tangential_tolerance` (1e-5 and 1e-4, where a cold solve
 // uses 1e-9 and 1e-7): a table's nodes need their forces to within its interpolation error (0.2 to
 // 1.5 % of mu N), and the coupled balance's own tolerance already moves them by up to 2e-4 F_z mu.
-// On a tread and a flange column of tables/default_halfspace.toml (y = 2 and 7 mm, 78.5 kN, 245
+// On a tread and a flange column of tables/default.toml (y = 2 and 7 mm, 78.5 kN, 245
 // creepages) these tolerances moved the stored F / (mu N) by at most 7e-5 and no status; the
 // column's CPU fell by 27-39 % (docs/validation/exact-tables.md, "Generation cost"). On return `state`
 // holds this solve's end (cleared when it did not converge). An empty `state` (or a null pointer)

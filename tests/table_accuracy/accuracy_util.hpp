@@ -215,8 +215,8 @@ inline lk::Table generated_lookup(const Scene& scene, const std::string& name) {
   return table;
 }
 
-// The default scene (tables/default.toml), its swept table (without jumps) and its located jumps,
-// computed once per process. The test files that measure the default table start from it (each
+// The STRIPES scene (tables/default_stripes.toml), its swept table (without jumps) and its located jumps,
+// computed once per process. The test files that measure the STRIPES table start from it (each
 // adds the jumps to its own copy, as `railtab generate` does), and CTest runs their suites in one
 // process (tests/table_accuracy/CMakeLists.txt): the sweep and the jump search are deterministic,
 // so every test sees the table it would compute itself, generated once instead of once per test.
@@ -231,11 +231,11 @@ struct DefaultSweep {
 inline const DefaultSweep& default_sweep() {
   static const DefaultSweep d = [] {
     DefaultSweep x;
-    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
     auto t0 = std::chrono::steady_clock::now();
     SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
     x.sweep_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    if (r.summary.failures) throw std::runtime_error("STRIPES table: " + r.summary.first_failure);
     x.table = std::move(r.table);
     t0 = std::chrono::steady_clock::now();
     x.jumps = locate_jumps(x.scene);
@@ -245,14 +245,14 @@ inline const DefaultSweep& default_sweep() {
   return d;
 }
 
-// The random off-grid states of the default scene's accuracy measurements (DefaultSceneRandomOffGrid
+// The random off-grid states of the STRIPES scene's accuracy measurements (DefaultSceneRandomOffGrid
 // and the jump cells' CreepForcesOnJumpCells measure the same states) and their direct evaluation,
 // computed once per process like default_sweep().
 inline constexpr std::uint64_t kDefaultStatesSeed = 20240611;
 inline constexpr std::size_t kDefaultStates = 4000;  // random states, both wheels each
 
 struct DefaultDirect {
-  std::vector<Point> points;   // random_states(default scene, kDefaultStates, kDefaultStatesSeed)
+  std::vector<Point> points;   // random_states(STRIPES scene, kDefaultStates, kDefaultStatesSeed)
   std::vector<Direct> direct;  // evaluate_direct at each
   double seconds = 0.0;        // evaluate_direct
 };

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // End to end against CONTACT (lookup accuracy target, docs/lookup.md "Accuracy"): a table of the
-// default scene set up as the ../shared/reference CONTACT runs (nu 0.28, roll 0, Fz 78.5 kN),
+// STRIPES scene set up as the ../shared/reference CONTACT runs (nu 0.28, roll 0, Fz 78.5 kN),
 // queried through the public lookup API at the creepage states of block C
 // (blockC_sweep_integer_dy.csv), must differ from CONTACT by no more than a direct evaluation of
 // the table's own model does, plus 0.5 % of mu N in the median and 1 % in the 90th percentile.
 //
-// The table: tables/default.toml with CONTACT's Poisson ratio, roll 0 (no equilibrium roll) and the
-// one load 78.5 kN (a load node of the default scene, so the load axis adds nothing at these
+// The table: tables/default_stripes.toml with CONTACT's Poisson ratio, roll 0 (no equilibrium roll) and the
+// one load 78.5 kN (a load node of the STRIPES scene, so the load axis adds nothing at these
 // states); its model, creepage grids, normalised creep coordinates, knees and located jumps are the
-// default scene's. The y nodes are the midpoints of the default scene's y nodes over the states'
+// STRIPES scene's. The y nodes are the midpoints of the STRIPES scene's y nodes over the states'
 // range (same spacing, 0.25 mm at the flange, 0.5 mm on the tread): the default grid has a node at
 // every integer millimetre, i.e. at every block C state; mid-way between nodes is where the y
 // interpolation error is largest; a second table puts them a quarter step from a node. The states:
@@ -20,7 +20,7 @@
 //
 // Skipped (with a message) when ../shared/reference is absent. Run:
 // build/<dir>/tests/test_table_accuracy --gtest_filter='ContactEndToEnd*' (prints the numbers);
-// RAILTAB_END_TO_END_SCENE=default_halfspace.toml for the exact model's table.
+// RAILTAB_END_TO_END_SCENE=default.toml for the exact model's table.
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -38,7 +38,7 @@ namespace fs = std::filesystem;
 constexpr double kMedianMargin = 0.005;  // of mu N (lookup accuracy target)
 constexpr double kP90Margin = 0.01;
 
-// The y nodes: y_i + f (y_{i+1} - y_i) over the default scene's nodes y_i (f = 0.5: midpoints),
+// The y nodes: y_i + f (y_{i+1} - y_i) over the STRIPES scene's nodes y_i (f = 0.5: midpoints),
 // covering [lo, hi] with one node beyond each end. A default node (an integer-mm state) then lies
 // between two new nodes, a fraction 1 - f of the step above the lower one (where the steps agree).
 std::vector<double> shifted_nodes(const std::vector<double>& y, double f, double lo, double hi) {
@@ -67,7 +67,7 @@ struct Forces {
   double fx = 0.0, fy = 0.0;
 };
 
-// `fraction`: where the y nodes sit between the default scene's (shifted_nodes).
+// `fraction`: where the y nodes sit between the STRIPES scene's (shifted_nodes).
 void table_against_contact(double fraction) {
   const fs::path ref = fs::path(RAILTAB_SHARED_DIR) / "reference" / "blockC_sweep_integer_dy.csv";
   if (!fs::exists(ref)) GTEST_SKIP() << "CONTACT reference " << ref.string() << " absent (../shared/reference)";
@@ -76,9 +76,9 @@ void table_against_contact(double fraction) {
   ASSERT_GE(states.size(), 60u);
 
   // RAILTAB_END_TO_END_SCENE=<name in tables/>: another scene set up the same way (the exact
-  // model's, default_halfspace.toml: docs/validation/exact-tables.md).
+  // model's, default.toml: docs/validation/exact-tables.md).
   const char* other = std::getenv("RAILTAB_END_TO_END_SCENE");
-  Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / (other ? other : "default.toml"));
+  Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / (other ? other : "default_stripes.toml"));
   ASSERT_TRUE(contact_reference_applies(scene));
   double ylo = states.front().y, yhi = ylo;
   for (const SaState& s : states) {
@@ -117,7 +117,7 @@ void table_against_contact(double fraction) {
 
   // [0 table, 1 direct][0 tread, 1 flange, 2 all]
   std::vector<double> err[2][3];
-  std::printf("y nodes at %g of the default scene's steps (%zu nodes, %.4f..%.4f m); block C creep states (right "
+  std::printf("y nodes at %g of the STRIPES scene's steps (%zu nodes, %.4f..%.4f m); block C creep states (right "
               "wheel), |F - F_CONTACT| / (mu N_CONTACT), F = (fx, fy) on the wheel:\n"
               "  dy[mm] set           table   direct   (fx, fy) CONTACT [N]   table [N]   direct [N]\n",
               fraction, yn.size(), yn.front(), yn.back());

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Convergence of the multilinear lookup under grid refinement (docs/lookup.md, "Accuracy"): the
-// default scene's models on reduced grids over smooth sub-domains, three spacings h, h/2, h/4,
+// STRIPES scene's models on reduced grids over smooth sub-domains, three spacings h, h/2, h/4,
 // the same random states on each (every one a smooth cell, checked). Second-order interpolation:
 // the max error falls ~4x per halving, observed order p = log2(e_h / e_h/2) ~ 2.
 //   - lateral shift: left-wheel tread, y in [1, 3.5] mm (one contact, no two-point, no flange),
@@ -22,10 +22,10 @@
 namespace railtab::accuracy {
 namespace {
 
-// The default scene (tables/default.toml) with reduced grids.
+// The STRIPES scene (tables/default_stripes.toml) with reduced grids.
 Scene reduced_scene(const std::vector<double>& y, const std::vector<double>& load, const std::vector<double>& xi,
                     const std::vector<double>& eta, const std::vector<double>& phi) {
-  Scene s = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  Scene s = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
   s.grids.y = y;
   s.grids.load = load;
   s.grids.xi = xi;
@@ -92,7 +92,7 @@ void report(const char* title, const std::vector<std::array<double, lk::kNumOutp
 }
 
 TEST(TableConvergence, TreadLateralShiftHalvings) {
-  const double y0 = 1.0e-3, y1 = 3.5e-3;  // left-wheel tread, one contact, no two-point (default table)
+  const double y0 = 1.0e-3, y1 = 3.5e-3;  // left-wheel tread, one contact, no two-point (STRIPES table)
   const std::vector<double> load{78.5e3}, xi{-1e-3, 1.5e-3}, eta{0.0, 1e-3}, phi{0.1};
   std::vector<Level> levels;
   for (std::size_t n : {5u, 10u, 20u})  // h = 0.5, 0.25, 0.125 mm

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Table::query_creep_coefficients (format 2.3, docs/lookup.md "Linear creep coefficients") on the
-// default scene's table: the stored values at every node, the direct computation off the nodes
+// STRIPES scene's table: the stored values at every node, the direct computation off the nodes
 // (bound measured and stated below), one-sided values at the located contact jumps, the derivative
 // query's slopes at zero creepage on a table whose creep grid resolves them, and a table without
 // coefficients (format 2.2) refused clearly by the C++ and C APIs.
@@ -36,9 +36,9 @@ struct Tables {
 const Tables& tables() {
   static const Tables t = [] {
     Tables x;
-    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+    x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
     SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
-    if (r.summary.failures) throw std::runtime_error("default table: " + r.summary.first_failure);
+    if (r.summary.failures) throw std::runtime_error("STRIPES table: " + r.summary.first_failure);
     x.jumps = locate_jumps(x.scene);
     add_jumps(r.table, x.scene, x.jumps);  // as railtab generate
     x.table = std::move(r.table);
@@ -192,7 +192,7 @@ TEST(CreepCoefficients, OneSidedAtTheJumps) {
 // +-2e-3 rad/m: under 1 % of the saturation scale), the derivative query's d f / d c at zero
 // creepage equals the stored coefficient within 1 % of the row's largest direct term (FASTSIM with
 // the table's friction against full adhesion: the slip at the first node is that small); measured
-// below. On the default table (normalised creep grid, first node ~10 % of saturation) the same
+// below. On the STRIPES table (normalised creep grid, first node ~10 % of saturation) the same
 // ratio is 0.93-1.02 for fx/xi and fy/eta (docs/validation/creep-coefficients.md).
 TEST(CreepCoefficients, TheDerivativeQuerysSlopesOnAFineCreepGrid) {
   const Scene scene = parse_scene(R"(
@@ -305,7 +305,7 @@ TEST(CreepCoefficients, CApiMatchesTheCppApi) {
   std::filesystem::remove(path);
 }
 
-// How far the default table's coefficients (STRIPES A&B patches, FASTSIM) depart from Kalker's on
+// How far the STRIPES table's coefficients (STRIPES A&B patches, FASTSIM) depart from Kalker's on
 // each patch's equivalent ellipse (equal area and lateral extent, tangential/linear_creep.hpp;
 // summed over a slot's patches), per y band, 78.5 kN, left wheel (the right mirrors it). Prints
 // the median and range of C11, C22, C23 ratios per band and slot (docs/validation/

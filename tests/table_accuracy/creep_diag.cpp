@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Diagnostic, not a test (creep interpolation, docs/validation/creep-interpolation.md;
-// docs/lookup.md "Accuracy"): where do the creep-force errors of the default table come from? The
+// docs/lookup.md "Accuracy"): where do the creep-force errors of the STRIPES table come from? The
 // states and classification of DefaultSceneRandomOffGrid; the 8000 direct evaluations cached in a
 // file (they do not depend on the table). Prints smooth-cell max/RMS of fx, fy / (mu N) per slot,
 // the normalised force and N errors separately, jump cells within 2 % and their misses by distance
@@ -76,7 +76,7 @@ double mini_error(const Scene& base, const Point& p, std::size_t w, std::size_t 
 
 int main(int argc, char** argv) {
   const std::string cache = argc > 1 ? argv[1] : "/tmp/s5c_direct.bin";
-  Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
   if (const char* line = std::getenv("DIAG_LINE")) {  // "y load xi eta phi axis": direct along one axis
     Point p;
     int axis = 4;

@@ -30,9 +30,9 @@ inline std::vector<double> even_nodes(double lo, double hi, std::size_t n) {
   return v;
 }
 
-// tables/default_halfspace.toml with 0.5 mm elements (table and direct evaluation alike).
+// tables/default.toml with 0.5 mm elements (table and direct evaluation alike).
 inline Scene probe_scene() {
-  Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   scene.halfspace.element_size = 0.5e-3;
   return scene;
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The multilinear lookup against the core at random off-grid states of the default scene
-// (tables/default.toml, the full grid: it generates in ~1 s on 2 cores), docs/lookup.md
+// The multilinear lookup against the core at random off-grid states of the STRIPES scene
+// (tables/default_stripes.toml, the full grid: it generates in ~1 s on 2 cores), docs/lookup.md
 // "Accuracy". Run: build/<dir>/tests/test_table_accuracy (or ctest -L table_accuracy); the
 // error table is printed on stdout.
 //
@@ -155,7 +155,7 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
                     << "): error " << e.error << " > tolerance " << tolerance;
     }
   });
-  std::printf("default scene, multilinear: %zu random off-grid states x 2 wheels, seed %llu "
+  std::printf("STRIPES scene, multilinear: %zu random off-grid states x 2 wheels, seed %llu "
               "(table %.2f s, direct evaluation %.2f s)\n",
               points.size(), static_cast<unsigned long long>(kSeed), f.generate_seconds, direct_seconds);
   std::printf("%-22s %4s | %6s %10s %10s %10s %8s %8s | %6s %10s\n", "output", "slot", "smooth", "rms", "max",
@@ -205,7 +205,7 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
       EXPECT_LT(rms, rms_limit[s][o - lk::kFx]) << lk::output_name(static_cast<lk::Output>(o)) << " slot " << s;
     }
   EXPECT_LT(stats[lk::kFx][1].max_mu_n, 0.05) << "flange fx: the vertical share keeps N's error out of it";
-  // The classification found both kinds where the default scene has them: smooth tread and
+  // The classification found both kinds where the STRIPES scene has them: smooth tread and
   // flange cells, and jumps (tread contact jumps, flange onset, two-point, lift-off).
   for (std::size_t s = 0; s < kSlots; ++s) {
     EXPECT_GT(stats[lk::kFx][s].smooth, points.size() / 10) << "slot " << s;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Table::query_derivatives on the default scene's table (normalised creep coordinates, located
+// Table::query_derivatives on the STRIPES scene's table (normalised creep coordinates, located
 // contact jumps, two slots: tread and flange), linear and cubic: the derivatives agree with
 // central differences of query() itself inside cells, in every tabulated variable (y, load, and
 // the physical creepages xi, eta, phi through the normalised coordinates), for both slots; beside
@@ -241,7 +241,7 @@ TEST(Derivatives, LinearValuesAreTheQuerysBytesOnTheDefaultTable) { check_same_b
 TEST(Derivatives, CubicValuesAreTheQuerysBytesOnTheDefaultTable) { check_same_bytes(*tables().cubic); }
 
 // The one-slot derivative query gives query_derivatives' contact[slot] and d[slot] to the byte
-// (the fast path's tables too: the linear default table takes it), at the same states; a slot
+// (the fast path's tables too: the linear STRIPES table takes it), at the same states; a slot
 // outside the table gives zeros and kInvalidInput.
 void check_one_slot(const lk::Table& t) {
   lk::Result r;

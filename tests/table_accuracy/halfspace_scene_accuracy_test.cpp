@@ -8,7 +8,7 @@
 // the slots the lookup flags low_confidence apart from the others (the accuracy targets
 // count flagged states separately, and allow at most 2 % of them: asserted).
 //
-// Table: tables/default_halfspace.toml reduced so that it generates in a few minutes of CPU:
+// Table: tables/default.toml reduced so that it generates in a few minutes of CPU:
 // the scene's y nodes from -3 to 8 mm (0.5 mm on the tread, with 4.75 and 5.25 mm; 6.1, 6.2 mm
 // where the flange root's patch climbs towards the flange; 0.25 mm from 6.25 mm), the nominal load
 // only (78.5 kN), the scene's normalised 7 x 7 x 7 creepage nodes and its law (creep_law_spin),
@@ -57,7 +57,7 @@ struct Fixture {
   std::size_t points = 0;
 };
 
-// RAILTAB_HALFSPACE_TABLE=<file>: a table `railtab generate tables/default_halfspace.toml` wrote
+// RAILTAB_HALFSPACE_TABLE=<file>: a table `railtab generate tables/default.toml` wrote
 // (scripts/halfspace_table_accuracy.sh) instead of the reduced one generated here.
 const char* full_table() { return std::getenv("RAILTAB_HALFSPACE_TABLE"); }
 
@@ -74,9 +74,9 @@ std::size_t state_count() {
 }
 
 Scene accuracy_scene() {
-  Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   if (full_table()) return scene;
-  // The scene's own y nodes from -3 to 8 mm: a node added to tables/default_halfspace.toml is
+  // The scene's own y nodes from -3 to 8 mm: a node added to tables/default.toml is
   // measured here too.
   std::erase_if(scene.grids.y, [](double y) { return y < -3e-3 - 1e-9 || y > 8e-3 + 1e-9; });
   scene.grids.load = {78.5e3};
@@ -162,10 +162,10 @@ void expect_handover_keeps_the_wheel_force(const Fixture& f, const std::vector<P
     const double f_error = std::max(std::abs(lookup[1] - model[1]), std::abs(lookup[2] - model[2])) / (mu * model[0]);
     normal_error.push_back(n_error);
     force_error.push_back(f_error);
-    EXPECT_LE(n_error, 0.05) << "y " << points[i].v[kY] << " creepage (" << points[i].v[kXi] << ", "
+    EXPECT_LE(n_error, 0.05) << "y " << points[i].v[kY] << " load " << points[i].v[kLoad] << " creepage (" << points[i].v[kXi] << ", "
                              << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): N summed over the slots, lookup "
                              << lookup[0] << ", direct " << model[0];
-    EXPECT_LE(f_error, 0.05) << "y " << points[i].v[kY] << " creepage (" << points[i].v[kXi] << ", "
+    EXPECT_LE(f_error, 0.05) << "y " << points[i].v[kY] << " load " << points[i].v[kLoad] << " creepage (" << points[i].v[kXi] << ", "
                              << points[i].v[kEta] << ", " << points[i].v[kPhi] << "): fx, fy summed over the slots, "
                              << "lookup " << lookup[1] << ", " << lookup[2] << ", direct " << model[1] << ", " << model[2];
   }
@@ -196,8 +196,10 @@ void expect_handover_misses_are_flagged(const Fixture& f, const TableView& view)
     if (e.wheel != 0 || (e.output != lk::kFx && e.output != lk::kFy) || !(e.normal_force > 0.0)) return;
     if (e.error <= 0.05 * mu * e.normal_force) return;
     ++misses;
+    const Point& p = points[e.state];
     EXPECT_TRUE(flagged(e)) << "slot " << e.slot << " " << lk::output_name(static_cast<lk::Output>(e.output)) << " at y "
-                            << points[e.state].v[kY] << ": lookup " << e.lookup << ", direct " << e.direct;
+                            << p.v[kY] << " load " << p.v[kLoad] << " creepage (" << p.v[kXi] << ", " << p.v[kEta]
+                            << ", " << p.v[kPhi] << "): lookup " << e.lookup << ", direct " << e.direct;
   });
   std::printf("hand-over, left wheel y 5.585 to 5.605 mm: %zu fx, fy values off by more than 5 %% of mu N, all "
               "must be flagged\n", misses);

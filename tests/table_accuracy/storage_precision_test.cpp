@@ -153,7 +153,7 @@ void compare(int method, double bound_in_roundings) {
 
 TEST(StoragePrecision, DefaultTableIsSmallerThanTheFloat64One) {
   const Tables& t = tables();
-  std::printf("default table file: %ju B with float32 outputs (2.2), %ju B with float64 (2.1)\n", t.bytes[0],
+  std::printf("STRIPES table file: %ju B with float32 outputs (2.2), %ju B with float64 (2.1)\n", t.bytes[0],
               t.bytes[1]);
   // A table in tables/ may take up to 64 MB on disk (docs/lookup-accuracy.md); float32 halves it.
   EXPECT_LE(t.bytes[0], 64000000u) << "table size limit: 64 MB";
@@ -170,7 +170,7 @@ TEST(StoragePrecision, CubicLookupMovesByLessThanTheRoundingBound) { compare(1, 
 TEST(StoragePrecision, LookupHoldsTheFloat32OutputsAsFloats) {
   const Tables& t = tables();
   const std::size_t floats = t.records[0][0]->memory_bytes(), doubles = t.records[1][0]->memory_bytes();
-  std::printf("default table in memory: %zu B with float records, %zu B with double records\n", floats, doubles);
+  std::printf("STRIPES table in memory: %zu B with float records, %zu B with double records\n", floats, doubles);
   EXPECT_LE(static_cast<double>(floats), 0.55 * static_cast<double>(doubles));
   EXPECT_EQ(t.stored[1][0]->memory_bytes(), doubles) << "the float64 (2.1) table is held as doubles";
 }

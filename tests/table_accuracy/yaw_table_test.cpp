@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The yaw axis of a table (format 2.4, docs/table-format.md): the default scene's models over a
+// The yaw axis of a table (format 2.4, docs/table-format.md): the STRIPES scene's models over a
 // small grid with five yaw nodes, swept with the generator API and read through the lookup.
 // The yaw = 0 node against the same scene without yaw, the lookup off the yaw nodes against the
 // contact kernel run directly, mirror symmetry (y, yaw) -> (-y, -yaw) between the wheels, outputs
@@ -23,10 +23,10 @@ constexpr std::size_t kNyaw = 5;
 constexpr double kStoredYaw[] = {0.0, 0.005, 0.01};
 constexpr std::size_t kNstored = 3;
 
-// The default scene's profiles, track and models with a small grid: y symmetric about 0 (the
+// The STRIPES scene's profiles, track and models with a small grid: y symmetric about 0 (the
 // mirror test needs -y for every y), tread and flange contact, two loads, three nodes per creepage.
 std::string scene_text(bool with_yaw) {
-  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
   std::stringstream text;
   text << in.rdbuf();
   std::string s = text.str();
@@ -224,7 +224,7 @@ TEST(YawTable, YawOnATableWithoutYawIsFlagged) {
 }
 
 // Off the yaw nodes (y, load and creepage on their nodes, so only yaw is interpolated) the lookup
-// against the contact kernel run at that yaw. Tolerance as the default table's (docs/lookup.md
+// against the contact kernel run at that yaw. Tolerance as the STRIPES table's (docs/lookup.md
 // "Accuracy"): 5 x the linear interpolation bound h^2/8 |f''|, |f''| from the table's second
 // differences along yaw at the cell's corners, plus core_floor of the output's scale (the core's
 // own resolution) and the float32 rounding of the creep part. Cells whose corners' statuses differ from
@@ -540,7 +540,7 @@ TEST(YawTable, DerivativeAlongYaw) {
 // The exact model's list is stored whole (not folded): how far its outputs at -yaw are from those
 // at +yaw is printed (docs/validation/yaw-tables.md). A small grid at 0.5 mm elements (seconds).
 TEST(YawTable, ExactModelThroughTheTable) {
-  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   std::stringstream text;
   text << in.rdbuf();
   std::string s = text.str();

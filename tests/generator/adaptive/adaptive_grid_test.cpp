@@ -295,9 +295,9 @@ TEST(AdaptiveReport, DISABLED_DefaultAdaptiveAgainstUniform) {
   Scene adaptive = scene;
   AdaptiveGridSummary s = build_adaptive_grids(adaptive, 0);
   std::cout << s.achieved_json().dump(1) << "\n";
-  // The shipped default table's fixed grids (same ranges) at the same states, for context.
-  Scene fixed = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables/default.toml");
-  GridComparison c = compare_adaptive_with_uniform(scene, 400, 20261122u, 0, {{"default.toml", fixed.grids}});
+  // The shipped STRIPES table's fixed grids (same ranges) at the same states, for context.
+  Scene fixed = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables/default_stripes.toml");
+  GridComparison c = compare_adaptive_with_uniform(scene, 400, 20261122u, 0, {{"default_stripes.toml", fixed.grids}});
   std::cout << c.text();
 }
 

@@ -27,7 +27,7 @@ struct GridComparison {
     double angle_median = 0, angle_max = 0;  // tread-slot contact angle error [rad]
   };
   Grid adaptive, uniform;
-  std::vector<Grid> others;                // further grids measured the same way (e.g. default.toml's)
+  std::vector<Grid> others;                // further grids measured the same way (e.g. default_stripes.toml's)
   std::size_t states = 0;                  // random states (with contact on both wheels) [-]
   std::string text() const;                // printable report
 };

@@ -136,7 +136,7 @@ TEST(HalfspaceSelectable, JumpConfigurationIsTheContactChains) {
   // S1002/UIC60 contacts lie within the 8 mm that merge into one patch), and the worn pairs' scenes
   // with the exact model at the first states with two candidate patches (0.05 mm scan, no exact
   // solve).
-  for (const char* file : {"default_halfspace.toml", "worn_rail.toml", "worn_miniprof.toml"}) {
+  for (const char* file : {"default.toml", "worn_rail.toml", "worn_miniprof.toml"}) {
     Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / file);
     scene.normal.model = NormalModel::halfspace;
     const ContactProbe probe(scene);
@@ -150,7 +150,7 @@ TEST(HalfspaceSelectable, JumpConfigurationIsTheContactChains) {
       double y, load;
     };
     std::vector<State> states;
-    if (std::string(file) == "default_halfspace.toml")
+    if (std::string(file) == "default.toml")
       for (double y = -0.0101; y <= 0.0101; y += 0.0007) states.push_back({y, 78.5e3});
     const std::vector<double>& y_grid = scene.grids.y;
     int scanned = 0;

@@ -256,7 +256,7 @@ TEST(ErrorMap, FormatTwoPointTwoTableWithoutAMapStillLoads) {
   EXPECT_EQ(a.contact[0].value[lk::kFy], b.contact[0].value[lk::kFy]);
 }
 
-// Report (not a check; run with --gtest_also_run_disabled_tests): the default table's errors at
+// Report (not a check; run with --gtest_also_run_disabled_tests): the STRIPES table's errors at
 // the error map's own kind of states, more of them, tread and flange apart: median / p90 / max of
 // the creep force error |(dfx, dfy)| / (mu N) in %, the normal force in %, the contact angle in
 // mrad; the table (public lookup) against its model at 48 states per band (both wheels), and the
@@ -264,7 +264,7 @@ TEST(ErrorMap, FormatTwoPointTwoTableWithoutAMapStillLoads) {
 TEST(ErrorMap, DISABLED_DefaultTableFigures) {
   testing::TempDir dir("error_map_default");
   GenerateOptions o;
-  o.scene = std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml";
+  o.scene = std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml";
   o.output = dir / "default.h5";
   o.threads = 2;
   generate_table(o);

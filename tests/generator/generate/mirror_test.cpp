@@ -142,7 +142,7 @@ TEST(Mirror, HalfspaceTableIsTheFullSweep) { expect_mirror_is_full(kHalfspaceSce
 // sweep.
 // The exact scene in tables/ (7 x 7 x 7 normalised creepages) is mirrored.
 TEST(Mirror, DefaultHalfspaceSceneIsMirrored) {
-  const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   EXPECT_EQ(mirror_obstacle(scene, make_contact_kernel(scene)), "");
 }
 

@@ -227,12 +227,12 @@ TEST(TableSize, RefusalUsesTheModelsCostPerPoint) {
 
 // The estimate counts the points the sweep solves: a mirrored sweep the columns y >= 0 (and a
 // shard's columns y < 0 whose image is in another shard), at the exact model's cost scaled to
-// the element size. Its range holds the measured whole runs of tables/default_halfspace.toml
+// the element size. Its range holds the measured whole runs of tables/default.toml
 // (docs/validation/exact-tables.md, "Generation cost"): 0.3 mm elements, 31,899 computed points,
 // 6 min 05 s wall on a quiet 2-core machine (counting every point at the earlier cost printed 21
 // to 63 min); 0.4 mm elements, 22,638 computed points, 247 s CPU (loaded machine).
 TEST(TableSize, EstimateCountsTheComputedPoints) {
-  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   const std::size_t ny = scene.grids.y.size();
   std::size_t non_negative = 0;
   for (double y : scene.grids.y) non_negative += y >= 0.0 ? 1 : 0;

@@ -46,7 +46,7 @@ TEST(Scene, MinimalSceneGetsDefaults) {
 }
 
 TEST(Scene, ShippedScenesParse) {
-  for (const char* name : {"default.toml", "default_halfspace.toml", "flange.toml", "worn_rail.toml", "worn_miniprof.toml"}) {
+  for (const char* name : {"default_stripes.toml", "default.toml", "flange.toml", "worn_rail.toml", "worn_miniprof.toml"}) {
     Scene s = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / name);
     EXPECT_FALSE(s.name.empty()) << name;
     EXPECT_GE(s.grids.y.size(), 20u) << name;

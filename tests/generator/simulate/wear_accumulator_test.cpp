@@ -25,7 +25,7 @@ namespace railtab::wear_accumulator_test {  // own namespace: unity builds compi
 namespace {
 
 const Scene& default_scene() {
-  static const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables/default.toml");
+  static const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables/default_stripes.toml");
   return scene;
 }
 

@@ -130,10 +130,10 @@ TEST(SpeedAccuracy, ParetoFrontIsNonDominated) {
 TEST(SpeedAccuracy, ContactReferenceOnlyForItsOwnPair) {
   // A worn scene must not be measured against CONTACT's S1002/UIC60 runs.
   const fs::path tables = fs::path(RAILTAB_SOURCE_DIR) / "tables";
-  EXPECT_TRUE(contact_reference_applies(load_scene(tables / "default.toml")));
+  EXPECT_TRUE(contact_reference_applies(load_scene(tables / "default_stripes.toml")));
   EXPECT_FALSE(contact_reference_applies(load_scene(tables / "worn_rail.toml")));
   EXPECT_FALSE(contact_reference_applies(load_scene(tables / "worn_miniprof.toml")));
-  Scene canted = load_scene(tables / "default.toml");
+  Scene canted = load_scene(tables / "default_stripes.toml");
   canted.track.rail_inclination = 1.0 / 20.0;
   EXPECT_FALSE(contact_reference_applies(canted));
 }
@@ -143,7 +143,7 @@ TEST(SpeedAccuracy, TinyRunAgainstContact) {
   if (!fs::exists(ref)) GTEST_SKIP() << ref.string() << " absent";
   const testing::TempDir tmp("speed_accuracy_contact");  // per process: parallel suites do not share it
   const fs::path& dir = tmp.path();
-  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
   SpeedAccuracyOptions o = tiny(dir / "tables");
   o.reference_csv = ref;
   const SpeedAccuracyResult r = measure_speed_accuracy(scene, o);
@@ -161,7 +161,7 @@ TEST(SpeedAccuracy, TinyRunAgainstContact) {
 TEST(SpeedAccuracy, TinyRunWithoutContactUsesFineStripes) {
   const testing::TempDir tmp("speed_accuracy_fallback");  // per process: parallel suites do not share it
   const fs::path& dir = tmp.path();
-  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
   SpeedAccuracyOptions o = tiny(dir / "tables");
   o.reference_csv = dir / "no-such-reference.csv";
   const SpeedAccuracyResult r = measure_speed_accuracy(scene, o);
@@ -174,7 +174,7 @@ TEST(SpeedAccuracy, TinyRunWithoutContactUsesFineStripes) {
 TEST(SpeedAccuracy, TinyRunWithoutContactUsesTheExactModel) {
   const testing::TempDir tmp("speed_accuracy_exact");  // per process: parallel suites do not share it
   const fs::path& dir = tmp.path();
-  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
   SpeedAccuracyOptions o = tiny(dir / "tables");
   o.fallback_reference = SpeedAccuracyOptions{}.fallback_reference;
   ASSERT_EQ(o.fallback_reference.model, NormalModel::halfspace);
@@ -199,7 +199,7 @@ TEST(SpeedAccuracy, TinyRunWithoutContactUsesTheExactModel) {
 TEST(SpeedAccuracy, TablesAreTheOnesGenerateMakes) {
   const testing::TempDir tmp("speed_accuracy_product");  // per process: parallel suites do not share it
   const fs::path& dir = tmp.path();
-  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
   ASSERT_TRUE(scene.creep_normalised);
   SpeedAccuracyOptions o = tiny(dir / "tables");
   o.models = {{NormalModel::hertz, 0, 10}};
@@ -210,7 +210,7 @@ TEST(SpeedAccuracy, TablesAreTheOnesGenerateMakes) {
   const Table t = read_table(dir / "tables" / "speed_accuracy_y2mm.h5");
   const std::string* creep_map = t.attribute("creep_map");
   ASSERT_NE(creep_map, nullptr) << "the chart's table lost the scene's normalised creep coordinates";
-  // The scene's whole ranges and knees (default.toml: xi -4e-3..4e-3, eta knee 3, phi knee 4).
+  // The scene's whole ranges and knees (default_stripes.toml: xi -4e-3..4e-3, eta knee 3, phi knee 4).
   EXPECT_NE(creep_map->find("\"xi_min\":-0.004"), std::string::npos) << *creep_map;
   EXPECT_NE(creep_map->find("\"eta_knee\":3.0"), std::string::npos) << *creep_map;
   EXPECT_NE(creep_map->find("\"phi_knee\":4.0"), std::string::npos) << *creep_map;
@@ -219,12 +219,12 @@ TEST(SpeedAccuracy, TablesAreTheOnesGenerateMakes) {
 }
 
 // A scene of the exact model makes every chart table an exact one (15-30 ms CPU per point): its
-// default tables stay within a few minutes of CPU (tables/default_halfspace.toml: one y 0.5 mm
+// default tables stay within a few minutes of CPU (tables/default.toml: one y 0.5 mm
 // table over block C's 16 mm, about 11,000 points), where the fast scenes' seven tables (fine
 // creepage grids of 891 creepages per y, y steps down to 0.25 mm) would be about 125,000 exact
 // points, hours.
 TEST(SpeedAccuracy, ExactSceneTablesAreCapped) {
-  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default_halfspace.toml");
+  const Scene scene = load_scene(fs::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   ASSERT_EQ(scene.normal.model, NormalModel::halfspace);
   const double span = 16e-3;  // block C: dy -6 to 10 mm
   auto points = [&](const std::vector<SaTableSetting>& settings) {

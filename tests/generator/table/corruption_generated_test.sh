@@ -5,7 +5,7 @@
 # single-byte changes, each copy loaded through the C API in a child process and given to
 # `railtab inspect` (tests/lookup/corruption_campaign.cpp; docs/reliability.md).
 # Usage: corruption_generated_test.sh RAILTAB CAMPAIGN TABLE FLIPS SEED
-# TABLE: the default scene's table (the CTest fixture table.default_table); it is only read, the
+# TABLE: the STRIPES scene's table (the CTest fixture table.stripes_table); it is only read, the
 # changed copies are the campaign's own files.
 set -euo pipefail
 railtab=$1 campaign=$2 table=$3 flips=$4 seed=$5
