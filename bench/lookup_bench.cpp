@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-// Lookup speed on the default scene's own table (tables/default.toml: y 57 nodes, non-uniform;
-// load 3; xi 7 and eta 5, non-uniform; phi 3; roll at the equilibrium; 2 slots: creep and wear
-// 5-D, normal over (y, load), geometry over y), through the public API (railtab/lookup.hpp).
+// Lookup speed on the default scene's own table (tables/default.toml, the exact half-space model:
+// y 65 nodes, non-uniform; load 2; xi, eta and phi 7 nodes each in normalised creep coordinates;
+// roll at the equilibrium; 2 slots: creep and wear 5-D, normal over (y, load), geometry over y),
+// through the public API (railtab/lookup.hpp).
 // One query = every output of every slot of one wheel (Table::query); a slot query (`Slot` in
 // the name) = every output of one contact, the tread (Table::query_slot).
 //
-// The table: $RAILTAB_LOOKUP_BENCH_TABLE if set (any table file, e.g. one of your own scenes),
-// else the default scene generated here with the generator API (~3 s on 2 cores, the same bytes
-// as `railtab generate tables/default.toml`). Fixture* benchmarks: the synthetic 4-D table with
-// uniform axes (tests/lookup/table_fixture.hpp), for comparison with earlier numbers.
+// The table: $RAILTAB_LOOKUP_BENCH_TABLE if set (any table file, e.g. `railtab generate
+// tables/default.toml` made once, or tables/default_stripes.toml's table), else the default scene
+// generated here with the generator API (the same bytes as `railtab generate tables/default.toml`;
+// about 160 s of CPU, so set the variable when benchmarking repeatedly; the jump benchmarks need
+// this in-process table, they read its jumps' positions). Fixture* benchmarks: the synthetic 4-D
+// table with uniform axes (tests/lookup/table_fixture.hpp), for comparison with earlier numbers.
 // Floor* benchmarks: a plain multilinear kernel over the same table's axes (class Floor below) at
 // the same states, the yardstick of the lookup's speed: report lookup / floor from one run.
 //   ./lookup_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
