@@ -130,9 +130,10 @@ inline constexpr double kHandOverCreepShift = 12e-6;  // m
 // order there pairs jumps of different kinds, and a query would read one node's values from one
 // side of a change and the other node's from the other (the patch's force split over both slots
 // or counted from the wrong side of the rigid-point jump: the sum over the slots was off by up to
-// 13 % of N on the exact table). So each jump is paired with the jump of the same kind and rank at
-// the other node; its position interpolated in load between the two places the query on one side
-// of it; and each node takes the segment of its own list that puts the query on that side of as
+// 13 % of N on the exact table). So each jump is paired with the jump of the same kind (its
+// geometric bits, or its whole kind without them: pairing_key, jump_side.hpp) and rank at the
+// other node; its position interpolated in load between the two places the query on one side of
+// it; and each node takes the segment of its own list that puts the query on that side of as
 // many of its jumps as it can, geometric jumps (which change every part) first. Between the two
 // positions of a crossing jump no segment of one node agrees with every side (the patch sits in
 // one slot at one node and in the other at the other): that node's segment keeps the query's side
@@ -173,16 +174,18 @@ inline void crossing_pieces(const JumpWheel& j, const Axis& ya, int list, const 
     long cost = 0;
     for (std::size_t k = from; k < to; ++k) {
       if (left(k)) cost += weight(k);
-      // Near the query's y cell, a jump the other node lacks, or one whose two positions straddle
-      // the query (a patch hand-over's widened by kHandOverCreepShift): which slot holds the patch
-      // there moves with the creepage too (the load coupling), so the slots' split is not resolved
-      // even where both nodes agree on the sides.
+      // Near the query's y cell, a jump the other node lacks, or lists with other patch bits (a
+      // patch appears at it at one load only), or one whose two positions straddle the query (a
+      // patch hand-over's widened by kHandOverCreepShift): which slot holds the patch there moves
+      // with the creepage too (the load coupling), so the slots' split is not resolved even where
+      // both nodes agree on the sides.
       const int p = partner[first + k];
       if (static_cast<int>(k) >= window[0] && static_cast<int>(k) < window[1]) {
         const double margin = (kind[k] & kPatchHandOver) == kPatchHandOver && !(kind[k] & kGeometricJumps)
                                   ? kHandOverCreepShift : 0.0;
         const double y_other = p < 0 ? own[k] : other[static_cast<std::size_t>(p)];
-        if (p < 0 || (std::min(own[k], y_other) - margin <= yq && yq < std::max(own[k], y_other) + margin)) spans = true;
+        const bool same_kind = p >= 0 && j.kind[list][l + 1 - node][static_cast<std::size_t>(p)] == kind[k];
+        if (!same_kind || (std::min(own[k], y_other) - margin <= yq && yq < std::max(own[k], y_other) + margin)) spans = true;
       }
     }
     long best = cost;

@@ -22,8 +22,8 @@ constexpr hsize_t kMaxJumps = 4096;  // entries of one jump list, at most (limit
 
 // Whether the jumps of one list may cut y cell [x0, x1] within load cell l (nodes l, l+1): a jump
 // of either node inside it, or a jump whose interpolated position sweeps across it (the jumps
-// paired as the query pairs them: in order where both nodes list the same kinds, else by kind,
-// JumpWheel::partner).
+// paired as the query pairs them: in order where both nodes list the same kinds, else by
+// kind_partners, JumpWheel::partner).
 bool cuts(const JumpWheel& j, int list, int l, double x0, double x1) {
   const auto& ys = j.y[list];
   const int nodes = j.load_axis ? 2 : 1;
@@ -42,24 +42,6 @@ bool cuts(const JumpWheel& j, int list, int l, double x0, double x1) {
     if (std::min(a[i], other) <= x1 && std::max(a[i], other) >= x0) return true;
   }
   return false;
-}
-
-// JumpWheel::partner of one load cell: node a's jumps then node b's, each paired with the jump of
-// the same kind and rank (the k-th jump of that kind) at the other node, -1 where that has none.
-std::vector<int> kind_partners(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
-  std::vector<int> partner;
-  auto pair_into = [&](const std::vector<std::uint32_t>& from, const std::vector<std::uint32_t>& to) {
-    for (std::size_t k = 0; k < from.size(); ++k) {
-      const auto rank = std::count(from.begin(), from.begin() + static_cast<std::ptrdiff_t>(k), from[k]);
-      int found = -1;
-      for (std::size_t i = 0, seen = 0; i < to.size() && found < 0; ++i)
-        if (to[i] == from[k] && static_cast<std::ptrdiff_t>(seen++) == rank) found = static_cast<int>(i);
-      partner.push_back(found);
-    }
-  };
-  pair_into(a, b);
-  pair_into(b, a);
-  return partner;
 }
 
 // First creepage dimension of a block: after y and (when tabulated) load.

@@ -23,6 +23,35 @@ class Hdf5File;
 // so every part jumps; bits 6-9 change only the loaded patches (normal, creep, wear).
 inline constexpr std::uint32_t kGeometricJumps = 0x3Fu;
 
+// What pairs a jump with its partner at the other load node of a cell: its geometric bits when it
+// has any, else its whole kind. A rigid-point jump keeps its geometric bits from one load to the
+// next, but whether a loaded patch appears or leaves a slot at it (bits 6-9) may change with the
+// load (on worn_miniprof.toml's right wheel the jump at -5.07 mm is kind 68 at 60 kN and 4 at 100 kN).
+inline std::uint32_t pairing_key(std::uint32_t kind) noexcept {
+  return (kind & kGeometricJumps) ? (kind & kGeometricJumps) : kind;
+}
+
+// JumpWheel::partner of one load cell from its two nodes' kind lists a and b: a's jumps then b's,
+// each paired with the jump of the same pairing key and rank (the k-th jump of that key) at the
+// other node, -1 where that has none.
+inline std::vector<int> kind_partners(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
+  std::vector<int> partner;
+  auto pair_into = [&](const std::vector<std::uint32_t>& from, const std::vector<std::uint32_t>& to) {
+    for (std::size_t k = 0; k < from.size(); ++k) {
+      const std::uint32_t key = pairing_key(from[k]);
+      std::size_t rank = 0;
+      for (std::size_t i = 0; i < k; ++i) rank += pairing_key(from[i]) == key;
+      int found = -1;
+      for (std::size_t i = 0, seen = 0; i < to.size() && found < 0; ++i)
+        if (pairing_key(to[i]) == key && seen++ == rank) found = static_cast<int>(i);
+      partner.push_back(found);
+    }
+  };
+  pair_into(a, b);
+  pair_into(b, a);
+  return partner;
+}
+
 // One block's one-sided values at the jumps (format 2.1, /jumps/<wheel>/<part>): per slot, load
 // node, jump and side (0 left, 1 right of the jump) a slice over the block's creepage axes, in the
 // block's query record layout (values, then the statuses of the creepage CELL the record starts,
@@ -57,7 +86,8 @@ struct JumpWheel {
   // then moves with load, and the blended positions place the query: no jump crosses another).
   // Else (two jumps of different kinds cross between the load nodes, or a node has a jump the
   // other lacks) node l's jumps then node l+1's: the index, in the other node's list, of the jump
-  // of the same kind and rank, -1 where it has none (crossing_pieces, jump_piece.hpp).
+  // of the same pairing key and rank, -1 where it has none (kind_partners; crossing_pieces,
+  // jump_piece.hpp).
   std::vector<std::vector<int>> partner[2];
   std::vector<unsigned char> cut;         // [y cell * load_cells + load cell]: a jump may cut it
   // Per list and load node, for the segment right of m jumps (m = 0 .. jumps): its first grid

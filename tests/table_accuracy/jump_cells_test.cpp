@@ -478,11 +478,41 @@ TEST(JumpCells, Avx2AndSse2GiveTheSameBytesInCutCells) {
   EXPECT_GT(compared, 100u);
 }
 
+// A jump whose place in its node's list differs at the other load node of its cell (it crosses
+// another jump between the two loads): its wheel, load cell and the y span between its positions.
+// Paired as the lookup pairs them: the k-th jump of a kind with the other node's k-th of that kind
+// (the STRIPES scene's jumps carry either geometric or patch bits, never both, so the kind is the
+// lookup's pairing key there).
+struct CrossingJump {
+  std::size_t wheel, load_cell;
+  double lo, hi;
+};
+
+std::vector<CrossingJump> crossing_jumps(const JumpFixture& f) {
+  std::vector<CrossingJump> crossings;
+  for (std::size_t w = 0; w < 2; ++w)
+    for (std::size_t l = 0; l + 1 < f.jumps.wheel[w].size(); ++l) {
+      const std::vector<ContactJump>& a = f.jumps.wheel[w][l];
+      const std::vector<ContactJump>& b = f.jumps.wheel[w][l + 1];
+      for (std::size_t k = 0; k < a.size(); ++k) {
+        const auto rank = std::count_if(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k),
+                                        [&](const ContactJump& j) { return j.kind == a[k].kind; });
+        std::ptrdiff_t seen = 0;
+        const auto other = std::find_if(b.begin(), b.end(), [&](const ContactJump& j) {
+          return j.kind == a[k].kind && seen++ == rank;
+        });
+        if (other == b.end() || static_cast<std::size_t>(other - b.begin()) == k) continue;
+        crossings.push_back({w, l, std::min(a[k].y, other->y), std::max(a[k].y, other->y)});
+      }
+    }
+  return crossings;
+}
+
 // Two jumps of different kinds that cross between two load nodes (on the STRIPES scene the
 // tread-flange hand-over of the normal patch passes the flange root's rigid-point jump between
-// 78.5 and 100 kN): the lookup pairs the jumps of the two nodes by their order, so between the
-// positions that one jump takes at the two nodes a query blends the values of one side of it at
-// one node with the other side's at the other (e.g. the patch's force split over both slots).
+// 78.5 and 100 kN): between the positions that one jump takes at the two nodes, one node holds
+// the patch in one slot and the other in the other, so a query blends the two (the patch's force
+// split over both slots, though its sum is right: the test below).
 // Such queries are low confidence in every slot (docs/lookup.md "Low confidence"), by the fused
 // and the generic path.
 TEST(JumpCells, QueriesBetweenTheLoadNodesPositionsOfACrossingJumpAreLowConfidence) {
@@ -494,40 +524,24 @@ TEST(JumpCells, QueriesBetweenTheLoadNodesPositionsOfACrossingJumpAreLowConfiden
   const lk::Table generic = lk::Table::load(path.string());
   ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
   std::filesystem::remove(path);
-  std::size_t crossings = 0, checked = 0;
-  for (std::size_t w = 0; w < 2; ++w)
-    for (std::size_t l = 0; l + 1 < f.jumps.wheel[w].size(); ++l) {
-      const std::vector<ContactJump>& a = f.jumps.wheel[w][l];
-      const std::vector<ContactJump>& b = f.jumps.wheel[w][l + 1];
-      for (std::size_t k = 0; k < a.size(); ++k) {
-        // The jump of the same kind and rank at the other node; a crossing when its place in the
-        // list differs.
-        const auto rank = std::count_if(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k),
-                                        [&](const ContactJump& j) { return j.kind == a[k].kind; });
-        std::ptrdiff_t seen = 0;
-        const auto other = std::find_if(b.begin(), b.end(), [&](const ContactJump& j) {
-          return j.kind == a[k].kind && seen++ == rank;
-        });
-        if (other == b.end() || static_cast<std::size_t>(other - b.begin()) == k) continue;
-        ++crossings;
-        const double lo = std::min(a[k].y, other->y), hi = std::max(a[k].y, other->y);
-        for (int i = 1; i <= 4; ++i) {
-          lk::State s = f.with_jumps->default_state();
-          s.y = lo + (hi - lo) * i / 5.0;
-          s.load = 0.5 * (loads[l] + loads[l + 1]);
-          for (const lk::Table* t : {&*f.with_jumps, &generic}) {
-            const lk::Result r = t->query(static_cast<lk::Wheel>(w), s);
-            for (int slot = 0; slot < r.n_slots; ++slot)
-              EXPECT_TRUE(r.contact[slot].status & lk::status::kLowConfidence)
-                  << "wheel " << w << " y " << s.y << " load " << s.load << " slot " << slot
-                  << (t == &generic ? " (generic path)" : " (fused path)");
-            ++checked;
-          }
-        }
+  const std::vector<CrossingJump> crossings = crossing_jumps(f);
+  std::size_t checked = 0;
+  for (const CrossingJump& c : crossings)
+    for (int i = 1; i <= 4; ++i) {
+      lk::State s = f.with_jumps->default_state();
+      s.y = c.lo + (c.hi - c.lo) * i / 5.0;
+      s.load = 0.5 * (loads[c.load_cell] + loads[c.load_cell + 1]);
+      for (const lk::Table* t : {&*f.with_jumps, &generic}) {
+        const lk::Result r = t->query(static_cast<lk::Wheel>(c.wheel), s);
+        for (int slot = 0; slot < r.n_slots; ++slot)
+          EXPECT_TRUE(r.contact[slot].status & lk::status::kLowConfidence)
+              << "wheel " << c.wheel << " y " << s.y << " load " << s.load << " slot " << slot
+              << (t == &generic ? " (generic path)" : " (fused path)");
+        ++checked;
       }
     }
-  EXPECT_GT(crossings, 0u) << "the STRIPES scene's jumps no longer cross between load nodes: choose another case";
-  std::printf("crossing jumps: %zu, states checked: %zu\n", crossings, checked);
+  EXPECT_GT(crossings.size(), 0u) << "the STRIPES scene's jumps no longer cross between load nodes: choose another case";
+  std::printf("crossing jumps: %zu, states checked: %zu\n", crossings.size(), checked);
 }
 
 // The sum over the slots between the load nodes' positions of a crossing jump: the lookup pairs
@@ -543,29 +557,15 @@ TEST(JumpCells, SumOverTheSlotsBetweenTheLoadNodesPositionsOfACrossingJumpIsTheM
   const std::vector<double>& loads = f.scene.grids.load;
   std::vector<Point> points;
   std::vector<std::size_t> wheel;
-  for (std::size_t w = 0; w < 2; ++w)
-    for (std::size_t l = 0; l + 1 < f.jumps.wheel[w].size(); ++l) {
-      const std::vector<ContactJump>& a = f.jumps.wheel[w][l];
-      const std::vector<ContactJump>& b = f.jumps.wheel[w][l + 1];
-      for (std::size_t k = 0; k < a.size(); ++k) {
-        const auto rank = std::count_if(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k),
-                                        [&](const ContactJump& j) { return j.kind == a[k].kind; });
-        std::ptrdiff_t seen = 0;
-        const auto other = std::find_if(b.begin(), b.end(), [&](const ContactJump& j) {
-          return j.kind == a[k].kind && seen++ == rank;
-        });
-        if (other == b.end() || static_cast<std::size_t>(other - b.begin()) == k) continue;
-        const double lo = std::min(a[k].y, other->y), hi = std::max(a[k].y, other->y);
-        for (int i = 1; i <= 4; ++i)
-          for (double s : {0.25, 0.5, 0.75}) {
-            Point p;
-            p.v[kY] = lo + (hi - lo) * i / 5.0;
-            p.v[kLoad] = (1.0 - s) * loads[l] + s * loads[l + 1];
-            points.push_back(p);
-            wheel.push_back(w);
-          }
+  for (const CrossingJump& c : crossing_jumps(f))
+    for (int i = 1; i <= 4; ++i)
+      for (double s : {0.25, 0.5, 0.75}) {
+        Point p;
+        p.v[kY] = c.lo + (c.hi - c.lo) * i / 5.0;
+        p.v[kLoad] = (1.0 - s) * loads[c.load_cell] + s * loads[c.load_cell + 1];
+        points.push_back(p);
+        wheel.push_back(c.wheel);
       }
-    }
   ASSERT_FALSE(points.empty()) << "the default scene's jumps no longer cross between load nodes: choose another case";
   const std::vector<Direct> direct = evaluate_direct(f.scene, points);
   const std::filesystem::path path = temp_table_path("jumps_crossing_sum");
