@@ -488,6 +488,17 @@ struct CrossingJump {
   double lo, hi;
 };
 
+// The fixture's table with jumps loaded for the generic query path (no fused query), to check both.
+lk::Table generic_path_table(const JumpFixture& f, const char* name) {
+  const std::filesystem::path path = temp_table_path(name);
+  write_for_lookup(f.with_table, path);
+  ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);
+  lk::Table generic = lk::Table::load(path.string());
+  ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
+  std::filesystem::remove(path);
+  return generic;
+}
+
 std::vector<CrossingJump> crossing_jumps(const JumpFixture& f) {
   std::vector<CrossingJump> crossings;
   for (std::size_t w = 0; w < 2; ++w)
@@ -518,12 +529,7 @@ std::vector<CrossingJump> crossing_jumps(const JumpFixture& f) {
 TEST(JumpCells, QueriesBetweenTheLoadNodesPositionsOfACrossingJumpAreLowConfidence) {
   const JumpFixture& f = fixture();
   const std::vector<double>& loads = f.scene.grids.load;
-  const std::filesystem::path path = temp_table_path("jumps_crossing");
-  write_for_lookup(f.with_table, path);
-  ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);
-  const lk::Table generic = lk::Table::load(path.string());
-  ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
-  std::filesystem::remove(path);
+  const lk::Table generic = generic_path_table(f, "jumps_crossing");
   const std::vector<CrossingJump> crossings = crossing_jumps(f);
   std::size_t checked = 0;
   for (const CrossingJump& c : crossings)
@@ -568,12 +574,7 @@ TEST(JumpCells, SumOverTheSlotsBetweenTheLoadNodesPositionsOfACrossingJumpIsTheM
       }
   ASSERT_FALSE(points.empty()) << "the default scene's jumps no longer cross between load nodes: choose another case";
   const std::vector<Direct> direct = evaluate_direct(f.scene, points);
-  const std::filesystem::path path = temp_table_path("jumps_crossing_sum");
-  write_for_lookup(f.with_table, path);
-  ::setenv("RAILTAB_LOOKUP_NO_FAST_PATH", "1", 1);
-  const lk::Table generic = lk::Table::load(path.string());
-  ::unsetenv("RAILTAB_LOOKUP_NO_FAST_PATH");
-  std::filesystem::remove(path);
+  const lk::Table generic = generic_path_table(f, "jumps_crossing_sum");
   double worst = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::size_t w = wheel[i];
