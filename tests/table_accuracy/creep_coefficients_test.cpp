@@ -311,7 +311,7 @@ TEST(CreepCoefficients, CApiMatchesTheCppApi) {
 // the median and range of C11, C22, C23 ratios per band and slot (docs/validation/
 // creep-coefficients.md); asserts every ratio lies in 0.8-3.5 (measured 1.13-2.98: stiffer, as the
 // single states measured before) and that the tread near y = 0 is within 1.1-1.5.
-TEST(CreepCoefficients, DefaultTableAgainstTheEquivalentEllipseByYBand) {
+TEST(CreepCoefficients, StripesTableAgainstTheEquivalentEllipseByYBand) {
   const Tables& x = tables();
   const ContactGeometrySolver solver = make_geometry_solver(x.scene);
   const std::vector<double>& ys = x.scene.grids.y;

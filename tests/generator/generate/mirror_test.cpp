@@ -141,7 +141,7 @@ TEST(Mirror, HalfspaceTableIsTheFullSweep) { expect_mirror_is_full(kHalfspaceSce
 // mz_xi, rounding noise about 0, then keep their sign on both wheels). Its tables run the full
 // sweep.
 // The exact scene in tables/ (7 x 7 x 7 normalised creepages) is mirrored.
-TEST(Mirror, DefaultHalfspaceSceneIsMirrored) {
+TEST(Mirror, DefaultSceneIsMirrored) {
   const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   EXPECT_EQ(mirror_obstacle(scene, make_contact_kernel(scene)), "");
 }
