@@ -57,6 +57,27 @@ xi = [-0.002, 0.0, 0.002]
 eta = [-0.001, 0.001]
 )";
 
+// A small scene of the exact half-space model: tread contact, 2 y x 2 xi at 78.5 kN (seconds of CPU).
+inline constexpr const char* kHalfspaceSmallScene = R"(
+[scene]
+name = "halfspace-small"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[track]
+rail_inclination = "1:40"
+[contact]
+normal_model = "halfspace"
+friction = 0.3
+[grid]
+y = [0.0, 0.003]
+equilibrium_roll = true
+load = [78.5e3]
+xi = [0.0, 0.002]
+eta = [0.0]
+phi = [0.0]
+)";
+
 // Every dataset of `a` exists in `b` with the same shape, axes and identical bytes; same axes.
 inline void expect_same_datasets(const Table& a, const Table& b) {
   ASSERT_EQ(a.axes.size(), b.axes.size());
