@@ -17,20 +17,6 @@
 namespace railtab::state_eval_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
-
-constexpr const char* kTreadScene = R"(
-[scene]
-name = "tread"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[grid]
-y = [0.001]
-load = [60000]
-xi = [0.001]
-)";
-
-
 // railtab eval --model halfspace at the central S1002/UIC60 state (y = 0, 78.5 kN): the vertical
 // components of the normal forces carry the load; with creepage the creep forces stay within
 // mu N, the load balance includes their vertical part (load coupling) and at a large creepage
@@ -84,19 +70,19 @@ TEST(HalfspaceSelectable, EvalCentralStateLoadAndFrictionBound) {
 }
 
 TEST(NonFinite, CreepagesBeyondPhysicalAreRefused) {
-  const std::string scene = std::string(kTreadScene);
+  const std::string scene = std::string(testing::kTreadPointScene);
   const std::string huge = scene.substr(0, scene.find("xi =")) + "xi = [0.0, 1e300]\n";
   EXPECT_NE(test::error_message([&] { parse_scene(huge, "huge.toml"); }).find("far beyond physical"), std::string::npos);
   StateEvalRequest request;
   request.y = 0.001;
   request.creepage = {1e300, 0.0, 0.0};
-  EXPECT_NE(test::error_message([&] { evaluate_state(parse_scene(kTreadScene, "t.toml"), request); }).find("far beyond"),
+  EXPECT_NE(test::error_message([&] { evaluate_state(parse_scene(testing::kTreadPointScene, "t.toml"), request); }).find("far beyond"),
             std::string::npos);
 }
 
 // eval --load 78.5 (kN typed for N) is refused with the SI spelling; 0 (unloaded) and real loads pass.
 TEST(NonFinite, EvalLoadInKiloNewtonsIsRefused) {
-  const Scene scene = parse_scene(kTreadScene, "t.toml");
+  const Scene scene = parse_scene(testing::kTreadPointScene, "t.toml");
   StateEvalRequest request;
   request.y = 0.001;
   request.load = 78.5;

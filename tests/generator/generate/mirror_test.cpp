@@ -125,7 +125,8 @@ TEST(Mirror, StripesTableIsTheFullSweep) { expect_mirror_is_full(kStripesScene, 
 // The other models that pass the mirror, on the jump scene of the other tests with spin.
 TEST(Mirror, FastModelTablesAreTheFullSweep) {
   for (const char* model : {"linder", "kik-piotrowski", "stripes-a"}) {
-    std::string scene = std::string(testing::kJumpScene) + "phi = [-0.2, 0.0, 0.2]\n";
+    std::string scene = testing::kJumpScene;
+    scene += "phi = [-0.2, 0.0, 0.2]\n";
     scene.replace(scene.find("hertz"), 5, model);
     SCOPED_TRACE(model);
     expect_mirror_is_full(scene, std::string("mirror_") + model, 2);

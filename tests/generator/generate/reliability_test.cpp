@@ -259,25 +259,13 @@ TEST(TableSize, EstimateCountsTheComputedPoints) {
   EXPECT_EQ(describe_table_size(points, points, 1000, 2, cost).find("computed"), std::string::npos);
 }
 
-constexpr const char* kTreadScene = R"(
-[scene]
-name = "tread"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[grid]
-y = [0.001]
-load = [60000]
-xi = [0.001]
-)";
-
 // A y grid reaching off the rail with the equilibrium roll fails in the jump locator: the message
 // names the scene file and the stage (it was the bare "wheel 'S1002' does not overlap its rail").
 TEST(NonFinite, JumpLocatorFailureNamesSceneAndStage) {
   testing::TempDir dir("jump_locator_failure");
-  const std::string text = std::string(kTreadScene).replace(std::string(kTreadScene).find("y = [0.001]"), 11,
-                                                            "y = {start = -0.08, stop = 0.08, step = 0.01}") +
-                           "equilibrium_roll = true\n";
+  std::string text = testing::kTreadPointScene;
+  text.replace(text.find("y = [0.001]"), 11, "y = {start = -0.08, stop = 0.08, step = 0.01}");
+  text += "equilibrium_roll = true\n";
   std::ofstream(dir / "off.toml") << text;
   GenerateOptions o;
   o.scene = dir / "off.toml";
