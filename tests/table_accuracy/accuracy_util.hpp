@@ -202,17 +202,23 @@ inline std::filesystem::path temp_table_path(const std::string& name) {
          ("railtab_table_accuracy_" + std::to_string(::getpid()) + "_" + name + ".h5");
 }
 
+// The table written to a temporary file (`name`) as `railtab generate` writes it and loaded
+// through the public lookup API; the file is removed.
+inline lk::Table load_through_file(const Table& table, const std::string& name, const lk::LoadOptions& options = {}) {
+  const std::filesystem::path file = temp_table_path(name);
+  write_for_lookup(table, file);
+  lk::Table loaded = lk::Table::load(file.string(), options);
+  std::filesystem::remove(file);
+  return loaded;
+}
+
 // The scene's table as `railtab generate` makes it (sweep, located jumps with their one-sided
-// values), written to a temporary file (`name`) and loaded through the public lookup API.
+// values), loaded through the public lookup API.
 inline lk::Table generated_lookup(const Scene& scene, const std::string& name) {
   SweepResult sweep = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
   if (sweep.summary.failures) throw std::runtime_error(scene.name + ": " + sweep.summary.first_failure);
   add_jumps(sweep.table, scene, locate_jumps(scene));
-  const std::filesystem::path file = temp_table_path(name);
-  write_for_lookup(sweep.table, file);
-  lk::Table table = lk::Table::load(file.string());
-  std::filesystem::remove(file);
-  return table;
+  return load_through_file(sweep.table, name);
 }
 
 // The STRIPES scene (tables/default_stripes.toml), its swept table (without jumps) and its located jumps,

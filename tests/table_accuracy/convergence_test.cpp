@@ -52,10 +52,7 @@ Level make_level(const Scene& scene, const std::string& name) {
   SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
   if (r.summary.failures) throw std::runtime_error(name + ": " + r.summary.first_failure);
   l.table = std::move(r.table);
-  const std::filesystem::path path = temp_table_path(name);
-  write_for_lookup(l.table, path);
-  l.lookup.emplace(lk::Table::load(path.string()));
-  std::filesystem::remove(path);
+  l.lookup.emplace(load_through_file(l.table, name));
   return l;
 }
 

@@ -104,10 +104,7 @@ const Fixture& fixture() {
     add_jumps(with_jumps, x.scene, locate_jumps(x.scene));
     x.generate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     x.points = r.summary.points_total;
-    const std::filesystem::path path = temp_table_path("halfspace");
-    write_for_lookup(with_jumps, path);
-    x.lookup.emplace(lk::Table::load(path.string()));
-    std::filesystem::remove(path);
+    x.lookup.emplace(load_through_file(with_jumps, "halfspace"));
     return x;
   }();
   return f;

@@ -47,12 +47,9 @@ const Fixture& fixture() {
     x.scene = d.scene;
     x.generate_seconds = d.sweep_seconds;
     x.table = d.table;
-    const std::filesystem::path path = temp_table_path("stripes");
     Table with_jumps = x.table;  // as `railtab generate` writes it (format 2.1, located jumps)
     add_jumps(with_jumps, x.scene, d.jumps);
-    write_for_lookup(with_jumps, path);
-    x.lookup.emplace(lk::Table::load(path.string()));
-    std::filesystem::remove(path);
+    x.lookup.emplace(load_through_file(with_jumps, "stripes"));
     return x;
   }();
   return f;
