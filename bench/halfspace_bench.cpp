@@ -94,7 +94,7 @@ void BM_HalfspaceNormalTangentialPartialSlip(benchmark::State& state) {
 }
 BENCHMARK(BM_HalfspaceNormalTangentialPartialSlip)->Arg(300)->Unit(benchmark::kMillisecond);
 
-// A table column's creepages (the default scene's 7 x 5 x 3 grid, in the sweep's snake order),
+// A table column's creepages (the STRIPES scene's 7 x 5 x 3 grid, in the sweep's snake order),
 // coupled solves at 78.5 kN on the right wheel at y = 0 (tread) or y = -7 mm (flange contact),
 // argument 0 / 7: cold (each solve from scratch, as railtab eval) against warm (each started from
 // the previous one, halfspace::RollingState, as the table sweep). Time per column of 105 solves;

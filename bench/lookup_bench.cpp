@@ -79,7 +79,7 @@ const std::string& table_path(Source source) {
   std::string path;
   if (source == Source::kFixture) {
     path = temp_path("fixture");
-    lk::testing::write_fixture(path, lk::testing::default_scene_spec());
+    lk::testing::write_fixture(path, lk::testing::scene_sized_spec());
     remove_at_exit(path);
   } else if (const char* env = std::getenv("RAILTAB_LOOKUP_BENCH_TABLE"); env && *env) {
     path = env;

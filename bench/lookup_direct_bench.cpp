@@ -8,7 +8,7 @@
 //   BM_DirectGeometryStripesFastsim: the same plus the rigid contact search of the state
 //     (ContactGeometrySolver::solve_wheel), which a table replaces too.
 //   BM_LookupSlotCentralState: Table::query_slot of the same state (slot 0 = tread, all its
-//     outputs) on a table shaped like the default scene (y 41 x xi 7 x eta 7 x phi 5, 2 slots).
+//     outputs) on a fixture table of a scene's size (y 41 x xi 7 x eta 7 x phi 5, 2 slots).
 // ratio = median(BM_DirectStripesFastsim) / median(BM_LookupSlotCentralState).
 //   ./lookup_direct_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -80,11 +80,11 @@ void BM_DirectGeometryStripesFastsim(benchmark::State& s) { run_direct(s, true);
 BENCHMARK(BM_DirectStripesFastsim)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DirectGeometryStripesFastsim)->Unit(benchmark::kMicrosecond);
 
-const railtab::lookup::Table& default_scene_table() {
+const railtab::lookup::Table& scene_sized_table() {
   static const std::string path =
       "/tmp/railtab_lookup_direct_bench_" + std::to_string(::getpid()) + ".h5";
   static const railtab::lookup::Table table = [] {
-    railtab::lookup::testing::write_fixture(path, railtab::lookup::testing::default_scene_spec());
+    railtab::lookup::testing::write_fixture(path, railtab::lookup::testing::scene_sized_spec());
     std::atexit([] { std::remove(path.c_str()); });
     return railtab::lookup::Table::load(path);
   }();
@@ -92,7 +92,7 @@ const railtab::lookup::Table& default_scene_table() {
 }
 
 void BM_LookupSlotCentralState(benchmark::State& state) {
-  const auto& t = default_scene_table();
+  const auto& t = scene_sized_table();
   railtab::lookup::State s = t.default_state();  // load 78.5 kN, roll 0
   s.y = 0.0;
   s.xi = kCreepage.xi;

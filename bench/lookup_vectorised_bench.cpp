@@ -5,7 +5,7 @@
 // chunks of 1024 (a reused result buffer, as a C++ caller would); the time of one iteration in ms
 // is the cost per state in ns. python/bench/query_bench.py times the same from Python.
 //   RAILTAB_BENCH_TABLE=default.h5 ./lookup_vectorised_bench   (without it: a fixture table
-//   shaped like the default scene)
+//   of a scene's size)
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -35,7 +35,7 @@ const Table& table() {
   static const std::unique_ptr<Table> t = [] {
     if (const char* path = std::getenv("RAILTAB_BENCH_TABLE")) return std::make_unique<Table>(Table::load(path));
     const std::string path = "/tmp/railtab_vectorised_bench_" + std::to_string(::getpid()) + ".h5";
-    railtab::lookup::testing::write_fixture(path, railtab::lookup::testing::default_scene_spec());
+    railtab::lookup::testing::write_fixture(path, railtab::lookup::testing::scene_sized_spec());
     auto loaded = std::make_unique<Table>(Table::load(path));
     std::remove(path.c_str());
     return loaded;

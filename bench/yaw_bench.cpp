@@ -19,6 +19,10 @@
 //                             in 5 nodes, stored 0, 1, 2 mrad) with (Y = 1) and without (Y = 0) its yaw axis
 // Run: cmake --build --preset release --target yaw_bench &&
 //   build/release/bench/yaw_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// RAILTAB_YAW_BENCH_TABLES=<dir>: the lookup benchmarks keep their four table files in <dir>
+// (written by the first run, read by the later ones; delete them after a generator change), so
+// that alternated runs of two builds skip the sweeps (about 30 s of CPU per run) and read the
+// same tables. BM_Sweep sweeps and measures as always.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -59,32 +63,49 @@ railtab::Scene scene(bool yaw, Which which = kDefault) {
                               std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables");
 }
 
+std::string table_name(bool yaw, Which which) {
+  return std::string(which == kDefault ? "stripes" : "curving") + (yaw ? "_yaw" : "_free") + ".h5";
+}
+
 std::string temp_path(bool yaw, Which which) {
-  return (std::filesystem::temp_directory_path() / ("railtab_yaw_bench_" + std::to_string(::getpid()) +
-                                                    (which == kDefault ? "" : "_curving") + (yaw ? "_yaw" : "_free") + ".h5"))
+  return (std::filesystem::temp_directory_path() /
+          ("railtab_yaw_bench_" + std::to_string(::getpid()) + "_" + table_name(yaw, which)))
       .string();
 }
 
-// The table file of each scene, swept and written once per process; its size [B].
+// The kept table file of a scene ($RAILTAB_YAW_BENCH_TABLES), or "" when not asked for.
+std::string kept_path(bool yaw, Which which) {
+  const char* dir = std::getenv("RAILTAB_YAW_BENCH_TABLES");
+  if (!dir || !*dir) return "";
+  return (std::filesystem::path(dir) / table_name(yaw, which)).string();
+}
+
+// The table file of each scene, swept and written once per process (or read from the kept
+// ones); its size [B].
 const std::string& table_file(bool yaw, std::uintmax_t* bytes = nullptr, Which which = kDefault) {
   static std::string paths[2][2];
   static std::uintmax_t sizes[2][2] = {};
   std::string& path = paths[which][yaw];
   if (path.empty()) {
-    const railtab::Scene sc = scene(yaw, which);
-    railtab::SweepResult r = railtab::run_sweep(sc, railtab::make_contact_kernel(sc), railtab::SweepOptions{});
-    path = temp_path(yaw, which);
-    railtab::write_table(r.table, path);
-    sizes[which][yaw] = std::filesystem::file_size(path);
-    static bool registered = false;
-    if (!registered) {
-      registered = true;
-      std::atexit([] {
-        for (const auto& pair : paths)
-          for (const std::string& p : pair)
-            if (!p.empty()) std::filesystem::remove(p);
-      });
+    const std::string kept = kept_path(yaw, which);
+    if (!kept.empty() && std::filesystem::exists(kept)) {
+      path = kept;
+    } else {
+      const railtab::Scene sc = scene(yaw, which);
+      railtab::SweepResult r = railtab::run_sweep(sc, railtab::make_contact_kernel(sc), railtab::SweepOptions{});
+      path = kept.empty() ? temp_path(yaw, which) : kept;
+      railtab::write_table(r.table, path);
+      static bool registered = false;
+      if (kept.empty() && !registered) {  // temporary files only
+        registered = true;
+        std::atexit([] {
+          for (const auto& pair : paths)
+            for (const std::string& p : pair)
+              if (!p.empty()) std::filesystem::remove(p);
+        });
+      }
     }
+    sizes[which][yaw] = std::filesystem::file_size(path);
   }
   if (bytes) *bytes = sizes[which][yaw];
   return path;

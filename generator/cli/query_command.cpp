@@ -188,14 +188,14 @@ void print_text_query(const nlohmann::ordered_json& units, const nlohmann::order
       std::cout << fmt::format("  {:<25}", comparison);
       for (const auto& c : contacts) {
         const auto& e = c["error_estimate"];
-        const auto* s = e.is_object() && e[comparison].is_object() ? &e[comparison] : nullptr;
+        const auto* region = e.is_object() && e[comparison].is_object() ? &e[comparison] : nullptr;
         auto num = [&](const char* k) {
-          const bool known = (*s)[k].is_number() && !std::isnan((*s)[k].get<double>());
-          return known ? fmt::format("{:.2g}", (*s)[k].get<double>()) : std::string("-");
+          const bool known = (*region)[k].is_number() && !std::isnan((*region)[k].get<double>());
+          return known ? fmt::format("{:.2g}", (*region)[k].get<double>()) : std::string("-");
         };
         std::string cell = !e.is_object()                  ? "none"
                            : e[comparison].is_string()     ? e[comparison].get<std::string>()
-                           : !s                            ? "-"
+                           : !region                       ? "-"
                                                            : fmt::format("{}/{}/{}", num("fx_max"), num("fy_max"),
                                                                          num("normal_force_max"));
         std::cout << fmt::format(" {:>14}", cell);

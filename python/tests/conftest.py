@@ -28,7 +28,7 @@ def railtab_program():
 @pytest.fixture(scope="session")
 def fixture_table(tmp_path_factory):
     """A small format-2.0 table written by tests/lookup's fixture writer (y 9 x xi 5 x eta 3 x phi 3,
-    2 slots, all parts; values from table_fixture.hpp's default_scene_spec)."""
+    2 slots, all parts; values from table_fixture.hpp's scene_sized_spec)."""
     path = tmp_path_factory.mktemp("fixture") / "fixture.h5"
     subprocess.run([_program("RAILTAB_WRITE_FIXTURE"), str(path)], check=True)
     return path
@@ -52,7 +52,7 @@ def stripes_table(tmp_path_factory, railtab_program):
 
 
 def fixture_value(wheel, part, output, slot, y, xi=0.0, eta=0.0, phi=0.0):
-    """Value of tests/lookup/table_fixture.hpp's default_scene_spec (part, output index in part)."""
+    """Value of tests/lookup/table_fixture.hpp's scene_sized_spec (part, output index in part)."""
     import numpy as np
 
     sign = 1.0 if wheel == 0 else -1.0

@@ -24,7 +24,7 @@ def run(program, *args):
 
 @pytest.fixture(scope="module")
 def exported(railtab_program, stripes_table, tmp_path_factory):
-    out = tmp_path_factory.mktemp("export") / "default.csv"
+    out = tmp_path_factory.mktemp("export") / "stripes.csv"
     r = run(railtab_program, "export", stripes_table, "--csv", "-o", out)
     assert r.returncode == 0, r.stderr
     with open(out, newline="") as f:

@@ -57,6 +57,81 @@ xi = [-0.002, 0.0, 0.002]
 eta = [-0.001, 0.001]
 )";
 
+// A small scene of the exact half-space model: tread contact, 2 y x 2 xi at 78.5 kN (seconds of CPU).
+inline constexpr const char* kHalfspaceSmallScene = R"(
+[scene]
+name = "halfspace-small"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[track]
+rail_inclination = "1:40"
+[contact]
+normal_model = "halfspace"
+friction = 0.3
+[grid]
+y = [0.0, 0.003]
+equilibrium_roll = true
+load = [78.5e3]
+xi = [0.0, 0.002]
+eta = [0.0]
+phi = [0.0]
+)";
+
+// An adaptive scene on the tread: y and xi refined to the creep force and contact angle targets.
+inline constexpr const char* kAdaptiveTreadScene = R"(
+[scene]
+name = "tread"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[accuracy]
+creep_force = 0.01
+contact_angle = 0.002
+[grid]
+y = {start = -0.002, stop = 0.002, max_step = 0.002, min_step = 2.5e-4}
+equilibrium_roll = true
+load = 78500
+xi = {start = 0.0, stop = 0.008, max_step = 0.004, min_step = 1.25e-4}
+)";
+
+// An adaptive scene that chooses the normal model per region (Hertz or Kik-Piotrowski where
+// within 3x the targets of STRIPES A&B): tread (|y| <= 3 mm) and flange contact of the left wheel
+// (y = 9 mm).
+inline constexpr const char* kModelChoiceScene = R"([scene]
+name = "choice"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[contact]
+normal_model = "stripes-ab"
+[accuracy]
+creep_force = 0.02
+normal_force = 0.01
+models = ["hertz", "kik-piotrowski"]
+model_tolerance = 3.0
+[grid]
+y = [-0.003, 0.0015, 0.003, 0.009]
+equilibrium_roll = true
+load = [60e3, 100e3]
+xi = {start = -0.004, stop = 0.004, max_step = 0.004, min_step = 0.002}
+eta = 0.001
+phi = 0.05
+)";
+
+// One state on the tread (y 1 mm, 60 kN, xi 1e-3) with the default models.
+inline constexpr const char* kTreadPointScene = R"(
+[scene]
+name = "tread"
+[profiles]
+wheel = "s1002"
+rail = "uic60"
+[grid]
+y = [0.001]
+load = [60000]
+xi = [0.001]
+)";
+
 // Every dataset of `a` exists in `b` with the same shape, axes and identical bytes; same axes.
 inline void expect_same_datasets(const Table& a, const Table& b) {
   ASSERT_EQ(a.axes.size(), b.axes.size());

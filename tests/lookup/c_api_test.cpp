@@ -41,7 +41,7 @@ TEST(CApi, BadArguments) {
 
 TEST(CApi, QueriesMatchTheCppApi) {
   testing::TempFile file("capi");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   railtab_lookup_table* t = nullptr;
   ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_CUBIC, &t), RAILTAB_LOOKUP_OK)
       << railtab_lookup_last_error();
@@ -78,7 +78,7 @@ TEST(CApi, QueriesMatchTheCppApi) {
 // equilibrium flagged RAILTAB_LOOKUP_OUT_OF_RANGE (query bits and every slot), never silently.
 TEST(CApi, TrackForcesMatchTheCppApi) {
   testing::TempFile file("capi_track");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   railtab_lookup_table* t = nullptr;
   ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK)
       << railtab_lookup_last_error();
@@ -110,7 +110,7 @@ TEST(CApi, TrackForcesMatchTheCppApi) {
 
 TEST(CApi, RollOnAnEquilibriumRollTableIsFlagged) {
   testing::TempFile file("capi_roll");
-  testing::FixtureSpec spec = testing::default_scene_spec();
+  testing::FixtureSpec spec = testing::scene_sized_spec();
   spec.fixed = {{2, 78500.0}};
   spec.fixed_text = "\"roll\":\"equilibrium\"";
   testing::write_fixture(file.path, spec);
@@ -176,7 +176,7 @@ TEST(CApiComplete, StatusBitNamesAndText) {
 
 TEST(CApiComplete, IntrospectionAndVersions) {
   testing::TempFile file("info");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   railtab_lookup_table* t = nullptr;
   ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK)
       << railtab_lookup_last_error();
@@ -229,7 +229,7 @@ TEST(CApiComplete, IntrospectionAndVersions) {
 // batch returns false.
 TEST(CApiComplete, ShortBatchBufferIsAnError) {
   testing::TempFile file("batch");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   railtab_lookup_table* t = nullptr;
   ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK);
   railtab_lookup_state s;
@@ -259,7 +259,7 @@ TEST(CApiComplete, ShortBatchBufferIsAnError) {
 
 TEST(CApiComplete, RequireChecksumsFlag) {
   testing::TempFile file("legacy");
-  testing::FixtureSpec spec = testing::default_scene_spec();
+  testing::FixtureSpec spec = testing::scene_sized_spec();
   spec.checksums = false;
   spec.checksummed_metadata = true;  // a format-1.0 table (superblock 0) is refused either way
   testing::write_fixture(file.path, spec);

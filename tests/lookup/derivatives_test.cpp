@@ -251,7 +251,7 @@ TEST(Derivatives, ValuesAreTheQuerysAndNodeFacesTakeTheCellAbove) {
 
 TEST(Derivatives, FixedAndClampedVariablesGiveZero) {
   TempFile file("fixed");
-  FixtureSpec spec = testing::default_scene_spec();  // y, xi, eta, phi; roll and load fixed
+  FixtureSpec spec = testing::scene_sized_spec();  // y, xi, eta, phi; roll and load fixed
   testing::write_fixture(file.path, spec);
   const Table t = Table::load(file.path);
   State s = t.default_state();
@@ -286,7 +286,7 @@ TEST(Derivatives, FixedAndClampedVariablesGiveZero) {
 
 TEST(Derivatives, MonotoneCubicIsRefused) {
   TempFile file("monotone");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   const Table t = Table::load(file.path, {Method::kMonotoneCubic});
   EXPECT_FALSE(t.derivatives_supported());
   State s = t.default_state();

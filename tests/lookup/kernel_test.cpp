@@ -46,8 +46,8 @@ std::vector<double> probes(const std::vector<double>& x, unsigned seed) {
 }
 
 TEST(Kernel, BucketSearchFindsTheCellsOfTheBinarySearch) {
-  // The default scene's y axis (0.25 mm steps at the ends, 0.5 mm between), a geometric axis
-  // (spacings over a factor 30), three unequal nodes (the default load axis) and xi.
+  // The STRIPES scene's y axis (0.25 mm steps at the ends, 0.5 mm between), a geometric axis
+  // (spacings over a factor 30), three unequal nodes (that scene's load axis) and xi.
   std::vector<double> y;
   for (int i = 0; i <= 16; ++i) y.push_back(-0.010 + 0.00025 * i);
   for (int i = 0; i <= 22; ++i) y.push_back(-0.0055 + 0.0005 * i);

@@ -55,12 +55,12 @@ void expect_slots_match(const Table& t, const Query& q, const char* what) {
 
 TEST(QuerySlot, EqualsTheAllSlotsQueryForEveryMethod) {
   TempFile file("slot");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   for (Method method : {Method::kLinear, Method::kCubic, Method::kMonotoneCubic}) {
     const Table t = Table::load(file.path, {method});
     int clamped = 0;
     for (const Query& q : wide_queries(t, method == Method::kLinear ? 2000 : 200, 3)) {
-      expect_slots_match(t, q, "default scene");
+      expect_slots_match(t, q, "scene-sized fixture");
       clamped += (t.query(q.wheel, q.state).status & status::kOutOfRange) != 0;
     }
     EXPECT_GT(clamped, 0);  // the out-of-range path was exercised
@@ -68,7 +68,7 @@ TEST(QuerySlot, EqualsTheAllSlotsQueryForEveryMethod) {
 }
 
 TEST(QuerySlot, AbsentPartsOddSlotCountAndNonUniformAxes) {
-  testing::FixtureSpec spec = testing::default_scene_spec();
+  testing::FixtureSpec spec = testing::scene_sized_spec();
   spec.parts = {0, 2};  // geometry and creep: normal and wear outputs are 0
   spec.n_slots = 3;
   spec.axes[0].second = {-0.01, -0.006, -0.001, 0.0, 0.002, 0.01};  // non-uniform y
@@ -84,7 +84,7 @@ TEST(QuerySlot, MonotoneCubicVectorLanesEqualTheScalarOnes) {
   // Seven values per slot: alone, a slot's last value goes through the scalar limiter; with
   // three slots, it shares a vector pair with the next slot's first value. Equal bytes say the
   // vector limiter computes exactly what the scalar one does.
-  testing::FixtureSpec spec = testing::default_scene_spec();
+  testing::FixtureSpec spec = testing::scene_sized_spec();
   spec.parts = {0, 2, 3};  // 2 geometry + 4 creep + 1 wear values
   spec.n_slots = 3;
   TempFile file("slot_monotone");
@@ -96,7 +96,7 @@ TEST(QuerySlot, MonotoneCubicVectorLanesEqualTheScalarOnes) {
 
 TEST(QuerySlot, InvalidInputBadSlotAndBadWheel) {
   TempFile file("slot_bad");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   const Table t = Table::load(file.path);
   State s = t.default_state();
   s.y = 0.003;
@@ -131,7 +131,7 @@ TEST(QuerySlot, InvalidInputBadSlotAndBadWheel) {
 
 TEST(QuerySlot, ThreadsGiveTheSameAnswers) {
   TempFile file("slot_threads");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   const Table t = Table::load(file.path);
   const auto q = wide_queries(t, 3000, 9);
   std::vector<Contact> reference(q.size());
@@ -154,7 +154,7 @@ TEST(QuerySlot, ThreadsGiveTheSameAnswers) {
 
 TEST(QuerySlot, CApiMatchesTheCppApi) {
   TempFile file("slot_capi");
-  testing::write_fixture(file.path, testing::default_scene_spec());
+  testing::write_fixture(file.path, testing::scene_sized_spec());
   railtab_lookup_table* t = nullptr;
   ASSERT_EQ(railtab_lookup_open(file.path.c_str(), RAILTAB_LOOKUP_LINEAR, &t), RAILTAB_LOOKUP_OK);
   const Table cpp = Table::load(file.path);

@@ -320,9 +320,9 @@ inline std::vector<double> linspace(double a, double b, int n) {
   return x;
 }
 
-// A table shaped like the default scene: y 41 x xi 7 x eta 7 x phi 5, 2 slots, roll and load
-// fixed; geometry and normal on y only. Smooth made-up values (the lookup does not care).
-inline FixtureSpec default_scene_spec() {
+// A table of a scene's size (the shape of an earlier default scene, not of a shipped one): y 41 x
+// xi 7 x eta 7 x phi 5, 2 slots, roll and load fixed; geometry and normal on y only. Smooth made-up values (the lookup does not care).
+inline FixtureSpec scene_sized_spec() {
   FixtureSpec spec;
   spec.axes = {{0, linspace(-0.01, 0.01, 41)},
                {3, linspace(-0.01, 0.01, 7)},

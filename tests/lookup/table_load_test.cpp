@@ -97,7 +97,7 @@ TEST(TableLoad, NotAnHdf5File) {
 
 TEST(TableLoad, TruncatedFile) {
   TempFile file("truncated");
-  testing::write_fixture(file.path, testing::default_scene_spec());  // chunked, ~1 MB
+  testing::write_fixture(file.path, testing::scene_sized_spec());  // chunked, ~1 MB
   const auto size = std::filesystem::file_size(file.path);
   for (double keep : {0.5, 0.95}) {
     std::filesystem::resize_file(file.path, static_cast<std::uintmax_t>(size * keep));

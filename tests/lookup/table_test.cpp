@@ -222,7 +222,7 @@ TEST_F(TableTest, BatchEqualsSingleQueries) {
 TEST(TableThreads, EightThreadsGiveTheSameAnswersAsOne) {
   for (Method method : {Method::kLinear, Method::kMonotoneCubic}) {
     TempFile file("threads");
-    testing::FixtureSpec spec = testing::default_scene_spec();
+    testing::FixtureSpec spec = testing::scene_sized_spec();
     testing::write_fixture(file.path, spec);
     const Table t = Table::load(file.path, {method});
     const auto q = random_queries(t, 4000, 7);

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   using namespace railtab::lookup::testing;
-  FixtureSpec spec = default_scene_spec();
+  FixtureSpec spec = scene_sized_spec();
   spec.axes = {{0, linspace(-0.01, 0.01, 9)},
                {3, linspace(-0.01, 0.01, 5)},
                {4, linspace(-0.01, 0.01, 3)},

@@ -202,17 +202,23 @@ inline std::filesystem::path temp_table_path(const std::string& name) {
          ("railtab_table_accuracy_" + std::to_string(::getpid()) + "_" + name + ".h5");
 }
 
+// The table written to a temporary file (`name`) as `railtab generate` writes it and loaded
+// through the public lookup API; the file is removed.
+inline lk::Table load_through_file(const Table& table, const std::string& name, const lk::LoadOptions& options = {}) {
+  const std::filesystem::path file = temp_table_path(name);
+  write_for_lookup(table, file);
+  lk::Table loaded = lk::Table::load(file.string(), options);
+  std::filesystem::remove(file);
+  return loaded;
+}
+
 // The scene's table as `railtab generate` makes it (sweep, located jumps with their one-sided
-// values), written to a temporary file (`name`) and loaded through the public lookup API.
+// values), loaded through the public lookup API.
 inline lk::Table generated_lookup(const Scene& scene, const std::string& name) {
   SweepResult sweep = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
   if (sweep.summary.failures) throw std::runtime_error(scene.name + ": " + sweep.summary.first_failure);
   add_jumps(sweep.table, scene, locate_jumps(scene));
-  const std::filesystem::path file = temp_table_path(name);
-  write_for_lookup(sweep.table, file);
-  lk::Table table = lk::Table::load(file.string());
-  std::filesystem::remove(file);
-  return table;
+  return load_through_file(sweep.table, name);
 }
 
 // The STRIPES scene (tables/default_stripes.toml), its swept table (without jumps) and its located jumps,
@@ -220,7 +226,7 @@ inline lk::Table generated_lookup(const Scene& scene, const std::string& name) {
 // adds the jumps to its own copy, as `railtab generate` does), and CTest runs their suites in one
 // process (tests/table_accuracy/CMakeLists.txt): the sweep and the jump search are deterministic,
 // so every test sees the table it would compute itself, generated once instead of once per test.
-struct DefaultSweep {
+struct StripesSweep {
   Scene scene;
   Table table;                  // the sweep's table, no /jumps (format 2.0 layout of the jumps)
   ContactJumps jumps;           // locate_jumps(scene)
@@ -228,9 +234,9 @@ struct DefaultSweep {
   double locate_seconds = 0.0;  // locate_jumps
 };
 
-inline const DefaultSweep& default_sweep() {
-  static const DefaultSweep d = [] {
-    DefaultSweep x;
+inline const StripesSweep& stripes_sweep() {
+  static const StripesSweep d = [] {
+    StripesSweep x;
     x.scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml");
     auto t0 = std::chrono::steady_clock::now();
     SweepResult r = run_sweep(x.scene, make_contact_kernel(x.scene), SweepOptions{});
@@ -245,23 +251,23 @@ inline const DefaultSweep& default_sweep() {
   return d;
 }
 
-// The random off-grid states of the STRIPES scene's accuracy measurements (DefaultSceneRandomOffGrid
+// The random off-grid states of the STRIPES scene's accuracy measurements (StripesSceneRandomOffGrid
 // and the jump cells' CreepForcesOnJumpCells measure the same states) and their direct evaluation,
-// computed once per process like default_sweep().
-inline constexpr std::uint64_t kDefaultStatesSeed = 20240611;
-inline constexpr std::size_t kDefaultStates = 4000;  // random states, both wheels each
+// computed once per process like stripes_sweep().
+inline constexpr std::uint64_t kStripesStatesSeed = 20240611;
+inline constexpr std::size_t kStripesStates = 4000;  // random states, both wheels each
 
-struct DefaultDirect {
-  std::vector<Point> points;   // random_states(STRIPES scene, kDefaultStates, kDefaultStatesSeed)
+struct StripesDirect {
+  std::vector<Point> points;   // random_states(STRIPES scene, kStripesStates, kStripesStatesSeed)
   std::vector<Direct> direct;  // evaluate_direct at each
   double seconds = 0.0;        // evaluate_direct
 };
 
-inline const DefaultDirect& default_direct() {
-  static const DefaultDirect d = [] {
-    DefaultDirect x;
-    const Scene& scene = default_sweep().scene;
-    x.points = random_states(scene, kDefaultStates, kDefaultStatesSeed);
+inline const StripesDirect& stripes_direct() {
+  static const StripesDirect d = [] {
+    StripesDirect x;
+    const Scene& scene = stripes_sweep().scene;
+    x.points = random_states(scene, kStripesStates, kStripesStatesSeed);
     const auto t0 = std::chrono::steady_clock::now();
     x.direct = evaluate_direct(scene, x.points);
     x.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -675,7 +681,7 @@ struct SlotStats {
 
   // The smooth-cell check of the random off-grid tests: |lookup - direct| <= kSafety e + kFloor
   // scale, e the second-order error estimate of the cell read from the table
-  // (TableView::error_estimate; default_scene_accuracy_test.cpp's header says why 5), the scale
+  // (TableView::error_estimate; stripes_scene_accuracy_test.cpp's header says why 5), the scale
   // the output's largest |value|. Records the ratio and counts an excess; returns the tolerance.
   static constexpr double kSafety = 5.0;
   static constexpr double kFloor = 1e-4;

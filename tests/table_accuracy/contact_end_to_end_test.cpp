@@ -9,7 +9,7 @@
 // one load 78.5 kN (a load node of the STRIPES scene, so the load axis adds nothing at these
 // states); its model, creepage grids, normalised creep coordinates, knees and located jumps are the
 // STRIPES scene's. The y nodes are the midpoints of the STRIPES scene's y nodes over the states'
-// range (same spacing, 0.25 mm at the flange, 0.5 mm on the tread): the default grid has a node at
+// range (same spacing, 0.25 mm at the flange, 0.5 mm on the tread): the STRIPES grid has a node at
 // every integer millimetre, i.e. at every block C state; mid-way between nodes is where the y
 // interpolation error is largest; a second table puts them a quarter step from a node. The states:
 // CONTACT's creepages and forces mapped as `railtab chart` maps them

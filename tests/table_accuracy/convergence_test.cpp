@@ -12,7 +12,7 @@
 //     y and load. Asserted on fx, fy, mz: p > 1.6 over h -> h/4 and > 1.3 for each halving (the
 //     first halving of mz is pre-asymptotic, ~1.45). slip_fraction and wear_rate are sums over
 //     FASTSIM's slipping elements, steps at the element scale, not smooth: reported only.
-// Reduced grids keep the run small (~0.3 s); the full default grid is the other test's business.
+// Reduced grids keep the run small (~0.3 s); the full STRIPES grid is the other test's business.
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -31,7 +31,7 @@ Scene reduced_scene(const std::vector<double>& y, const std::vector<double>& loa
   s.grids.xi = xi;
   s.grids.eta = eta;
   s.grids.phi = phi;
-  s.creep_normalised = false;  // a study of physical creepage spacings (normalised: default test)
+  s.creep_normalised = false;  // a study of physical creepage spacings (normalised: the STRIPES scene's test)
   return s;
 }
 
@@ -52,10 +52,7 @@ Level make_level(const Scene& scene, const std::string& name) {
   SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
   if (r.summary.failures) throw std::runtime_error(name + ": " + r.summary.first_failure);
   l.table = std::move(r.table);
-  const std::filesystem::path path = temp_table_path(name);
-  write_for_lookup(l.table, path);
-  l.lookup.emplace(lk::Table::load(path.string()));
-  std::filesystem::remove(path);
+  l.lookup.emplace(load_through_file(l.table, name));
   return l;
 }
 

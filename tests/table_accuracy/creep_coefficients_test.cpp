@@ -42,10 +42,7 @@ const Tables& tables() {
     x.jumps = locate_jumps(x.scene);
     add_jumps(r.table, x.scene, x.jumps);  // as railtab generate
     x.table = std::move(r.table);
-    const std::filesystem::path path = temp_table_path("creep_coefficients");
-    write_for_lookup(x.table, path);
-    x.lookup.emplace(lk::Table::load(path.string()));
-    std::filesystem::remove(path);
+    x.lookup.emplace(load_through_file(x.table, "creep_coefficients"));
     return x;
   }();
   return t;
@@ -211,10 +208,7 @@ phi = [-2e-3, 0.0, 2e-3]
 )", "fine-creep.toml");
   const SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
   ASSERT_EQ(r.summary.failures, 0u) << r.summary.first_failure;
-  const std::filesystem::path path = temp_table_path("fine_creep");
-  write_for_lookup(r.table, path);
-  const lk::Table t = lk::Table::load(path.string());
-  std::filesystem::remove(path);
+  const lk::Table t = load_through_file(r.table, "fine_creep");
   double worst = 0.0;
   int checked = 0;
   for (double y : {-0.003, -0.001, 0.0005, 0.0025})
@@ -311,7 +305,7 @@ TEST(CreepCoefficients, CApiMatchesTheCppApi) {
 // the median and range of C11, C22, C23 ratios per band and slot (docs/validation/
 // creep-coefficients.md); asserts every ratio lies in 0.8-3.5 (measured 1.13-2.98: stiffer, as the
 // single states measured before) and that the tread near y = 0 is within 1.1-1.5.
-TEST(CreepCoefficients, DefaultTableAgainstTheEquivalentEllipseByYBand) {
+TEST(CreepCoefficients, StripesTableAgainstTheEquivalentEllipseByYBand) {
   const Tables& x = tables();
   const ContactGeometrySolver solver = make_geometry_solver(x.scene);
   const std::vector<double>& ys = x.scene.grids.y;

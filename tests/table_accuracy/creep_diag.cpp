@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Diagnostic, not a test (creep interpolation, docs/validation/creep-interpolation.md;
 // docs/lookup.md "Accuracy"): where do the creep-force errors of the STRIPES table come from? The
-// states and classification of DefaultSceneRandomOffGrid; the 8000 direct evaluations cached in a
+// states and classification of StripesSceneRandomOffGrid; the 8000 direct evaluations cached in a
 // file (they do not depend on the table). Prints smooth-cell max/RMS of fx, fy / (mu N) per slot,
 // the normalised force and N errors separately, jump cells within 2 % and their misses by distance
 // and kind of the nearest jump; for the worst states, the error at the state's exact (y, load)
@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
   const std::size_t ne = argc > 4 ? std::stoul(argv[3]) : scene.grids.eta.size();
   const std::size_t np = argc > 4 ? std::stoul(argv[4]) : scene.grids.phi.size();
   const std::size_t n_worst = argc > 5 ? std::stoul(argv[5]) : 12;
-  const std::vector<Point> points = random_states(scene, 4000, 20240611);  // DefaultSceneRandomOffGrid's
+  const std::vector<Point> points = random_states(scene, 4000, 20240611);  // StripesSceneRandomOffGrid's
   std::vector<Direct> direct(points.size());
   {
     std::ifstream in(cache, std::ios::binary);

@@ -38,7 +38,7 @@ struct Tables {
 const Tables& tables() {
   static const Tables t = [] {
     Tables x;
-    const DefaultSweep& d = default_sweep();
+    const StripesSweep& d = stripes_sweep();
     x.scene = d.scene;
     x.jumps = d.jumps;
     Table table = d.table;
@@ -144,11 +144,11 @@ void check_random_states(const lk::Table& t, const char* name, const lk::Table& 
   EXPECT_LT(tally.kinks, tally.checked / 50);    // most comparisons inside one cell
 }
 
-TEST(Derivatives, LinearAgreesWithCentralDifferencesOnTheDefaultTable) {
+TEST(Derivatives, LinearAgreesWithCentralDifferencesOnTheStripesTable) {
   check_random_states(*tables().linear, "linear", *tables().linear_doubles);
 }
 
-TEST(Derivatives, CubicAgreesWithCentralDifferencesOnTheDefaultTable) {
+TEST(Derivatives, CubicAgreesWithCentralDifferencesOnTheStripesTable) {
   check_random_states(*tables().cubic, "cubic", *tables().cubic);
 }
 
@@ -237,8 +237,8 @@ void check_same_bytes(const lk::Table& t) {
   EXPECT_GT(nonzero, static_cast<int>(states.size()));  // real states, forces on most
 }
 
-TEST(Derivatives, LinearValuesAreTheQuerysBytesOnTheDefaultTable) { check_same_bytes(*tables().linear); }
-TEST(Derivatives, CubicValuesAreTheQuerysBytesOnTheDefaultTable) { check_same_bytes(*tables().cubic); }
+TEST(Derivatives, LinearValuesAreTheQuerysBytesOnTheStripesTable) { check_same_bytes(*tables().linear); }
+TEST(Derivatives, CubicValuesAreTheQuerysBytesOnTheStripesTable) { check_same_bytes(*tables().cubic); }
 
 // The one-slot derivative query gives query_derivatives' contact[slot] and d[slot] to the byte
 // (the fast path's tables too: the linear STRIPES table takes it), at the same states; a slot
@@ -269,8 +269,8 @@ void check_one_slot(const lk::Table& t) {
     for (double x : row) EXPECT_EQ(x, 0.0);
 }
 
-TEST(Derivatives, LinearOneSlotIsTheWholeQuerysSlotOnTheDefaultTable) { check_one_slot(*tables().linear); }
-TEST(Derivatives, CubicOneSlotIsTheWholeQuerysSlotOnTheDefaultTable) { check_one_slot(*tables().cubic); }
+TEST(Derivatives, LinearOneSlotIsTheWholeQuerysSlotOnTheStripesTable) { check_one_slot(*tables().linear); }
+TEST(Derivatives, CubicOneSlotIsTheWholeQuerysSlotOnTheStripesTable) { check_one_slot(*tables().cubic); }
 
 }  // namespace
 }  // namespace railtab::accuracy::derivatives_test

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The fused query of the default table's shape (lookup/src/fast_path.cpp, docs/lookup-speed.md)
+// The fused query of the STRIPES table's shape (lookup/src/fast_path.cpp, docs/lookup-speed.md)
 // gives the same bytes as the generic path (RAILTAB_LOOKUP_NO_FAST_PATH=1 at load), for query and
 // query_slot of every slot, both wheels, at random states in and out of range, on grid nodes,
 // within 0.1 and 0.6 mm of every located jump (cut cells: the fast path has its own fused one-sided
@@ -30,7 +30,7 @@ struct Tables {
 const Tables& tables() {
   static const Tables t = [] {
     Tables x;
-    const DefaultSweep& d = default_sweep();
+    const StripesSweep& d = stripes_sweep();
     const Scene& scene = d.scene;
     const ContactJumps& jumps = d.jumps;
     Table with_jumps = d.table;

@@ -64,10 +64,7 @@ int main(int argc, char** argv) {
     auto t0 = std::chrono::steady_clock::now();
     SweepResult r = run_sweep(one, make_contact_kernel(one), SweepOptions{});
     gen_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const std::filesystem::path path = temp_table_path("fprobe");
-    write_for_lookup(r.table, path);
-    lk::Table lt = lk::Table::load(path.string());
-    std::filesystem::remove(path);
+    lk::Table lt = load_through_file(r.table, "fprobe");
     const TableView view(r.table);
     const TableGroup* cg = r.table.group("left/creep");
     const TableDataset* fxd = cg->find("fx_normalised");

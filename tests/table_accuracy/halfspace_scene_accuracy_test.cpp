@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The multilinear lookup against the exact half-space model (docs/validation/halfspace.md: "its
 // lookup-vs-direct accuracy test as for the other models") at random off-grid states, with the
-// metric of default_scene_accuracy_test.cpp: per output and slot, smooth cells (every corner node
+// metric of stripes_scene_accuracy_test.cpp: per output and slot, smooth cells (every corner node
 // and the direct state share one status word) against |lookup - direct| <= kSafety e + kFloor scale
 // (SlotStats::check_tolerance; e the cell's interpolation error estimate from the table's own
 // second differences), jump cells counted and reported; and the creep forces' error over mu N,
@@ -25,7 +25,7 @@
 // differences at the nodes neither bound nor describe the error between them; these three are
 // reported, not asserted. The creep forces are stored normalised (F / (mu N) minus a law), so the
 // table's second differences do not bound their error in N: their error over mu N is reported and
-// its RMS bounded (as the default scene's test). Measured: docs/validation/exact-tables.md.
+// its RMS bounded (as the STRIPES scene's test). Measured: docs/validation/exact-tables.md.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -104,10 +104,7 @@ const Fixture& fixture() {
     add_jumps(with_jumps, x.scene, locate_jumps(x.scene));
     x.generate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     x.points = r.summary.points_total;
-    const std::filesystem::path path = temp_table_path("halfspace");
-    write_for_lookup(with_jumps, path);
-    x.lookup.emplace(lk::Table::load(path.string()));
-    std::filesystem::remove(path);
+    x.lookup.emplace(load_through_file(with_jumps, "halfspace"));
     return x;
   }();
   return f;
@@ -242,7 +239,7 @@ TEST(HalfspaceTableAccuracy, RandomOffGrid) {
     }
     if (!st.add(e, p, mu)) return;
     // Normalised creep part: fx, fy, mz are stored as F / (mu N) minus a law, so the table's second
-    // differences do not bound their error in N: judged against mu N (as the default scene's test).
+    // differences do not bound their error in N: judged against mu N (as the STRIPES scene's test).
     if ((o == lk::kFx || o == lk::kFy) && !flagged(e)) creep_error[s].push_back(e.error / (mu * e.normal_force));
     if (o == lk::kFx || o == lk::kFy || o == lk::kMz) return;
     const double tolerance = st.check_tolerance(view, e);

@@ -2,7 +2,7 @@
 // Contact jumps (docs/validation/contact-jumps.md, docs/lookup.md "Contact jumps"): the generator
 // locates every jump along y per wheel and load node (jump_locator.hpp) and the lookup interpolates
 // a cell cut by one from the query's side only. Measured here on the STRIPES scene at the random
-// states of default_scene_accuracy_test (same seed): the creep forces of every cell that is not
+// states of stripes_scene_accuracy_test (same seed): the creep forces of every cell that is not
 // smooth, with the metric of the smooth cells, |F_lookup - F_direct| / (mu N), for the table with
 // its jumps (format 2.1) and the same table without them (the lookup of format 2.0), in two
 // classes: jump cells (a located jump of the slot inside the cell) and status-change cells
@@ -26,8 +26,8 @@
 namespace railtab::accuracy::jump_cells_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
-constexpr std::uint64_t kSeed = kDefaultStatesSeed;  // the states of DefaultSceneRandomOffGrid
-constexpr std::size_t kPoints = kDefaultStates;
+constexpr std::uint64_t kSeed = kStripesStatesSeed;  // the states of StripesSceneRandomOffGrid
+constexpr std::size_t kPoints = kStripesStates;
 constexpr double kLimit = 0.02;            // of mu N (contact jumps target)
 constexpr double kCrossingSumLimit = 0.02;  // of N: the sum over the slots between crossing jumps' positions
 
@@ -44,7 +44,7 @@ struct JumpFixture {
 const JumpFixture& fixture() {
   static const JumpFixture f = [] {
     JumpFixture x;
-    const DefaultSweep& d = default_sweep();
+    const StripesSweep& d = stripes_sweep();
     x.scene = d.scene;
     x.table = d.table;
     const std::filesystem::path plain = temp_table_path("jumps_plain"), jumps = temp_table_path("jumps");
@@ -169,7 +169,7 @@ std::pair<double, int> slot_error(const lk::Result& r, const WheelValues& direct
   return {worst, worst_output};
 }
 
-// Cells of the creep part measured here (smooth cells are DefaultSceneRandomOffGrid's):
+// Cells of the creep part measured here (smooth cells are StripesSceneRandomOffGrid's):
 //   jump: a located jump of the slot lies inside the cell (jump_in_cell): the one-sided lookup's
 //     own case (contact jumps target: >= 99 % within 2 % of mu N);
 //   status change: classify_point calls the cell a jump (statuses differ between corners, two-point
@@ -180,7 +180,7 @@ constexpr const char* kCategoryNames[kCategories] = {"jump cells (a located jump
                                                      "status-change cells (no located jump inside)"};
 
 // `creepage_nodes`: xi, eta, phi on random values of the scene's creepage lists; else uniform like
-// y and load (the states of DefaultSceneRandomOffGrid). With normalised creep coordinates (format
+// y and load (the states of StripesSceneRandomOffGrid). With normalised creep coordinates (format
 // 2.1, the STRIPES scene) the list values are NOT the table's creep nodes (those sit at each slot's
 // own scale), so both variants carry the creepage interpolation error
 // (docs/validation/creep-interpolation.md); each miss is therefore re-measured at its cell's y node
@@ -202,15 +202,15 @@ void creep_forces_on_jump_cells(bool creepage_nodes) {
         p.v[k] = g[std::min(g.size() - 1, static_cast<std::size_t>(u))];
       }
     }
-  // All uniform: the states of default_direct() (the same draws), whose direct evaluation is made
+  // All uniform: the states of stripes_direct() (the same draws), whose direct evaluation is made
   // once per process; checked to be the same states bit for bit.
   if (!creepage_nodes) {
-    const std::vector<Point>& shared = default_direct().points;
+    const std::vector<Point>& shared = stripes_direct().points;
     ASSERT_EQ(shared.size(), points.size());
     for (std::size_t i = 0; i < points.size(); ++i)
       ASSERT_EQ(std::memcmp(shared[i].v, points[i].v, sizeof points[i].v), 0) << "state " << i;
   }
-  const std::vector<Direct> direct = creepage_nodes ? evaluate_direct(f.scene, points) : default_direct().direct;
+  const std::vector<Direct> direct = creepage_nodes ? evaluate_direct(f.scene, points) : stripes_direct().direct;
   const double mu = f.scene.tangential.friction;
 
   JumpStats stats[2][kCategories][kSlots];  // [0 without jumps, 1 with][category][slot]
@@ -239,7 +239,7 @@ void creep_forces_on_jump_cells(bool creepage_nodes) {
         const CellKind kind = kinds.kind[lk::kCreep][s];
         if (kind == CellKind::kEmpty) continue;
         const ContactJump* inside = jump_in_cell(f, w, s, points[i]);
-        if (!inside && kind != CellKind::kJump) continue;  // smooth: DefaultSceneRandomOffGrid
+        if (!inside && kind != CellKind::kJump) continue;  // smooth: StripesSceneRandomOffGrid
         const int cat = inside ? kJumpInside : kStatusChange;
         any[cat] = true;
         for (int v = 0; v < 2; ++v) {
@@ -572,7 +572,7 @@ TEST(JumpCells, SumOverTheSlotsBetweenTheLoadNodesPositionsOfACrossingJumpIsTheM
         points.push_back(p);
         wheel.push_back(c.wheel);
       }
-  ASSERT_FALSE(points.empty()) << "the default scene's jumps no longer cross between load nodes: choose another case";
+  ASSERT_FALSE(points.empty()) << "the STRIPES scene's jumps no longer cross between load nodes: choose another case";
   const std::vector<Direct> direct = evaluate_direct(f.scene, points);
   const lk::Table generic = generic_path_table(f, "jumps_crossing_sum");
   double worst = 0.0;
@@ -673,7 +673,7 @@ TEST(JumpCells, CubicStencilsStayOnTheCellsSideOfAJump) {
 // wheel and load, with the sweep's parts in the table (copied) and without them (computed), and
 // the last jump alone (its shared end computed for it).
 TEST(JumpCells, SharedAndNodeEndsAreTheComputedColumns) {
-  const DefaultSweep& d = default_sweep();
+  const StripesSweep& d = stripes_sweep();
   const std::vector<double>& y = d.scene.grids.y;
   const double node = y[y.size() / 2 + 3], h = 1e-6;
   ContactJumps jumps, last;

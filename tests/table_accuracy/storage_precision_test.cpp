@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Storage precision of format 2.2 (docs/table-format.md, "Storage precision"): the default
+// Storage precision of format 2.2 (docs/table-format.md, "Storage precision"): the STRIPES
 // scene's table as `railtab generate` writes it (creep and wear outputs as float32 rounded to 20
 // significant bits) against the same table written with float64 outputs (format 2.1), both
 // through the lookup at random states, jump cells included, linear and cubic.
@@ -53,7 +53,7 @@ struct Tables {
 const Tables& tables() {
   static const Tables t = [] {
     Tables x;
-    const DefaultSweep& d = default_sweep();
+    const StripesSweep& d = stripes_sweep();
     x.scene = d.scene;
     Table table = d.table;
     add_jumps(table, x.scene, d.jumps);
@@ -151,7 +151,7 @@ void compare(int method, double bound_in_roundings) {
   }
 }
 
-TEST(StoragePrecision, DefaultTableIsSmallerThanTheFloat64One) {
+TEST(StoragePrecision, StripesTableIsSmallerThanTheFloat64One) {
   const Tables& t = tables();
   std::printf("STRIPES table file: %ju B with float32 outputs (2.2), %ju B with float64 (2.1)\n", t.bytes[0],
               t.bytes[1]);

@@ -30,6 +30,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "accuracy_util.hpp"
 #include "adaptive/jump_locator.hpp"
 #include "speed_accuracy/speed_accuracy_states.hpp"
@@ -88,9 +90,7 @@ Sum direct_sum(const WheelValues& d) {
 
 // "L 6.31/72" : the left wheel at y = 6.31 mm, 72 kN.
 std::string fmt_flagged(std::size_t wheel, const Point& p) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%c %.2f/%.0f", wheel == 0 ? 'L' : 'R', 1e3 * p.v[kY], 1e-3 * p.v[kLoad]);
-  return buf;
+  return fmt::format("{} {:.2f}/{:.0f}", wheel == 0 ? 'L' : 'R', 1e3 * p.v[kY], 1e-3 * p.v[kLoad]);
 }
 
 void measure(const char* file) {

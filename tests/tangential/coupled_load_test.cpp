@@ -111,7 +111,7 @@ TEST(CoupledLoad, TreadChangesLittleInFewIterations) {
   EXPECT_LE(s.coupled.iterations, 2);
 }
 
-// Load coupling acceptance against block C's flange rows (dy >= 7 mm), STRIPES A&B (the default
+// Load coupling acceptance against block C's flange rows (dy >= 7 mm), STRIPES A&B (the STRIPES
 // scene's model) and Hertz. Checked: (1) STRIPES A&B within 3 % of CONTACT's normal force; (2) for
 // both models, where the uncoupled normal force is more than 15 % off CONTACT's, the coupling
 // removes at least three quarters of that error. Hertz is +3.9 % at dy = 8 a_none from its

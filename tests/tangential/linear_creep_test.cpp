@@ -24,7 +24,7 @@ ContactGeometrySolver make_solver() {
   return ContactGeometrySolver(wheel, rail, wheel, rail, TrackGeometry{}, WheelsetGeometry{});
 }
 
-Material steel() {  // the default scene's: E 210 GPa, nu 0.3
+Material steel() {  // the shipped scenes': E 210 GPa, nu 0.3
   Material m;
   m.youngs_modulus = 210e9;
   m.poisson_ratio = 0.3;
@@ -89,13 +89,13 @@ TEST(LinearCreep, FastsimOnHertzPatchesIsKalkerWithinTwoPercent) {
   EXPECT_GE(patches, 4);
 }
 
-// The non-elliptic patches of STRIPES (A&B, the default scene's model) against Kalker's theory on
+// The non-elliptic patches of STRIPES (A&B, the STRIPES scene's model) against Kalker's theory on
 // their equivalent ellipse (equal area, the patch's lateral extent): the ratio of each slope.
 // A measurement: it asserts only the signs of the direct slopes; the numbers are the report.
 TEST(LinearCreep, StripesPatchesAgainstTheirEquivalentEllipse) {
   const ContactGeometrySolver solver = make_solver();
   const Material mat = steel();
-  NormalOptions normal;  // stripes-ab, shift, 50 strips: the default scene's
+  NormalOptions normal;  // stripes-ab, shift, 50 strips: the STRIPES scene's
   FastsimOptions fastsim;
   fastsim.elements_per_strip = 20;
   FastsimWorkspace ws;

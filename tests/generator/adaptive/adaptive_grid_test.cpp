@@ -188,26 +188,10 @@ TEST(AdaptiveScene, InvalidInputNamesTheKey) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The contact chain
-
-constexpr const char* kTread = R"(
-[scene]
-name = "tread"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[accuracy]
-creep_force = 0.01
-contact_angle = 0.002
-[grid]
-y = {start = -0.002, stop = 0.002, max_step = 0.002, min_step = 2.5e-4}
-equilibrium_roll = true
-load = 78500
-xi = {start = 0.0, stop = 0.008, max_step = 0.004, min_step = 1.25e-4}
-)";
+// The contact chain (testing::kAdaptiveTreadScene)
 
 TEST(AdaptiveContact, ProbeMatchesTheSweepKernel) {
-  Scene scene = parse_scene(kTread, "tread.toml");
+  Scene scene = parse_scene(testing::kAdaptiveTreadScene, "tread.toml");
   scene.grids.y = {0.0013};
   scene.grids.xi = {0.0021};
   SweepKernel kernel = make_contact_kernel(scene);
@@ -226,7 +210,7 @@ TEST(AdaptiveContact, ProbeMatchesTheSweepKernel) {
 }
 
 TEST(AdaptiveContact, CreepageAxisRefinedWhereTheCreepCurveBends) {
-  Scene scene = parse_scene(kTread, "tread.toml");
+  Scene scene = parse_scene(testing::kAdaptiveTreadScene, "tread.toml");
   AdaptiveGridSummary s = build_adaptive_grids(scene, 1);
   ASSERT_EQ(s.axes.size(), 2u);
   for (const AxisRefinement& r : s.axes) {
@@ -280,7 +264,7 @@ xi = 0.002
 }
 
 TEST(AdaptiveContact, GridsDoNotDependOnThreads) {
-  Scene one = parse_scene(kTread, "tread.toml");
+  Scene one = parse_scene(testing::kAdaptiveTreadScene, "tread.toml");
   Scene two = one;
   build_adaptive_grids(one, 1);
   build_adaptive_grids(two, 2);

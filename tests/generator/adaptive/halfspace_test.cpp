@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/check.hpp"
+#include "error_message.hpp"
 #include "halfspace/wheel_rail.hpp"
 #include "generator/test_tables.hpp"
 #include "normal/normal_model.hpp"
@@ -23,51 +24,22 @@
 namespace railtab {
 namespace {
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no exception)";
-}
-
-constexpr const char* kScene = R"(
-[scene]
-name = "halfspace-small"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[track]
-rail_inclination = "1:40"
-[contact]
-normal_model = "halfspace"
-friction = 0.3
-[grid]
-y = [0.0, 0.003]
-equilibrium_roll = true
-load = [78.5e3]
-xi = [0.0, 0.002]
-eta = [0.0]
-phi = [0.0]
-)";
-
 TEST(HalfspaceSelectable, SceneKeysAndNames) {
   EXPECT_EQ(parse_normal_model("halfspace"), NormalModel::halfspace);
   EXPECT_STREQ(to_string(NormalModel::halfspace), "halfspace");
-  const Scene scene = parse_scene(kScene, "h.toml");
+  const Scene scene = parse_scene(testing::kHalfspaceSmallScene, "h.toml");
   EXPECT_EQ(scene.normal.model, NormalModel::halfspace);
   EXPECT_DOUBLE_EQ(scene.halfspace.element_size, 0.3e-3);  // the default
-  std::string text = kScene;
+  std::string text = testing::kHalfspaceSmallScene;
   text.replace(text.find("friction = 0.3"), 14, "element_size = 0.4e-3");
   EXPECT_DOUBLE_EQ(parse_scene(text, "h.toml").halfspace.element_size, 0.4e-3);
   text.replace(text.find("0.4e-3"), 6, "0.4");  // 0.4 m: a unit mistake, refused with the key named
-  const std::string message = message_of([&] { parse_scene(text, "h.toml"); });
+  const std::string message = test::error_message([&] { parse_scene(text, "h.toml"); });
   EXPECT_NE(message.find("element_size"), std::string::npos) << message;
   // The fast normal layer refuses the model instead of silently solving something else.
   NormalOptions options;
   options.model = NormalModel::halfspace;
-  EXPECT_NE(message_of([&] { solve_normal_for_load(WheelContactGeometry{}, 78.5e3, Material{}, options); })
+  EXPECT_NE(test::error_message([&] { solve_normal_for_load(WheelContactGeometry{}, 78.5e3, Material{}, options); })
                 .find("halfspace"),
             std::string::npos);
 }
@@ -76,7 +48,7 @@ TEST(HalfspaceSelectable, SceneKeysAndNames) {
 // carries the load; the coupled creep part balances N cos g + fy sin g against it; creep forces
 // within mu N.
 TEST(HalfspaceSelectable, SweepDeterministicAndBalanced) {
-  const Scene scene = parse_scene(kScene, "h.toml");
+  const Scene scene = parse_scene(testing::kHalfspaceSmallScene, "h.toml");
   ASSERT_TRUE(scene.tangential.load_coupling);
   SweepKernel kernel = make_contact_kernel(scene);
   SweepOptions one, two;

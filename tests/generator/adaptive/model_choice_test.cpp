@@ -105,28 +105,8 @@ TEST(ModelChoiceError, FractionOfTheTargetsAndRejection) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The contact chain: tread (|y| <= 3 mm) and flange contact of the left wheel (y = 9 mm).
-
-constexpr const char* kScene = R"([scene]
-name = "choice"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[contact]
-normal_model = "stripes-ab"
-[accuracy]
-creep_force = 0.02
-normal_force = 0.01
-models = ["hertz", "kik-piotrowski"]
-model_tolerance = 3.0
-[grid]
-y = [-0.003, 0.0015, 0.003, 0.009]
-equilibrium_roll = true
-load = [60e3, 100e3]
-xi = {start = -0.004, stop = 0.004, max_step = 0.004, min_step = 0.002}
-eta = 0.001
-phi = 0.05
-)";
+// The contact chain (testing::kModelChoiceScene): tread (|y| <= 3 mm) and flange contact of the
+// left wheel (y = 9 mm).
 
 // The error of a model at one y as a fraction of the targets x model_tolerance, computed here from the
 // probe outputs directly (not model_error).
@@ -154,7 +134,7 @@ double direct_error(const Scene& scene, NormalModel model, double y) {
 }
 
 TEST(ModelChoice, DeterministicAndNeverAModelThatMissesTheTargets) {
-  Scene scene = parse_scene(kScene, "choice.toml");
+  Scene scene = parse_scene(testing::kModelChoiceScene, "choice.toml");
   ASSERT_EQ(scene.accuracy.models.size(), 3u);
   const ModelChoice one = choose_models(scene, 1);
   const ModelChoice two = choose_models(scene, 2);
@@ -176,7 +156,7 @@ TEST(ModelChoice, DeterministicAndNeverAModelThatMissesTheTargets) {
 TEST(ModelChoice, ReferenceWhereNoCheaperModelMeetsTheTargets) {
   // At the plain targets (2 % of mu N, 1 % of N) neither Hertz nor Kik-Piotrowski is close enough
   // to STRIPES A&B, in the flange contact of the left wheel (y = 9 mm) or on the tread.
-  Scene scene = parse_scene(kScene, "choice.toml");
+  Scene scene = parse_scene(testing::kModelChoiceScene, "choice.toml");
   scene.accuracy.model_tolerance = 1.0;
   const ModelChoice c = choose_models(scene, 1);
   for (std::size_t iy = 0; iy < scene.grids.y.size(); ++iy) {
@@ -187,7 +167,7 @@ TEST(ModelChoice, ReferenceWhereNoCheaperModelMeetsTheTargets) {
 }
 
 TEST(ModelChoice, ModelToleranceScalesTheTargets) {
-  Scene scene = parse_scene(kScene, "choice.toml");
+  Scene scene = parse_scene(testing::kModelChoiceScene, "choice.toml");
   scene.accuracy.model_tolerance = 1.0;
   const ModelChoice strict = choose_models(scene, 1);
   scene.accuracy.model_tolerance = 100.0;

@@ -7,64 +7,22 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 #include <string>
 
 #include "core/check.hpp"
+#include "error_message.hpp"
+#include "generator/test_tables.hpp"
 #include "scene/scene.hpp"
 
 namespace railtab::state_eval_test {  // own namespace: unity builds compile several test files as one
 namespace {
-
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no exception)";
-}
-
-constexpr const char* kScene = R"(
-[scene]
-name = "halfspace-small"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[track]
-rail_inclination = "1:40"
-[contact]
-normal_model = "halfspace"
-friction = 0.3
-[grid]
-y = [0.0, 0.003]
-equilibrium_roll = true
-load = [78.5e3]
-xi = [0.0, 0.002]
-eta = [0.0]
-phi = [0.0]
-)";
-
-
-constexpr const char* kTreadScene = R"(
-[scene]
-name = "tread"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[grid]
-y = [0.001]
-load = [60000]
-xi = [0.001]
-)";
-
 
 // railtab eval --model halfspace at the central S1002/UIC60 state (y = 0, 78.5 kN): the vertical
 // components of the normal forces carry the load; with creepage the creep forces stay within
 // mu N, the load balance includes their vertical part (load coupling) and at a large creepage
 // they saturate near mu N.
 TEST(HalfspaceSelectable, EvalCentralStateLoadAndFrictionBound) {
-  Scene scene = parse_scene(kScene, "h.toml");
+  Scene scene = parse_scene(testing::kHalfspaceSmallScene, "h.toml");
   scene.normal.model = NormalModel::stripes_ab;  // --model must switch it
   StateEvalRequest request;
   request.y = 0.0;
@@ -112,25 +70,25 @@ TEST(HalfspaceSelectable, EvalCentralStateLoadAndFrictionBound) {
 }
 
 TEST(NonFinite, CreepagesBeyondPhysicalAreRefused) {
-  const std::string scene = std::string(kTreadScene);
+  const std::string scene = std::string(testing::kTreadPointScene);
   const std::string huge = scene.substr(0, scene.find("xi =")) + "xi = [0.0, 1e300]\n";
-  EXPECT_NE(message_of([&] { parse_scene(huge, "huge.toml"); }).find("far beyond physical"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { parse_scene(huge, "huge.toml"); }).find("far beyond physical"), std::string::npos);
   StateEvalRequest request;
   request.y = 0.001;
   request.creepage = {1e300, 0.0, 0.0};
-  EXPECT_NE(message_of([&] { evaluate_state(parse_scene(kTreadScene, "t.toml"), request); }).find("far beyond"),
+  EXPECT_NE(test::error_message([&] { evaluate_state(parse_scene(testing::kTreadPointScene, "t.toml"), request); }).find("far beyond"),
             std::string::npos);
 }
 
 // eval --load 78.5 (kN typed for N) is refused with the SI spelling; 0 (unloaded) and real loads pass.
 TEST(NonFinite, EvalLoadInKiloNewtonsIsRefused) {
-  const Scene scene = parse_scene(kTreadScene, "t.toml");
+  const Scene scene = parse_scene(testing::kTreadPointScene, "t.toml");
   StateEvalRequest request;
   request.y = 0.001;
   request.load = 78.5;
-  EXPECT_NE(message_of([&] { evaluate_state(scene, request); }).find("78.5e3"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { evaluate_state(scene, request); }).find("78.5e3"), std::string::npos);
   request.load = 78.5e3;
-  EXPECT_EQ(message_of([&] { evaluate_state(scene, request); }), "(no exception)");
+  EXPECT_EQ(test::error_message([&] { evaluate_state(scene, request); }), "");
 }
 
 }  // namespace

@@ -18,48 +18,9 @@
 namespace railtab::adaptive_generate_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
-constexpr const char* kTread = R"(
-[scene]
-name = "tread"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[accuracy]
-creep_force = 0.01
-contact_angle = 0.002
-[grid]
-y = {start = -0.002, stop = 0.002, max_step = 0.002, min_step = 2.5e-4}
-equilibrium_roll = true
-load = 78500
-xi = {start = 0.0, stop = 0.008, max_step = 0.004, min_step = 1.25e-4}
-)";
-
-
-constexpr const char* kChoiceScene = R"([scene]
-name = "choice"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[contact]
-normal_model = "stripes-ab"
-[accuracy]
-creep_force = 0.02
-normal_force = 0.01
-models = ["hertz", "kik-piotrowski"]
-model_tolerance = 3.0
-[grid]
-y = [-0.003, 0.0015, 0.003, 0.009]
-equilibrium_roll = true
-load = [60e3, 100e3]
-xi = {start = -0.004, stop = 0.004, max_step = 0.004, min_step = 0.002}
-eta = 0.001
-phi = 0.05
-)";
-
-
 TEST(AdaptiveContact, GenerateUsesAdaptiveGridsAndRecordsTargets) {
   testing::TempDir dir("adaptive_generate");
-  std::ofstream(dir / "scene.toml") << kTread;
+  std::ofstream(dir / "scene.toml") << testing::kAdaptiveTreadScene;
   GenerateOptions options;
   options.scene = dir / "scene.toml";
   options.output = dir / "t.h5";
@@ -80,7 +41,7 @@ TEST(AdaptiveContact, GenerateUsesAdaptiveGridsAndRecordsTargets) {
 
 TEST(ModelChoice, TableRecordsTheChoiceAndIsByteIdenticalForAnyThreadCount) {
   testing::TempDir dir("model_choice");
-  std::ofstream(dir / "scene.toml") << kChoiceScene;
+  std::ofstream(dir / "scene.toml") << testing::kModelChoiceScene;
   GenerateOptions options;
   options.scene = dir / "scene.toml";
   options.output = dir / "one.h5";

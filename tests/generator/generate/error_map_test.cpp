@@ -261,11 +261,11 @@ TEST(ErrorMap, FormatTwoPointTwoTableWithoutAMapStillLoads) {
 // the creep force error |(dfx, dfy)| / (mu N) in %, the normal force in %, the contact angle in
 // mrad; the table (public lookup) against its model at 48 states per band (both wheels), and the
 // model against the exact half-space model at 4 states per band (left wheel).
-TEST(ErrorMap, DISABLED_DefaultTableFigures) {
-  testing::TempDir dir("error_map_default");
+TEST(ErrorMap, DISABLED_StripesTableFigures) {
+  testing::TempDir dir("error_map_stripes");
   GenerateOptions o;
   o.scene = std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default_stripes.toml";
-  o.output = dir / "default.h5";
+  o.output = dir / "stripes.h5";
   o.threads = 2;
   generate_table(o);
   Scene scene = load_scene(o.scene);

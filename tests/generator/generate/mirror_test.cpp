@@ -125,7 +125,8 @@ TEST(Mirror, StripesTableIsTheFullSweep) { expect_mirror_is_full(kStripesScene, 
 // The other models that pass the mirror, on the jump scene of the other tests with spin.
 TEST(Mirror, FastModelTablesAreTheFullSweep) {
   for (const char* model : {"linder", "kik-piotrowski", "stripes-a"}) {
-    std::string scene = std::string(testing::kJumpScene) + "phi = [-0.2, 0.0, 0.2]\n";
+    std::string scene = testing::kJumpScene;
+    scene += "phi = [-0.2, 0.0, 0.2]\n";
     scene.replace(scene.find("hertz"), 5, model);
     SCOPED_TRACE(model);
     expect_mirror_is_full(scene, std::string("mirror_") + model, 2);
@@ -141,7 +142,7 @@ TEST(Mirror, HalfspaceTableIsTheFullSweep) { expect_mirror_is_full(kHalfspaceSce
 // mz_xi, rounding noise about 0, then keep their sign on both wheels). Its tables run the full
 // sweep.
 // The exact scene in tables/ (7 x 7 x 7 normalised creepages) is mirrored.
-TEST(Mirror, DefaultHalfspaceSceneIsMirrored) {
+TEST(Mirror, DefaultSceneIsMirrored) {
   const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / "default.toml");
   EXPECT_EQ(mirror_obstacle(scene, make_contact_kernel(scene)), "");
 }

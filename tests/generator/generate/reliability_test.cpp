@@ -8,10 +8,10 @@
 
 #include <cmath>
 #include <fstream>
-#include <functional>
 #include <sstream>
 
 #include "core/check.hpp"
+#include "error_message.hpp"
 #include "generator/synthetic_kernel.hpp"
 #include "generator/test_tables.hpp"
 #include "kernel/contact_kernel.hpp"
@@ -28,15 +28,6 @@ namespace fs = std::filesystem;
 std::string read_all(const fs::path& p) {
   std::ifstream in(p);
   return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no exception)";
 }
 
 GenerateOptions synthetic_options(const testing::TempDir& dir, const std::string& scene_text = testing::kSyntheticScene) {
@@ -56,11 +47,11 @@ TEST(GenerateOutput, RefusesTheSceneItselfAndNonRegularTargets) {
   fs::create_symlink("scene.toml", dir / "link.h5");
   for (const fs::path& target : {o.scene, dir / "link.h5", dir.path() / "." / "scene.toml"}) {
     o.output = target;
-    EXPECT_NE(message_of([&] { generate_table(o); }).find("is the input"), std::string::npos) << target;
+    EXPECT_NE(test::error_message([&] { generate_table(o); }).find("is the input"), std::string::npos) << target;
   }
   EXPECT_EQ(read_all(o.scene), scene_before);  // the scene is untouched
   o.output = "/dev/null";
-  EXPECT_NE(message_of([&] { generate_table(o); }).find("character device"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { generate_table(o); }).find("character device"), std::string::npos);
   EXPECT_EQ(dir.files(), (std::vector<std::string>{"link.h5", "scene.toml"}));
 }
 
@@ -76,7 +67,7 @@ TEST(MergeOutput, RefusesAnInputShardAsOutput) {
     shards.push_back(o.output.string());
   }
   const std::string before = read_all(shards[0]);
-  EXPECT_NE(message_of([&] { merge_table_files(shards, shards[0]); }).find("is the input"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { merge_table_files(shards, shards[0]); }).find("is the input"), std::string::npos);
   EXPECT_EQ(read_all(shards[0]), before);
   EXPECT_NO_THROW(merge_table_files(shards, (dir / "all.h5").string()));
 }
@@ -90,13 +81,13 @@ TEST(ResumeCheckpoint, RefusesALinkOrFifoPlantedAsThePartialFile) {
   o.resume = true;
   std::ofstream(dir / "victim.txt") << "precious data";
   fs::create_symlink("victim.txt", dir / "t.h5.partial");
-  EXPECT_NE(message_of([&] { generate_table(o); }).find("symbolic link"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { generate_table(o); }).find("symbolic link"), std::string::npos);
   fs::remove(dir / "t.h5.partial");
   fs::create_hard_link(dir / "victim.txt", dir / "t.h5.partial");
-  EXPECT_NE(message_of([&] { generate_table(o); }).find("hard links"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { generate_table(o); }).find("hard links"), std::string::npos);
   fs::remove(dir / "t.h5.partial");
   ASSERT_EQ(::mkfifo((dir / "t.h5.partial").c_str(), 0600), 0);
-  EXPECT_NE(message_of([&] { generate_table(o); }).find("FIFO"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { generate_table(o); }).find("FIFO"), std::string::npos);
   EXPECT_EQ(read_all(dir / "victim.txt"), "precious data");
   EXPECT_FALSE(fs::exists(dir / "t.h5"));
 }
@@ -119,7 +110,7 @@ load = 80e3
   const std::string rail_before = read_all(dir / "avg_HR.BAN");
   for (const fs::path& target : {dir / "avg_HR.BAN", dir.path() / "." / "Car7216_0001r.whl"}) {
     o.output = target;
-    EXPECT_NE(message_of([&] { generate_table(o); }).find("is the input"), std::string::npos) << target;
+    EXPECT_NE(test::error_message([&] { generate_table(o); }).find("is the input"), std::string::npos) << target;
   }
   EXPECT_EQ(read_all(dir / "avg_HR.BAN"), rail_before);
 }
@@ -134,7 +125,7 @@ TEST(MergeInput, RefusesAFifoShardWithoutBlocking) {
   generate_table(o);
   ASSERT_EQ(::mkfifo((dir / "s2.h5").c_str(), 0600), 0);
   const std::string error =
-      message_of([&] { merge_table_files({(dir / "s1.h5").string(), (dir / "s2.h5").string()}, (dir / "m.h5").string()); });
+      test::error_message([&] { merge_table_files({(dir / "s1.h5").string(), (dir / "s2.h5").string()}, (dir / "m.h5").string()); });
   EXPECT_NE(error.find("s2.h5"), std::string::npos) << error;
   EXPECT_NE(error.find("FIFO"), std::string::npos) << error;
   EXPECT_FALSE(fs::exists(dir / "m.h5"));
@@ -162,7 +153,7 @@ TEST(MergeInput, ShardTheLookupRefusesIsNamed) {
   d->values[0] = std::nan("");
   write_table(bad, shards[1] + ".nan", nullptr, {}, WrittenCheck::none);
   fs::rename(shards[1] + ".nan", shards[1]);
-  const std::string m = message_of([&] { merge_table_files(shards, (dir / "all.h5").string()); });
+  const std::string m = test::error_message([&] { merge_table_files(shards, (dir / "all.h5").string()); });
   EXPECT_NE(m.find("merge: " + shards[1] + ": "), std::string::npos) << m;
   EXPECT_NE(m.find("non-finite"), std::string::npos) << m;
   EXPECT_FALSE(fs::exists(dir / "all.h5"));
@@ -187,7 +178,7 @@ phi = {start = -1, stop = 1, count = 32}
 TEST(TableSize, ProductOverflowIsAnErrorNotACrash) {
   testing::TempDir dir("rel_overflow");
   GenerateOptions o = synthetic_options(dir, kOverflowScene);
-  EXPECT_NE(message_of([&] { generate_table(o); }).find("overflows 64 bits"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { generate_table(o); }).find("overflows 64 bits"), std::string::npos);
   Scene scene = parse_scene(kOverflowScene, "ovf.toml");
   EXPECT_THROW(table_points(scene, scene.grids.y.size()), Error);
   // run_sweep checks the same before allocating, whoever calls it.
@@ -202,10 +193,10 @@ TEST(TableSize, LimitsRefuseAndAFlagRaisesThem) {
   const std::uint64_t points = table_points(scene, scene.grids.y.size());
   EXPECT_EQ(points, 7u * 2 * 2 * 3 * 1 * 2);
   o.max_points = points - 1;
-  EXPECT_NE(message_of([&] { generate_table(o); }).find("--max-points"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { generate_table(o); }).find("--max-points"), std::string::npos);
   o.max_points = points;
   o.max_bytes = 1000;
-  EXPECT_NE(message_of([&] { generate_table(o); }).find("--max-bytes"), std::string::npos);
+  EXPECT_NE(test::error_message([&] { generate_table(o); }).find("--max-bytes"), std::string::npos);
   o.max_bytes = kDefaultMaxBytes;
   std::ostringstream log;
   o.log = &log;
@@ -218,10 +209,10 @@ TEST(TableSize, LimitsRefuseAndAFlagRaisesThem) {
 // model, tens of milliseconds for the exact one.
 TEST(TableSize, RefusalUsesTheModelsCostPerPoint) {
   Scene scene = parse_scene(testing::kSyntheticScene, "s.toml");
-  const std::string fast = message_of([&] { check_table_size(scene, 3, 0, 2, kDefaultMaxBytes, contact_point_cost(scene)); });
+  const std::string fast = test::error_message([&] { check_table_size(scene, 3, 0, 2, kDefaultMaxBytes, contact_point_cost(scene)); });
   EXPECT_NE(fast.find("100-600 us per point"), std::string::npos) << fast;
   scene.normal.model = NormalModel::halfspace;
-  const std::string exact = message_of([&] { check_table_size(scene, 3, 0, 2, kDefaultMaxBytes, contact_point_cost(scene)); });
+  const std::string exact = test::error_message([&] { check_table_size(scene, 3, 0, 2, kDefaultMaxBytes, contact_point_cost(scene)); });
   EXPECT_NE(exact.find("15-45 ms per point"), std::string::npos) << exact;
 }
 
@@ -268,31 +259,19 @@ TEST(TableSize, EstimateCountsTheComputedPoints) {
   EXPECT_EQ(describe_table_size(points, points, 1000, 2, cost).find("computed"), std::string::npos);
 }
 
-constexpr const char* kTreadScene = R"(
-[scene]
-name = "tread"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[grid]
-y = [0.001]
-load = [60000]
-xi = [0.001]
-)";
-
 // A y grid reaching off the rail with the equilibrium roll fails in the jump locator: the message
 // names the scene file and the stage (it was the bare "wheel 'S1002' does not overlap its rail").
 TEST(NonFinite, JumpLocatorFailureNamesSceneAndStage) {
   testing::TempDir dir("jump_locator_failure");
-  const std::string text = std::string(kTreadScene).replace(std::string(kTreadScene).find("y = [0.001]"), 11,
-                                                            "y = {start = -0.08, stop = 0.08, step = 0.01}") +
-                           "equilibrium_roll = true\n";
+  std::string text = testing::kTreadPointScene;
+  text.replace(text.find("y = [0.001]"), 11, "y = {start = -0.08, stop = 0.08, step = 0.01}");
+  text += "equilibrium_roll = true\n";
   std::ofstream(dir / "off.toml") << text;
   GenerateOptions o;
   o.scene = dir / "off.toml";
   o.output = dir / "off.h5";
   o.threads = 1;
-  const std::string message = message_of([&] { generate_table(o); });
+  const std::string message = test::error_message([&] { generate_table(o); });
   EXPECT_NE(message.find("off.toml: locating the contact jumps along y"), std::string::npos) << message;
   EXPECT_NE(message.find("does not overlap its rail"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(dir / "off.h5"));

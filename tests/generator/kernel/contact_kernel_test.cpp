@@ -20,19 +20,6 @@
 namespace railtab::contact_kernel_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
-constexpr const char* kTreadScene = R"(
-[scene]
-name = "tread"
-[profiles]
-wheel = "s1002"
-rail = "uic60"
-[grid]
-y = [0.001]
-load = [60000]
-xi = [0.001]
-)";
-
-
 // The real contact kernel on a tiny grid: deterministic across thread counts, and physically sane.
 TEST(ContactSweep, DefaultProfilesSmallGrid) {
   Scene scene = parse_scene(R"(
@@ -167,7 +154,7 @@ TEST(ContactKernel, SlotsByFlangeFlagLowerSeparationWins) {
 // A creepage past the scene check (a caller building the grid itself) overflows FASTSIM to NaN:
 // the table stores zeros with `failed`, never NaN with `converged`.
 TEST(NonFinite, NaNInTheKernelIsFailedNotConverged) {
-  Scene scene = parse_scene(kTreadScene, "t.toml");
+  Scene scene = parse_scene(testing::kTreadPointScene, "t.toml");
   scene.grids.xi = {1e300};
   const SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});
   EXPECT_GT(r.summary.failures, 0u);
@@ -192,9 +179,9 @@ TEST(NonFinite, NaNInTheKernelIsFailedNotConverged) {
 // normalised table: with zeros the lookup refused the whole table ("holds a scale that is not
 // finite and > 0"), so one failed point made every other unusable.
 TEST(NonFinite, FailedColumnKeepsPositiveCreepScales) {
-  const std::string text = std::string(kTreadScene).replace(std::string(kTreadScene).find("y = [0.001]"), 11,
-                                                            "y = [0.001, 0.1]") +
-                           "eta = [0.0]\nphi = [0.0]\ncreep_coordinates = \"normalised\"\n";
+  std::string text = testing::kTreadPointScene;
+  text.replace(text.find("y = [0.001]"), 11, "y = [0.001, 0.1]");
+  text += "eta = [0.0]\nphi = [0.0]\ncreep_coordinates = \"normalised\"\n";
   const Scene scene = parse_scene(text, "t.toml");
   ASSERT_TRUE(scene.creep_normalised);
   const SweepResult r = run_sweep(scene, make_contact_kernel(scene), SweepOptions{});

@@ -24,7 +24,7 @@
 namespace railtab::wear_accumulator_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
-const Scene& default_scene() {
+const Scene& stripes_scene() {
   static const Scene scene = load_scene(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables/default_stripes.toml");
   return scene;
 }
@@ -86,7 +86,7 @@ HandWear wear_by_hand(const Scene& scene, int w) {
 
 TEST(WearAccumulator, WornAreaIsArchardWearRateTimesDistance) {
   for (NormalModel model : {NormalModel::stripes_ab, NormalModel::hertz}) {
-    Scene scene = default_scene();
+    Scene scene = stripes_scene();
     scene.normal.model = model;
     WearAccumulator acc(scene);
     const double distance = 137.0;
@@ -114,7 +114,7 @@ TEST(WearAccumulator, WornAreaIsArchardWearRateTimesDistance) {
 }
 
 TEST(WearAccumulator, SamplesAddAndScaleScales) {
-  const Scene& scene = default_scene();
+  const Scene& scene = stripes_scene();
   WearAccumulator one(scene), two(scene);
   one.sample(kY, kLoad, tread_motion(), 50.0);
   two.sample(kY, kLoad, tread_motion(), 50.0);
@@ -136,7 +136,7 @@ TEST(WearAccumulator, SamplesAddAndScaleScales) {
 }
 
 TEST(WearAccumulator, NoLoadNoWear) {
-  const Scene& scene = default_scene();
+  const Scene& scene = stripes_scene();
   WearAccumulator acc(scene);
   const double none[vehicle::kWheels] = {0.0, 0.0};
   const std::uint32_t bits = acc.sample(kY, none, tread_motion(), 100.0);
@@ -152,7 +152,7 @@ TEST(WearAccumulator, NoLoadNoWear) {
 }
 
 TEST(WearAccumulator, FailingSolveIsCountedNotThrown) {
-  WearAccumulator acc(default_scene());
+  WearAccumulator acc(stripes_scene());
   std::uint32_t bits = 0;
   EXPECT_NO_THROW(bits = acc.sample(std::nan(""), kLoad, tread_motion(), 100.0));
   EXPECT_TRUE(bits & status::kFailed);
@@ -163,7 +163,7 @@ TEST(WearAccumulator, FailingSolveIsCountedNotThrown) {
   vehicle::WheelsetMotion standing = tread_motion();
   standing.speed = 0.0;
   EXPECT_THROW(acc.sample(kY, kLoad, standing, 1.0), Error);
-  EXPECT_THROW(WearAccumulator(default_scene(), WearGrid{0.0, 0.001, 0.0003}), Error);  // not whole steps
+  EXPECT_THROW(WearAccumulator(stripes_scene(), WearGrid{0.0, 0.001, 0.0003}), Error);  // not whole steps
 }
 
 // (y, psi, ...) -> (-y, -psi, ...) mirrors the track about its centreline: the left wheel's wear
@@ -172,7 +172,7 @@ TEST(WearAccumulator, FailingSolveIsCountedNotThrown) {
 // whose spin makes the wear inside each patch lopsided.
 TEST(WearAccumulator, MirroredStateSwapsTheWheels) {
   for (NormalModel model : {NormalModel::hertz, NormalModel::stripes_ab}) {
-    Scene scene = default_scene();
+    Scene scene = stripes_scene();
     scene.normal.model = model;
     vehicle::WheelsetMotion motion = tread_motion();
     motion.yaw = 4e-3;
@@ -203,7 +203,7 @@ TEST(WearAccumulator, MirroredStateSwapsTheWheels) {
 // A Hertz flange patch (left wheel, 7.5 mm towards its flange) wears the wheel profile over the
 // ellipse's lateral extent projected on u, 2 b cos(beta), not over 2 b.
 TEST(WearAccumulator, EllipticWearCoversTheProjectedEllipse) {
-  Scene scene = default_scene();
+  Scene scene = stripes_scene();
   scene.normal.model = NormalModel::hertz;
   const double y = 0.0075, load[vehicle::kWheels] = {90e3, 60e3};
   const ContactGeometrySolver solver = make_geometry_solver(scene);
@@ -239,7 +239,7 @@ TEST(WearAccumulator, DISABLED_SinusoidalRunChart) {
   const int n = 60;  // samples per wavelength
   std::vector<WearSeries> series;
   for (NormalModel model : {NormalModel::hertz, NormalModel::stripes_a, NormalModel::stripes_ab}) {
-    Scene scene = default_scene();
+    Scene scene = stripes_scene();
     scene.normal.model = model;
     WearAccumulator acc(scene);
     for (int i = 0; i < n; ++i) {
@@ -333,7 +333,7 @@ TEST(WornProfile, RoundTripThroughTheProfileReader) {
 // visible depth, written as the next wheel profile, and a scene naming that file runs the next
 // step. Its rolling radius at the worn spot is smaller by the smoothed depth.
 TEST(WornProfile, WornWheelFeedsTheNextStep) {
-  Scene scene = default_scene();
+  Scene scene = stripes_scene();
   WearAccumulator acc(scene);
   acc.sample(kY, kLoad, tread_motion(), 100.0);
   const auto& d = acc.depth(0);
@@ -392,7 +392,7 @@ TEST(WearAccumulator, DISABLED_SampleCost) {
   const int n = 200;
   {
     // The geometry alone (equilibrium roll + both wheels), which every sample pays first.
-    const ContactGeometrySolver solver = make_geometry_solver(default_scene());
+    const ContactGeometrySolver solver = make_geometry_solver(stripes_scene());
     const auto t0 = std::chrono::steady_clock::now();
     for (int i = 0; i < n; ++i) {
       const double y = kY * (i % 20) / 20.0;
@@ -402,7 +402,7 @@ TEST(WearAccumulator, DISABLED_SampleCost) {
     std::printf("%-11s %8.1f us per sample (equilibrium roll + geometry of both wheels)\n", "geometry", 1e6 * s / n);
   }
   for (NormalModel model : {NormalModel::hertz, NormalModel::stripes_a, NormalModel::stripes_ab}) {
-    Scene scene = default_scene();
+    Scene scene = stripes_scene();
     scene.normal.model = model;
     WearAccumulator acc(scene);
     acc.sample(kY, kLoad, tread_motion(), 1.0);  // warm-up: workspaces grow once

@@ -117,7 +117,7 @@ TEST(TableWriter, LargeDatasetsAreCompressed) {
   EXPECT_EQ(H5Pget_nfilters(dcpl), 3);  // shuffle + deflate + fletcher32 (format 1.1)
   H5Pclose(dcpl);
   H5Dclose(d);
-  // 24 KiB of statuses: compressed too (above 4 KiB; the default table's one-sided statuses
+  // 24 KiB of statuses: compressed too (above 4 KiB; the STRIPES table's one-sided statuses
   // at the jumps are 55 KB each and compress to ~1 KB).
   hid_t status = H5Dopen2(f, "/left/geometry/status", H5P_DEFAULT);
   dcpl = H5Dget_create_plist(status);

@@ -28,10 +28,10 @@
 #include "adaptive/jump_locator.hpp"
 #include "table/storage_precision.hpp"
 
-namespace railtab::accuracy {
+namespace railtab::accuracy::stripes_scene_accuracy_test {  // own namespace: unity builds compile several test files as one
 namespace {
 
-constexpr std::uint64_t kSeed = kDefaultStatesSeed;  // 20240611: the states of default_direct()
+constexpr std::uint64_t kSeed = kStripesStatesSeed;  // 20240611: the states of stripes_direct()
 
 struct Fixture {
   Scene scene;
@@ -43,16 +43,13 @@ struct Fixture {
 const Fixture& fixture() {
   static const Fixture f = [] {
     Fixture x;
-    const DefaultSweep& d = default_sweep();
+    const StripesSweep& d = stripes_sweep();
     x.scene = d.scene;
     x.generate_seconds = d.sweep_seconds;
     x.table = d.table;
-    const std::filesystem::path path = temp_table_path("default");
     Table with_jumps = x.table;  // as `railtab generate` writes it (format 2.1, located jumps)
     add_jumps(with_jumps, x.scene, d.jumps);
-    write_for_lookup(with_jumps, path);
-    x.lookup.emplace(lk::Table::load(path.string()));
-    std::filesystem::remove(path);
+    x.lookup.emplace(load_through_file(with_jumps, "stripes"));
     return x;
   }();
   return f;
@@ -125,10 +122,10 @@ TEST(TableAccuracy, DirectEvaluationReproducesTheNodes) {
   }
 }
 
-TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
+TEST(TableAccuracy, StripesSceneRandomOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);
-  const DefaultDirect& dd = default_direct();  // random_states(f.scene, 4000, kSeed), evaluated once per process
+  const StripesDirect& dd = stripes_direct();  // random_states(f.scene, 4000, kSeed), evaluated once per process
   const std::vector<Point>& points = dd.points;
   const std::vector<Direct>& direct = dd.direct;
   const double direct_seconds = dd.seconds;
@@ -216,7 +213,7 @@ TEST(TableAccuracy, DefaultSceneRandomOffGrid) {
 // The creepage part of the error alone: states on (y, load) nodes, random creepages, so only the
 // creep coordinates are interpolated (the y direction, with its contact jumps, is
 // docs/validation/contact-jumps.md). Reported, not asserted.
-TEST(TableAccuracy, DefaultSceneCreepageOffGrid) {
+TEST(TableAccuracy, StripesSceneCreepageOffGrid) {
   const Fixture& f = fixture();
   const TableView view(f.table);
   Random rng(kSeed + 2);
@@ -254,4 +251,4 @@ TEST(TableAccuracy, DefaultSceneCreepageOffGrid) {
 }
 
 }  // namespace
-}  // namespace railtab::accuracy
+}  // namespace railtab::accuracy::stripes_scene_accuracy_test
