@@ -2,7 +2,7 @@
 // The query path's internals against brute force (docs/lookup-speed.md): the bucket search on
 // non-uniform axes finds exactly the cells of the binary search, the per-cell statuses of the
 // query layout equal the fold over the cell's corner nodes, and the AVX2 and SSE2 kernels give
-// the same bytes.
+// the same bytes, as do their float corner sums on records whose status lanes hold any bits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include "lookup/lookup_test_util.hpp"
 #include "lookup/table_fixture.hpp"
 #include "railtab/lookup.hpp"
+#include "weighted_sum.hpp"
 
 namespace railtab::lookup {
 namespace {
@@ -172,6 +173,73 @@ TEST(Kernel, Avx2AndSse2KernelsGiveTheSameBytes) {
       ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "method " << static_cast<int>(method);
     }
   }
+}
+
+// The float corner sum of a D-dimensional cell of records of NV floats and two statuses (query
+// layout), SSE2 against AVX2 where the CPU has it: the same bytes, and within float roundings of
+// the multilinear interpolant summed in double (a bound of 10 D 2^-24 of the largest |value|:
+// a + t (b - a) rounds t and three results per level, |b - a| up to twice the largest; a status
+// lane or a corner out of place moves the sum by far more). The statuses are random
+// bits (denormals and NaNs as floats: they must not enter the sums), the records scattered with
+// every stride of the cell different. The table-level tests sum float records of 6 values over 5
+// or 6 dimensions only (FastPath.*, YawTable.*); this covers the other shapes of the kernel tables.
+template <int D, int NV>
+void expect_same_float_corner_sums(std::mt19937& rng) {
+  constexpr int kRecord = detail::record_bytes(NV, sizeof(float), 2);
+  std::size_t stride[D > 0 ? D : 1];
+  std::size_t bytes = kRecord;
+  for (int d = D - 1; d >= 0; --d) {
+    stride[d] = bytes + static_cast<std::size_t>(kRecord) * static_cast<std::size_t>(d);  // gaps between the nodes
+    bytes = 2 * stride[d];
+  }
+  detail::RecordBytes data(bytes + 64);
+  std::uniform_real_distribution<float> value(-3.0f, 3.0f);
+  for (std::size_t at = 0; at + kRecord <= data.size(); at += kRecord) {
+    for (int k = 0; k < NV; ++k) {
+      const float v = value(rng);
+      std::memcpy(&data[at + k * sizeof v], &v, sizeof v);
+    }
+    for (int k = NV; k < kRecord / 4; ++k) {
+      const std::uint32_t bits = static_cast<std::uint32_t>(rng());
+      std::memcpy(&data[at + k * sizeof bits], &bits, sizeof bits);
+    }
+  }
+  const bool avx2 = __builtin_cpu_supports("avx2");
+  std::uniform_real_distribution<double> fraction(0.0, 1.0);
+  for (int k = 0; k < 200; ++k) {
+    double t[D > 0 ? D : 1], u[D > 0 ? D : 1];
+    for (int d = 0; d < D; ++d) t[d] = k == 0 ? 0.0 : k == 1 ? 1.0 : fraction(rng), u[d] = 1.0 - t[d];
+    double sse2[NV], other[NV], exact[NV] = {};
+    detail::corner_sum_sse2<D, NV, float>(data.data(), t, u, stride, sse2);
+    for (int c = 0; c < (1 << D); ++c) {
+      double w = 1.0;
+      std::size_t at = 0;
+      for (int d = 0; d < D; ++d) {
+        const bool upper = (c >> d) & 1;
+        w *= upper ? t[d] : u[d];
+        at += upper ? stride[d] : 0;
+      }
+      for (int v = 0; v < NV; ++v) exact[v] += w * detail::record_value<float>(data.data() + at, v);
+    }
+    for (int v = 0; v < NV; ++v)
+      ASSERT_NEAR(sse2[v], exact[v], 10.0 * D * 3.0 * 0x1p-24) << "D " << D << " NV " << NV << " value " << v;
+    if (avx2) {
+      detail::corner_sum_avx2<D, NV, float>(data.data(), t, u, stride, other);
+      ASSERT_EQ(std::memcmp(sse2, other, sizeof other), 0) << "AVX2, D " << D << " NV " << NV << " state " << k;
+    }
+  }
+}
+
+TEST(Kernel, FloatCornerSumsGiveTheSameBytesInAvx2AndSse2) {
+  std::mt19937 rng(12);
+  expect_same_float_corner_sums<1, 6>(rng);
+  expect_same_float_corner_sums<2, 5>(rng);
+  expect_same_float_corner_sums<3, 8>(rng);
+  expect_same_float_corner_sums<4, 7>(rng);
+  expect_same_float_corner_sums<5, 6>(rng);  // the creep and wear block of a yaw-free table
+  expect_same_float_corner_sums<6, 6>(rng);  // of a yaw table
+  expect_same_float_corner_sums<6, 4>(rng);  // 4 values: vectors of 4 in every instruction set
+  expect_same_float_corner_sums<7, 5>(rng);
 }
 
 }  // namespace
