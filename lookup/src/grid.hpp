@@ -73,7 +73,9 @@ class Axis {
   // i = min(floor(u), n - 2), t = u - i (|error| ~ n ulp). Non-uniform axes: exactly the cell and
   // t of locate(), found without a search: a uniform bucket map (buckets a quarter of the
   // smallest spacing wide) gives the cell at the bucket's start, one compare either way fixes it.
-  bool locate_fast(double x, AxisLoc& loc) const noexcept {
+  // Always inlined: GCC keeps it out of line, and a yaw table's fused query calls it six times
+  // (y, yaw, load and the three creep coordinates): inline, that query is about 5 % faster.
+  __attribute__((always_inline)) bool locate_fast(double x, AxisLoc& loc) const noexcept {
     const bool clamped = x < front_ || x > back_;
     if (uniform_) {
       double u = (x - front_) * inv_h_;
