@@ -49,22 +49,22 @@ namespace lk = railtab::lookup;
 // The scenes: the STRIPES one (tables/default_stripes.toml) with the 5-node yaw axis when `yaw`; the
 // curving one (tables/curving_r600.toml, yaw +-2 mrad in 5 nodes) as it is when `yaw`, else
 // without its yaw line.
-enum Which { kDefault = 0, kCurving = 1 };
+enum Which { kStripes = 0, kCurving = 1 };
 
-railtab::Scene scene(bool yaw, Which which = kDefault) {
-  const char* file = which == kDefault ? "default_stripes.toml" : "curving_r600.toml";
+railtab::Scene scene(bool yaw, Which which = kStripes) {
+  const char* file = which == kStripes ? "default_stripes.toml" : "curving_r600.toml";
   std::ifstream in(std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables" / file);
   std::stringstream text;
   text << in.rdbuf();
   std::string s = text.str();
-  if (which == kDefault && yaw) s.insert(s.find("equilibrium_roll = true"), "yaw = [-0.01, -0.005, 0.0, 0.005, 0.01]\n");
+  if (which == kStripes && yaw) s.insert(s.find("equilibrium_roll = true"), "yaw = [-0.01, -0.005, 0.0, 0.005, 0.01]\n");
   if (which == kCurving && !yaw) s.erase(s.find("yaw = ["), s.find('\n', s.find("yaw = [")) + 1 - s.find("yaw = ["));
   return railtab::parse_scene(s, std::string(file) + (yaw ? " with yaw" : " without yaw"),
                               std::filesystem::path(RAILTAB_SOURCE_DIR) / "tables");
 }
 
 std::string table_name(bool yaw, Which which) {
-  return std::string(which == kDefault ? "stripes" : "curving") + (yaw ? "_yaw" : "_free") + ".h5";
+  return std::string(which == kStripes ? "stripes" : "curving") + (yaw ? "_yaw" : "_free") + ".h5";
 }
 
 std::string temp_path(bool yaw, Which which) {
@@ -82,7 +82,7 @@ std::string kept_path(bool yaw, Which which) {
 
 // The table file of each scene, swept and written once per process (or read from the kept
 // ones); its size [B].
-const std::string& table_file(bool yaw, std::uintmax_t* bytes = nullptr, Which which = kDefault) {
+const std::string& table_file(bool yaw, std::uintmax_t* bytes = nullptr, Which which = kStripes) {
   static std::string paths[2][2];
   static std::uintmax_t sizes[2][2] = {};
   std::string& path = paths[which][yaw];
